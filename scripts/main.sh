@@ -1,0 +1,33 @@
+#!/usr/bin/env bash
+# The main job (README): installs what is missing, builds, and renders the default sky of every
+# model into out/ — float EXR (with metadata), a tone-mapped PNG preview, and a log-luminance
+# false-colour map with legend — as a full-sphere equirect map and an upward fisheye.
+set -euo pipefail
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+cd "$root"
+bash scripts/setup.sh
+bash scripts/build.sh build -DCMAKE_BUILD_TYPE=Release -DSKYLIGHT_BUILD_TESTS=OFF -DSKYLIGHT_BUILD_BENCH=OFF
+out="${SKYLIGHT_OUT:-$root/out}"
+mkdir -p "$out"
+sk="$root/build/skylight"
+sun=(--sun-zenith 45 --sun-azimuth 180)
+# name | model flags
+skies=(
+  "preetham_T3|--model preetham --turbidity 3"
+  "preetham_T6|--model preetham --turbidity 6"
+  "cie_type12|--model cie --cie-type 12"
+  "cie_type7|--model cie --cie-type 7"
+  "cie_type16|--model cie --cie-type 16"
+  "perez_clear|--model perez --perez -1,-0.32,10,-3,0.45 --zenith-luminance 5000"
+)
+n=${#skies[@]}; i=0
+for entry in "${skies[@]}"; do
+  i=$((i + 1))
+  name="${entry%%|*}"; read -r -a flags <<<"${entry#*|}"
+  echo "[$i/$n] $name"
+  "$sk" render "${flags[@]}" "${sun[@]}" --projection equirect --width 1024 --height 512 \
+    -o "$out/$name.exr" --preview "$out/$name.png" --false-colour "$out/${name}_false_colour.png"
+  "$sk" render "${flags[@]}" "${sun[@]}" --projection fisheye --width 512 --height 512 \
+    -o "$out/${name}_fisheye.exr" --false-colour "$out/${name}_fisheye_false_colour.png"
+done
+echo "wrote $(ls "$out" | wc -l) files to $out"

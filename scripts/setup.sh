@@ -1,0 +1,23 @@
+#!/usr/bin/env bash
+# Installs the Debian packages skylight needs, if any is missing (we run as root; uses sudo when
+# not root and sudo exists). Safe to run repeatedly: does nothing when all are present.
+set -euo pipefail
+PACKAGES=(build-essential cmake ninja-build pkg-config git
+  libeigen3-dev libopenexr-dev libimath-dev libstb-dev libcli11-dev libfmt-dev
+  nlohmann-json3-dev libhwy-dev libgtest-dev libgmock-dev libbenchmark-dev)
+missing=()
+for p in "${PACKAGES[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -eq 0 ]; then
+  exit 0
+fi
+echo "skylight setup: installing ${missing[*]}"
+SUDO=""
+if [ "$(id -u)" -ne 0 ]; then
+  command -v sudo >/dev/null || { echo "skylight setup: need root (or sudo) to install: ${missing[*]}" >&2; exit 1; }
+  SUDO=sudo
+fi
+export DEBIAN_FRONTEND=noninteractive
+$SUDO apt-get update -qq
+$SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"

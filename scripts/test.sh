@@ -1,0 +1,16 @@
+#!/usr/bin/env bash
+# The test command (README): installs what is missing, builds, runs the whole GoogleTest suite
+# (unit + CLI end-to-end) in the Release build and again under ASan + UBSan.
+set -euo pipefail
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+cd "$root"
+bash scripts/setup.sh
+echo "== Release build + tests"
+bash scripts/build.sh build -DCMAKE_BUILD_TYPE=Release
+ctest --test-dir build --output-on-failure -j "$(nproc)"
+if [ "${SKYLIGHT_SKIP_SANITIZERS:-0}" != "1" ]; then
+  echo "== ASan + UBSan build + tests"
+  bash scripts/build.sh build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSKYLIGHT_SANITIZE=ON -DSKYLIGHT_BUILD_BENCH=OFF
+  ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
+    ctest --test-dir build-asan --output-on-failure -j "$(nproc)"
+fi

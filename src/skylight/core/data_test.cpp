@@ -1,0 +1,72 @@
+#include "skylight/core/data.h"
+
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <numeric>
+#include <string>
+#include <vector>
+
+#include "skylight/core/error.h"
+#include "skylight/core/parallel.h"
+
+namespace skylight {
+namespace {
+
+std::string error_of(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const IoError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(Data, EveryTableIsEmbedded) {
+  const auto files = data::embedded_files();
+  EXPECT_GE(files.size(), 10u);
+  // 471 rows of CMFs; CRLF line endings are accepted.
+  EXPECT_EQ(data::load_table("cie_colorimetry/CIE_xyz_1931_2deg.csv", false, 4).rows(), 471u);
+  EXPECT_EQ(data::load_table("cie_colorimetry/CIE_illum_Dxx_comp.csv", false, 4).rows(), 107u);
+  EXPECT_NE(error_of([] { data::embedded_file("nope.csv"); }).find("nope.csv"), std::string::npos);
+}
+
+TEST(Data, BadFieldIsNamedWithLineAndColumn) {
+  const data::CsvTable t("a,b\n1,2\n3,x7\n", "test.csv", true);
+  EXPECT_EQ(t.number(0, 1), 2.0);
+  const std::string msg = error_of([&] { t.number(1, 1); });
+  EXPECT_NE(msg.find("test.csv line 3 column 2"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("'x7'"), std::string::npos) << msg;
+  EXPECT_NE(error_of([&] { data::CsvTable("a,b\n1,2,3\n", "t.csv", true); }).find("t.csv line 2"),
+            std::string::npos);
+  EXPECT_NE(
+      error_of([&] { data::CsvTable("a\nnan\n", "n.csv", true).number(0, 0); }).find("finite"),
+      std::string::npos)
+      << "NaN in a table is an error";
+  EXPECT_NE(error_of([&] { t.column("c"); }).find("no column 'c'"), std::string::npos);
+}
+
+TEST(Parallel, CoversEveryIndexOnce) {
+  for (int threads : {1, 2, 3}) {
+    set_thread_count(threads);
+    std::vector<std::atomic<int>> hits(10007);
+    parallel_for(hits.size(), 64, [&](std::size_t b, std::size_t e) {
+      for (std::size_t i = b; i < e; ++i) hits[i]++;
+    });
+    for (std::size_t i = 0; i < hits.size(); ++i) ASSERT_EQ(hits[i].load(), 1) << i;
+  }
+  set_thread_count(0);
+}
+
+TEST(Parallel, PropagatesExceptions) {
+  set_thread_count(2);
+  EXPECT_THROW(parallel_for(1000, 10,
+                            [](std::size_t b, std::size_t) {
+                              if (b == 500) throw IoError("boom");
+                            }),
+               IoError);
+  set_thread_count(0);
+}
+
+}  // namespace
+}  // namespace skylight

@@ -1,0 +1,21 @@
+// Threads over chunks: the one way skylight parallelises batch work.
+#pragma once
+
+#include <cstddef>
+#include <functional>
+
+namespace skylight {
+
+// Number of worker threads batch helpers use: set_thread_count(n) (n >= 1), else the environment
+// variable SKYLIGHT_THREADS, else std::thread::hardware_concurrency().
+int thread_count();
+// n >= 1; 0 restores the default.
+void set_thread_count(int n);
+
+// Calls body(begin, end) over [0, n) in chunks of at most `grain` items, on up to thread_count()
+// threads (the calling thread included). Chunks are handed out dynamically. An exception thrown by
+// body is rethrown on the calling thread after all threads have stopped.
+void parallel_for(std::size_t n, std::size_t grain,
+                  const std::function<void(std::size_t begin, std::size_t end)>& body);
+
+}  // namespace skylight

@@ -1,0 +1,156 @@
+// Fast path vs reference: every model's SIMD single-precision batch against its scalar double path.
+#include <gtest/gtest.h>
+
+#include <random>
+#include <vector>
+
+#include "skylight/core/error.h"
+#include "skylight/models/perez.h"
+#include "skylight/models/sky_model.h"
+
+namespace skylight {
+namespace {
+
+// The batch path evaluates in float: each of exp/asin is within 2 ulp (Highway's bound), the
+// exponent arguments reach |B/cos theta| ~ 50 near the horizon, where a relative input error of
+// 6e-8 grows to 3e-6 in exp; 2e-5 of the value leaves margin for the ~15 chained operations.
+constexpr double kPerezBatchRelativeTolerance = 2e-5;
+// Values this far below the largest in a sky are compared absolutely (float denormal/underflow).
+constexpr double kPerezBatchAbsoluteFloor = 1e-6;
+
+std::vector<Vec3> random_directions(int n, unsigned seed, bool include_special) {
+  std::mt19937 rng(seed);
+  std::normal_distribution<double> g;
+  std::vector<Vec3> d;
+  for (int i = 0; i < n; ++i) d.push_back(normalize({g(rng), g(rng), g(rng)}));
+  if (include_special) {
+    d.push_back({0, 0, 1});
+    d.push_back({1, 0, 0});  // horizon
+    d.push_back({0, -1, 0});
+  }
+  return d;
+}
+
+void expect_batch_matches_scalar(const SkyModel& m, const std::vector<Vec3>& dirs) {
+  std::vector<float> x, y, z;
+  for (const Vec3& v : dirs) {
+    x.push_back(static_cast<float>(v.x));
+    y.push_back(static_cast<float>(v.y));
+    z.push_back(static_cast<float>(v.z));
+  }
+  const std::size_t n = dirs.size();
+  std::vector<float> X(n), Y(n), Z(n);
+  m.tristimulus_batch({x, y, z}, {X, Y, Z});
+  double max_Y = 0;
+  std::vector<Xyz> ref(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    // The reference sees exactly the float directions the batch saw.
+    ref[i] = m.tristimulus({x[i], y[i], z[i]});
+    max_Y = std::max(max_Y, ref[i].Y);
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    const double floor = kPerezBatchAbsoluteFloor * max_Y;
+    auto tol = [&](double v) {
+      return std::max(std::abs(v) * kPerezBatchRelativeTolerance, floor);
+    };
+    ASSERT_NEAR(Y[i], ref[i].Y, tol(ref[i].Y))
+        << m.name() << " dir " << x[i] << "," << y[i] << "," << z[i];
+    ASSERT_NEAR(X[i], ref[i].X, tol(ref[i].X)) << m.name();
+    ASSERT_NEAR(Z[i], ref[i].Z, tol(ref[i].Z)) << m.name();
+  }
+  // The parallel driver gives the batch result exactly (same kernel, chunked).
+  std::vector<float> X2(n), Y2(n), Z2(n);
+  tristimulus_parallel(m, {x, y, z}, {X2, Y2, Z2});
+  EXPECT_EQ(Y2, Y);
+  EXPECT_EQ(X2, X);
+}
+
+TEST(Batch, PreethamMatchesScalar) {
+  const auto dirs = random_directions(5000, 1, true);
+  for (double T : {1.7, 2.0, 3.0, 6.0, 10.0})
+    for (double zs : {0.0, 30.0, 60.0, 85.0}) {
+      SkyParameters p;
+      p.turbidity = T;
+      p.sun = {deg_to_rad(zs), deg_to_rad(130.0)};
+      const auto m = make_sky_model("preetham", p);
+      SCOPED_TRACE(testing::Message() << "T " << T << " zs " << zs);
+      expect_batch_matches_scalar(*m, dirs);
+    }
+}
+
+TEST(Batch, CieMatchesScalarForAllTypes) {
+  const auto dirs = random_directions(3000, 2, true);
+  for (int type = 1; type <= 16; ++type)
+    for (double zs : {10.0, 50.0, 80.0}) {
+      SkyParameters p;
+      p.cie_type = type;
+      p.sun = {deg_to_rad(zs), deg_to_rad(250.0)};
+      const auto m = make_sky_model("cie", p);
+      SCOPED_TRACE(testing::Message() << "type " << type << " zs " << zs);
+      expect_batch_matches_scalar(*m, dirs);
+    }
+}
+
+TEST(Batch, PerezMatchesScalarAndSunNeighbourhood) {
+  // Directions within a few degrees of the sun: where acos(v.s) in float would lose accuracy.
+  std::vector<Vec3> dirs;
+  const double zs = deg_to_rad(35.0), as = deg_to_rad(160.0);
+  for (double dt = -3.0; dt <= 3.0; dt += 0.05)
+    for (double dp = -3.0; dp <= 3.0; dp += 0.5)
+      dirs.push_back(direction_from_angles(zs + deg_to_rad(dt), as + deg_to_rad(dp)));
+  SkyParameters p;
+  p.sun = {zs, as};
+  p.perez_coefficients = std::array<double, 5>{-1.0, -0.32, 10.0, -3.0, 0.45};
+  p.zenith_luminance = 5000.0;
+  const auto m = make_sky_model("perez", p);
+  expect_batch_matches_scalar(*m, dirs);
+  expect_batch_matches_scalar(*m, random_directions(2000, 3, true));
+}
+
+TEST(Batch, OddSizesAndEmpty) {
+  SkyParameters p;
+  const auto m = make_sky_model("preetham", p);
+  for (int n : {0, 1, 3, 7, 15, 17, 33})
+    expect_batch_matches_scalar(*m, random_directions(n, 4, false));
+}
+
+TEST(Registry, UnknownModelAndBadParameters) {
+  SkyParameters p;
+  EXPECT_THROW(make_sky_model("nope", p), InvalidArgument);
+  p.sun.zenith = std::nan("");
+  EXPECT_THROW(make_sky_model("preetham", p), InvalidArgument);
+  SkyParameters q;
+  EXPECT_THROW(make_sky_model("perez", q), InvalidArgument) << "perez needs coefficients";
+  q.perez_coefficients = std::array<double, 5>{-1, -0.32, 10, -3, 0.45};
+  EXPECT_THROW(make_sky_model("perez", q), InvalidArgument) << "perez needs a zenith luminance";
+  q.zenith_luminance = 100.0;
+  EXPECT_NO_THROW(make_sky_model("perez", q));
+  q.perez_coefficients = std::array<double, 5>{-2, 0.5, 0, 0, 0};  // F(0) = 1 - 2 e^0.5 < 0
+  EXPECT_THROW(make_sky_model("perez", q), InvalidArgument);
+  for (const auto& info : model_registry()) {
+    EXPECT_FALSE(info.parameters.empty()) << info.name;
+    for (const auto& par : info.parameters)
+      EXPECT_LE(par.min, par.max) << info.name << " " << par.name;
+  }
+}
+
+TEST(Perez, MatchesPreethamLuminanceWithItsCoefficients) {
+  // The perez model with Preetham's Y coefficients and Yz reproduces Preetham's luminance.
+  SkyParameters p;
+  p.turbidity = 3.0;
+  p.sun = {deg_to_rad(40.0), deg_to_rad(100.0)};
+  const auto pre = make_sky_model("preetham", p);
+  const double T = 3.0;
+  p.perez_coefficients =
+      std::array<double, 5>{0.1787 * T - 1.4630, -0.3554 * T + 0.4275, -0.0227 * T + 5.3251,
+                            0.1206 * T - 2.5771, -0.0670 * T + 0.3703};
+  p.zenith_luminance = pre->tristimulus({0, 0, 1}).Y;
+  const auto per = make_sky_model("perez", p);
+  for (const Vec3& v : random_directions(200, 5, false)) {
+    const double a = pre->tristimulus(v).Y, b = per->tristimulus(v).Y;
+    EXPECT_NEAR(a, b, 1e-9 * std::max(a, 1.0));
+  }
+}
+
+}  // namespace
+}  // namespace skylight

@@ -1,0 +1,192 @@
+#include "skylight/models/cie_sky.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "skylight/core/data.h"
+#include "skylight/core/error.h"
+
+namespace skylight {
+namespace {
+
+const std::vector<CieSkyType>& sky_types() {
+  static const std::vector<CieSkyType> types = [] {
+    const auto t = data::load_table("cie_standard_sky/cie_s011_2003_sky_types.csv", true, 8);
+    std::vector<CieSkyType> out;
+    for (std::size_t r = 0; r < t.rows(); ++r) {
+      CieSkyType s;
+      s.type = static_cast<int>(t.number(r, t.column("sky_type")));
+      s.a = t.number(r, t.column("a"));
+      s.b = t.number(r, t.column("b"));
+      s.c = t.number(r, t.column("c"));
+      s.d = t.number(r, t.column("d"));
+      s.e = t.number(r, t.column("e"));
+      if (s.type != static_cast<int>(r) + 1)
+        throw IoError(
+            fmt::format("cie_standard_sky/cie_s011_2003_sky_types.csv line {}: expected "
+                        "sky_type {}, found {}",
+                        r + 2, r + 1, s.type));
+      out.push_back(s);
+    }
+    if (out.size() != 15)
+      throw IoError("cie_standard_sky/cie_s011_2003_sky_types.csv: expected 15 sky types");
+    return out;
+  }();
+  return types;
+}
+
+const std::vector<KittlerDarulaParameters>& kd_table() {
+  static const std::vector<KittlerDarulaParameters> rows = [] {
+    const char* path = "cie_standard_sky/kittler_darula_zenith_luminance.csv";
+    const auto t = data::load_table(path, true, 10);
+    std::vector<KittlerDarulaParameters> out;
+    for (std::size_t r = 0; r < t.rows(); ++r) {
+      if (t.number(r, 0) != static_cast<double>(r + 1))
+        throw IoError(fmt::format("{} line {}: expected sky_type {}", path, r + 2, r + 1));
+      KittlerDarulaParameters k;
+      k.Tv = t.number(r, t.column("Tv"));
+      k.A = t.number(r, t.column("A"));
+      k.A1 = t.number(r, t.column("A1"));
+      k.A2 = t.number(r, t.column("A2"));
+      k.B = t.number(r, t.column("B"));
+      k.C = t.number(r, t.column("C"));
+      k.D = t.number(r, t.column("D"));
+      k.E = t.number(r, t.column("E"));
+      k.Dv_over_Ev = t.number(r, t.column("Dv_over_Ev"));
+      out.push_back(k);
+    }
+    if (out.size() != 15) throw IoError(fmt::format("{}: expected 15 sky types", path));
+    return out;
+  }();
+  return rows;
+}
+
+void require_type(int type, int max) {
+  if (type < 1 || type > max)
+    throw InvalidArgument(
+        fmt::format("cie_type = {} is outside the valid range [1, {}]", type, max));
+}
+
+PerezCoefficients to_perez(const CieSkyType& t) {
+  // phi f = (1 + a e^{b/cos Z}) (1 - c e^{d pi/2} + c e^{d chi} + e cos^2 chi)
+  return {t.a, t.b, t.c, t.d, t.e, 1.0 - t.c * std::exp(t.d * 0.5 * kPi)};
+}
+
+double traditional_overcast(double Z) {
+  return (1.0 + 2.0 * std::cos(Z)) / 3.0;
+}
+
+}  // namespace
+
+const CieSkyType& cie_sky_type(int type) {
+  require_type(type, 15);
+  return sky_types()[static_cast<std::size_t>(type - 1)];
+}
+
+double cie_gradation(const CieSkyType& t, double Z) {
+  return perez_function({t.a, t.b, 0.0, 0.0, 0.0, 1.0}, std::cos(Z), 0.0);
+}
+
+double cie_indicatrix(const CieSkyType& t, double chi) {
+  PerezCoefficients indicatrix_only = to_perez(t);
+  indicatrix_only.A = 0.0;  // gradation factor = 1
+  return perez_function(indicatrix_only, 1.0, chi);
+}
+
+double cie_relative_luminance(int type, double Z, double chi, double Zs) {
+  require_type(type, kCieTypeCount);
+  if (type == 16) return traditional_overcast(Z);
+  const CieSkyType& t = cie_sky_type(type);
+  return cie_gradation(t, Z) * cie_indicatrix(t, chi) /
+         (cie_gradation(t, 0.0) * cie_indicatrix(t, Zs));
+}
+
+const KittlerDarulaParameters& kittler_darula_parameters(int type) {
+  require_type(type, 15);
+  return kd_table()[static_cast<std::size_t>(type - 1)];
+}
+
+double kittler_darula_zenith_luminance(int type, double sun_elevation) {
+  require_type(type, kCieTypeCount);
+  const double gs = std::clamp(sun_elevation, 0.0, kKittlerDarulaClampElevation);
+  const double s = std::sin(gs), c = std::cos(gs);
+  if (type == 16) {
+    const double dv_klx =
+        kittler_darula_parameters(1).Dv_over_Ev * kExtraterrestrialIlluminanceKlx * s;
+    return 1000.0 * 9.0 / (7.0 * kPi) * dv_klx;
+  }
+  const KittlerDarulaParameters& k = kittler_darula_parameters(type);
+  double kcd = 0.0;
+  if (type <= 6 || k.Tv > 12.0) {
+    kcd = k.Dv_over_Ev * (k.B * std::pow(s, k.C) / std::pow(c, k.D) + k.E * s);
+  } else {
+    kcd = k.A * s + 0.7 * (k.Tv + 1.0) * std::pow(s, k.C) / std::pow(c, k.D) + 0.04 * k.Tv;
+  }
+  return 1000.0 * std::max(kcd, 0.0);
+}
+
+CieSkyModel::CieSkyModel(const SkyParameters& p) : SkyModel(p), type_(p.cie_type) {
+  require_type(type_, kCieTypeCount);
+  if (p.zenith_luminance)
+    require_in_range("zenith_luminance [cd/m^2]", *p.zenith_luminance, 1e-9, 1e9);
+  sun_up_ = p.sun.zenith <= 0.5 * kPi;
+  typical_luminance_ = !p.zenith_luminance.has_value();
+  zenith_luminance_ = p.zenith_luminance
+                          ? *p.zenith_luminance
+                          : kittler_darula_zenith_luminance(type_, p.sun.elevation());
+  distribution_.mode = PerezDistribution::Mode::luminance;
+  distribution_.white = kD65WhiteSrgb;
+  distribution_.sun = p.sun.direction();
+  if (type_ <= 15) {
+    const CieSkyType& t = cie_sky_type(type_);
+    distribution_.coefficients[0] = to_perez(t);
+    const double norm = cie_gradation(t, 0.0) * cie_indicatrix(t, p.sun.zenith);
+    distribution_.scale[0] = sun_up_ ? zenith_luminance_ / norm : 0.0;
+  }
+}
+
+Xyz CieSkyModel::tristimulus(Vec3 view) const {
+  if (type_ == 16) {
+    if (!sun_up_ || view.z < 0.0) return {};
+    return xyY_to_xyz(kD65WhiteSrgb, zenith_luminance_ * (1.0 + 2.0 * view.z) / 3.0);
+  }
+  return distribution_.evaluate(view);
+}
+
+void CieSkyModel::tristimulus_batch(const DirectionsSoA& dirs, const XyzSoA& out) const {
+  if (type_ != 16) return distribution_.evaluate_batch(dirs, out);
+  // (1 + 2 cos Z) / 3 needs no transcendental: a plain loop the compiler vectorises.
+  const Xyz w = xyY_to_xyz(kD65WhiteSrgb, 1.0);
+  const float lz = sun_up_ ? static_cast<float>(zenith_luminance_) : 0.0f;
+  const float wx = static_cast<float>(w.X), wz = static_cast<float>(w.Z);
+  for (std::size_t i = 0; i < dirs.size(); ++i) {
+    const float z = dirs.z[i];
+    const float Y = z >= 0.0f ? lz * (1.0f + 2.0f * z) * (1.0f / 3.0f) : 0.0f;
+    out.X[i] = wx * Y;
+    out.Y[i] = Y;
+    out.Z[i] = wz * Y;
+  }
+}
+
+Domain CieSkyModel::domain() const {
+  Domain d;
+  if (!sun_up_) {
+    d.issues.push_back(
+        {"sun_zenith", Validity::undefined,
+         "sun below the horizon: the CIE general sky describes daylight only; sky is 0"});
+    return d;
+  }
+  const double gs = parameters().sun.elevation();
+  if (typical_luminance_ && (gs < kKittlerDarulaMinElevation || gs > kKittlerDarulaMaxElevation)) {
+    d.issues.push_back({"sun_elevation", Validity::extrapolated,
+                        fmt::format("Kittler-Darula typical zenith luminance is recommended for "
+                                    "solar elevations 10-80 deg, not {:.3g} deg",
+                                    rad_to_deg(gs))});
+  }
+  return d;
+}
+
+}  // namespace skylight

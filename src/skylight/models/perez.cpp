@@ -1,0 +1,69 @@
+#include "skylight/models/perez.h"
+
+#include <fmt/format.h>
+
+#include "skylight/core/error.h"
+
+namespace skylight {
+
+PerezModel::PerezModel(const SkyParameters& p) : SkyModel(p) {
+  if (!p.perez_coefficients)
+    throw InvalidArgument("model perez needs the coefficients A,B,C,D,E (--perez A,B,C,D,E)");
+  if (!p.zenith_luminance)
+    throw InvalidArgument("model perez needs the zenith luminance (--zenith-luminance CD_M2)");
+  const auto& k = *p.perez_coefficients;
+  static constexpr const char* kNames[5] = {"perez A", "perez B", "perez C", "perez D", "perez E"};
+  for (int i = 0; i < 5; ++i)
+    require_in_range(kNames[i], k[i], -kPerezCoefficientLimit, kPerezCoefficientLimit);
+  require_in_range("zenith_luminance [cd/m^2]", *p.zenith_luminance, 1e-9, 1e9);
+  sun_up_ = p.sun.zenith <= 0.5 * kPi;
+  const PerezCoefficients c{k[0], k[1], k[2], k[3], k[4], 1.0};
+  const double f0 = perez_function(c, 1.0, p.sun.zenith);
+  if (!(f0 > 0.0)) {
+    throw InvalidArgument(fmt::format(
+        "perez coefficients {},{},{},{},{} give F(zenith) = {} <= 0 at sun zenith {} deg: the "
+        "relative distribution cannot be normalised",
+        k[0], k[1], k[2], k[3], k[4], f0, rad_to_deg(p.sun.zenith)));
+  }
+  distribution_.mode = PerezDistribution::Mode::luminance;
+  distribution_.coefficients[0] = c;
+  distribution_.sun = p.sun.direction();
+  distribution_.scale[0] = sun_up_ ? *p.zenith_luminance / f0 : 0.0;
+}
+
+Xyz PerezModel::tristimulus(Vec3 view) const {
+  return distribution_.evaluate(view);
+}
+
+void PerezModel::tristimulus_batch(const DirectionsSoA& dirs, const XyzSoA& out) const {
+  distribution_.evaluate_batch(dirs, out);
+}
+
+Domain PerezModel::domain() const {
+  Domain d;
+  if (!sun_up_) {
+    d.issues.push_back(
+        {"sun_zenith", Validity::undefined,
+         "sun below the horizon: the Perez distribution describes daylight; sky is 0"});
+    return d;
+  }
+  // F's sign is set by (1 + A e^{B/cos}) at the horizon and (1 + C e^{D gamma} + E cos^2) across
+  // gamma; check both factors over their ranges.
+  const auto& k = *parameters().perez_coefficients;
+  const PerezCoefficients c{k[0], k[1], k[2], k[3], k[4], 1.0};
+  double min_grad = 1e300, min_ind = 1e300;
+  for (int i = 0; i <= 90; ++i) {
+    const double theta = i * kDegree;
+    min_grad = std::min(min_grad, perez_function({c.A, c.B, 0, 0, 0, 1.0}, std::cos(theta), 0.0));
+  }
+  for (int i = 0; i <= 180; ++i)
+    min_ind = std::min(min_ind, perez_function({0, 0, c.C, c.D, c.E, 1.0}, 1.0, i * kDegree));
+  if (min_grad < 0.0 || min_ind < 0.0) {
+    d.issues.push_back({"perez", Validity::unphysical,
+                        "the coefficients make F negative somewhere on the sky; those directions "
+                        "return 0"});
+  }
+  return d;
+}
+
+}  // namespace skylight

@@ -1,0 +1,33 @@
+// The Perez all-weather relative luminance distribution (Perez, Seals & Michalsky 1993;
+// Satilmis et al. 2016 eq. 1) with user-given coefficients A..E and a given zenith luminance:
+//   L(theta, gamma) = Lz F(theta, gamma) / F(0, theta_s),
+//   F(theta, gamma) = (1 + A exp(B / cos theta)) (1 + C exp(D gamma) + E cos^2 gamma).
+#pragma once
+
+#include "skylight/models/perez_kernel.h"
+#include "skylight/models/sky_model.h"
+
+namespace skylight {
+
+// Range accepted for each coefficient: wide enough for every published set (Perez 1993 and
+// Preetham's fits stay within |value| < 10), narrow enough that F stays finite.
+inline constexpr double kPerezCoefficientLimit = 50.0;
+
+// The `perez` model: luminance only; XYZ with the D65 chromaticity (0.3127, 0.3290), so rgb() is
+// neutral. Needs SkyParameters::perez_coefficients and ::zenith_luminance. Views below the
+// horizon and a sun below the horizon: 0. Negative F (possible with arbitrary coefficients) is
+// returned as 0 and reported by domain().
+class PerezModel final : public SkyModel {
+ public:
+  explicit PerezModel(const SkyParameters& params);
+  std::string_view name() const override { return "perez"; }
+  Xyz tristimulus(Vec3 view) const override;
+  void tristimulus_batch(const DirectionsSoA& dirs, const XyzSoA& out) const override;
+  Domain domain() const override;
+
+ private:
+  bool sun_up_ = true;
+  PerezDistribution distribution_;
+};
+
+}  // namespace skylight

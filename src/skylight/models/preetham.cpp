@@ -1,0 +1,280 @@
+#include "skylight/models/preetham.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "skylight/core/data.h"
+#include "skylight/core/error.h"
+
+namespace skylight {
+namespace {
+
+// A (wavelength, value) table with linear interpolation; `outside` beyond its ends.
+struct SpectralTable {
+  std::vector<double> nm, value;
+  double at(double l, double outside) const {
+    if (nm.empty() || l < nm.front() || l > nm.back()) return outside;
+    const auto it = std::upper_bound(nm.begin(), nm.end(), l);
+    if (it == nm.end()) return value.back();
+    const std::size_t i = static_cast<std::size_t>(it - nm.begin()) - 1;
+    const double t = (l - nm[i]) / (nm[i + 1] - nm[i]);
+    return (1.0 - t) * value[i] + t * value[i + 1];
+  }
+};
+
+SpectralTable load_spectral(std::string_view path) {
+  const auto t = data::load_table(path, /*has_header=*/true, 2);
+  SpectralTable s{t.numbers(0), t.numbers(1)};
+  for (std::size_t i = 1; i < s.nm.size(); ++i)
+    if (!(s.nm[i] > s.nm[i - 1]))
+      throw IoError(fmt::format("{}: wavelengths must ascend (row {})", path, i + 1));
+  return s;
+}
+
+const SpectralTable& ozone_table() {
+  static const SpectralTable t = load_spectral("preetham/preetham_ozone_k_o.csv");
+  return t;
+}
+const SpectralTable& mixed_gas_table() {
+  static const SpectralTable t = load_spectral("preetham/preetham_mixed_gas_k_g.csv");
+  return t;
+}
+const SpectralTable& water_table() {
+  static const SpectralTable t = load_spectral("preetham/preetham_water_vapour_k_wa.csv");
+  return t;
+}
+const SpectralTable& sun_table() {
+  static const SpectralTable t = load_spectral("preetham/preetham_sun_spectral_radiance.csv");
+  return t;
+}
+
+// Perez coefficient table: rows (quantity, param, T_coefficient, constant).
+struct PerezFit {
+  std::array<std::array<double, 2>, 5> Y{}, x{}, y{};
+};
+const PerezFit& perez_fit() {
+  static const PerezFit fit = [] {
+    const auto t = data::load_table("preetham/preetham_perez_coefficients.csv", true, 4);
+    PerezFit f;
+    std::array<std::array<bool, 5>, 3> seen{};
+    for (std::size_t r = 0; r < t.rows(); ++r) {
+      const std::string& q = t.text(r, 0);
+      const std::string& p = t.text(r, 1);
+      const int qi = q == "Y" ? 0 : q == "x" ? 1 : q == "y" ? 2 : -1;
+      const int pi = (p.size() == 1 && p[0] >= 'A' && p[0] <= 'E') ? p[0] - 'A' : -1;
+      if (qi < 0 || pi < 0)
+        throw IoError(
+            fmt::format("preetham/preetham_perez_coefficients.csv row {}: unknown "
+                        "quantity/param '{}','{}'",
+                        r + 2, q, p));
+      auto& dst = qi == 0 ? f.Y : qi == 1 ? f.x : f.y;
+      dst[pi] = {t.number(r, 2), t.number(r, 3)};
+      seen[qi][pi] = true;
+    }
+    for (const auto& row : seen)
+      for (bool s : row)
+        if (!s) throw IoError("preetham/preetham_perez_coefficients.csv: missing coefficients");
+    return f;
+  }();
+  return fit;
+}
+
+// Zenith chromaticity matrices: M_x, M_y [T power 2,1,0][theta^3, theta^2, theta, 1].
+struct ChromaMatrices {
+  std::array<std::array<double, 4>, 3> x{}, y{};
+};
+const ChromaMatrices& chroma_matrices() {
+  static const ChromaMatrices m = [] {
+    const auto t = data::load_table("preetham/preetham_zenith_chromaticity_matrices.csv", true, 6);
+    ChromaMatrices out;
+    std::array<std::array<bool, 3>, 2> seen{};
+    for (std::size_t r = 0; r < t.rows(); ++r) {
+      const std::string& q = t.text(r, 0);
+      const double power = t.number(r, 1);
+      const int qi = q == "x_z" ? 0 : q == "y_z" ? 1 : -1;
+      const int row = power == 2.0 ? 0 : power == 1.0 ? 1 : power == 0.0 ? 2 : -1;
+      if (qi < 0 || row < 0)
+        throw IoError(
+            fmt::format("preetham/preetham_zenith_chromaticity_matrices.csv row {}: "
+                        "unknown quantity '{}' or T power",
+                        r + 2, q));
+      auto& dst = qi == 0 ? out.x : out.y;
+      for (int k = 0; k < 4; ++k) dst[row][k] = t.number(r, 2 + k);
+      seen[qi][row] = true;
+    }
+    for (const auto& q : seen)
+      for (bool s : q)
+        if (!s) throw IoError("preetham/preetham_zenith_chromaticity_matrices.csv: missing rows");
+    return out;
+  }();
+  return m;
+}
+
+PerezCoefficients from_fit(const std::array<std::array<double, 2>, 5>& fit, double T) {
+  return {fit[0][0] * T + fit[0][1], fit[1][0] * T + fit[1][1], fit[2][0] * T + fit[2][1],
+          fit[3][0] * T + fit[3][1], fit[4][0] * T + fit[4][1], 1.0};
+}
+
+double chroma(const std::array<std::array<double, 4>, 3>& m, double T, double ts) {
+  const std::array<double, 3> tp{T * T, T, 1.0};
+  const std::array<double, 4> sp{ts * ts * ts, ts * ts, ts, 1.0};
+  double v = 0.0;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 4; ++j) v += tp[i] * m[i][j] * sp[j];
+  return v;
+}
+
+// Sun-table wavelengths used to integrate the solar disc's XYZ: 5 nm steps over 380-750 nm.
+constexpr double kSunIntegrationStepNm = 5.0;
+
+}  // namespace
+
+PreethamPerez preetham_perez_coefficients(double T) {
+  const PerezFit& f = perez_fit();
+  return {from_fit(f.Y, T), from_fit(f.x, T), from_fit(f.y, T)};
+}
+
+double preetham_chi(double T, double sun_zenith) {
+  return (4.0 / 9.0 - T / 120.0) * (kPi - 2.0 * sun_zenith);
+}
+
+double preetham_zenith_luminance(double T, double sun_zenith) {
+  const double chi = preetham_chi(T, sun_zenith);
+  return 1000.0 * ((4.0453 * T - 4.9710) * std::tan(chi) - 0.2155 * T + 2.4192);
+}
+
+Chromaticity preetham_zenith_chromaticity(double T, double sun_zenith) {
+  const ChromaMatrices& m = chroma_matrices();
+  return {chroma(m.x, T, sun_zenith), chroma(m.y, T, sun_zenith)};
+}
+
+double relative_optical_mass(double sun_zenith) {
+  const double deg = std::min(rad_to_deg(sun_zenith), 90.0);
+  return 1.0 / (std::cos(deg_to_rad(deg)) + 0.15 * std::pow(93.885 - deg, -1.253));
+}
+
+SolarTransmittance preetham_solar_transmittance(double sun_zenith, double T, double nm) {
+  const double m = relative_optical_mass(sun_zenith);
+  const double um = nm / 1000.0;  // the appendix's formulas take lambda in micrometres
+  SolarTransmittance t;
+  t.rayleigh = std::exp(-0.008735 * std::pow(um, -4.08) * m);
+  const double alpha = 1.3;
+  const double beta = 0.04608 * T - 0.04586;  // Angstrom turbidity coefficient
+  t.aerosol = std::exp(-beta * std::pow(um, -alpha) * m);
+  const double ozone_cm = 0.35;
+  t.ozone = std::exp(-ozone_table().at(nm, 0.0) * ozone_cm * m);
+  const double kg = mixed_gas_table().at(nm, 0.0);
+  t.mixed_gas = std::exp(-1.41 * kg * m / std::pow(1.0 + 118.93 * kg * m, 0.45));
+  const double water_cm = 2.0;
+  const double kwa = water_table().at(nm, 0.0);
+  t.water =
+      std::exp(-0.2385 * kwa * water_cm * m / std::pow(1.0 + 20.07 * kwa * water_cm * m, 0.45));
+  return t;
+}
+
+std::optional<double> extraterrestrial_sun_radiance(double nm) {
+  if (!(nm >= kPreethamSunMinNm && nm <= kPreethamSunMaxNm)) return std::nullopt;
+  return sun_table().at(nm, 0.0);
+}
+
+PreethamModel::PreethamModel(const SkyParameters& p) : SkyModel(p) {
+  require_in_range("turbidity", p.turbidity, 1.0, 64.0);
+  const double T = p.turbidity;
+  const double ts = p.sun.zenith;
+  sun_up_ = ts <= 0.5 * kPi;
+  // Below the horizon the closed forms are evaluated at the horizon for reporting only.
+  const double ts_eval = std::min(ts, 0.5 * kPi);
+  zenith_luminance_ = preetham_zenith_luminance(T, ts_eval);
+  zenith_xy_ = preetham_zenith_chromaticity(T, ts_eval);
+  const PreethamPerez c = preetham_perez_coefficients(T);
+  distribution_.mode = PerezDistribution::Mode::xyY;
+  distribution_.coefficients = {c.Y, c.x, c.y};
+  distribution_.sun = p.sun.direction();
+  // Y = Yz F(theta, gamma) / F(0, theta_s) (Zotti eq. 3): at the zenith gamma = theta_s.
+  const double fY0 = perez_function(c.Y, 1.0, ts_eval);
+  const double fx0 = perez_function(c.x, 1.0, ts_eval);
+  const double fy0 = perez_function(c.y, 1.0, ts_eval);
+  const bool usable = sun_up_ && zenith_luminance_ > 0.0 && std::abs(fY0) > 0.0 &&
+                      std::abs(fx0) > 0.0 && std::abs(fy0) > 0.0;
+  distribution_.scale = usable ? std::array<double, 3>{zenith_luminance_ / fY0, zenith_xy_.x / fx0,
+                                                       zenith_xy_.y / fy0}
+                               : std::array<double, 3>{0.0, 0.0, 0.0};
+  // The solar disc: XYZ of the attenuated spectrum (uniform over the disc).
+  if (sun_up_) {
+    std::vector<double> nm, L;
+    for (double l = kPreethamSunMinNm; l <= kPreethamSunMaxNm + 1e-9; l += kSunIntegrationStepNm) {
+      nm.push_back(l);
+      L.push_back(*extraterrestrial_sun_radiance(l) *
+                  preetham_solar_transmittance(ts, T, l).total());
+    }
+    sun_xyz_ = spectral_radiance_to_xyz(nm, L);
+  }
+}
+
+Xyz PreethamModel::tristimulus(Vec3 view) const {
+  return distribution_.evaluate(view);
+}
+
+void PreethamModel::tristimulus_batch(const DirectionsSoA& dirs, const XyzSoA& out) const {
+  distribution_.evaluate_batch(dirs, out);
+}
+
+std::optional<double> PreethamModel::spectral_radiance(Vec3 view, double nm) const {
+  if (!(nm >= 300.0 && nm <= 830.0)) return std::nullopt;
+  const Xyz c = tristimulus(view);
+  if (!(c.Y > 0.0)) return 0.0;
+  // L(lambda) = Y / (K_m integral S y-bar) S(lambda): the daylight spectrum with the sky's
+  // chromaticity, scaled to the sky's luminance.
+  const DaylightSpectrum s(chromaticity(c));
+  const auto& I = daylight_basis_ybar_integrals();
+  const double norm = I[0] + s.m1() * I[1] + s.m2() * I[2];
+  if (!(std::abs(norm) > 0.0)) return 0.0;
+  return c.Y / (kMaxLuminousEfficacy * norm) * s(nm);
+}
+
+Xyz PreethamModel::sun_tristimulus(Vec3 view) const {
+  if (!sun_up_ || angle_between(view, parameters().sun.direction()) > kPreethamSunAngularRadius)
+    return {};
+  return sun_xyz_;
+}
+
+std::optional<double> PreethamModel::sun_spectral_radiance(Vec3 view, double nm) const {
+  const auto e = extraterrestrial_sun_radiance(nm);
+  if (!e) return std::nullopt;
+  if (!sun_up_ || angle_between(view, parameters().sun.direction()) > kPreethamSunAngularRadius)
+    return 0.0;
+  return *e *
+         preetham_solar_transmittance(parameters().sun.zenith, parameters().turbidity, nm).total();
+}
+
+Domain PreethamModel::domain() const {
+  Domain d;
+  const double T = parameters().turbidity;
+  if (!sun_up_) {
+    d.issues.push_back({"sun_zenith", Validity::undefined,
+                        "sun below the horizon: the Preetham model has no twilight; sky is 0"});
+    return d;
+  }
+  if (T < kPreethamUsableTurbidityMin || T > kPreethamUsableTurbidityMax) {
+    d.issues.push_back({"turbidity", Validity::unphysical,
+                        fmt::format("T = {} is outside [{}, {}], where Zotti et al. 2007 show the "
+                                    "model breaks down",
+                                    T, kPreethamUsableTurbidityMin, kPreethamUsableTurbidityMax)});
+  } else if (T < kPreethamFittedTurbidityMin || T > kPreethamFittedTurbidityMax) {
+    d.issues.push_back({"turbidity", Validity::extrapolated,
+                        fmt::format("T = {} is outside the fitted range [{}, {}]", T,
+                                    kPreethamFittedTurbidityMin, kPreethamFittedTurbidityMax)});
+  }
+  if (zenith_luminance_ < 0.0) {
+    d.issues.push_back({"zenith_luminance", Validity::unphysical,
+                        fmt::format("zenith luminance Yz = {:.6g} cd/m^2 is negative (Zotti et al. "
+                                    "2007 Fig. 1); the sky is returned as 0",
+                                    zenith_luminance_)});
+  }
+  return d;
+}
+
+}  // namespace skylight

@@ -1,0 +1,98 @@
+// Preetham, Shirley & Smits 1999, "A Practical Analytic Model for Daylight" (SIGGRAPH '99),
+// Appendix A: sky luminance and chromaticity as Perez functions of turbidity, zenith values, the
+// spectral sky radiance through the CIE daylight basis, and the attenuated solar disc.
+// Validity after Zotti, Wilkie & Purgathofer 2007 ("A Critical Review of the Preetham Skylight
+// Model"): fitted for T in [2, 6]; negative zenith luminance near T < 1.9 / low sun / T >~ 10.
+#pragma once
+
+#include <array>
+
+#include "skylight/models/perez_kernel.h"
+#include "skylight/models/sky_model.h"
+
+namespace skylight {
+
+// Fitted turbidity range of the model (Preetham 1999 §3; Zotti 2007 §3).
+inline constexpr double kPreethamFittedTurbidityMin = 2.0;
+inline constexpr double kPreethamFittedTurbidityMax = 6.0;
+// Zotti 2007 §7: "breaks down numerically for T < 1.9 and T >~ 10".
+inline constexpr double kPreethamUsableTurbidityMin = 1.9;
+inline constexpr double kPreethamUsableTurbidityMax = 10.0;
+
+// Perez coefficients for Y, x, y at turbidity T (Preetham 1999 eq. A.2 table):
+// each of A..E = T_coefficient * T + constant (data/preetham/preetham_perez_coefficients.csv).
+struct PreethamPerez {
+  PerezCoefficients Y, x, y;
+};
+PreethamPerez preetham_perez_coefficients(double turbidity);
+
+// chi = (4/9 - T/120)(pi - 2 theta_s)  [rad]  (Preetham 1999 A.2; Zotti 2007 eq. 2).
+double preetham_chi(double turbidity, double sun_zenith);
+// Zenith luminance Yz = 1000 [(4.0453 T - 4.9710) tan chi - 0.2155 T + 2.4192]  [cd/m^2]
+// (Preetham A.2 gives kcd/m^2; Zotti 2007 eq. 1). The raw closed form: negative in the region of
+// Zotti's Fig. 1. Defined for sun_zenith in [0, pi/2].
+double preetham_zenith_luminance(double turbidity, double sun_zenith);
+// Zenith chromaticity x_z (and y_z) = [T^2 T 1] M [theta_s^3 theta_s^2 theta_s 1]^T
+// (Preetham A.2 matrices, data/preetham/preetham_zenith_chromaticity_matrices.csv).
+Chromaticity preetham_zenith_chromaticity(double turbidity, double sun_zenith);
+
+// Relative optical air mass m = 1 / (cos theta_s + 0.15 (93.885 - theta_s[deg])^-1.253)
+// (Kasten 1966, as used by Preetham's appendix). Defined for theta_s <= 90 deg.
+double relative_optical_mass(double sun_zenith);
+
+// Transmittances of the direct solar beam (Preetham 1999 Appendix A.1 after Iqbal 1983), all
+// dimensionless, for solar zenith theta_s, turbidity T, wavelength nm.
+struct SolarTransmittance {
+  double rayleigh = 1.0;  // exp(-0.008735 lambda[um]^-4.08 m)
+  double aerosol = 1.0;   // exp(-beta lambda[um]^-alpha m), alpha = 1.3, beta = 0.04608 T - 0.04586
+  double ozone = 1.0;     // exp(-k_o l m), l = 0.35 cm
+  double mixed_gas = 1.0;  // exp(-1.41 k_g m / (1 + 118.93 k_g m)^0.45)
+  double water = 1.0;      // exp(-0.2385 k_wa w m / (1 + 20.07 k_wa w m)^0.45), w = 2 cm
+  double total() const { return rayleigh * aerosol * ozone * mixed_gas * water; }
+};
+SolarTransmittance preetham_solar_transmittance(double sun_zenith, double turbidity, double nm);
+
+// Extraterrestrial solar spectral radiance [W m^-2 sr^-1 nm^-1], 380-750 nm (10 nm table,
+// linearly interpolated; data/preetham/preetham_sun_spectral_radiance.csv); nullopt outside.
+std::optional<double> extraterrestrial_sun_radiance(double nm);
+// Wavelength range of Preetham's sun table [nm].
+inline constexpr double kPreethamSunMinNm = 380.0;
+inline constexpr double kPreethamSunMaxNm = 750.0;
+
+// Angular radius of the solar disc used by the Preetham sun: 0.5 * 0.5358 deg.
+inline constexpr double kPreethamSunAngularRadius = 0.5 * 0.5358 * kDegree;
+
+// The `preetham` model.
+//  * tristimulus(): sky XYZ, Y [cd/m^2] = Yz F_Y(theta, gamma) / F_Y(0, theta_s), chromaticity
+//    x = x_z F_x / F_x(0, theta_s) (same for y). Views below the horizon: 0. Where the formula
+//    gives negative luminance (Yz < 0, Zotti Fig. 1), 0 is returned and domain() says
+//    `unphysical`. Sun below the horizon: the model is undefined; 0 everywhere.
+//  * spectral_radiance(): Y / (K_m integral S y-bar) * S(lambda), S = CIE daylight spectrum at the
+//    sky chromaticity, 300-830 nm.
+//  * sun: the extraterrestrial spectrum times SolarTransmittance over a uniform disc of radius
+//    kPreethamSunAngularRadius, 380-750 nm (XYZ integrated over that range).
+class PreethamModel final : public SkyModel {
+ public:
+  explicit PreethamModel(const SkyParameters& params);
+  std::string_view name() const override { return "preetham"; }
+  Xyz tristimulus(Vec3 view) const override;
+  std::optional<double> spectral_radiance(Vec3 view, double nm) const override;
+  void tristimulus_batch(const DirectionsSoA& dirs, const XyzSoA& out) const override;
+  bool has_sun() const override { return true; }
+  double sun_angular_radius() const override { return kPreethamSunAngularRadius; }
+  Xyz sun_tristimulus(Vec3 view) const override;
+  std::optional<double> sun_spectral_radiance(Vec3 view, double nm) const override;
+  Domain domain() const override;
+
+  double zenith_luminance() const { return zenith_luminance_; }  // raw Yz [cd/m^2]
+  Chromaticity zenith_chromaticity() const { return zenith_xy_; }
+
+ private:
+  bool sun_up_ = true;
+  double zenith_luminance_ = 0.0;
+  Chromaticity zenith_xy_;
+  PerezDistribution distribution_;
+  Xyz sun_xyz_;
+};
+
+}  // namespace skylight

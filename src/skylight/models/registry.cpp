@@ -1,0 +1,84 @@
+// The model registry: name -> documentation, parameters (unit, range, default) and factory.
+#include <memory>
+
+#include "skylight/models/cie_sky.h"
+#include "skylight/models/perez.h"
+#include "skylight/models/preetham.h"
+#include "skylight/models/sky_model.h"
+
+namespace skylight {
+namespace {
+
+ParameterInfo sun_zenith() {
+  return {"sun-zenith",
+          "deg",
+          0.0,
+          180.0,
+          "45",
+          "solar zenith angle (or --sun-elevation = 90 - zenith); > 90 = below the horizon"};
+}
+ParameterInfo sun_azimuth() {
+  return {"sun-azimuth", "deg", -360.0,
+          360.0,         "180", "solar azimuth from north towards east (180 = south)"};
+}
+
+}  // namespace
+
+const std::vector<ModelInfo>& model_registry() {
+  static const std::vector<ModelInfo> registry = [] {
+    std::vector<ModelInfo> r;
+    r.push_back(ModelInfo{
+        "perez",
+        "Perez all-weather relative luminance (Perez et al. 1993) with user coefficients A..E",
+        "luminance Y [cd/m^2] = Lz F(theta,gamma)/F(0,theta_s); XYZ at D65 chromaticity",
+        {sun_zenith(),
+         sun_azimuth(),
+         {"perez", "1", -kPerezCoefficientLimit, kPerezCoefficientLimit, "required",
+          "coefficients A,B,C,D,E of F = (1 + A e^{B/cos theta})(1 + C e^{D gamma} + E cos^2 "
+          "gamma)"},
+         {"zenith-luminance", "cd/m^2", 1e-9, 1e9, "required", "absolute zenith luminance Lz"}},
+        "any coefficients that keep F > 0; sun above the horizon (below: 0)",
+        false,
+        false,
+        [](const SkyParameters& p) -> std::unique_ptr<SkyModel> {
+          return std::make_unique<PerezModel>(p);
+        }});
+    r.push_back(ModelInfo{
+        "preetham",
+        "Preetham, Shirley & Smits 1999 analytic daylight: luminance, chromaticity, spectral, sun",
+        "XYZ with Y [cd/m^2]; spectral radiance [W m^-2 sr^-1 nm^-1] 300-830 nm via the CIE "
+        "daylight basis; sun disc 380-750 nm",
+        {sun_zenith(),
+         sun_azimuth(),
+         {"turbidity", "1", 1.0, 64.0, "3", "atmospheric turbidity T (fitted for 2-6)"}},
+        "fitted for turbidity 2-6; unusable below 1.9 and above 10 (Zotti et al. 2007); "
+        "negative zenith luminance near T < 1.9 at low sun and T > 10 at very low sun (returned "
+        "as 0, flagged unphysical); sun below the horizon: 0 (undefined)",
+        true,
+        true,
+        [](const SkyParameters& p) -> std::unique_ptr<SkyModel> {
+          return std::make_unique<PreethamModel>(p);
+        }});
+    r.push_back(ModelInfo{
+        "cie",
+        "ISO 15469 / CIE S 011:2003 Standard General Sky, types 1-15, and 16 = traditional "
+        "overcast",
+        "luminance Y [cd/m^2]; XYZ at D65 chromaticity (0.3127, 0.3290)",
+        {sun_zenith(),
+         sun_azimuth(),
+         {"cie-type", "1", 1.0, 16.0, "12", "sky type 1-15 (CIE S 011), 16 = (1 + 2 cos Z)/3"},
+         {"zenith-luminance", "cd/m^2", 1e-9, 1e9, "Kittler-Darula typical",
+          "absolute zenith luminance Lz; default: Kittler & Darula typical value for the type"}},
+        "all sun positions above the horizon; the Kittler-Darula typical zenith luminance is "
+        "recommended for solar elevations 10-80 deg (flagged extrapolated outside)",
+        false,
+        false,
+        [](const SkyParameters& p) -> std::unique_ptr<SkyModel> {
+          return std::make_unique<CieSkyModel>(p);
+        }});
+    return r;
+  }();
+  return registry;
+}
+
+}  // namespace skylight

@@ -1,0 +1,92 @@
+#include "skylight/models/sky_model.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "skylight/core/error.h"
+#include "skylight/core/parallel.h"
+
+namespace skylight {
+
+std::string_view to_string(Validity v) {
+  switch (v) {
+    case Validity::valid:
+      return "valid";
+    case Validity::extrapolated:
+      return "extrapolated";
+    case Validity::unphysical:
+      return "unphysical";
+    case Validity::undefined:
+      return "undefined";
+  }
+  return "valid";
+}
+
+Validity Domain::worst() const {
+  Validity w = Validity::valid;
+  for (const auto& i : issues) w = std::max(w, i.validity);
+  return w;
+}
+
+std::optional<double> SkyModel::spectral_radiance(Vec3, double) const {
+  return std::nullopt;
+}
+
+void SkyModel::tristimulus_batch(const DirectionsSoA& dirs, const XyzSoA& out) const {
+  SKYLIGHT_CHECK(out.size() == dirs.size(), "tristimulus_batch: size mismatch");
+  for (std::size_t i = 0; i < dirs.size(); ++i) {
+    const Xyz c = tristimulus({dirs.x[i], dirs.y[i], dirs.z[i]});
+    out.X[i] = static_cast<float>(c.X);
+    out.Y[i] = static_cast<float>(c.Y);
+    out.Z[i] = static_cast<float>(c.Z);
+  }
+}
+
+Xyz SkyModel::sun_tristimulus(Vec3) const {
+  return {};
+}
+std::optional<double> SkyModel::sun_spectral_radiance(Vec3, double) const {
+  return std::nullopt;
+}
+
+void tristimulus_parallel(const SkyModel& model, const DirectionsSoA& dirs, const XyzSoA& out) {
+  SKYLIGHT_CHECK(out.size() == dirs.size(), "tristimulus_parallel: size mismatch");
+  // 4096 directions per chunk: large enough to amortise the hand-out, small enough to balance.
+  constexpr std::size_t kGrain = 4096;
+  parallel_for(dirs.size(), kGrain, [&](std::size_t b, std::size_t e) {
+    const std::size_t n = e - b;
+    model.tristimulus_batch({dirs.x.subspan(b, n), dirs.y.subspan(b, n), dirs.z.subspan(b, n)},
+                            {out.X.subspan(b, n), out.Y.subspan(b, n), out.Z.subspan(b, n)});
+  });
+}
+
+void require_in_range(std::string_view name, double value, double min, double max) {
+  if (std::isnan(value) || value < min || value > max) {
+    throw InvalidArgument(
+        fmt::format("{} = {} is outside the valid range [{}, {}]", name, value, min, max));
+  }
+}
+
+const ModelInfo* find_model(std::string_view name) {
+  for (const auto& m : model_registry())
+    if (m.name == name) return &m;
+  return nullptr;
+}
+
+std::unique_ptr<SkyModel> make_sky_model(std::string_view name, const SkyParameters& params) {
+  const ModelInfo* info = find_model(name);
+  if (!info) {
+    std::string names;
+    for (const auto& m : model_registry()) names += (names.empty() ? "" : ", ") + m.name;
+    throw InvalidArgument(fmt::format("unknown model '{}' (known: {})", name, names));
+  }
+  require_in_range("sun_zenith [rad]", params.sun.zenith, 0.0, kPi);
+  if (!std::isfinite(params.sun.azimuth))
+    throw InvalidArgument(
+        fmt::format("sun_azimuth = {} is not a finite angle", params.sun.azimuth));
+  return info->make(params);
+}
+
+}  // namespace skylight

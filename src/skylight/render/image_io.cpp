@@ -1,0 +1,663 @@
+// Image files: EXR (OpenEXR), Radiance HDR (own RGBE writer, stb_image reader), PFM (own code),
+// PNG (stb_image_write), and the tone-mapped 8-bit preview.
+#include <unistd.h>
+
+#include <OpenEXR/ImfChannelList.h>
+#include <OpenEXR/ImfFrameBuffer.h>
+#include <OpenEXR/ImfHeader.h>
+#include <OpenEXR/ImfIO.h>
+#include <OpenEXR/ImfInputFile.h>
+#include <OpenEXR/ImfOutputFile.h>
+#include <OpenEXR/ImfStringAttribute.h>
+#include <fmt/format.h>
+#include <stb/stb_image.h>
+#include <stb/stb_image_write.h>
+
+#include <algorithm>
+#include <atomic>
+#include <bit>
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <limits>
+#include <memory>
+#include <new>
+#include <set>
+#include <system_error>
+
+#include "skylight/core/error.h"
+#include "skylight/render/image.h"
+
+namespace skylight::render {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string errno_message(int err) {
+  return std::error_code(err, std::generic_category()).message();
+}
+
+// Library messages (OpenEXR's in particular) may span lines; ours are one line.
+std::string one_line(std::string s) {
+  std::replace_if(
+      s.begin(), s.end(), [](char c) { return c == '\n' || c == '\r'; }, ' ');
+  while (!s.empty() && s.back() == ' ') s.pop_back();
+  return s;
+}
+
+[[noreturn]] void write_error(const fs::path& path, const std::string& why) {
+  throw IoError(fmt::format("cannot write '{}': {}", path.string(), one_line(why)));
+}
+[[noreturn]] void read_error(const fs::path& path, const std::string& why) {
+  throw IoError(fmt::format("cannot read '{}': {}", path.string(), one_line(why)));
+}
+
+// Runs `body`, turning library exceptions (Iex::BaseExc and other std::exceptions) into one-line
+// IoErrors naming `path`. Our own errors and std::bad_alloc pass through unchanged.
+template <class F>
+auto converting_errors(const fs::path& path, bool reading, F&& body) {
+  try {
+    return body();
+  } catch (const IoError&) {
+    throw;
+  } catch (const InvalidArgument&) {
+    throw;
+  } catch (const std::bad_alloc&) {
+    throw;
+  } catch (const std::exception& e) {
+    if (reading) read_error(path, e.what());
+    write_error(path, e.what());
+  }
+}
+
+// ---- atomic output ---------------------------------------------------------------------------
+
+// A temporary file next to the target, `<stem>.tmp-<pid>-<counter><ext>` (the real extension
+// last), renamed onto the target by commit(). Destroyed uncommitted, it removes the temporary, so
+// the target is either untouched or complete. All writers go through write(), which checks every
+// call, and commit() flushes and fsyncs before the rename.
+class AtomicFile {
+ public:
+  explicit AtomicFile(fs::path target) : target_(std::move(target)) {
+    static std::atomic<unsigned> counter{0};
+    for (int attempt = 0;; ++attempt) {
+      temp_ = target_.parent_path() / fmt::format("{}.tmp-{}-{}{}", target_.stem().string(),
+                                                  static_cast<long>(::getpid()), counter++,
+                                                  target_.extension().string());
+      file_ = std::fopen(temp_.c_str(), "wbx");  // x: exclusive, never clobbers another writer
+      if (file_ != nullptr) break;
+      const int err = errno;
+      if (err != EEXIST || attempt >= 100) write_error(target_, errno_message(err));
+    }
+  }
+  AtomicFile(const AtomicFile&) = delete;
+  AtomicFile& operator=(const AtomicFile&) = delete;
+  ~AtomicFile() {
+    if (file_ != nullptr) std::fclose(file_);
+    if (!committed_) {
+      std::error_code ignored;
+      fs::remove(temp_, ignored);
+    }
+  }
+
+  const fs::path& target() const { return target_; }
+
+  void write(const void* bytes, size_t n) {
+    if (failed_) write_error(target_, errno_message(failed_errno_));
+    if (n > 0 && std::fwrite(bytes, 1, n, file_) != n) fail(errno);
+  }
+  void write(const std::string& s) { write(s.data(), s.size()); }
+  // Never throws (~OutputFile calls it outside its try block); a failure is remembered and
+  // reported by the next write() or by commit().
+  std::uint64_t tell() noexcept {
+    const off_t pos = ::ftello(file_);
+    if (pos >= 0) return static_cast<std::uint64_t>(pos);
+    remember(errno);
+    return 0;
+  }
+  void seek(std::uint64_t pos) {
+    if (::fseeko(file_, static_cast<off_t>(pos), SEEK_SET) != 0) fail(errno);
+  }
+
+  void commit() {
+    if (failed_) write_error(target_, errno_message(failed_errno_));
+    if (std::fflush(file_) != 0 || ::fsync(::fileno(file_)) != 0) fail(errno);
+    std::FILE* f = std::exchange(file_, nullptr);
+    if (std::fclose(f) != 0) fail(errno);
+    std::error_code ec;
+    fs::rename(temp_, target_, ec);
+    if (ec) write_error(target_, ec.message());
+    committed_ = true;
+  }
+
+ private:
+  // Failures are remembered: OpenEXR swallows exceptions thrown while it closes a file.
+  void remember(int err) noexcept {
+    if (failed_) return;
+    failed_ = true;
+    failed_errno_ = err != 0 ? err : EIO;
+  }
+  [[noreturn]] void fail(int err) {
+    remember(err);
+    write_error(target_, errno_message(failed_errno_));
+  }
+
+  fs::path target_;
+  fs::path temp_;
+  std::FILE* file_ = nullptr;
+  bool committed_ = false;
+  bool failed_ = false;
+  int failed_errno_ = 0;
+};
+
+// OpenEXR output through an AtomicFile (so that write errors are never lost, even those raised
+// while ~OutputFile writes the line-offset table).
+class AtomicExrStream : public Imf::OStream {
+ public:
+  // OpenEXR's own messages then name the target, not the temporary.
+  explicit AtomicExrStream(AtomicFile& file) : Imf::OStream(file.target().c_str()), file_(file) {}
+  void write(const char c[], int n) override { file_.write(c, static_cast<size_t>(n)); }
+  std::uint64_t tellp() override { return file_.tell(); }
+  void seekp(std::uint64_t pos) override { file_.seek(pos); }
+
+ private:
+  AtomicFile& file_;
+};
+
+// ---- input -----------------------------------------------------------------------------------
+
+struct FileCloser {
+  void operator()(std::FILE* f) const { std::fclose(f); }
+};
+using FilePtr = std::unique_ptr<std::FILE, FileCloser>;
+
+// Opens a regular file for reading, or throws an IoError with the system's reason.
+FilePtr open_for_read(const fs::path& path) {
+  std::error_code ec;
+  if (fs::is_directory(path, ec)) read_error(path, "is a directory");
+  FilePtr f(std::fopen(path.c_str(), "rb"));
+  if (!f) read_error(path, errno_message(errno));
+  return f;
+}
+
+std::vector<char> read_all(const fs::path& path) {
+  FilePtr f = open_for_read(path);
+  std::vector<char> bytes;
+  char buffer[1 << 16];
+  for (;;) {
+    const size_t n = std::fread(buffer, 1, sizeof buffer, f.get());
+    bytes.insert(bytes.end(), buffer, buffer + n);
+    if (n < sizeof buffer) break;
+  }
+  if (std::ferror(f.get())) read_error(path, errno_message(errno));
+  return bytes;
+}
+
+// ---- validation ------------------------------------------------------------------------------
+
+void check_shape(const fs::path& path, int width, int height, int channels, size_t size) {
+  if (channels != 1 && channels != 3)
+    throw InvalidArgument(fmt::format("cannot write '{}': image has {} channels, expected 1 or 3",
+                                      path.string(), channels));
+  if (width <= 0 || height <= 0)
+    throw InvalidArgument(
+        fmt::format("cannot write '{}': image is empty ({}x{})", path.string(), width, height));
+  const size_t expected =
+      static_cast<size_t>(width) * static_cast<size_t>(height) * static_cast<size_t>(channels);
+  if (size != expected)
+    throw InvalidArgument(fmt::format("cannot write '{}': image data has {} values, expected {}",
+                                      path.string(), size, expected));
+}
+
+// Metadata keys must suit every format: 1 to 79 printable ASCII characters (PNG keyword limit),
+// no spaces and no '=' (Radiance header lines are NAME=value), each key once.
+void check_metadata(const fs::path& path, const Metadata& meta) {
+  std::set<std::string> seen;
+  for (const auto& [key, value] : meta) {
+    const bool ok =
+        !key.empty() && key.size() <= 79 &&
+        std::all_of(key.begin(), key.end(), [](char c) { return c > ' ' && c <= '~' && c != '='; });
+    if (!ok)
+      throw InvalidArgument(fmt::format(
+          "cannot write '{}': metadata key '{}' must be 1-79 printable ASCII characters without "
+          "spaces or '='",
+          path.string(), key));
+    if (!seen.insert(key).second)
+      throw InvalidArgument(
+          fmt::format("cannot write '{}': metadata key '{}' given twice", path.string(), key));
+  }
+}
+
+// ---- EXR -------------------------------------------------------------------------------------
+
+void write_exr(const fs::path& path, const ImageF& image, const Metadata& meta) {
+  static const char* const kRgb[] = {"R", "G", "B"};
+  static const char* const kY[] = {"Y"};
+  const char* const* names = image.channels == 3 ? kRgb : kY;
+
+  Imf::Header header(image.width, image.height);
+  header.compression() = Imf::ZIP_COMPRESSION;
+  for (int c = 0; c < image.channels; ++c)
+    header.channels().insert(names[c], Imf::Channel(Imf::FLOAT));
+  for (const auto& [key, value] : meta) {
+    if (header.find(key) != header.end())
+      throw InvalidArgument(fmt::format(
+          "cannot write '{}': metadata key '{}' is a standard EXR attribute", path.string(), key));
+    header.insert(key, Imf::StringAttribute(value));
+  }
+
+  // Imf::Slice wants a mutable base pointer; OutputFile only reads through it.
+  char* base = reinterpret_cast<char*>(const_cast<float*>(image.data.data()));
+  const size_t x_stride = sizeof(float) * static_cast<size_t>(image.channels);
+  const size_t y_stride = x_stride * static_cast<size_t>(image.width);
+  Imf::FrameBuffer frame;
+  for (int c = 0; c < image.channels; ++c)
+    frame.insert(names[c], Imf::Slice(Imf::FLOAT, base + sizeof(float) * static_cast<size_t>(c),
+                                      x_stride, y_stride));
+
+  AtomicFile file(path);
+  converting_errors(path, false, [&] {
+    AtomicExrStream stream(file);
+    Imf::OutputFile out(stream, header, Imf::globalThreadCount());
+    out.setFrameBuffer(frame);
+    out.writePixels(image.height);
+  });  // ~OutputFile has written the offset table here
+  file.commit();
+}
+
+ImageF read_exr(const fs::path& path) {
+  open_for_read(path);  // a clear system message for missing or unreadable files
+  return converting_errors(path, true, [&] {
+    Imf::InputFile in(path.c_str());
+    const Imf::Header& header = in.header();
+    const Imath::Box2i window = header.dataWindow();
+    const std::int64_t w = std::int64_t{window.max.x} - window.min.x + 1;
+    const std::int64_t h = std::int64_t{window.max.y} - window.min.y + 1;
+    if (w <= 0 || h <= 0 || w > std::numeric_limits<int>::max() ||
+        h > std::numeric_limits<int>::max())
+      read_error(path, fmt::format("bad data window {}x{}", w, h));
+
+    const Imf::ChannelList& channels = header.channels();
+    std::vector<const char*> names;
+    if (channels.findChannel("R") && channels.findChannel("G") && channels.findChannel("B")) {
+      names = {"R", "G", "B"};
+    } else if (channels.findChannel("Y")) {
+      names = {"Y"};
+    } else {
+      std::string present;
+      for (auto it = channels.begin(); it != channels.end(); ++it)
+        present += (present.empty() ? "" : ", ") + std::string(it.name());
+      read_error(path, fmt::format("no R,G,B or Y channels (has: {})", present));
+    }
+
+    ImageF image(static_cast<int>(w), static_cast<int>(h), static_cast<int>(names.size()));
+    const size_t x_stride = sizeof(float) * names.size();
+    const size_t y_stride = x_stride * static_cast<size_t>(w);
+    Imf::FrameBuffer frame;
+    for (size_t c = 0; c < names.size(); ++c)  // HALF / UINT channels are converted to FLOAT
+      frame.insert(names[c],
+                   Imf::Slice::Make(Imf::FLOAT, image.data.data() + c, window, x_stride, y_stride));
+    in.setFrameBuffer(frame);
+    in.readPixels(window.min.y, window.max.y);
+    return image;
+  });
+}
+
+// ---- PFM -------------------------------------------------------------------------------------
+
+std::uint32_t byte_swap(std::uint32_t v) {
+  return (v >> 24) | ((v >> 8) & 0xff00u) | ((v << 8) & 0xff0000u) | (v << 24);
+}
+
+// PFM: text header "PF" (RGB) or "Pf" (grey), "width height", scale (negative: little-endian),
+// one whitespace byte, then float rows from the BOTTOM row up. We write little-endian, scale -1.
+void write_pfm(const fs::path& path, const ImageF& image) {
+  AtomicFile file(path);
+  file.write(fmt::format("{}\n{} {}\n-1.0\n", image.channels == 3 ? "PF" : "Pf", image.width,
+                         image.height));
+  const size_t row_values = static_cast<size_t>(image.width) * static_cast<size_t>(image.channels);
+  std::vector<std::uint32_t> row(row_values);
+  for (int y = image.height - 1; y >= 0; --y) {
+    std::memcpy(row.data(), image.pixel(0, y), row_values * sizeof(float));
+    if constexpr (std::endian::native == std::endian::big)
+      for (auto& v : row) v = byte_swap(v);
+    file.write(row.data(), row_values * sizeof(float));
+  }
+  file.commit();
+}
+
+ImageF read_pfm(const fs::path& path) {
+  const std::vector<char> bytes = read_all(path);
+  size_t pos = 0;
+  auto is_space = [](char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\n'; };
+  // Next whitespace-separated header token (short: the header is a few numbers).
+  auto token = [&]() -> std::string {
+    while (pos < bytes.size() && is_space(bytes[pos])) ++pos;
+    std::string t;
+    while (pos < bytes.size() && !is_space(bytes[pos]) && t.size() < 64) t += bytes[pos++];
+    return t;
+  };
+  auto corrupt = [&](const std::string& why) { read_error(path, "not a valid PFM file: " + why); };
+
+  const std::string magic = token();
+  if (magic != "PF" && magic != "Pf") corrupt("missing PF/Pf signature");
+  const int channels = magic == "PF" ? 3 : 1;
+  auto dimension = [&](const char* what) {
+    const std::string t = token();
+    char* end = nullptr;
+    errno = 0;
+    const long long v = std::strtoll(t.c_str(), &end, 10);
+    if (t.empty() || *end != '\0' || errno != 0 || v <= 0 || v > std::numeric_limits<int>::max())
+      corrupt(fmt::format("bad {} '{}'", what, t));
+    return static_cast<int>(v);
+  };
+  const int width = dimension("width");
+  const int height = dimension("height");
+  const std::string scale_text = token();
+  char* end = nullptr;
+  const double scale = std::strtod(scale_text.c_str(), &end);
+  if (scale_text.empty() || *end != '\0' || !std::isfinite(scale) || scale == 0.0)
+    corrupt(fmt::format("bad scale '{}'", scale_text));
+  if (pos >= bytes.size() || !is_space(bytes[pos])) corrupt("truncated header");
+  ++pos;  // exactly one whitespace byte before the raster
+
+  const size_t row_values = static_cast<size_t>(width) * static_cast<size_t>(channels);
+  const size_t row_bytes = row_values * sizeof(float);
+  if (static_cast<size_t>(height) > (bytes.size() - pos) / row_bytes)
+    corrupt(fmt::format("truncated raster ({} bytes for {}x{}x{} floats)", bytes.size() - pos,
+                        width, height, channels));
+
+  // The magnitude of the scale is ignored (it is 1 in practice); its sign gives the byte order.
+  const bool file_little = scale < 0.0;
+  const bool swap = file_little != (std::endian::native == std::endian::little);
+  ImageF image(width, height, channels);
+  for (int row = 0; row < height; ++row) {
+    float* dst = image.pixel(0, height - 1 - row);  // file row 0 is the bottom
+    std::memcpy(dst, bytes.data() + pos + static_cast<size_t>(row) * row_values * sizeof(float),
+                row_values * sizeof(float));
+    if (swap) {
+      for (size_t i = 0; i < row_values; ++i) {
+        std::uint32_t v;
+        std::memcpy(&v, dst + i, sizeof v);
+        v = byte_swap(v);
+        std::memcpy(dst + i, &v, sizeof v);
+      }
+    }
+  }
+  return image;
+}
+
+// ---- Radiance HDR ----------------------------------------------------------------------------
+
+// RGBE (Ward): a shared exponent byte e and three 8-bit mantissas m, value = m * 2^(e - 136).
+// Mantissas are rounded to nearest (Radiance truncates), so the error of each channel is at most
+// half a mantissa step, i.e. <= max(R, G, B) / 255. Negative and non-finite values become 0.
+std::array<std::uint8_t, 4> to_rgbe(const float* rgb) {
+  double c[3];
+  for (int i = 0; i < 3; ++i) c[i] = std::isfinite(rgb[i]) && rgb[i] > 0.0f ? rgb[i] : 0.0;
+  const double top = std::max({c[0], c[1], c[2]});
+  if (top == 0.0) return {0, 0, 0, 0};
+  int e = 0;
+  std::frexp(top, &e);                    // top = f * 2^e, f in [0.5, 1)
+  if (e < -127) return {0, 0, 0, 0};      // below the smallest exponent byte: black
+  double scale = std::ldexp(1.0, 8 - e);  // mantissa of top in [128, 256)
+  if (std::round(top * scale) > 255.0) {  // rounds up to 256: next exponent
+    ++e;
+    scale *= 0.5;
+  }
+  if (e > 127) {  // beyond RGBE's range (~1.7e38): saturate
+    e = 127;
+    scale = std::ldexp(1.0, 8 - e);
+  }
+  std::array<std::uint8_t, 4> out{};
+  for (int i = 0; i < 3; ++i)
+    out[i] = static_cast<std::uint8_t>(std::min(255.0, std::round(c[i] * scale)));
+  out[3] = static_cast<std::uint8_t>(e + 128);
+  return out;
+}
+
+// Writes uncompressed ("flat") RGBE scanlines, which every Radiance reader (stb_image included)
+// accepts: a normalised pixel never starts with the 2,2 run-length marker. Metadata become
+// header lines `KEY=value` (newlines in values replaced by spaces).
+void write_hdr(const fs::path& path, const ImageF& image, const Metadata& meta) {
+  for (const auto& [key, value] : meta) {
+    if (key == "FORMAT")
+      throw InvalidArgument(fmt::format(
+          "cannot write '{}': metadata key 'FORMAT' is reserved in Radiance files", path.string()));
+  }
+  std::string header = "#?RADIANCE\n";
+  for (const auto& [key, value] : meta) {
+    std::string v = value;
+    std::replace_if(
+        v.begin(), v.end(), [](char c) { return c == '\n' || c == '\r'; }, ' ');
+    header += key + "=" + v + "\n";
+  }
+  header += fmt::format("FORMAT=32-bit_rle_rgbe\n\n-Y {} +X {}\n", image.height, image.width);
+
+  AtomicFile file(path);
+  file.write(header);
+  std::vector<std::uint8_t> row(static_cast<size_t>(image.width) * 4);
+  for (int y = 0; y < image.height; ++y) {
+    for (int x = 0; x < image.width; ++x) {
+      const float* p = image.pixel(x, y);
+      const float rgb[3] = {p[0], image.channels == 3 ? p[1] : p[0],
+                            image.channels == 3 ? p[2] : p[0]};
+      const auto rgbe = to_rgbe(rgb);
+      std::copy(rgbe.begin(), rgbe.end(), row.begin() + static_cast<std::ptrdiff_t>(x) * 4);
+    }
+    file.write(row.data(), row.size());
+  }
+  file.commit();
+}
+
+ImageF read_hdr(const fs::path& path) {
+  FilePtr f = open_for_read(path);
+  // stbi_loadf would also accept an 8-bit image and apply a gamma to it: insist on Radiance.
+  if (!stbi_is_hdr_from_file(f.get())) read_error(path, "not a Radiance HDR file");
+  stbi_set_flip_vertically_on_load_thread(0);  // row 0 at the top, whatever others set globally
+  int w = 0, h = 0, n = 0;
+  float* pixels = stbi_loadf_from_file(f.get(), &w, &h, &n, 3);  // .hdr: linear, no gamma
+  if (pixels == nullptr) read_error(path, stbi_failure_reason());
+  ImageF image(w, h, 3);
+  std::copy(pixels, pixels + image.data.size(), image.data.begin());
+  stbi_image_free(pixels);
+  return image;
+}
+
+// ---- PNG -------------------------------------------------------------------------------------
+
+std::uint32_t crc32(const std::uint8_t* bytes, size_t n, std::uint32_t crc = 0) {
+  static const auto table = [] {
+    std::array<std::uint32_t, 256> t{};
+    for (std::uint32_t i = 0; i < 256; ++i) {
+      std::uint32_t c = i;
+      for (int k = 0; k < 8; ++k) c = (c & 1u) ? 0xedb88320u ^ (c >> 1) : c >> 1;
+      t[i] = c;
+    }
+    return t;
+  }();
+  crc = ~crc;
+  for (size_t i = 0; i < n; ++i) crc = table[(crc ^ bytes[i]) & 0xffu] ^ (crc >> 8);
+  return ~crc;
+}
+
+void put_u32_be(std::vector<std::uint8_t>& out, std::uint32_t v) {
+  for (int shift = 24; shift >= 0; shift -= 8) out.push_back(static_cast<std::uint8_t>(v >> shift));
+}
+
+// A tEXt chunk (Latin-1 text) when the value is plain ASCII, else an uncompressed iTXt (UTF-8).
+std::vector<std::uint8_t> text_chunk(const std::string& key, const std::string& value) {
+  const bool ascii = std::all_of(value.begin(), value.end(),
+                                 [](char c) { return c == '\n' || (c >= ' ' && c <= '~'); });
+  const std::string type = ascii ? "tEXt" : "iTXt";
+  std::vector<std::uint8_t> body(type.begin(), type.end());
+  body.insert(body.end(), key.begin(), key.end());
+  body.push_back(0);
+  if (!ascii) body.insert(body.end(), {0, 0, 0, 0});  // not compressed, method, no language/key
+  body.insert(body.end(), value.begin(), value.end());
+  std::vector<std::uint8_t> chunk;
+  put_u32_be(chunk, static_cast<std::uint32_t>(body.size() - 4));
+  chunk.insert(chunk.end(), body.begin(), body.end());
+  put_u32_be(chunk, crc32(body.data(), body.size()));
+  return chunk;
+}
+
+void append_bytes(void* context, void* data, int size) {
+  auto* out = static_cast<std::vector<std::uint8_t>*>(context);
+  const auto* bytes = static_cast<const std::uint8_t*>(data);
+  out->insert(out->end(), bytes, bytes + size);
+}
+
+}  // namespace
+
+ImageFormat format_from_path(const std::filesystem::path& path) {
+  std::string ext = path.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  if (ext == ".exr") return ImageFormat::exr;
+  if (ext == ".hdr") return ImageFormat::hdr;
+  if (ext == ".pfm") return ImageFormat::pfm;
+  if (ext == ".png") return ImageFormat::png;
+  throw InvalidArgument(fmt::format(
+      "unsupported image file '{}': extension '{}' is not one of .exr, .hdr, .pfm, .png",
+      path.string(), path.extension().string()));
+}
+
+void write_image(const std::filesystem::path& path, const ImageF& image, const Metadata& meta) {
+  const ImageFormat format = format_from_path(path);
+  check_shape(path, image.width, image.height, image.channels, image.data.size());
+  check_metadata(path, meta);
+  switch (format) {
+    case ImageFormat::exr:
+      write_exr(path, image, meta);
+      return;
+    case ImageFormat::hdr:
+      write_hdr(path, image, meta);
+      return;
+    case ImageFormat::pfm:  // PFM has no room for metadata
+      write_pfm(path, image);
+      return;
+    case ImageFormat::png:
+      write_png(path, tonemap_preview(image), meta);
+      return;
+  }
+}
+
+void write_png(const std::filesystem::path& path, const Image8& image, const Metadata& meta) {
+  check_shape(path, image.width, image.height, 3, image.data.size());
+  check_metadata(path, meta);
+  std::vector<std::uint8_t> png;
+  if (!stbi_write_png_to_func(append_bytes, &png, image.width, image.height, 3, image.data.data(),
+                              image.width * 3))
+    write_error(path, "PNG encoding failed");
+  // Text chunks go right after IHDR (8-byte signature + 25-byte IHDR chunk).
+  constexpr size_t kAfterIhdr = 33;
+  if (png.size() < kAfterIhdr || std::memcmp(png.data() + 12, "IHDR", 4) != 0)
+    write_error(path, "unexpected PNG encoder output");
+  std::vector<std::uint8_t> chunks;
+  for (const auto& [key, value] : meta) {
+    const auto chunk = text_chunk(key, value);
+    chunks.insert(chunks.end(), chunk.begin(), chunk.end());
+  }
+  png.insert(png.begin() + kAfterIhdr, chunks.begin(), chunks.end());
+
+  AtomicFile file(path);
+  file.write(png.data(), png.size());
+  file.commit();
+}
+
+ImageF read_image(const std::filesystem::path& path) {
+  switch (format_from_path(path)) {
+    case ImageFormat::exr:
+      return read_exr(path);
+    case ImageFormat::pfm:
+      return read_pfm(path);
+    case ImageFormat::hdr:
+      return read_hdr(path);
+    case ImageFormat::png:
+      break;
+  }
+  throw InvalidArgument(fmt::format(
+      "cannot read '{}': PNG files are 8-bit previews; read .exr, .hdr or .pfm", path.string()));
+}
+
+Metadata read_exr_metadata(const std::filesystem::path& path) {
+  open_for_read(path);
+  return converting_errors(path, true, [&] {
+    Imf::InputFile in(path.c_str());
+    Metadata meta;
+    for (auto it = in.header().begin(); it != in.header().end(); ++it) {
+      if (const auto* s = dynamic_cast<const Imf::StringAttribute*>(&it.attribute()))
+        meta.emplace_back(it.name(), s->value());
+    }
+    return meta;
+  });
+}
+
+Image8 tonemap_preview(const ImageF& image, const ToneMapOptions& options) {
+  if (!(options.percentile > 0.0 && options.percentile <= 1.0))
+    throw InvalidArgument(
+        fmt::format("tone-map percentile must be in (0, 1], got {}", options.percentile));
+  if (!(std::isfinite(options.exposure) && options.exposure > 0.0))
+    throw InvalidArgument(fmt::format("tone-map exposure must be > 0, got {}", options.exposure));
+  if (image.channels != 1 && image.channels != 3)
+    throw InvalidArgument(
+        fmt::format("tone-map: image has {} channels, expected 1 or 3", image.channels));
+  const size_t pixels = static_cast<size_t>(std::max(image.width, 0)) *
+                        static_cast<size_t>(std::max(image.height, 0));
+  if (image.data.size() != pixels * static_cast<size_t>(image.channels))
+    throw InvalidArgument(fmt::format("tone-map: image data has {} values, expected {}",
+                                      image.data.size(), pixels * image.channels));
+
+  // Linear colour of pixel i with negative and non-finite channels set to 0, and its luminance
+  // (Rec. 709 / sRGB weights).
+  auto colour = [&](size_t i) {
+    std::array<double, 3> c{};
+    const float* p = image.data.data() + i * static_cast<size_t>(image.channels);
+    for (int k = 0; k < 3; ++k) {
+      const float v = p[image.channels == 3 ? k : 0];
+      c[k] = std::isfinite(v) && v > 0.0f ? v : 0.0;
+    }
+    return c;
+  };
+  auto luminance = [&](const std::array<double, 3>& c) {
+    return image.channels == 3 ? 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2] : c[0];
+  };
+
+  // Auto exposure: the percentile of luminance over pixels that have some light.
+  std::vector<double> lum;
+  lum.reserve(pixels);
+  for (size_t i = 0; i < pixels; ++i) {
+    const double l = luminance(colour(i));
+    if (l > 0.0 && std::isfinite(l)) lum.push_back(l);
+  }
+  double reference = 1.0;
+  if (!lum.empty()) {
+    const double rank = std::ceil(options.percentile * static_cast<double>(lum.size())) - 1.0;
+    const size_t index = std::min(lum.size() - 1, static_cast<size_t>(std::max(0.0, rank)));
+    std::nth_element(lum.begin(), lum.begin() + static_cast<std::ptrdiff_t>(index), lum.end());
+    reference = lum[index];
+  }
+  const double k = options.exposure / reference;
+
+  auto srgb8 = [](double x) {
+    x = std::clamp(x, 0.0, 1.0);
+    const double v = x <= 0.0031308 ? 12.92 * x : 1.055 * std::pow(x, 1.0 / 2.4) - 0.055;
+    return static_cast<std::uint8_t>(std::lround(std::clamp(v, 0.0, 1.0) * 255.0));
+  };
+
+  Image8 out(image.width, image.height);
+  for (size_t i = 0; i < pixels; ++i) {
+    const auto c = colour(i);
+    const double lk = luminance(c) * k;
+    // Reinhard on luminance, L' = Lk / (1 + Lk); the colour keeps its ratios: c * k * L' / (Lk).
+    const double factor = lk > 0.0 && std::isfinite(lk) ? k / (1.0 + lk) : 0.0;
+    for (int ch = 0; ch < 3; ++ch)
+      out.data[i * 3 + static_cast<size_t>(ch)] = srgb8(c[ch] * factor);
+  }
+  return out;
+}
+
+}  // namespace skylight::render

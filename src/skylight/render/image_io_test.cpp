@@ -1,0 +1,445 @@
+#include <sys/resource.h>
+#include <unistd.h>
+
+#include <csignal>
+
+#include <Imath/half.h>
+#include <OpenEXR/ImfChannelList.h>
+#include <OpenEXR/ImfFrameBuffer.h>
+#include <OpenEXR/ImfHeader.h>
+#include <OpenEXR/ImfOutputFile.h>
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+#include <stb/stb_image.h>
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <iterator>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "skylight/core/error.h"
+#include "skylight/render/image.h"
+
+namespace skylight::render {
+namespace {
+
+namespace fs = std::filesystem;
+
+// A fresh directory per test, removed afterwards.
+class ScratchDir {
+ public:
+  ScratchDir() {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    path_ = fs::path(::testing::TempDir()) / fmt::format("skylight_image_io_{}_{}_{}", ::getpid(),
+                                                         info->test_suite_name(), info->name());
+    fs::remove_all(path_);
+    fs::create_directories(path_);
+  }
+  ~ScratchDir() {
+    std::error_code ignored;
+    fs::remove_all(path_, ignored);
+  }
+  fs::path operator/(const std::string& name) const { return path_ / name; }
+  const fs::path& path() const { return path_; }
+  std::vector<std::string> entries() const {
+    std::vector<std::string> names;
+    for (const auto& e : fs::directory_iterator(path_)) names.push_back(e.path().filename());
+    std::sort(names.begin(), names.end());
+    return names;
+  }
+
+ private:
+  fs::path path_;
+};
+
+std::string slurp(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+void spit(const fs::path& path, const std::string& bytes) {
+  std::ofstream out(path, std::ios::binary);
+  out << bytes;
+}
+
+// Exact comparison of float bit patterns (distinguishes -0 from 0, keeps NaN payloads).
+void expect_bit_identical(const ImageF& a, const ImageF& b) {
+  ASSERT_EQ(a.width, b.width);
+  ASSERT_EQ(a.height, b.height);
+  ASSERT_EQ(a.channels, b.channels);
+  ASSERT_EQ(a.data.size(), b.data.size());
+  for (size_t i = 0; i < a.data.size(); ++i)
+    EXPECT_EQ(std::bit_cast<std::uint32_t>(a.data[i]), std::bit_cast<std::uint32_t>(b.data[i]))
+        << "value " << i << ": " << a.data[i] << " vs " << b.data[i];
+}
+
+// Values that trip up lossy or careless codecs: negatives, huge and tiny magnitudes, -0, inf, NaN.
+ImageF distinctive_rgb() {
+  const float values[] = {0.0f,     -0.0f,
+                          1.0f,     -2.5f,
+                          1e6f,     1e-6f,
+                          3.25f,    -1e-6f,
+                          65504.0f, 1.0e30f,
+                          7.0e-39f, 0.1f,
+                          42.0f,    0.5f,
+                          -1e6f,    std::numeric_limits<float>::infinity(),
+                          123.456f, std::numeric_limits<float>::quiet_NaN()};
+  ImageF image(3, 2, 3);
+  for (size_t i = 0; i < image.data.size(); ++i) image.data[i] = values[i % std::size(values)];
+  return image;
+}
+
+ImageF ramp_grey(int w, int h) {
+  ImageF image(w, h, 1);
+  for (size_t i = 0; i < image.data.size(); ++i)
+    image.data[i] = 0.001f * static_cast<float>(i * i) - 0.5f;
+  return image;
+}
+
+bool has(const Metadata& meta, const std::string& key, const std::string& value) {
+  return std::find(meta.begin(), meta.end(), std::pair(key, value)) != meta.end();
+}
+
+// ---- EXR ---------------------------------------------------------------------------------------
+
+TEST(ImageIo, ExrRgbRoundTripIsBitIdenticalWithMetadata) {
+  ScratchDir dir;
+  const ImageF image = distinctive_rgb();
+  const Metadata meta = {{"skylight:model", "Perez 1993"}, {"comment", "sky \xc2\xb0 line"}};
+  write_image(dir / "sky.exr", image, meta);
+  expect_bit_identical(read_image(dir / "sky.exr"), image);
+  const Metadata back = read_exr_metadata(dir / "sky.exr");
+  EXPECT_TRUE(has(back, "skylight:model", "Perez 1993"));
+  EXPECT_TRUE(has(back, "comment", "sky \xc2\xb0 line"));
+}
+
+TEST(ImageIo, ExrLuminanceRoundTripIsBitIdentical) {
+  ScratchDir dir;
+  const ImageF image = ramp_grey(5, 4);
+  write_image(dir / "y.EXR", image);  // extension case does not matter
+  const ImageF back = read_image(dir / "y.EXR");
+  EXPECT_EQ(back.channels, 1);
+  expect_bit_identical(back, image);
+  EXPECT_TRUE(read_exr_metadata(dir / "y.EXR").empty());
+}
+
+TEST(ImageIo, ExrHalfChannelsAndOffsetDataWindowAreRead) {
+  ScratchDir dir;
+  const fs::path path = dir / "half.exr";
+  // A file from elsewhere: HALF luminance, data window starting at (5, 7).
+  const Imath::Box2i window({5, 7}, {7, 8});  // 3 x 2 pixels
+  Imf::Header header(window, window);
+  header.channels().insert("Y", Imf::Channel(Imf::HALF));
+  const std::vector<half> values = {half(0.5f),  half(2.0f), half(1024.0f),
+                                    half(-3.0f), half(0.0f), half(0.25f)};
+  Imf::FrameBuffer frame;
+  frame.insert("Y", Imf::Slice::Make(Imf::HALF, values.data(), window));
+  {
+    Imf::OutputFile out(path.c_str(), header);
+    out.setFrameBuffer(frame);
+    out.writePixels(2);
+  }
+  const ImageF image = read_image(path);
+  ASSERT_EQ(image.width, 3);
+  ASSERT_EQ(image.height, 2);
+  ASSERT_EQ(image.channels, 1);
+  for (size_t i = 0; i < values.size(); ++i) EXPECT_EQ(image.data[i], float(values[i])) << i;
+}
+
+// ---- PFM ---------------------------------------------------------------------------------------
+
+TEST(ImageIo, PfmRoundTripIsBitIdenticalAndKeepsRowOrder) {
+  ScratchDir dir;
+  const ImageF image = distinctive_rgb();
+  write_image(dir / "a.pfm", image, {{"ignored", "PFM has no metadata"}});
+  expect_bit_identical(read_image(dir / "a.pfm"), image);
+
+  // On disk: little-endian header, then the BOTTOM row first.
+  const std::string bytes = slurp(dir / "a.pfm");
+  const std::string header = "PF\n3 2\n-1.0\n";
+  ASSERT_EQ(bytes.substr(0, header.size()), header);
+  ASSERT_EQ(bytes.size(), header.size() + image.data.size() * 4);
+  float first = 0.0f;
+  std::memcpy(&first, bytes.data() + header.size(), 4);
+  EXPECT_EQ(std::bit_cast<std::uint32_t>(first),
+            std::bit_cast<std::uint32_t>(image.pixel(0, 1)[0]));
+
+  const ImageF grey = ramp_grey(4, 3);
+  write_image(dir / "g.pfm", grey);
+  EXPECT_EQ(slurp(dir / "g.pfm").substr(0, 3), "Pf\n");
+  expect_bit_identical(read_image(dir / "g.pfm"), grey);
+}
+
+TEST(ImageIo, PfmReadsBigEndianFiles) {
+  ScratchDir dir;
+  // Pf, 2 x 2, positive scale = big-endian; file rows bottom-up: (3, 4) then (1, 2).
+  std::string bytes = "Pf\n2 2\n1.0\n";
+  for (float v : {3.0f, 4.0f, 1.0f, 2.0f}) {
+    const auto bits = std::bit_cast<std::uint32_t>(v);
+    for (int shift = 24; shift >= 0; shift -= 8) bytes += static_cast<char>((bits >> shift) & 0xff);
+  }
+  spit(dir / "be.pfm", bytes);
+  const ImageF image = read_image(dir / "be.pfm");
+  ASSERT_EQ(image.channels, 1);
+  EXPECT_EQ(image.data, (std::vector<float>{1.0f, 2.0f, 3.0f, 4.0f}));
+}
+
+// ---- Radiance HDR ------------------------------------------------------------------------------
+
+// RGBE keeps an 8-bit mantissa per channel under the pixel's shared exponent; with rounding the
+// error of any channel is at most half a step, <= max(R, G, B) / 255.
+constexpr double kRgbeRelativeTolerance = 1.0 / 255.0;
+
+TEST(ImageIo, HdrRoundTripWithinRgbePrecision) {
+  ScratchDir dir;
+  ImageF image(16, 3, 3);  // >= 8 wide: exercises the reader's run-length detection
+  for (int y = 0; y < image.height; ++y)
+    for (int x = 0; x < image.width; ++x) {
+      float* p = image.pixel(x, y);
+      const float base = std::pow(10.0f, static_cast<float>(x) - 6.0f);  // 1e-6 ... 1e9
+      p[0] = base * (1.0f + 0.37f * static_cast<float>(y));
+      p[1] = base * 0.123f;
+      p[2] = (x % 3 == 0) ? -base : base * 0.9f;  // negatives must come back as 0
+    }
+  const Metadata meta = {{"SKYLIGHT_MODEL", "CIE 15"}, {"note", "two\nlines"}};
+  write_image(dir / "sky.hdr", image, meta);
+
+  const std::string bytes = slurp(dir / "sky.hdr");
+  EXPECT_EQ(bytes.rfind("#?RADIANCE\n", 0), 0u);
+  EXPECT_NE(bytes.find("\nSKYLIGHT_MODEL=CIE 15\n"), std::string::npos);
+  EXPECT_NE(bytes.find("\nnote=two lines\n"), std::string::npos);
+
+  const ImageF back = read_image(dir / "sky.hdr");
+  ASSERT_EQ(back.width, image.width);
+  ASSERT_EQ(back.height, image.height);
+  ASSERT_EQ(back.channels, 3);
+  for (int y = 0; y < image.height; ++y)
+    for (int x = 0; x < image.width; ++x) {
+      const float* p = image.pixel(x, y);
+      const float* q = back.pixel(x, y);
+      const double top = std::max({p[0], p[1], p[2], 0.0f});
+      for (int c = 0; c < 3; ++c) {
+        const double expected = std::max(p[c], 0.0f);
+        EXPECT_NEAR(q[c], expected, top * kRgbeRelativeTolerance) << x << "," << y << " c" << c;
+        if (p[c] < 0.0f) {
+          EXPECT_EQ(q[c], 0.0f);
+        }
+      }
+    }
+}
+
+TEST(ImageIo, HdrWritesGreyAsRgbAndZeroesNonFinite) {
+  ScratchDir dir;
+  ImageF grey(4, 1, 1);
+  grey.data = {0.0f, 5.0f, std::numeric_limits<float>::infinity(),
+               std::numeric_limits<float>::quiet_NaN()};
+  write_image(dir / "g.hdr", grey);
+  const ImageF back = read_image(dir / "g.hdr");
+  ASSERT_EQ(back.channels, 3);
+  for (int c = 0; c < 3; ++c) {
+    EXPECT_EQ(back.pixel(0, 0)[c], 0.0f);
+    EXPECT_EQ(back.pixel(1, 0)[c], 5.0f);  // 5 = 160/256 * 2^3: exact in RGBE
+    EXPECT_EQ(back.pixel(2, 0)[c], 0.0f);
+    EXPECT_EQ(back.pixel(3, 0)[c], 0.0f);
+  }
+}
+
+// ---- PNG ---------------------------------------------------------------------------------------
+
+TEST(ImageIo, PngPreviewIsWrittenWithTextChunks) {
+  ScratchDir dir;
+  write_image(dir / "p.png", ramp_grey(6, 5),
+              {{"Software", "skylight"}, {"Title", "Sky \xc3\xa9"}});
+  const std::string bytes = slurp(dir / "p.png");
+  EXPECT_NE(bytes.find(std::string("tEXtSoftware\0skylight", 21)), std::string::npos);
+  EXPECT_NE(bytes.find(std::string("iTXtTitle\0\0\0\0\0Sky \xc3\xa9", 20)), std::string::npos);
+  int w = 0, h = 0, n = 0;  // stb_image checks the chunk CRCs
+  unsigned char* pixels = stbi_load((dir / "p.png").c_str(), &w, &h, &n, 3);
+  ASSERT_NE(pixels, nullptr) << stbi_failure_reason();
+  EXPECT_EQ(w, 6);
+  EXPECT_EQ(h, 5);
+  EXPECT_EQ(pixels[0], 0);  // the ramp starts negative: black
+  stbi_image_free(pixels);
+}
+
+// ---- atomicity and errors ----------------------------------------------------------------------
+
+TEST(ImageIo, WriteIntoMissingDirectoryThrowsAndCreatesNothing) {
+  ScratchDir dir;
+  for (const char* name : {"x.exr", "x.hdr", "x.pfm", "x.png"}) {
+    const fs::path path = dir / "missing" / name;
+    try {
+      write_image(path, distinctive_rgb());
+      FAIL() << "no exception for " << path;
+    } catch (const IoError& e) {
+      EXPECT_NE(std::string(e.what()).find(path.string()), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("No such file or directory"), std::string::npos);
+    }
+  }
+  EXPECT_TRUE(dir.entries().empty());
+}
+
+TEST(ImageIo, SuccessfulWritesLeaveNoTemporaryFiles) {
+  ScratchDir dir;
+  for (const char* name : {"a.exr", "a.hdr", "a.pfm", "a.png"}) {
+    write_image(dir / name, distinctive_rgb(), {{"k", "v"}});
+    write_image(dir / name, ramp_grey(3, 3), {{"k", "v"}});  // overwriting works too
+  }
+  EXPECT_EQ(dir.entries(), (std::vector<std::string>{"a.exr", "a.hdr", "a.pfm", "a.png"}));
+  EXPECT_EQ(read_image(dir / "a.pfm").channels, 1);
+}
+
+TEST(ImageIo, FailedWriteLeavesExistingTargetUntouched) {
+  ScratchDir dir;
+  write_image(dir / "a.exr", ramp_grey(2, 2));
+  const std::string before = slurp(dir / "a.exr");
+  // "channels" collides with a standard EXR attribute.
+  EXPECT_THROW(write_image(dir / "a.exr", distinctive_rgb(), {{"channels", "x"}}), InvalidArgument);
+  EXPECT_THROW(write_image(dir / "a.exr", distinctive_rgb(), {{"bad key", "x"}}), InvalidArgument);
+  EXPECT_EQ(slurp(dir / "a.exr"), before);
+  EXPECT_EQ(dir.entries(), (std::vector<std::string>{"a.exr"}));
+}
+
+// Lowers the process's file-size limit for its lifetime, so that writes fail part-way (EFBIG).
+class FileSizeLimit {
+ public:
+  explicit FileSizeLimit(rlim_t bytes) {
+    previous_signal_ = std::signal(SIGXFSZ, SIG_IGN);  // get EFBIG instead of being killed
+    ::getrlimit(RLIMIT_FSIZE, &previous_);
+    rlimit lower = previous_;
+    lower.rlim_cur = bytes;
+    ::setrlimit(RLIMIT_FSIZE, &lower);
+  }
+  ~FileSizeLimit() {
+    ::setrlimit(RLIMIT_FSIZE, &previous_);
+    std::signal(SIGXFSZ, previous_signal_);
+  }
+
+ private:
+  rlimit previous_{};
+  void (*previous_signal_)(int) = nullptr;
+};
+
+TEST(ImageIo, WriteFailingPartWayLeavesNoTargetAndNoTemporary) {
+  ScratchDir dir;
+  ImageF noise(64, 64, 3);  // ~48 kB of incompressible values, in every format
+  std::uint32_t state = 12345;
+  for (float& v : noise.data) {
+    state = state * 1664525u + 1013904223u;
+    v = static_cast<float>(state >> 8) / 65536.0f;
+  }
+  for (const char* name : {"n.exr", "n.hdr", "n.pfm", "n.png"}) {
+    FileSizeLimit limit(2000);  // bytes
+    try {
+      write_image(dir / name, noise);
+      ADD_FAILURE() << "no exception for " << name;
+    } catch (const IoError& e) {
+      EXPECT_NE(std::string(e.what()).find((dir / name).string()), std::string::npos) << e.what();
+    }
+  }
+  EXPECT_TRUE(dir.entries().empty());
+}
+
+// The IoError for reading `path` must name it.
+void expect_read_error(const fs::path& path) {
+  try {
+    read_image(path);
+    ADD_FAILURE() << "no exception for " << path;
+  } catch (const IoError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find(path.string()), std::string::npos) << what;
+    EXPECT_EQ(what.find('\n'), std::string::npos) << what;
+  }
+}
+
+TEST(ImageIo, ReadingMissingOrCorruptFilesThrowsIoErrorNamingThePath) {
+  ScratchDir dir;
+  for (const char* name : {"none.exr", "none.hdr", "none.pfm"}) expect_read_error(dir / name);
+  spit(dir / "garbage.exr", "this is not an OpenEXR file at all, just some bytes\x01\x02\x03");
+  expect_read_error(dir / "garbage.exr");
+  EXPECT_THROW(read_exr_metadata(dir / "garbage.exr"), IoError);
+  spit(dir / "garbage.hdr", "#?NOTRADIANCE\n\n");
+  expect_read_error(dir / "garbage.hdr");
+  spit(dir / "short.pfm", "PF\n4 4\n-1.0\n0123");  // raster truncated
+  expect_read_error(dir / "short.pfm");
+  spit(dir / "bad.pfm", "P6\n4 4\n255\n");
+  expect_read_error(dir / "bad.pfm");
+
+  // A truncated but otherwise valid EXR.
+  write_image(dir / "cut.exr", distinctive_rgb());
+  const std::string whole = slurp(dir / "cut.exr");
+  spit(dir / "cut.exr", whole.substr(0, whole.size() / 2));
+  expect_read_error(dir / "cut.exr");
+}
+
+TEST(ImageIo, FormatFromPath) {
+  EXPECT_EQ(format_from_path("a/b.exr"), ImageFormat::exr);
+  EXPECT_EQ(format_from_path("b.HDR"), ImageFormat::hdr);
+  EXPECT_EQ(format_from_path("b.Pfm"), ImageFormat::pfm);
+  EXPECT_EQ(format_from_path("b.png"), ImageFormat::png);
+  EXPECT_THROW(format_from_path("photo.jpg"), InvalidArgument);
+  EXPECT_THROW(format_from_path("noextension"), InvalidArgument);
+  try {
+    format_from_path("dir/photo.jpg");
+  } catch (const InvalidArgument& e) {
+    EXPECT_NE(std::string(e.what()).find("dir/photo.jpg"), std::string::npos);
+  }
+}
+
+TEST(ImageIo, WriteRejectsEmptyOrInconsistentImages) {
+  ScratchDir dir;
+  EXPECT_THROW(write_image(dir / "e.exr", ImageF()), InvalidArgument);
+  ImageF two(2, 2, 2);
+  EXPECT_THROW(write_image(dir / "e.exr", two), InvalidArgument);
+  ImageF short_data(2, 2, 3);
+  short_data.data.pop_back();
+  EXPECT_THROW(write_image(dir / "e.pfm", short_data), InvalidArgument);
+  EXPECT_TRUE(dir.entries().empty());
+}
+
+// ---- tone mapping ------------------------------------------------------------------------------
+
+TEST(ToneMap, UniformGreyMapsToUniformValue) {
+  ImageF image(7, 5, 3);
+  std::fill(image.data.begin(), image.data.end(), 123.0f);
+  const Image8 out = tonemap_preview(image);
+  // Auto exposure puts the grey at Lk = 1, Reinhard gives 0.5, sRGB-encoded 0.7354 -> 188.
+  for (auto v : out.data) EXPECT_EQ(v, 188);
+}
+
+TEST(ToneMap, MonotonicAndZeroIsBlack) {
+  ImageF image(64, 1, 1);
+  for (int x = 0; x < image.width; ++x)
+    image.data[x] = x == 0 ? 0.0f : std::pow(10.0f, (static_cast<float>(x) - 32.0f) / 8.0f);
+  const Image8 out = tonemap_preview(image, {.percentile = 0.5, .exposure = 1.0});
+  EXPECT_EQ(out.pixel(0, 0)[0], 0);
+  for (int x = 1; x < image.width; ++x) {
+    EXPECT_GE(out.pixel(x, 0)[0], out.pixel(x - 1, 0)[0]) << x;
+    EXPECT_EQ(out.pixel(x, 0)[0], out.pixel(x, 0)[1]);  // grey stays grey
+  }
+  EXPECT_GT(out.pixel(63, 0)[0], 250);  // far above the percentile: nearly white
+}
+
+TEST(ToneMap, InvalidValuesAreBlackAndHueIsKept) {
+  ImageF image(4, 1, 3);
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  const float inf = std::numeric_limits<float>::infinity();
+  const float values[] = {-1.0f, -2.0f, -3.0f, nan, inf, nan, 4.0f, 0.0f, 0.0f, 1.0f, 1.0f, 1.0f};
+  std::copy(std::begin(values), std::end(values), image.data.begin());
+  const Image8 out = tonemap_preview(image);
+  for (int x = 0; x < 2; ++x)
+    for (int c = 0; c < 3; ++c) EXPECT_EQ(out.pixel(x, 0)[c], 0) << x;
+  EXPECT_GT(out.pixel(2, 0)[0], 0);  // pure red stays pure red
+  EXPECT_EQ(out.pixel(2, 0)[1], 0);
+  EXPECT_EQ(out.pixel(2, 0)[2], 0);
+  EXPECT_THROW(tonemap_preview(image, {.percentile = 0.0}), InvalidArgument);
+  EXPECT_THROW(tonemap_preview(image, {.exposure = -1.0}), InvalidArgument);
+}
+
+}  // namespace
+}  // namespace skylight::render

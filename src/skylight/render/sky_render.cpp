@@ -1,0 +1,138 @@
+#include "skylight/render/sky_render.h"
+
+#include <fmt/format.h>
+
+#include <cmath>
+
+#include "skylight/core/error.h"
+#include "skylight/core/parallel.h"
+
+namespace skylight::render {
+
+std::optional<Projection> parse_projection(std::string_view name) {
+  if (name == "equirect") return Projection::equirect;
+  if (name == "hemisphere") return Projection::hemisphere;
+  if (name == "fisheye") return Projection::fisheye;
+  if (name == "cubemap") return Projection::cubemap;
+  return std::nullopt;
+}
+
+std::string_view to_string(Projection p) {
+  switch (p) {
+    case Projection::equirect:
+      return "equirect";
+    case Projection::hemisphere:
+      return "hemisphere";
+    case Projection::fisheye:
+      return "fisheye";
+    case Projection::cubemap:
+      return "cubemap";
+  }
+  return "equirect";
+}
+
+void validate(const RenderSettings& s) {
+  constexpr int kMaxSide = 32768;  // keeps width * height * 3 floats addressable and sane
+  if (s.width < 1 || s.width > kMaxSide)
+    throw InvalidArgument(fmt::format("width = {} is outside [1, {}]", s.width, kMaxSide));
+  if (s.height < 1 || s.height > kMaxSide)
+    throw InvalidArgument(fmt::format("height = {} is outside [1, {}]", s.height, kMaxSide));
+  if (s.projection == Projection::cubemap && s.width != 6 * s.height)
+    throw InvalidArgument(
+        fmt::format("cubemap needs width = 6 x height (six square faces); got "
+                    "{} x {}",
+                    s.width, s.height));
+  if (s.projection == Projection::fisheye) {
+    const double fov_deg = rad_to_deg(s.fisheye.fov);
+    const double max_deg = s.fisheye.lens == FisheyeLens::orthographic ? 180.0 : 360.0;
+    if (!(fov_deg > 0.0 && fov_deg <= max_deg) ||
+        (s.fisheye.lens == FisheyeLens::stereographic && fov_deg >= 360.0))
+      throw InvalidArgument(fmt::format("fov = {} deg is outside (0, {}] for the {} lens", fov_deg,
+                                        max_deg, to_string(s.fisheye.lens)));
+    if (!std::isfinite(s.fisheye.north_angle))
+      throw InvalidArgument(fmt::format("north-angle = {} is not finite", s.fisheye.north_angle));
+  }
+}
+
+PixelDirections pixel_directions(const RenderSettings& s) {
+  validate(s);
+  const std::size_t n = static_cast<std::size_t>(s.width) * static_cast<std::size_t>(s.height);
+  PixelDirections d;
+  d.x.resize(n);
+  d.y.resize(n);
+  d.z.resize(n);
+  d.valid.assign(n, 1);
+  parallel_for(static_cast<std::size_t>(s.height), 16, [&](std::size_t r0, std::size_t r1) {
+    for (std::size_t row = r0; row < r1; ++row) {
+      for (int col = 0; col < s.width; ++col) {
+        const double u = col + 0.5, v = static_cast<double>(row) + 0.5;
+        std::optional<Vec3> dir;
+        switch (s.projection) {
+          case Projection::equirect:
+            dir = equirect_direction(u, v, s.width, s.height);
+            break;
+          case Projection::hemisphere:
+            dir = hemisphere_direction(u, v, s.width, s.height);
+            break;
+          case Projection::fisheye:
+            dir = fisheye_direction(u, v, s.width, s.height, s.fisheye);
+            break;
+          case Projection::cubemap:
+            dir = cubemap_direction(u, v, s.width, s.height);
+            break;
+        }
+        const std::size_t i =
+            row * static_cast<std::size_t>(s.width) + static_cast<std::size_t>(col);
+        if (!dir) {
+          d.valid[i] = 0;
+          dir = Vec3{0.0, 0.0, 1.0};
+        }
+        d.x[i] = static_cast<float>(dir->x);
+        d.y[i] = static_cast<float>(dir->y);
+        d.z[i] = static_cast<float>(dir->z);
+      }
+    }
+  });
+  return d;
+}
+
+SkyImage render_sky(const SkyModel& model, const RenderSettings& s) {
+  const PixelDirections d = pixel_directions(s);
+  const std::size_t n = d.x.size();
+  std::vector<float> X(n), Y(n), Z(n);
+  if (s.sun != SunMode::sun_only) {
+    tristimulus_parallel(model, {d.x, d.y, d.z}, {X, Y, Z});
+  }
+  SkyImage img{ImageF(s.width, s.height, 3), ImageF(s.width, s.height, 3), {}};
+  img.mask.assign(n, 0);
+  const bool add_sun = s.sun != SunMode::sky && model.has_sun();
+  const Vec3 sun = model.parameters().sun.direction();
+  const double cos_radius = std::cos(model.sun_angular_radius());
+  parallel_for(n, 8192, [&](std::size_t b, std::size_t e) {
+    for (std::size_t i = b; i < e; ++i) {
+      Xyz c{X[i], Y[i], Z[i]};
+      if (!d.valid[i]) {
+        c = {};
+        img.mask[i] = 1;
+      } else if (add_sun) {
+        const Vec3 v{d.x[i], d.y[i], d.z[i]};
+        if (dot(v, sun) >= cos_radius - 1e-6) {
+          const Xyz s_xyz = model.sun_tristimulus(normalize(v));
+          c = {c.X + s_xyz.X, c.Y + s_xyz.Y, c.Z + s_xyz.Z};
+        }
+      }
+      const Rgb rgb = xyz_to_linear_srgb(c);
+      float* px = img.xyz.data.data() + 3 * i;
+      px[0] = static_cast<float>(c.X);
+      px[1] = static_cast<float>(c.Y);
+      px[2] = static_cast<float>(c.Z);
+      float* pr = img.rgb.data.data() + 3 * i;
+      pr[0] = static_cast<float>(rgb.r);
+      pr[1] = static_cast<float>(rgb.g);
+      pr[2] = static_cast<float>(rgb.b);
+    }
+  });
+  return img;
+}
+
+}  // namespace skylight::render

@@ -1,0 +1,51 @@
+// Renders a SkyModel into an image in one of the project's layouts (core/frame.h): the batch path
+// over all pixels, on all threads.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string_view>
+#include <vector>
+
+#include "skylight/core/frame.h"
+#include "skylight/models/sky_model.h"
+#include "skylight/render/image.h"
+
+namespace skylight::render {
+
+enum class Projection { equirect, hemisphere, fisheye, cubemap };
+std::optional<Projection> parse_projection(std::string_view name);
+std::string_view to_string(Projection p);
+
+// What is drawn: the sky alone (default), sky + solar disc, or the solar disc alone.
+enum class SunMode { sky, sky_and_sun, sun_only };
+
+struct RenderSettings {
+  Projection projection = Projection::equirect;
+  int width = 1024;
+  int height = 512;
+  FisheyeLayout fisheye;  // used by Projection::fisheye
+  SunMode sun = SunMode::sky;
+};
+
+// Checks sizes (positive, at most 32768 per side, cubemap width = 6 height) and the fisheye
+// field of view; throws InvalidArgument naming the setting and value.
+void validate(const RenderSettings& settings);
+
+struct SkyImage {
+  ImageF xyz;                      // CIE XYZ, Y in the model's luminance unit (cd/m^2)
+  ImageF rgb;                      // linear sRGB, same scale
+  std::vector<std::uint8_t> mask;  // 1 where the pixel sees no direction (outside a fisheye circle)
+};
+
+// Direction of each pixel centre (unit vectors, ENU) as structure of arrays; `valid[i]` = 0 where
+// the layout has no direction (such pixels get the zenith direction and are masked).
+struct PixelDirections {
+  std::vector<float> x, y, z;
+  std::vector<std::uint8_t> valid;
+};
+PixelDirections pixel_directions(const RenderSettings& settings);
+
+SkyImage render_sky(const SkyModel& model, const RenderSettings& settings);
+
+}  // namespace skylight::render
