@@ -1,0 +1,260 @@
+// End-to-end tests of the `skylight` command line: real processes, real files.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <nlohmann/json.hpp>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include "skylight/core/frame.h"
+#include "skylight/render/image.h"
+
+namespace fs = std::filesystem;
+
+namespace skylight {
+namespace {
+
+// The render path is the float SIMD batch; eval is the double scalar path: they agree to the
+// batch tolerance (2e-5 relative, see batch_test.cpp) plus float storage (6e-8).
+constexpr double kRenderVsEvalRelTol = 3e-5;
+
+struct Result {
+  int status = -1;
+  std::string out, err;
+};
+
+class Cli : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           ("skylight_cli_test_" + std::to_string(::getpid()) + "_" +
+            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  // Runs `skylight ARGS` with `input` on stdin.
+  Result run(const std::string& args, const std::string& input = "") {
+    const fs::path in = dir_ / "stdin.txt", out = dir_ / "stdout.txt", err = dir_ / "stderr.txt";
+    std::ofstream(in) << input;
+    const std::string cmd = std::string("'") + SKYLIGHT_CLI_PATH + "' " + args + " < '" +
+                            in.string() + "' > '" + out.string() + "' 2> '" + err.string() + "'";
+    const int raw = std::system(cmd.c_str());
+    Result r;
+    r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+    r.out = slurp(out);
+    r.err = slurp(err);
+    return r;
+  }
+  static std::string slurp(const fs::path& p) {
+    std::ifstream f(p);
+    std::stringstream s;
+    s << f.rdbuf();
+    return s.str();
+  }
+  fs::path dir_;
+};
+
+std::vector<std::vector<double>> parse_csv_numbers(const std::string& text, std::string* header) {
+  std::istringstream in(text);
+  std::string line;
+  std::getline(in, *header);
+  std::vector<std::vector<double>> rows;
+  while (std::getline(in, line)) {
+    std::vector<double> row;
+    std::istringstream ls(line);
+    std::string f;
+    while (std::getline(ls, f, ',')) row.push_back(std::stod(f));
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+TEST_F(Cli, RenderedExrPixelMatchesEval) {
+  const std::string model = "--model preetham --turbidity 3.5 --sun-zenith 50 --sun-azimuth 120";
+  const fs::path exr = dir_ / "sky.exr";
+  const Result r = run("render " + model + " --width 64 --height 32 -o '" + exr.string() + "'");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const render::ImageF img = render::read_image(exr);
+  ASSERT_EQ(img.width, 64);
+  ASSERT_EQ(img.height, 32);
+  ASSERT_EQ(img.channels, 3);
+  // Pixel (col 20, row 9) of a 64x32 equirect: theta = 180 * 9.5/32, phi = 360 * 20.5/64.
+  const double zen = 180.0 * 9.5 / 32.0, az = 360.0 * 20.5 / 64.0;
+  const Result e =
+      run("eval " + model + " --quantity rgb",
+          "zenith_deg,azimuth_deg\n" + std::to_string(zen) + "," + std::to_string(az) + "\n");
+  ASSERT_EQ(e.status, 0) << e.err;
+  std::string header;
+  const auto rows = parse_csv_numbers(e.out, &header);
+  EXPECT_EQ(header, "zenith_deg,azimuth_deg,r,g,b");
+  ASSERT_EQ(rows.size(), 1u);
+  const float* px = img.pixel(20, 9);
+  for (int c = 0; c < 3; ++c)
+    EXPECT_NEAR(px[c], rows[0][2 + c], std::abs(rows[0][2 + c]) * kRenderVsEvalRelTol)
+        << "channel " << c;
+  // Lower half (below the horizon) is 0 for the analytic skies.
+  EXPECT_EQ(img.pixel(20, 25)[1], 0.0f);
+  // Every parameter and the version are recorded.
+  const auto md = render::read_exr_metadata(exr);
+  auto find = [&](const std::string& k) {
+    for (const auto& [key, value] : md)
+      if (key == k) return value;
+    return std::string("<missing>");
+  };
+  EXPECT_EQ(find("skylight:model"), "preetham");
+  EXPECT_EQ(find("skylight:turbidity"), "3.5");
+  EXPECT_EQ(find("skylight:sun_zenith_deg"), "50");
+  EXPECT_NE(find("skylight:version"), "<missing>");
+}
+
+TEST_F(Cli, RenderAllFormatsAndProjections) {
+  for (const char* ext : {"exr", "hdr", "pfm", "png"}) {
+    const fs::path p = dir_ / (std::string("a.") + ext);
+    const Result r =
+        run("render --model cie --cie-type 7 --width 24 --height 12 -o '" + p.string() + "'");
+    EXPECT_EQ(r.status, 0) << ext << ": " << r.err;
+    EXPECT_GT(fs::file_size(p), 0u) << ext;
+  }
+  const fs::path fc = dir_ / "fc.png", fe = dir_ / "fe.exr";
+  Result r =
+      run("render --model preetham --projection fisheye --lens equisolid --fov 180 --width 40 "
+          "--height 40 -o '" +
+          fe.string() + "' --false-colour '" + fc.string() + "'");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const render::ImageF img = render::read_image(fe);
+  EXPECT_EQ(img.pixel(0, 0)[1], 0.0f) << "corner outside the image circle";
+  EXPECT_GT(img.pixel(20, 20)[1], 0.0f) << "zenith";
+  EXPECT_TRUE(fs::exists(fc));
+  r = run("render --model cie --projection cubemap --width 60 --height 10 -o '" +
+          (dir_ / "c.exr").string() + "'");
+  EXPECT_EQ(r.status, 0) << r.err;
+  r = run("render --model cie --projection hemisphere --width 20 --height 10 -o '" +
+          (dir_ / "h.pfm").string() + "'");
+  EXPECT_EQ(r.status, 0) << r.err;
+  // The sun disc adds a pixel far brighter than the sky.
+  r = run("render --model preetham --sun-zenith 45 --include-sun --width 2048 --height 1024 -o '" +
+          (dir_ / "s.pfm").string() + "'");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const render::ImageF sun = render::read_image(dir_ / "s.pfm");
+  float peak = 0;
+  for (int x = 0; x < sun.width; ++x)
+    for (int y = 0; y < sun.height; ++y) peak = std::max(peak, sun.pixel(x, y)[1]);
+  EXPECT_GT(peak, 1e8f);
+}
+
+TEST_F(Cli, EvalQuantities) {
+  const std::string in = "zenith_deg,azimuth_deg\n0,0\n60,90\n";
+  Result r = run("eval --model cie --cie-type 16 --zenith-luminance 3000 --quantity luminance", in);
+  ASSERT_EQ(r.status, 0) << r.err;
+  std::string header;
+  auto rows = parse_csv_numbers(r.out, &header);
+  EXPECT_EQ(header, "zenith_deg,azimuth_deg,luminance");
+  ASSERT_EQ(rows.size(), 2u);
+  EXPECT_DOUBLE_EQ(rows[0][2], 3000.0);
+  EXPECT_NEAR(rows[1][2], 2000.0, 1e-9);  // (1 + 2 cos 60) / 3 = 2/3
+  r = run("eval --model preetham --quantity xyz", in);
+  ASSERT_EQ(r.status, 0) << r.err;
+  rows = parse_csv_numbers(r.out, &header);
+  EXPECT_EQ(header, "zenith_deg,azimuth_deg,x,y,z");
+  r = run("eval --model preetham --quantity spectral --wavelengths 450,550,650", in);
+  ASSERT_EQ(r.status, 0) << r.err;
+  rows = parse_csv_numbers(r.out, &header);
+  EXPECT_EQ(header, "zenith_deg,azimuth_deg,L450,L550,L650");
+  EXPECT_GT(rows[0][2], rows[0][4]) << "blue sky";
+  // Round-trip precision: the printed numbers re-parse to the same double.
+  r =
+      run("eval --model perez --perez -1,-0.32,10,-3,0.45 --zenith-luminance 1234.5 --quantity "
+          "luminance",
+          in);
+  ASSERT_EQ(r.status, 0) << r.err;
+  rows = parse_csv_numbers(r.out, &header);
+  EXPECT_DOUBLE_EQ(rows[0][2], 1234.5);
+  // --input file works like stdin.
+  std::ofstream(dir_ / "in.csv") << in;
+  r = run("eval --model cie --input '" + (dir_ / "in.csv").string() + "' --quantity luminance");
+  EXPECT_EQ(r.status, 0) << r.err;
+}
+
+TEST_F(Cli, BadInputExitsTwoWithMessage) {
+  struct Case {
+    std::string args, input, must_contain;
+  };
+  const std::string ok_in = "zenith_deg,azimuth_deg\n10,10\n";
+  const Case cases[] = {
+      {"eval --model preetham --turbidity 0.5", ok_in, "--turbidity"},
+      {"eval --model preetham --turbidity nan", ok_in, "nan"},
+      {"eval --model preetham --sun-zenith 200", ok_in, "--sun-zenith"},
+      {"eval --model preetham --sun-zenith 10 --sun-elevation 10", ok_in, "excludes"},
+      {"eval --model nope", ok_in, "unknown model 'nope'"},
+      {"eval --model cie --cie-type 17", ok_in, "--cie-type"},
+      {"eval --model perez --zenith-luminance 10", ok_in, "--perez"},
+      {"eval --model preetham", "zenith,azimuth\n1,2\n", "header"},
+      {"eval --model preetham", "zenith_deg,azimuth_deg\n10,abc\n", "line 2: azimuth_deg 'abc'"},
+      {"eval --model preetham", "zenith_deg,azimuth_deg\n181,0\n", "line 2: zenith_deg = 181"},
+      {"eval --model preetham", "zenith_deg,azimuth_deg\n1,2,3\n", "line 2"},
+      {"eval --model cie --quantity spectral --wavelengths 500", ok_in, "no spectral output"},
+      {"eval --model preetham --quantity spectral", ok_in, "--wavelengths"},
+      {"eval --model cie --include-sun", ok_in, "has no sun"},
+      {"render --model cie --width 0 -o x.exr", "", "--width"},
+      {"render --model cie --width 10 --height 10 -o x.jpg", "", "x.jpg"},
+      {"render --model cie --projection cubemap --width 10 --height 10 -o x.exr", "", "cubemap"},
+      {"render --model cie --projection fisheye --lens orthographic --fov 200 -o x.exr", "", "fov"},
+      {"render --model cie", "", "--output"},
+  };
+  for (const auto& c : cases) {
+    const Result r = run(c.args, c.input);
+    EXPECT_EQ(r.status, 2) << c.args << "\n" << r.err;
+    EXPECT_NE(r.err.find(c.must_contain), std::string::npos) << c.args << "\nstderr: " << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << "one line: " << r.err;
+    EXPECT_TRUE(r.out.empty() || r.out.find("zenith_deg") == std::string::npos)
+        << "no partial output: " << r.out;
+  }
+}
+
+TEST_F(Cli, RuntimeFailuresExitOne) {
+  Result r = run("eval --model cie --input '" + (dir_ / "missing.csv").string() + "'");
+  EXPECT_EQ(r.status, 1) << r.err;
+  EXPECT_NE(r.err.find("missing.csv"), std::string::npos);
+  r = run("render --model cie --width 8 --height 4 -o '" + (dir_ / "no/such/dir/x.exr").string() +
+          "'");
+  EXPECT_EQ(r.status, 1) << r.err;
+  EXPECT_FALSE(fs::exists(dir_ / "no"));
+}
+
+TEST_F(Cli, ModelsJsonAndHelp) {
+  Result r = run("models --json");
+  ASSERT_EQ(r.status, 0);
+  const auto j = nlohmann::json::parse(r.out);
+  std::vector<std::string> names;
+  for (const auto& m : j) names.push_back(m["name"]);
+  EXPECT_EQ(names, (std::vector<std::string>{"perez", "preetham", "cie"}));
+  for (const auto& m : j) {
+    for (const auto& p : m["parameters"]) {
+      EXPECT_TRUE(p.contains("unit") && p.contains("min") && p.contains("max") &&
+                  p.contains("default"));
+    }
+  }
+  r = run("render --help");
+  EXPECT_EQ(r.status, 0);
+  EXPECT_NE(r.out.find("--turbidity"), std::string::npos);
+  EXPECT_NE(r.out.find("default 3"), std::string::npos);
+  r = run("--version");
+  EXPECT_EQ(r.status, 0);
+  EXPECT_NE(r.out.find("skylight "), std::string::npos);
+  r = run("");
+  EXPECT_EQ(r.status, 2);
+}
+
+TEST_F(Cli, BenchRunsAndPrintsRatios) {
+  const Result r = run("bench --width 64 --height 32 --repeats 1 --models preetham,cie,perez");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("SIMD x"), std::string::npos);
+  EXPECT_NE(r.out.find("preetham"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace skylight
