@@ -8,6 +8,12 @@ bash scripts/setup.sh
 echo "== Release build + tests"
 bash scripts/build.sh build -DCMAKE_BUILD_TYPE=Release
 ctest --test-dir build --output-on-failure -j "$(nproc)"
+echo "== install + find_package(skylight) from a separate project"
+rm -rf build/install build/consumer
+cmake --install build --prefix build/install >/dev/null
+cmake -S tests/consumer -B build/consumer -G Ninja -DCMAKE_PREFIX_PATH="$root/build/install" >/dev/null
+cmake --build build/consumer >/dev/null
+build/consumer/consumer
 if [ "${SKYLIGHT_SKIP_SANITIZERS:-0}" != "1" ]; then
   echo "== ASan + UBSan build + tests"
   bash scripts/build.sh build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSKYLIGHT_SANITIZE=ON -DSKYLIGHT_BUILD_BENCH=OFF
