@@ -6,7 +6,7 @@ set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "$root"
 bash scripts/setup.sh
-bash scripts/build.sh build -DCMAKE_BUILD_TYPE=Release -DSKYLIGHT_BUILD_TESTS=OFF -DSKYLIGHT_BUILD_BENCH=OFF
+SKYLIGHT_TARGET=skylight_cli bash scripts/build.sh build -DCMAKE_BUILD_TYPE=Release
 out="${SKYLIGHT_OUT:-$root/out}"
 mkdir -p "$out"
 sk="$root/build/skylight"

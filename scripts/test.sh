@@ -6,7 +6,7 @@ root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "$root"
 bash scripts/setup.sh
 echo "== Release build + tests"
-bash scripts/build.sh build -DCMAKE_BUILD_TYPE=Release
+bash scripts/build.sh build -DCMAKE_BUILD_TYPE=Release -DSKYLIGHT_BUILD_TESTS=ON -DSKYLIGHT_BUILD_BENCH=ON
 ctest --test-dir build --output-on-failure -j "$(nproc)"
 echo "== install + find_package(skylight) from a separate project"
 rm -rf build/install build/consumer
@@ -16,7 +16,7 @@ cmake --build build/consumer >/dev/null
 build/consumer/consumer
 if [ "${SKYLIGHT_SKIP_SANITIZERS:-0}" != "1" ]; then
   echo "== ASan + UBSan build + tests"
-  bash scripts/build.sh build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSKYLIGHT_SANITIZE=ON -DSKYLIGHT_BUILD_BENCH=OFF
+  bash scripts/build.sh build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSKYLIGHT_SANITIZE=ON -DSKYLIGHT_BUILD_TESTS=ON -DSKYLIGHT_BUILD_BENCH=OFF
   ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
     ctest --test-dir build-asan --output-on-failure -j "$(nproc)"
 fi
