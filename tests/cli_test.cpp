@@ -9,6 +9,7 @@
 #include <sstream>
 #include <string>
 
+#include "skylight/core/colorimetry.h"
 #include "skylight/core/frame.h"
 #include "skylight/render/image.h"
 
@@ -20,6 +21,9 @@ namespace {
 // The render path is the float SIMD batch; eval is the double scalar path: they agree to the
 // batch tolerance (2e-5 relative, see batch_test.cpp) plus float storage (6e-8).
 constexpr double kRenderVsEvalRelTol = 3e-5;
+// hosek: its batch bound (1e-5, hosek_wilkie_test.cpp) plus the XYZ -> sRGB matrix and float
+// storage; a channel that nearly cancels in the matrix gets relatively more.
+constexpr double kHosekRenderVsEvalRelTol = 1e-4;
 
 struct Result {
   int status = -1;
@@ -225,13 +229,92 @@ TEST_F(Cli, RuntimeFailuresExitOne) {
   EXPECT_FALSE(fs::exists(dir_ / "no"));
 }
 
+TEST_F(Cli, HosekEvalAllQuantitiesAndRender) {
+  const std::string model =
+      "--model hosek --turbidity 4.5 --albedo 0.2 --sun-zenith 50 --sun-azimuth 120";
+  // Zenith, the sun centre, and a direction far from the sun.
+  const std::string in = "zenith_deg,azimuth_deg\n0,0\n50,120\n60,300\n";
+  std::string header;
+  auto eval = [&](const std::string& args) {
+    const Result r = run("eval " + model + " " + args, in);
+    EXPECT_EQ(r.status, 0) << args << ": " << r.err;
+    return parse_csv_numbers(r.out, &header);
+  };
+  const auto sky = eval("--quantity luminance");
+  EXPECT_EQ(header, "zenith_deg,azimuth_deg,luminance");
+  const auto both = eval("--quantity luminance --include-sun");
+  const auto sun = eval("--quantity luminance --sun-only");
+  ASSERT_EQ(sky.size(), 3u);
+  ASSERT_EQ(both.size(), 3u);
+  ASSERT_EQ(sun.size(), 3u);
+  for (int i = 0; i < 3; ++i) {
+    EXPECT_GT(sky[i][2], 0.0);
+    EXPECT_NEAR(both[i][2], sky[i][2] + sun[i][2], 1e-9 * both[i][2]);
+  }
+  EXPECT_EQ(sun[0][2], 0.0);
+  EXPECT_EQ(sun[2][2], 0.0);
+  EXPECT_GT(sun[1][2], 1e4 * sky[1][2]) << "the solar disc";
+  const auto xyz = eval("--quantity xyz");
+  EXPECT_EQ(header, "zenith_deg,azimuth_deg,x,y,z");
+  EXPECT_DOUBLE_EQ(xyz[0][3], sky[0][2]);
+  const auto rgb = eval("--quantity rgb");
+  EXPECT_EQ(header, "zenith_deg,azimuth_deg,r,g,b");
+  EXPECT_GT(rgb[0][4], rgb[0][2]) << "blue zenith (native RGB)";
+  eval("--quantity rgb --include-sun");
+  eval("--quantity xyz --sun-only");
+  const auto L = eval("--quantity spectral --wavelengths 320,450,550,720");
+  EXPECT_EQ(header, "zenith_deg,azimuth_deg,L320,L450,L550,L720");
+  const auto Ls = eval("--quantity spectral --wavelengths 320,450,550,720 --sun-only");
+  const auto Lb = eval("--quantity spectral --wavelengths 320,450,550,720 --include-sun");
+  for (int c = 2; c < 6; ++c) {
+    EXPECT_GT(L[0][c], 0.0);
+    EXPECT_NEAR(Lb[1][c], L[1][c] + Ls[1][c], 1e-9 * Lb[1][c]);
+    EXPECT_EQ(Ls[0][c], 0.0);
+  }
+  // Outside the spectral range 320-720 nm, or outside turbidity 1-10: a clear error.
+  Result r = run("eval " + model + " --quantity spectral --wavelengths 800", in);
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.err.find("800"), std::string::npos) << r.err;
+  r = run("eval --model hosek --turbidity 12", in);
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.err.find("turbidity"), std::string::npos) << r.err;
+
+  // render: the float batch path; pixel = linear sRGB of the XYZ dataset.
+  const fs::path exr = dir_ / "hosek.exr";
+  r = run("render " + model + " --width 64 --height 32 -o '" + exr.string() + "'");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const render::ImageF img = render::read_image(exr);
+  const double zen = 180.0 * 9.5 / 32.0, az = 360.0 * 20.5 / 64.0;
+  r = run("eval " + model + " --quantity xyz",
+          "zenith_deg,azimuth_deg\n" + std::to_string(zen) + "," + std::to_string(az) + "\n");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto px_xyz = parse_csv_numbers(r.out, &header);
+  const Rgb want = xyz_to_linear_srgb({px_xyz[0][2], px_xyz[0][3], px_xyz[0][4]});
+  const float* px = img.pixel(20, 9);
+  EXPECT_NEAR(px[0], want.r, std::abs(want.r) * kHosekRenderVsEvalRelTol);
+  EXPECT_NEAR(px[1], want.g, std::abs(want.g) * kHosekRenderVsEvalRelTol);
+  EXPECT_NEAR(px[2], want.b, std::abs(want.b) * kHosekRenderVsEvalRelTol);
+  r = run("render " + model + " --include-sun --width 256 --height 128 -o '" +
+          (dir_ / "hs.pfm").string() + "'");
+  ASSERT_EQ(r.status, 0) << r.err;
+  r = run("render " + model + " --sun-only --width 256 --height 128 -o '" +
+          (dir_ / "so.pfm").string() + "'");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const render::ImageF so = render::read_image(dir_ / "so.pfm");
+  float peak = 0;
+  for (int x = 0; x < so.width; ++x)
+    for (int y = 0; y < so.height; ++y) peak = std::max(peak, so.pixel(x, y)[1]);
+  EXPECT_GT(peak, 0.0f);
+  EXPECT_EQ(so.pixel(0, 0)[1], 0.0f);
+}
+
 TEST_F(Cli, ModelsJsonAndHelp) {
   Result r = run("models --json");
   ASSERT_EQ(r.status, 0);
   const auto j = nlohmann::json::parse(r.out);
   std::vector<std::string> names;
   for (const auto& m : j) names.push_back(m["name"]);
-  EXPECT_EQ(names, (std::vector<std::string>{"perez", "preetham", "cie"}));
+  EXPECT_EQ(names, (std::vector<std::string>{"perez", "preetham", "cie", "hosek"}));
   for (const auto& m : j) {
     for (const auto& p : m["parameters"]) {
       EXPECT_TRUE(p.contains("unit") && p.contains("min") && p.contains("max") &&

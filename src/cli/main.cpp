@@ -53,7 +53,7 @@ CLI::Validator finite_range(double min, double max, const std::string& unit) {
       fmt::format("{} in [{}, {}]", unit, min, max));
 }
 
-// Model flags shared by render, eval and bench.
+// Model flags shared by render and eval (bench times each model at its default parameters).
 struct ModelFlags {
   std::string model;
   std::optional<double> sun_zenith_deg, sun_elevation_deg;
@@ -241,6 +241,10 @@ int run_render(const ModelFlags& mf, const RenderFlags& rf) {
     md.emplace_back("skylight:north_angle_deg", fmt::format("{}", rf.north_angle_deg));
   }
   md.emplace_back("skylight:pixel_unit", "linear sRGB (D65), Y = luminance [cd/m^2]");
+  // What the model actually used: its zenith luminance and where it stands in its domain.
+  md.emplace_back("skylight:zenith_luminance_evaluated_cd_m2",
+                  fmt::format("{}", model->tristimulus({0.0, 0.0, 1.0}).Y));
+  md.emplace_back("skylight:domain", std::string(sl::to_string(model->domain().worst())));
   r::write_image(rf.output, img.rgb, md);
   if (!rf.preview.empty()) r::write_image(rf.preview, img.rgb, md);
   if (!rf.false_colour.empty()) {
@@ -383,7 +387,7 @@ int run_eval(const ModelFlags& mf, const EvalFlags& ef) {
 // ---- bench --------------------------------------------------------------------------------------
 struct BenchFlags {
   int width = 1024, height = 512, repeats = 7;
-  std::vector<std::string> models{"preetham", "cie"};
+  std::vector<std::string> models{"preetham", "cie", "hosek"};
 };
 
 double median(std::vector<double> v) {
@@ -466,6 +470,8 @@ int main(int argc, char** argv) {
                  "worker threads, 1-1024; default: SKYLIGHT_THREADS or all cores")
       ->check(CLI::Range(1, 1024));
 
+  // Global options (--threads) are accepted after the subcommand too.
+  app.fallthrough();
   bool models_json = false;
   auto* models = app.add_subcommand(
       "models", "list the models, their parameters (unit, range, default) and domains");
@@ -542,7 +548,8 @@ int main(int argc, char** argv) {
       ->add_option("--repeats", bf.repeats,
                    "runs per measurement (median reported), 1-1000; default 7")
       ->check(CLI::Range(1, 1000));
-  bench->add_option("--models", bf.models, "models to time; default preetham,cie")->delimiter(',');
+  bench->add_option("--models", bf.models, "models to time; default preetham,cie,hosek")
+      ->delimiter(',');
 
   try {
     app.parse(argc, argv);
@@ -560,6 +567,13 @@ int main(int argc, char** argv) {
   }
 
   try {
+    if (const char* env = std::getenv("SKYLIGHT_THREADS")) {
+      char* end = nullptr;
+      const long v = std::strtol(env, &end, 10);
+      if (*env == '\0' || *end != '\0' || v < 1 || v > 1024)
+        throw sl::InvalidArgument(
+            fmt::format("SKYLIGHT_THREADS = '{}' is not an integer in [1, 1024]", env));
+    }
     if (threads > 0) sl::set_thread_count(threads);
     if (models->parsed()) return run_models(models_json);
     if (render->parsed()) return run_render(render_mf, rf);

@@ -19,7 +19,7 @@ PerezModel::PerezModel(const SkyParameters& p) : SkyModel(p) {
   sun_up_ = p.sun.zenith <= 0.5 * kPi;
   const PerezCoefficients c{k[0], k[1], k[2], k[3], k[4], 1.0};
   const double f0 = perez_function(c, 1.0, p.sun.zenith);
-  if (!(f0 > 0.0)) {
+  if (sun_up_ && !(f0 > 0.0)) {
     throw InvalidArgument(fmt::format(
         "perez coefficients {},{},{},{},{} give F(zenith) = {} <= 0 at sun zenith {} deg: the "
         "relative distribution cannot be normalised",

@@ -2,6 +2,7 @@
 #include <memory>
 
 #include "skylight/models/cie_sky.h"
+#include "skylight/models/hosek_wilkie.h"
 #include "skylight/models/perez.h"
 #include "skylight/models/preetham.h"
 #include "skylight/models/sky_model.h"
@@ -51,9 +52,10 @@ const std::vector<ModelInfo>& model_registry() {
         {sun_zenith(),
          sun_azimuth(),
          {"turbidity", "1", 1.0, 64.0, "3", "atmospheric turbidity T (fitted for 2-6)"}},
-        "fitted for turbidity 2-6; unusable below 1.9 and above 10 (Zotti et al. 2007); "
-        "negative zenith luminance near T < 1.9 at low sun and T > 10 at very low sun (returned "
-        "as 0, flagged unphysical); sun below the horizon: 0 (undefined)",
+        "fitted for turbidity 2-6; unusable below 1.9 and above 10 (Zotti et al. 2007); the "
+        "zenith luminance formula is negative (Zotti Fig. 1) for T < 1.12 with a high sun "
+        "(T = 1: sun zenith < 12.9 deg) and T > 11.2 with the sun at the horizon: returned as 0, "
+        "flagged unphysical; sun below the horizon: 0 (undefined)",
         true,
         true,
         [](const SkyParameters& p) -> std::unique_ptr<SkyModel> {
@@ -75,6 +77,26 @@ const std::vector<ModelInfo>& model_registry() {
         false,
         [](const SkyParameters& p) -> std::unique_ptr<SkyModel> {
           return std::make_unique<CieSkyModel>(p);
+        }});
+    r.push_back(ModelInfo{
+        "hosek",
+        "Hosek & Wilkie 2012 analytic sky (9-parameter extended Perez form fitted to "
+        "simulations; ArHosekSkyModel v1.4a datasets) with the 2013 solar radiance function",
+        "XYZ = the CIE XYZ dataset x 683 (Y [cd/m^2]); rgb = the native RGB dataset x 683 (linear "
+        "sRGB primaries, same photometric scale); spectral radiance [W m^-2 sr^-1 nm^-1] "
+        "320-720 nm; sun disc radius 0.255 deg with limb darkening",
+        {sun_zenith(),
+         sun_azimuth(),
+         {"turbidity", "1", kHwTurbidityMin, kHwTurbidityMax, "3",
+          "atmospheric turbidity T (dataset knots 1..10, linear in between)"},
+         {"albedo", "1", 0.0, 1.0, "0.3", "ground albedo (dataset knots 0 and 1, linear)"}},
+        "turbidity 1-10 and albedo 0-1 (rejected outside: no dataset knots there); sun "
+        "elevation 0-90 deg; sun below the horizon: sky and sun 0 (undefined); the fit's slightly "
+        "negative values exactly at the horizon with a low sun are returned as 0",
+        true,
+        true,
+        [](const SkyParameters& p) -> std::unique_ptr<SkyModel> {
+          return std::make_unique<HosekWilkieModel>(p);
         }});
     return r;
   }();

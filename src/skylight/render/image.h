@@ -82,8 +82,9 @@ Image8 tonemap_preview(const ImageF& image, const ToneMapOptions& options = {});
 
 // Log-luminance false-colour map with a legend bar (style of Zotti et al. 2007, Figs. 4-7: each
 // decade of magnitude gets its own hue, brightness ramps within the decade). `luminance` is a
-// one-channel image; pixels with a negative or non-finite value, or flagged in `mask` (same size,
-// non-zero = outside the image), are drawn dark grey. Decades from 10^log10_min to 10^log10_max.
+// one-channel image; pixels with a zero, negative or non-finite value (log undefined), or flagged
+// in `mask` (same size, non-zero = outside the image), are drawn dark grey (40, 40, 40). Decades
+// from 10^log10_min to 10^log10_max.
 struct FalseColourOptions {
   double log10_min = 0.0;
   double log10_max = 6.0;

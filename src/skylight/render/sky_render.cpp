@@ -2,12 +2,18 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "skylight/core/error.h"
 #include "skylight/core/parallel.h"
 
 namespace skylight::render {
+
+namespace {
+// Upper bound of the supersampling grid for a pixel that sees part of the solar disc.
+constexpr int kMaxSunSamplesPerAxis = 256;
+}  // namespace
 
 std::optional<Projection> parse_projection(std::string_view name) {
   if (name == "equirect") return Projection::equirect;
@@ -54,6 +60,20 @@ void validate(const RenderSettings& s) {
   }
 }
 
+std::optional<Vec3> pixel_direction(const RenderSettings& s, double u, double v) {
+  switch (s.projection) {
+    case Projection::equirect:
+      return equirect_direction(u, v, s.width, s.height);
+    case Projection::hemisphere:
+      return hemisphere_direction(u, v, s.width, s.height);
+    case Projection::fisheye:
+      return fisheye_direction(u, v, s.width, s.height, s.fisheye);
+    case Projection::cubemap:
+      return cubemap_direction(u, v, s.width, s.height);
+  }
+  return std::nullopt;
+}
+
 PixelDirections pixel_directions(const RenderSettings& s) {
   validate(s);
   const std::size_t n = static_cast<std::size_t>(s.width) * static_cast<std::size_t>(s.height);
@@ -65,22 +85,7 @@ PixelDirections pixel_directions(const RenderSettings& s) {
   parallel_for(static_cast<std::size_t>(s.height), 16, [&](std::size_t r0, std::size_t r1) {
     for (std::size_t row = r0; row < r1; ++row) {
       for (int col = 0; col < s.width; ++col) {
-        const double u = col + 0.5, v = static_cast<double>(row) + 0.5;
-        std::optional<Vec3> dir;
-        switch (s.projection) {
-          case Projection::equirect:
-            dir = equirect_direction(u, v, s.width, s.height);
-            break;
-          case Projection::hemisphere:
-            dir = hemisphere_direction(u, v, s.width, s.height);
-            break;
-          case Projection::fisheye:
-            dir = fisheye_direction(u, v, s.width, s.height, s.fisheye);
-            break;
-          case Projection::cubemap:
-            dir = cubemap_direction(u, v, s.width, s.height);
-            break;
-        }
+        auto dir = pixel_direction(s, col + 0.5, static_cast<double>(row) + 0.5);
         const std::size_t i =
             row * static_cast<std::size_t>(s.width) + static_cast<std::size_t>(col);
         if (!dir) {
@@ -96,40 +101,70 @@ PixelDirections pixel_directions(const RenderSettings& s) {
   return d;
 }
 
+Xyz average_sun_over_pixel(const SkyModel& model, const RenderSettings& s, int col, int row) {
+  const Vec3 sun = model.parameters().sun.direction();
+  const double r_sun = model.sun_angular_radius();
+  const auto centre = pixel_direction(s, col + 0.5, row + 0.5);
+  if (!centre || r_sun <= 0.0) return {};
+  const double to_sun = angle_between(*centre, sun);
+  // Cheap rejection: farther than any pixel of this image can reach.
+  const double coarse = std::max(10.0 * kDegree, 8.0 * kPi / std::min(s.width, s.height));
+  if (to_sun > r_sun + coarse) return {};
+  // The pixel's angular radius: the farthest corner from its centre (a corner outside the layout
+  // counts as the coarse bound).
+  double pixel_radius = 0.0;
+  for (int k = 0; k < 4; ++k) {
+    const auto c = pixel_direction(s, col + (k & 1), row + (k >> 1));
+    pixel_radius = std::max(pixel_radius, c ? angle_between(*centre, *c) : coarse);
+  }
+  if (to_sun > r_sun + pixel_radius) return {};
+  // Supersample the pixel on a grid fine enough that the disc spans >= 16 samples across.
+  const int samples = std::clamp(static_cast<int>(std::ceil(2.0 * pixel_radius / (r_sun / 8.0))), 4,
+                                 kMaxSunSamplesPerAxis);
+  Xyz sum;
+  for (int a = 0; a < samples; ++a) {
+    for (int b = 0; b < samples; ++b) {
+      const auto d = pixel_direction(s, col + (a + 0.5) / samples, row + (b + 0.5) / samples);
+      if (!d) continue;
+      const Xyz c = model.sun_tristimulus(*d);
+      sum = {sum.X + c.X, sum.Y + c.Y, sum.Z + c.Z};
+    }
+  }
+  const double w = 1.0 / (static_cast<double>(samples) * samples);
+  return {sum.X * w, sum.Y * w, sum.Z * w};
+}
+
 SkyImage render_sky(const SkyModel& model, const RenderSettings& s) {
   const PixelDirections d = pixel_directions(s);
   const std::size_t n = d.x.size();
   std::vector<float> X(n), Y(n), Z(n);
-  if (s.sun != SunMode::sun_only) {
-    tristimulus_parallel(model, {d.x, d.y, d.z}, {X, Y, Z});
-  }
+  if (s.sun != SunMode::sun_only) tristimulus_parallel(model, {d.x, d.y, d.z}, {X, Y, Z});
   SkyImage img{ImageF(s.width, s.height, 3), ImageF(s.width, s.height, 3), {}};
   img.mask.assign(n, 0);
   const bool add_sun = s.sun != SunMode::sky && model.has_sun();
-  const Vec3 sun = model.parameters().sun.direction();
-  const double cos_radius = std::cos(model.sun_angular_radius());
-  parallel_for(n, 8192, [&](std::size_t b, std::size_t e) {
-    for (std::size_t i = b; i < e; ++i) {
-      Xyz c{X[i], Y[i], Z[i]};
-      if (!d.valid[i]) {
-        c = {};
-        img.mask[i] = 1;
-      } else if (add_sun) {
-        const Vec3 v{d.x[i], d.y[i], d.z[i]};
-        if (dot(v, sun) >= cos_radius - 1e-6) {
-          const Xyz s_xyz = model.sun_tristimulus(normalize(v));
-          c = {c.X + s_xyz.X, c.Y + s_xyz.Y, c.Z + s_xyz.Z};
+  parallel_for(static_cast<std::size_t>(s.height), 8, [&](std::size_t r0, std::size_t r1) {
+    for (std::size_t row = r0; row < r1; ++row) {
+      for (int col = 0; col < s.width; ++col) {
+        const std::size_t i =
+            row * static_cast<std::size_t>(s.width) + static_cast<std::size_t>(col);
+        Xyz c{X[i], Y[i], Z[i]};
+        if (!d.valid[i]) {
+          c = {};
+          img.mask[i] = 1;
+        } else if (add_sun) {
+          const Xyz sun = average_sun_over_pixel(model, s, col, static_cast<int>(row));
+          c = {c.X + sun.X, c.Y + sun.Y, c.Z + sun.Z};
         }
+        const Rgb rgb = xyz_to_linear_srgb(c);
+        float* px = img.xyz.data.data() + 3 * i;
+        px[0] = static_cast<float>(c.X);
+        px[1] = static_cast<float>(c.Y);
+        px[2] = static_cast<float>(c.Z);
+        float* pr = img.rgb.data.data() + 3 * i;
+        pr[0] = static_cast<float>(rgb.r);
+        pr[1] = static_cast<float>(rgb.g);
+        pr[2] = static_cast<float>(rgb.b);
       }
-      const Rgb rgb = xyz_to_linear_srgb(c);
-      float* px = img.xyz.data.data() + 3 * i;
-      px[0] = static_cast<float>(c.X);
-      px[1] = static_cast<float>(c.Y);
-      px[2] = static_cast<float>(c.Z);
-      float* pr = img.rgb.data.data() + 3 * i;
-      pr[0] = static_cast<float>(rgb.r);
-      pr[1] = static_cast<float>(rgb.g);
-      pr[2] = static_cast<float>(rgb.b);
     }
   });
   return img;

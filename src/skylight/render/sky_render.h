@@ -17,7 +17,8 @@ enum class Projection { equirect, hemisphere, fisheye, cubemap };
 std::optional<Projection> parse_projection(std::string_view name);
 std::string_view to_string(Projection p);
 
-// What is drawn: the sky alone (default), sky + solar disc, or the solar disc alone.
+// What is drawn: the sky alone (default), sky + solar disc, or the solar disc alone. The disc is
+// integrated over each pixel's footprint (average_sun_over_pixel).
 enum class SunMode { sky, sky_and_sun, sun_only };
 
 struct RenderSettings {
@@ -45,6 +46,14 @@ struct PixelDirections {
   std::vector<std::uint8_t> valid;
 };
 PixelDirections pixel_directions(const RenderSettings& settings);
+// Direction at continuous pixel position (u, v) (pixel centres at +0.5), nullopt outside the
+// layout.
+std::optional<Vec3> pixel_direction(const RenderSettings& settings, double u, double v);
+
+// The solar disc's radiance averaged over pixel (col, row): the pixel is supersampled wherever it
+// may overlap the disc, so the sun's energy in a map does not depend on the resolution (a disc
+// smaller than a pixel is spread over that pixel instead of being hit or missed by its centre).
+Xyz average_sun_over_pixel(const SkyModel& model, const RenderSettings& settings, int col, int row);
 
 SkyImage render_sky(const SkyModel& model, const RenderSettings& settings);
 
