@@ -479,8 +479,7 @@ const std::array<Xyz, kHwBands>& hw_band_xyz_weights() {
   return w;
 }
 
-// ---- the model
-// ------------------------------------------------------------------------------------
+// ---- the model ----
 
 HosekWilkieModel::HosekWilkieModel(const SkyParameters& p) : SkyModel(p) {
   require_in_range("turbidity", p.turbidity, kHwTurbidityMin, kHwTurbidityMax);

@@ -26,9 +26,8 @@
 
 namespace skylight {
 
-// ---- dataset layout
-// ------------------------------------------------------------------------------ Spectral bands:
-// 320, 360, ..., 720 nm (v1.4a `dataset320` .. `dataset720`).
+// ---- dataset layout ----
+// Spectral bands: 320, 360, ..., 720 nm (v1.4a `dataset320` .. `dataset720`).
 inline constexpr int kHwBands = 11;
 inline constexpr double kHwFirstBandNm = 320.0;
 inline constexpr double kHwBandStepNm = 40.0;
@@ -140,10 +139,9 @@ double hw_solar_radiance(const HwSpectralState& s, HwViewAngles a, double nm);
 // the CMFs start at 360, the model ends at 720). Y in cd/m^2.
 const std::array<Xyz, kHwBands>& hw_band_xyz_weights();
 
-// ---- the `hosek` model
-// ---------------------------------------------------------------------------- Parameters: sun
-// position, turbidity [1, 10] and ground albedo [0, 1] (both rejected outside with InvalidArgument:
-// the datasets have no knots there). Outputs:
+// ---- the `hosek` model ----
+// Parameters: sun position, turbidity [1, 10] and ground albedo [0, 1] (both rejected outside with
+// InvalidArgument: the datasets have no knots there). Outputs:
 //  * tristimulus(): the CIE XYZ dataset times 683 lm/W (kMaxLuminousEfficacy): Y is luminance in
 //    cd/m^2, as the dataset's header says ("after multiplication with 683 lm / W, the Y channel now
 //    corresponds to luminance").
