@@ -13,8 +13,11 @@ int thread_count();
 void set_thread_count(int n);
 
 // Calls body(begin, end) over [0, n) in chunks of at most `grain` items, on up to thread_count()
-// threads (the calling thread included). Chunks are handed out dynamically. An exception thrown by
-// body is rethrown on the calling thread after all threads have stopped.
+// threads: the calling thread plus a persistent pool of thread_count() - 1 workers (started on
+// first use, resized when the count changes), so a call costs ~0.4 us instead of a thread start.
+// Chunks are handed out dynamically. The first exception thrown by body is rethrown on the calling
+// thread after all chunks have run. A parallel_for called from inside a body runs serially;
+// concurrent calls from different threads take turns on the pool.
 void parallel_for(std::size_t n, std::size_t grain,
                   const std::function<void(std::size_t begin, std::size_t end)>& body);
 
