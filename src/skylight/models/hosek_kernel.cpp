@@ -8,6 +8,7 @@
 
 #include "skylight/core/math.h"
 #include "skylight/models/hosek_kernel.h"
+#include "skylight/models/sky_kernel-inl.h"
 
 #ifndef SKYLIGHT_HOSEK_KERNEL_CONSTANTS
 #define SKYLIGHT_HOSEK_KERNEL_CONSTANTS
@@ -31,12 +32,8 @@ void HosekBatchImpl(const detail::HosekBatchParams& p, const float* HWY_RESTRICT
                     size_t n) {
   const hn::ScalableTag<float> d;
   using V = hn::Vec<decltype(d)>;
-  const size_t N = hn::Lanes(d);
   const V zero = hn::Zero(d);
-  const V half = hn::Set(d, 0.5f);
   const V one = hn::Set(d, 1.0f);
-  const V two = hn::Set(d, 2.0f);
-  const V pi = hn::Set(d, static_cast<float>(kPi));
   const V offset = hn::Set(d, detail::kHosekCosThetaOffset);
   const V max_exp = hn::Set(d, detail::kHosekMaxExponent);
   const V min_exp = hn::Neg(max_exp);
@@ -50,17 +47,9 @@ void HosekBatchImpl(const detail::HosekBatchParams& p, const float* HWY_RESTRICT
     const V inv_cos = hn::Div(one, hn::Add(cos_theta, offset));
     const V zenith = hn::Sqrt(cos_theta);
     const V cos_gamma = hn::MulAdd(x, sx, hn::MulAdd(y, sy, hn::Mul(z, sz)));
-    // |v - s|^2 = 2 (1 - cos gamma) exactly, without the cancellation of 1 - v.s near the sun.
-    const V dx = hn::Sub(x, sx), dy = hn::Sub(y, sy), dz = hn::Sub(z, sz);
-    const V ax = hn::Add(x, sx), ay = hn::Add(y, sy), az = hn::Add(z, sz);
-    const V chord2_minus = hn::MulAdd(dx, dx, hn::MulAdd(dy, dy, hn::Mul(dz, dz)));
-    const V chord2_plus = hn::MulAdd(ax, ax, hn::MulAdd(ay, ay, hn::Mul(az, az)));
-    // gamma = 2 asin(|v - s| / 2) up to pi/2, pi - 2 asin(|v + s| / 2) beyond (well conditioned).
-    const auto near_side = hn::Ge(cos_gamma, zero);
-    const V half_chord =
-        hn::Min(one, hn::Mul(half, hn::Sqrt(hn::IfThenElse(near_side, chord2_minus, chord2_plus))));
-    const V a = hn::Mul(two, hn::Asin(d, half_chord));
-    const V gamma = hn::IfThenElse(near_side, a, hn::Sub(pi, a));
+    // gamma, and |v - s|^2 = 2 (1 - cos gamma) for chi below.
+    const auto angle = AngleToSun(d, x, y, z, sx, sy, sz, cos_gamma);
+    const V gamma = angle.gamma, chord2_minus = angle.chord2_minus;
     const V cos2_gamma = hn::Mul(cos_gamma, cos_gamma);
     const V mie_num = hn::Add(one, cos2_gamma);
 
@@ -84,25 +73,7 @@ void HosekBatchImpl(const detail::HosekBatchParams& p, const float* HWY_RESTRICT
     hn::StoreU(channel(2), d, out2);
   };
 
-  size_t i = 0;
-  for (; i + N <= n; i += N) process(px + i, py + i, pz + i, o0 + i, o1 + i, o2 + i);
-  if (i < n) {
-    // Tail: pad to a full vector with the zenith direction, keep only the real results.
-    HWY_ALIGN float bx[hn::MaxLanes(d)], by[hn::MaxLanes(d)], bz[hn::MaxLanes(d)];
-    HWY_ALIGN float r0[hn::MaxLanes(d)], r1[hn::MaxLanes(d)], r2[hn::MaxLanes(d)];
-    for (size_t k = 0; k < N; ++k) {
-      const bool real = i + k < n;
-      bx[k] = real ? px[i + k] : 0.0f;
-      by[k] = real ? py[i + k] : 0.0f;
-      bz[k] = real ? pz[i + k] : 1.0f;
-    }
-    process(bx, by, bz, r0, r1, r2);
-    for (size_t k = 0; i + k < n; ++k) {
-      o0[i + k] = r0[k];
-      o1[i + k] = r1[k];
-      o2[i + k] = r2[k];
-    }
-  }
+  ForEachDirectionVector(d, px, py, pz, o0, o1, o2, n, process);
 }
 
 }  // namespace HWY_NAMESPACE

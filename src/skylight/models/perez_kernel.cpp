@@ -6,6 +6,8 @@
 #include <hwy/contrib/math/math-inl.h>
 #include <hwy/highway.h>
 
+#include "skylight/models/sky_kernel-inl.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -51,12 +53,8 @@ void PerezBatchImpl(const BatchParams& p, const float* HWY_RESTRICT px,
                     size_t n) {
   const hn::ScalableTag<float> d;
   using V = hn::Vec<decltype(d)>;
-  const size_t N = hn::Lanes(d);
   const V zero = hn::Zero(d);
-  const V half = hn::Set(d, 0.5f);
   const V one = hn::Set(d, 1.0f);
-  const V two = hn::Set(d, 2.0f);
-  const V pi = hn::Set(d, static_cast<float>(kPi));
   const V sx = hn::Set(d, p.sx), sy = hn::Set(d, p.sy), sz = hn::Set(d, p.sz);
   const V min_cos = hn::Set(d, static_cast<float>(kPerezMinCosTheta));
 
@@ -66,17 +64,7 @@ void PerezBatchImpl(const BatchParams& p, const float* HWY_RESTRICT px,
     const auto above = hn::Ge(z, zero);
     const V inv_cos_theta = hn::Div(one, hn::Max(z, min_cos));
     const V cos_gamma = hn::MulAdd(x, sx, hn::MulAdd(y, sy, hn::Mul(z, sz)));
-    // gamma = 2 asin(|v - s| / 2) for gamma <= pi/2, pi - 2 asin(|v + s| / 2) beyond: both
-    // well-conditioned, unlike acos(v.s) near 0 and pi.
-    const V dx = hn::Sub(x, sx), dy = hn::Sub(y, sy), dz = hn::Sub(z, sz);
-    const V ax = hn::Add(x, sx), ay = hn::Add(y, sy), az = hn::Add(z, sz);
-    const V chord_minus = hn::Sqrt(hn::MulAdd(dx, dx, hn::MulAdd(dy, dy, hn::Mul(dz, dz))));
-    const V chord_plus = hn::Sqrt(hn::MulAdd(ax, ax, hn::MulAdd(ay, ay, hn::Mul(az, az))));
-    const auto near_side = hn::Ge(cos_gamma, zero);
-    const V half_chord =
-        hn::Min(one, hn::Mul(half, hn::IfThenElse(near_side, chord_minus, chord_plus)));
-    const V a = hn::Mul(two, hn::Asin(d, half_chord));
-    const V gamma = hn::IfThenElse(near_side, a, hn::Sub(pi, a));
+    const V gamma = AngleToSun(d, x, y, z, sx, sy, sz, cos_gamma).gamma;
     const V cos2_gamma = hn::Mul(cos_gamma, cos_gamma);
 
     const V Y = hn::Max(zero, PerezF(d, p, 0, inv_cos_theta, gamma, cos2_gamma));
@@ -97,25 +85,7 @@ void PerezBatchImpl(const BatchParams& p, const float* HWY_RESTRICT px,
     hn::StoreU(hn::IfThenElseZero(above, Z), d, Z_out);
   };
 
-  size_t i = 0;
-  for (; i + N <= n; i += N) process(px + i, py + i, pz + i, oX + i, oY + i, oZ + i);
-  if (i < n) {
-    // Tail: pad to a full vector with the zenith direction, keep only the real results.
-    HWY_ALIGN float bx[hn::MaxLanes(d)], by[hn::MaxLanes(d)], bz[hn::MaxLanes(d)];
-    HWY_ALIGN float rX[hn::MaxLanes(d)], rY[hn::MaxLanes(d)], rZ[hn::MaxLanes(d)];
-    for (size_t k = 0; k < N; ++k) {
-      const bool real = i + k < n;
-      bx[k] = real ? px[i + k] : 0.0f;
-      by[k] = real ? py[i + k] : 0.0f;
-      bz[k] = real ? pz[i + k] : 1.0f;
-    }
-    process(bx, by, bz, rX, rY, rZ);
-    for (size_t k = 0; i + k < n; ++k) {
-      oX[i + k] = rX[k];
-      oY[i + k] = rY[k];
-      oZ[i + k] = rZ[k];
-    }
-  }
+  ForEachDirectionVector(d, px, py, pz, oX, oY, oZ, n, process);
 }
 
 }  // namespace HWY_NAMESPACE
