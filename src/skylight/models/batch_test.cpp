@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "skylight/core/error.h"
+#include "skylight/models/batch_check.h"
 #include "skylight/models/perez.h"
 #include "skylight/models/sky_model.h"
 
@@ -32,37 +33,8 @@ std::vector<Vec3> random_directions(int n, unsigned seed, bool include_special) 
 }
 
 void expect_batch_matches_scalar(const SkyModel& m, const std::vector<Vec3>& dirs) {
-  std::vector<float> x, y, z;
-  for (const Vec3& v : dirs) {
-    x.push_back(static_cast<float>(v.x));
-    y.push_back(static_cast<float>(v.y));
-    z.push_back(static_cast<float>(v.z));
-  }
-  const std::size_t n = dirs.size();
-  std::vector<float> X(n), Y(n), Z(n);
-  m.tristimulus_batch({x, y, z}, {X, Y, Z});
-  double max_Y = 0;
-  std::vector<Xyz> ref(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    // The reference sees exactly the float directions the batch saw.
-    ref[i] = m.tristimulus({x[i], y[i], z[i]});
-    max_Y = std::max(max_Y, ref[i].Y);
-  }
-  for (std::size_t i = 0; i < n; ++i) {
-    const double floor = kPerezBatchAbsoluteFloor * max_Y;
-    auto tol = [&](double v) {
-      return std::max(std::abs(v) * kPerezBatchRelativeTolerance, floor);
-    };
-    ASSERT_NEAR(Y[i], ref[i].Y, tol(ref[i].Y))
-        << m.name() << " dir " << x[i] << "," << y[i] << "," << z[i];
-    ASSERT_NEAR(X[i], ref[i].X, tol(ref[i].X)) << m.name();
-    ASSERT_NEAR(Z[i], ref[i].Z, tol(ref[i].Z)) << m.name();
-  }
-  // The parallel driver gives the batch result exactly (same kernel, chunked).
-  std::vector<float> X2(n), Y2(n), Z2(n);
-  tristimulus_parallel(m, {x, y, z}, {X2, Y2, Z2});
-  EXPECT_EQ(Y2, Y);
-  EXPECT_EQ(X2, X);
+  testing_support::expect_batch_matches_scalar(m, dirs, kPerezBatchRelativeTolerance,
+                                               kPerezBatchAbsoluteFloor);
 }
 
 TEST(Batch, PreethamMatchesScalar) {

@@ -11,6 +11,8 @@
 #include <random>
 #include <sstream>
 #include <tuple>
+
+#include "skylight/models/batch_check.h"
 #include <vector>
 
 #include "skylight/core/data.h"
@@ -387,38 +389,10 @@ TEST(HosekBatch, MatchesScalar) {
       for (double zs : {0.0, 20.0, 50.0, 80.0, 89.5, 90.0}) {
         const auto m = hosek(T, alb, zs, 123.0);
         const auto dirs = batch_directions(m->parameters().sun.direction(), seed++);
-        std::vector<float> x, y, z;
-        for (const Vec3& v : dirs) {
-          x.push_back(static_cast<float>(v.x));
-          y.push_back(static_cast<float>(v.y));
-          z.push_back(static_cast<float>(v.z));
-        }
-        const std::size_t n = dirs.size();
-        std::vector<float> X(n), Y(n), Z(n);
-        m->tristimulus_batch({x, y, z}, {X, Y, Z});
-        std::vector<Xyz> ref(n);
-        double max_v = 0.0;
-        for (std::size_t i = 0; i < n; ++i) {
-          ref[i] = m->tristimulus({x[i], y[i], z[i]});  // the float directions the batch saw
-          max_v = std::max({max_v, ref[i].X, ref[i].Y, ref[i].Z});
-        }
-        const double floor = kHosekBatchAbsoluteFloor * max_v;
-        for (std::size_t i = 0; i < n; ++i) {
-          const double got[3] = {X[i], Y[i], Z[i]};
-          const double want[3] = {ref[i].X, ref[i].Y, ref[i].Z};
-          for (int c = 0; c < 3; ++c) {
-            ASSERT_TRUE(std::isfinite(got[c]));
-            const double err = std::abs(got[c] - want[c]);
-            if (err > floor) worst = std::max(worst, err / std::abs(want[c]));
-            ASSERT_LE(err, std::max(floor, kHosekBatchRelativeTolerance * std::abs(want[c])))
-                << "T " << T << " alb " << alb << " zs " << zs << " dir " << x[i] << "," << y[i]
-                << "," << z[i] << " channel " << c;
-          }
-        }
-        // The parallel driver gives the batch result exactly.
-        std::vector<float> X2(n), Y2(n), Z2(n);
-        tristimulus_parallel(*m, {x, y, z}, {X2, Y2, Z2});
-        EXPECT_EQ(Y2, Y);
+        SCOPED_TRACE(::testing::Message() << "T " << T << " alb " << alb << " zs " << zs);
+        worst =
+            std::max(worst, testing_support::expect_batch_matches_scalar(
+                                *m, dirs, kHosekBatchRelativeTolerance, kHosekBatchAbsoluteFloor));
       }
   std::cout << "hosek batch vs scalar: worst relative error (above the absolute floor) " << worst
             << "\n";
