@@ -5,9 +5,11 @@
 // Ratios are printed by `skylight bench`; here compare the reported times of the three.
 #include <benchmark/benchmark.h>
 
+#include <chrono>
 #include <vector>
 
 #include "skylight/core/parallel.h"
+#include "skylight/models/atmosphere/nishita_model.h"
 #include "skylight/models/sky_model.h"
 #include "skylight/render/sky_render.h"
 
@@ -75,6 +77,31 @@ void Threads(benchmark::State& state, const char* name) {
   state.counters["threads"] = thread_count();
 }
 
+// nishita's brute-force reference path on a 64 x 32 grid (the full frame would take minutes),
+// all threads; the counter scales the time to one 1024 x 512 frame for comparison with Threads.
+void NishitaReference(benchmark::State& state) {
+  SkyParameters p;
+  p.sun = {deg_to_rad(45.0), deg_to_rad(180.0)};
+  const NishitaModel m(p);
+  render::RenderSettings s;
+  s.width = 64;
+  s.height = 32;
+  const auto d = render::pixel_directions(s);
+  std::vector<float> Y(d.x.size());
+  double seconds = 0.0;
+  for (auto _ : state) {
+    const auto t0 = std::chrono::steady_clock::now();
+    parallel_for(d.x.size(), 16, [&](std::size_t b, std::size_t e) {
+      for (std::size_t i = b; i < e; ++i)
+        Y[i] = static_cast<float>(m.tristimulus_reference({d.x[i], d.y[i], d.z[i]}).Y);
+    });
+    benchmark::DoNotOptimize(Y.data());
+    seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  }
+  state.counters["s_per_1024x512_frame"] = seconds / static_cast<double>(state.iterations()) *
+                                           (1024.0 * 512.0) / static_cast<double>(d.x.size());
+}
+
 void SetUp(benchmark::State& state, const char* name) {
   for (auto _ : state) benchmark::DoNotOptimize(model(name));
 }
@@ -90,10 +117,17 @@ BENCHMARK_CAPTURE(Threads, cie, "cie")->Unit(benchmark::kMillisecond)->UseRealTi
 BENCHMARK_CAPTURE(Scalar, hosek, "hosek")->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(Batch, hosek, "hosek")->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(Threads, hosek, "hosek")->Unit(benchmark::kMillisecond)->UseRealTime();
+// nishita: the batch is the scalar loop over the table-driven fast path (no SIMD batch).
+BENCHMARK_CAPTURE(Scalar, nishita, "nishita")->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(Batch, nishita, "nishita")->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(Threads, nishita, "nishita")->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(NishitaReference)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(1);
 BENCHMARK_CAPTURE(SetUp, preetham, "preetham")->Unit(benchmark::kMicrosecond);
 BENCHMARK_CAPTURE(SetUp, cie, "cie")->Unit(benchmark::kMicrosecond);
 // hosek: the whole model set-up (XYZ, RGB and 11 spectral band states, plus the solar disc's XYZ
 // polynomial); the embedded tables are parsed once, on first use (outside the steady state).
 BENCHMARK_CAPTURE(SetUp, hosek, "hosek")->Unit(benchmark::kMicrosecond);
+// nishita: the optical-length tables (2 components x 256 x 256 quadratures).
+BENCHMARK_CAPTURE(SetUp, nishita, "nishita")->Unit(benchmark::kMillisecond);
 
 BENCHMARK_MAIN();

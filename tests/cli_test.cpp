@@ -183,6 +183,50 @@ TEST_F(Cli, EvalQuantities) {
   EXPECT_EQ(r.status, 0) << r.err;
 }
 
+TEST_F(Cli, EvalNishitaUnitIrradianceAndObserverAltitude) {
+  // zenith, horizon (north), 30 deg below the horizon (south).
+  const std::string in = "zenith_deg,azimuth_deg\n0,0\n90,0\n120,180\n";
+  Result r =
+      run("eval --model nishita --sun-elevation 30 --solar-irradiance 1 --quantity "
+          "spectral --wavelengths 440,550,680",
+          in);
+  ASSERT_EQ(r.status, 0) << r.err;
+  std::string header;
+  auto rows = parse_csv_numbers(r.out, &header);
+  EXPECT_EQ(header, "zenith_deg,azimuth_deg,L440,L550,L680");
+  ASSERT_EQ(rows.size(), 3u);
+  // Per unit irradiance [sr^-1]: a clear zenith scatters ~1 % sr^-1 at 440 nm, bluer than red.
+  EXPECT_GT(rows[0][2], 0.005);
+  EXPECT_LT(rows[0][2], 0.03);
+  EXPECT_GT(rows[0][2], 3 * rows[0][4]) << "blue zenith";
+  EXPECT_EQ(rows[2][2], 0.0) << "observer on the ground looking down: no air in between";
+  // From 400 km: the horizontal ray passes above the atmosphere (0), the zenith sees nothing, the
+  // planet below is bright.
+  r =
+      run("eval --model nishita --sun-elevation 30 --solar-irradiance 1 --observer-altitude 4e5 "
+          "--quantity spectral --wavelengths 440,550,680",
+          in);
+  ASSERT_EQ(r.status, 0) << r.err;
+  rows = parse_csv_numbers(r.out, &header);
+  ASSERT_EQ(rows.size(), 3u);
+  EXPECT_EQ(rows[0][3], 0.0);
+  EXPECT_EQ(rows[1][3], 0.0);
+  EXPECT_GT(rows[2][2], 0.01);
+}
+
+TEST_F(Cli, RenderNishitaFromOrbitWithCamera) {
+  const fs::path exr = dir_ / "orbit.exr";
+  const Result r =
+      run("render --model nishita --observer-altitude 1e6 --sun-elevation 20 --projection camera "
+          "--look-elevation -30 --fov 70 --width 32 --height 16 -o '" +
+          exr.string() + "'");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const render::ImageF img = render::read_image(exr);
+  ASSERT_EQ(img.width, 32);
+  EXPECT_EQ(img.pixel(16, 0)[1], 0.0f) << "top centre: space above the limb";
+  EXPECT_GT(img.pixel(16, 15)[1], 0.0f) << "bottom centre: the lit atmosphere over the planet";
+}
+
 TEST_F(Cli, BadInputExitsTwoWithMessage) {
   struct Case {
     std::string args, input, must_contain;
@@ -208,6 +252,11 @@ TEST_F(Cli, BadInputExitsTwoWithMessage) {
       {"render --model cie --projection cubemap --width 10 --height 10 -o x.exr", "", "cubemap"},
       {"render --model cie --projection fisheye --lens orthographic --fov 200 -o x.exr", "", "fov"},
       {"render --model cie", "", "--output"},
+      {"eval --model nishita --observer-altitude -5", ok_in, "--observer-altitude"},
+      {"eval --model nishita --observer-altitude 2e7", ok_in, "--observer-altitude"},
+      {"eval --model nishita --solar-irradiance 0", ok_in, "--solar-irradiance"},
+      {"eval --model nishita --mie-g 1", ok_in, "--mie-g"},
+      {"eval --model nishita --ground-radius 1e6 --top-radius 9e5", ok_in, "--top-radius"},
   };
   for (const auto& c : cases) {
     const Result r = run(c.args, c.input);
@@ -314,7 +363,7 @@ TEST_F(Cli, ModelsJsonAndHelp) {
   const auto j = nlohmann::json::parse(r.out);
   std::vector<std::string> names;
   for (const auto& m : j) names.push_back(m["name"]);
-  EXPECT_EQ(names, (std::vector<std::string>{"perez", "preetham", "cie", "hosek"}));
+  EXPECT_EQ(names, (std::vector<std::string>{"perez", "preetham", "cie", "hosek", "nishita"}));
   for (const auto& m : j) {
     for (const auto& p : m["parameters"]) {
       EXPECT_TRUE(p.contains("unit") && p.contains("min") && p.contains("max") &&

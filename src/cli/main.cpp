@@ -59,8 +59,12 @@ struct ModelFlags {
   std::optional<double> sun_zenith_deg, sun_elevation_deg;
   double sun_azimuth_deg = 180.0;
   double turbidity = 3.0;
-  double albedo = 0.3;
+  std::optional<double> albedo;  // default 0.3; nishita: no ground reflection unless given
   int cie_type = 12;
+  // nishita (physically based): observer, sun irradiance, planet and atmosphere overrides.
+  double observer_altitude_m = 0.0;
+  std::optional<double> solar_irradiance, ground_radius_m, top_radius_m, rayleigh_scale_height_m,
+      mie_scale_height_m, mie_g;
   std::optional<double> zenith_luminance;
   std::vector<double> perez;
   bool include_sun = false, sun_only = false;
@@ -85,8 +89,32 @@ struct ModelFlags {
         ->check(finite_range(1, 64, "1"));
     app.add_option("--albedo", albedo,
                    "ground albedo [1], 0-1; default 0.3 (unused by perez, "
-                   "preetham, cie)")
+                   "preetham, cie; nishita: no ground reflection unless given)")
         ->check(finite_range(0, 1, "1"));
+    app.add_option("--observer-altitude", observer_altitude_m,
+                   "observer altitude above the ground [m], 0-1e7; default 0 (nishita)")
+        ->check(finite_range(0, 1e7, "m"));
+    app.add_option("--solar-irradiance", solar_irradiance,
+                   "flat extraterrestrial solar irradiance [W m^-2 nm^-1], 1e-30-1e30; 1 = "
+                   "radiance per unit irradiance; default: ASTM G-173 spectrum (nishita)")
+        ->check(finite_range(1e-30, 1e30, "W m^-2 nm^-1"));
+    app.add_option("--ground-radius", ground_radius_m,
+                   "planet radius [m], 1-1e9; default 6360e3 (nishita)")
+        ->check(finite_range(1, 1e9, "m"));
+    app.add_option("--top-radius", top_radius_m,
+                   "radius of the top of the atmosphere [m], 1-1e9, > ground radius; default "
+                   "6420e3, or ground radius + 60 km with --ground-radius (nishita)")
+        ->check(finite_range(1, 1e9, "m"));
+    app.add_option("--rayleigh-scale-height", rayleigh_scale_height_m,
+                   "Rayleigh scale height [m], 1-1e7; default 8000 (nishita)")
+        ->check(finite_range(1, 1e7, "m"));
+    app.add_option("--mie-scale-height", mie_scale_height_m,
+                   "Mie scale height [m], 1-1e7; default 1200 (nishita)")
+        ->check(finite_range(1, 1e7, "m"));
+    app.add_option("--mie-g", mie_g,
+                   "Mie Cornette-Shanks asymmetry g [1], -0.999-0.999; default "
+                   "0.8 (nishita)")
+        ->check(finite_range(-0.999, 0.999, "1"));
     app.add_option("--cie-type", cie_type,
                    "CIE sky type 1-15, 16 = traditional overcast; default 12")
         ->check(CLI::Range(1, 16));
@@ -112,8 +140,28 @@ struct ModelFlags {
     p.sun.zenith = sl::deg_to_rad(zenith_deg);
     p.sun.azimuth = sl::wrap_azimuth(sl::deg_to_rad(sun_azimuth_deg));
     p.turbidity = turbidity;
-    p.ground_albedo = albedo;
+    p.ground_albedo = albedo.value_or(0.3);
     p.cie_type = cie_type;
+    p.observer_altitude_m = observer_altitude_m;
+    p.solar_irradiance = solar_irradiance;
+    if (albedo || ground_radius_m || top_radius_m || rayleigh_scale_height_m ||
+        mie_scale_height_m || mie_g) {
+      sl::atmosphere::AtmosphereParameters a;
+      if (ground_radius_m) {
+        a.ground_radius_m = *ground_radius_m;
+        a.top_radius_m = *ground_radius_m +
+                         (sl::atmosphere::kEarthTopRadius - sl::atmosphere::kEarthGroundRadius);
+      }
+      if (top_radius_m) a.top_radius_m = *top_radius_m;
+      if (!(a.top_radius_m > a.ground_radius_m))
+        throw sl::InvalidArgument(fmt::format("--top-radius {} must exceed --ground-radius {}",
+                                              a.top_radius_m, a.ground_radius_m));
+      if (rayleigh_scale_height_m) a.components[0].scale_height_m = *rayleigh_scale_height_m;
+      if (mie_scale_height_m) a.components[1].scale_height_m = *mie_scale_height_m;
+      if (mie_g) a.components[1].g = *mie_g;
+      a.ground_albedo = albedo;
+      p.atmosphere = a;
+    }
     p.zenith_luminance = zenith_luminance;
     if (!perez.empty()) {
       if (perez.size() != 5)
@@ -141,11 +189,23 @@ struct ModelFlags {
         {"skylight:sun_zenith_deg", fmt::format("{}", sl::rad_to_deg(p.sun.zenith))},
         {"skylight:sun_azimuth_deg", fmt::format("{}", sl::rad_to_deg(p.sun.azimuth))},
         {"skylight:turbidity", fmt::format("{}", turbidity)},
-        {"skylight:albedo", fmt::format("{}", albedo)},
+        {"skylight:albedo", model == "nishita" && !albedo
+                                ? std::string("none")
+                                : fmt::format("{}", albedo.value_or(0.3))},
+        {"skylight:observer_altitude_m", fmt::format("{}", observer_altitude_m)},
         {"skylight:cie_type", fmt::format("{}", cie_type)},
         {"skylight:sun", sun_only      ? "sun-only"
                          : include_sun ? "sky+sun"
                                        : "sky"}};
+    if (solar_irradiance)
+      md.emplace_back("skylight:solar_irradiance_W_m2_nm", fmt::format("{}", *solar_irradiance));
+    if (p.atmosphere)
+      md.emplace_back(
+          "skylight:atmosphere",
+          fmt::format("ground_radius_m={} top_radius_m={} rayleigh_H_m={} mie_H_m={} mie_g={}",
+                      p.atmosphere->ground_radius_m, p.atmosphere->top_radius_m,
+                      p.atmosphere->components[0].scale_height_m,
+                      p.atmosphere->components[1].scale_height_m, p.atmosphere->components[1].g));
     if (zenith_luminance)
       md.emplace_back("skylight:zenith_luminance_cd_m2", fmt::format("{}", *zenith_luminance));
     if (!perez.empty())
@@ -200,8 +260,9 @@ int run_models(bool json) {
 struct RenderFlags {
   std::string projection = "equirect";
   std::string lens = "equidistant";
-  double fov_deg = 180.0;
+  std::optional<double> fov_deg;  // fisheye default 180, camera default 60
   double north_angle_deg = 0.0;
+  double look_elevation_deg = 0.0, look_azimuth_deg = 0.0;
   int width = 1024, height = 512;
   std::string output, preview, false_colour;
   std::vector<double> fc_range{0.0, 6.0};
@@ -214,8 +275,11 @@ int run_render(const ModelFlags& mf, const RenderFlags& rf) {
   s.width = rf.width;
   s.height = rf.height;
   s.fisheye.lens = *sl::parse_fisheye_lens(rf.lens);
-  s.fisheye.fov = sl::deg_to_rad(rf.fov_deg);
+  s.fisheye.fov = sl::deg_to_rad(rf.fov_deg.value_or(180.0));
   s.fisheye.north_angle = sl::deg_to_rad(rf.north_angle_deg);
+  s.camera.look_zenith = sl::deg_to_rad(90.0 - rf.look_elevation_deg);
+  s.camera.look_azimuth = sl::wrap_azimuth(sl::deg_to_rad(rf.look_azimuth_deg));
+  s.camera.vertical_fov = sl::deg_to_rad(rf.fov_deg.value_or(60.0));
   s.sun = mf.sun_only      ? r::SunMode::sun_only
           : mf.include_sun ? r::SunMode::sky_and_sun
                            : r::SunMode::sky;
@@ -235,9 +299,14 @@ int run_render(const ModelFlags& mf, const RenderFlags& rf) {
 
   auto md = mf.metadata();
   md.emplace_back("skylight:projection", rf.projection);
+  if (s.projection == r::Projection::camera) {
+    md.emplace_back("skylight:fov_deg", fmt::format("{}", rf.fov_deg.value_or(60.0)));
+    md.emplace_back("skylight:look_elevation_deg", fmt::format("{}", rf.look_elevation_deg));
+    md.emplace_back("skylight:look_azimuth_deg", fmt::format("{}", rf.look_azimuth_deg));
+  }
   if (s.projection == r::Projection::fisheye) {
     md.emplace_back("skylight:lens", rf.lens);
-    md.emplace_back("skylight:fov_deg", fmt::format("{}", rf.fov_deg));
+    md.emplace_back("skylight:fov_deg", fmt::format("{}", rf.fov_deg.value_or(180.0)));
     md.emplace_back("skylight:north_angle_deg", fmt::format("{}", rf.north_angle_deg));
   }
   md.emplace_back("skylight:pixel_unit", "linear sRGB (D65), Y = luminance [cd/m^2]");
@@ -484,8 +553,9 @@ int main(int argc, char** argv) {
   render_mf.add(*render, true);
   render
       ->add_option("--projection", rf.projection,
-                   "equirect|hemisphere|fisheye|cubemap; default equirect")
-      ->check(CLI::IsMember({"equirect", "hemisphere", "fisheye", "cubemap"}));
+                   "equirect|hemisphere|fisheye|cubemap|camera (perspective, e.g. of the planet "
+                   "from orbit with --observer-altitude); default equirect")
+      ->check(CLI::IsMember({"equirect", "hemisphere", "fisheye", "cubemap", "camera"}));
   render
       ->add_option(
           "--lens", rf.lens,
@@ -493,8 +563,18 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"equidistant", "equisolid", "orthographic", "stereographic"}));
   render
       ->add_option("--fov", rf.fov_deg,
-                   "fisheye field of view [deg], (0, 360] (orthographic <= 180); default 180")
+                   "fisheye field of view [deg], (0, 360] (orthographic <= 180); camera: "
+                   "vertical field of view, (0, 180); default 180 (camera: 60)")
       ->check(finite_range(1e-6, 360, "deg"));
+  render
+      ->add_option("--look-elevation", rf.look_elevation_deg,
+                   "camera: elevation of the view centre [deg], -90-90; default 0")
+      ->check(finite_range(-90, 90, "deg"));
+  render
+      ->add_option("--look-azimuth", rf.look_azimuth_deg,
+                   "camera: azimuth of the view centre [deg] from north towards east, -360-360; "
+                   "default 0")
+      ->check(finite_range(-360, 360, "deg"));
   render
       ->add_option(
           "--north-angle", rf.north_angle_deg,

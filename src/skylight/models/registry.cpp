@@ -1,6 +1,7 @@
 // The model registry: name -> documentation, parameters (unit, range, default) and factory.
 #include <memory>
 
+#include "skylight/models/atmosphere/nishita_model.h"
 #include "skylight/models/cie_sky.h"
 #include "skylight/models/hosek_wilkie.h"
 #include "skylight/models/perez.h"
@@ -97,6 +98,35 @@ const std::vector<ModelInfo>& model_registry() {
         true,
         [](const SkyParameters& p) -> std::unique_ptr<SkyModel> {
           return std::make_unique<HosekWilkieModel>(p);
+        }});
+    r.push_back(ModelInfo{
+        "nishita",
+        "Physically based single scattering (Nishita et al. 1993) in a spherical planet's "
+        "exponential Rayleigh + Mie atmosphere, fast path with Pietras' optical-length tables; "
+        "Earth defaults, any observer altitude (ground to orbit), planet shadow at twilight",
+        "XYZ with Y [cd/m^2] for the ASTM G-173 extraterrestrial sun (20 nm bins 380-780 nm); "
+        "spectral radiance [W m^-2 sr^-1 nm^-1] 360-830 nm; with --solar-irradiance E both per "
+        "flat irradiance E [W m^-2 nm^-1] (E = 1: sr^-1); in-scattered light only, the ground "
+        "reflects only with an explicit --albedo; no solar disc",
+        {sun_zenith(),
+         sun_azimuth(),
+         {"observer-altitude", "m", 0.0, kNishitaMaxAltitude, "0", "observer above the ground"},
+         {"solar-irradiance", "W m^-2 nm^-1", 1e-30, 1e30, "ASTM G-173 spectrum",
+          "flat extraterrestrial solar spectral irradiance (1 = per unit irradiance)"},
+         {"albedo", "1", 0.0, 1.0, "none (no ground reflection)",
+          "Lambertian ground albedo (direct sunlight reflected by the ground)"},
+         {"ground-radius", "m", 1.0, 1e9, "6360e3", "planet radius R0"},
+         {"top-radius", "m", 1.0, 1e9, "6420e3", "top of the atmosphere (> ground radius)"},
+         {"rayleigh-scale-height", "m", 1.0, 1e7, "8000", "Rayleigh scale height H_R"},
+         {"mie-scale-height", "m", 1.0, 1e7, "1200", "Mie scale height H_M"},
+         {"mie-g", "1", -0.999, 0.999, "0.8", "Cornette-Shanks asymmetry g"}},
+        "any observer altitude 0-10000 km, any view direction, sun at any elevation (below the "
+        "horizon: single scattering with the planet's shadow, flagged extrapolated); fast path "
+        "within 0.5 % of the brute-force reference (tested)",
+        true,
+        false,
+        [](const SkyParameters& p) -> std::unique_ptr<SkyModel> {
+          return std::make_unique<NishitaModel>(p);
         }});
     return r;
   }();

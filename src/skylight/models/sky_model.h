@@ -17,6 +17,7 @@
 
 #include "skylight/core/colorimetry.h"
 #include "skylight/core/frame.h"
+#include "skylight/models/atmosphere/parameters.h"
 
 namespace skylight {
 
@@ -36,6 +37,15 @@ struct SkyParameters {
   std::optional<double> zenith_luminance;
   // Perez all-weather coefficients A, B, C, D, E (dimensionless) for the `perez` model.
   std::optional<std::array<double, 5>> perez_coefficients;
+  // Observer altitude above the ground [m], [0, 1e7] (physically based models; `nishita`).
+  double observer_altitude_m = 0.0;
+  // Flat extraterrestrial solar spectral irradiance [W m^-2 nm^-1], > 0, at every wavelength;
+  // nullopt = the model's real solar spectrum. With 1, radiances are per unit irradiance [sr^-1]
+  // (physically based models; `nishita`).
+  std::optional<double> solar_irradiance;
+  // Planet and atmosphere for `nishita` (models/atmosphere/parameters.h); nullopt = Earth
+  // defaults. Its ground_albedo (not the field above) switches the ground reflection on.
+  std::optional<atmosphere::AtmosphereParameters> atmosphere;
 };
 
 // Where a model's result stands for given parameters.

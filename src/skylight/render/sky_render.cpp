@@ -20,6 +20,7 @@ std::optional<Projection> parse_projection(std::string_view name) {
   if (name == "hemisphere") return Projection::hemisphere;
   if (name == "fisheye") return Projection::fisheye;
   if (name == "cubemap") return Projection::cubemap;
+  if (name == "camera") return Projection::camera;
   return std::nullopt;
 }
 
@@ -33,6 +34,8 @@ std::string_view to_string(Projection p) {
       return "fisheye";
     case Projection::cubemap:
       return "cubemap";
+    case Projection::camera:
+      return "camera";
   }
   return "equirect";
 }
@@ -48,6 +51,17 @@ void validate(const RenderSettings& s) {
         fmt::format("cubemap needs width = 6 x height (six square faces); got "
                     "{} x {}",
                     s.width, s.height));
+  if (s.projection == Projection::camera) {
+    const CameraLayout& c = s.camera;
+    if (!(c.vertical_fov > 0.0 && c.vertical_fov < kPi))
+      throw InvalidArgument(fmt::format("fov = {} deg is outside (0, 180) for the camera",
+                                        rad_to_deg(c.vertical_fov)));
+    if (!(c.look_zenith >= 0.0 && c.look_zenith <= kPi) || !std::isfinite(c.look_azimuth))
+      throw InvalidArgument(
+          fmt::format("camera look direction (zenith {} deg, azimuth {} deg) is "
+                      "not a direction",
+                      rad_to_deg(c.look_zenith), rad_to_deg(c.look_azimuth)));
+  }
   if (s.projection == Projection::fisheye) {
     const double fov_deg = rad_to_deg(s.fisheye.fov);
     const double max_deg = s.fisheye.lens == FisheyeLens::orthographic ? 180.0 : 360.0;
@@ -60,6 +74,22 @@ void validate(const RenderSettings& s) {
   }
 }
 
+namespace {
+// Pinhole camera: d = normalize(f + x tan(fov/2) right + y tan(fov/2) up), x in [-w/h, w/h],
+// y in [-1, 1] (image up), right = f x zenith (f x north when f is vertical), up = right x f.
+Vec3 camera_direction(double u, double v, int width, int height, const CameraLayout& c) {
+  const Vec3 f = direction_from_angles(c.look_zenith, c.look_azimuth);
+  Vec3 right = cross(f, Vec3{0, 0, 1});
+  if (dot(right, right) < 1e-12) right = cross(f, Vec3{0, 1, 0});
+  right = normalize(right);
+  const Vec3 up = cross(right, f);
+  const double t = std::tan(0.5 * c.vertical_fov);
+  const double x = (2.0 * u / height - static_cast<double>(width) / height) * t;
+  const double y = (1.0 - 2.0 * v / height) * t;
+  return normalize(f + x * right + y * up);
+}
+}  // namespace
+
 std::optional<Vec3> pixel_direction(const RenderSettings& s, double u, double v) {
   switch (s.projection) {
     case Projection::equirect:
@@ -70,6 +100,8 @@ std::optional<Vec3> pixel_direction(const RenderSettings& s, double u, double v)
       return fisheye_direction(u, v, s.width, s.height, s.fisheye);
     case Projection::cubemap:
       return cubemap_direction(u, v, s.width, s.height);
+    case Projection::camera:
+      return camera_direction(u, v, s.width, s.height, s.camera);
   }
   return std::nullopt;
 }

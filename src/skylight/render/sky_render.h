@@ -13,7 +13,7 @@
 
 namespace skylight::render {
 
-enum class Projection { equirect, hemisphere, fisheye, cubemap };
+enum class Projection { equirect, hemisphere, fisheye, cubemap, camera };
 std::optional<Projection> parse_projection(std::string_view name);
 std::string_view to_string(Projection p);
 
@@ -21,11 +21,22 @@ std::string_view to_string(Projection p);
 // integrated over each pixel's footprint (average_sun_over_pixel).
 enum class SunMode { sky, sky_and_sun, sun_only };
 
+// A pinhole (perspective) camera at the model's observer (e.g. `nishita` with an observer
+// altitude: the planet and its limb from orbit). The image centre looks along
+// direction(look_zenith, look_azimuth) (core/frame.h); image up is the projection of the zenith
+// (of north when looking straight up or down); vertical_fov spans the image height, square pixels.
+struct CameraLayout {
+  double look_zenith = kPi / 2;   // [rad], [0, pi]; default: the horizon
+  double look_azimuth = 0.0;      // [rad], from north towards east
+  double vertical_fov = kPi / 3;  // [rad], (0, pi)
+};
+
 struct RenderSettings {
   Projection projection = Projection::equirect;
   int width = 1024;
   int height = 512;
   FisheyeLayout fisheye;  // used by Projection::fisheye
+  CameraLayout camera;    // used by Projection::camera
   SunMode sun = SunMode::sky;
 };
 

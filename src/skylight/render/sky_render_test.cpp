@@ -103,3 +103,35 @@ TEST(SkyRender, RejectsBadSettings) {
 
 }  // namespace
 }  // namespace skylight::render
+
+namespace skylight::render {
+namespace {
+
+TEST(SkyRender, CameraLooksWhereAsked) {
+  constexpr double kDirTol = 1e-12;  // a few vector operations in double
+  RenderSettings s;
+  s.projection = Projection::camera;
+  s.width = 200;
+  s.height = 100;
+  s.camera = {deg_to_rad(120), deg_to_rad(30), deg_to_rad(60)};
+  // The image centre is the look direction; the top edge centre is 30 deg above it (fov / 2).
+  const Vec3 f = direction_from_angles(deg_to_rad(120), deg_to_rad(30));
+  const Vec3 c = *pixel_direction(s, 100, 50);
+  EXPECT_NEAR(c.x, f.x, kDirTol);
+  EXPECT_NEAR(c.y, f.y, kDirTol);
+  EXPECT_NEAR(c.z, f.z, kDirTol);
+  const Vec3 top = *pixel_direction(s, 100, 0);
+  EXPECT_NEAR(angle_between(top, f), deg_to_rad(30), kDirTol);
+  EXPECT_GT(top.z, c.z);  // image up is towards the zenith
+  // Square pixels: the right edge centre is atan(2 tan 30 deg) away.
+  EXPECT_NEAR(angle_between(*pixel_direction(s, 200, 50), f),
+              std::atan(2 * std::tan(deg_to_rad(30))), kDirTol);
+  // Straight down works too (image up = north).
+  s.camera.look_zenith = kPi;
+  EXPECT_NEAR(pixel_direction(s, 100, 50)->z, -1.0, kDirTol);
+  s.camera.vertical_fov = kPi;
+  EXPECT_THROW(validate(s), InvalidArgument);
+}
+
+}  // namespace
+}  // namespace skylight::render

@@ -1,0 +1,471 @@
+// Planet geometry, phase functions, optical-length tables and the fast single-scattering path.
+// Equations: see atmosphere.h (Nishita et al. 1993; Pietras §II-IV).
+#include "skylight/models/atmosphere/atmosphere.h"
+
+#include <fmt/format.h>
+#include <algorithm>
+#include <cmath>
+
+#include "skylight/core/error.h"
+#include "skylight/core/math.h"
+#include "skylight/models/atmosphere/scatter_kernel.h"
+
+namespace skylight::atmosphere {
+
+// ---- parameters ---------------------------------------------------------------------------------
+
+double Component::scattering(double nm) const {
+  return scattering_m * std::pow(reference_nm / nm, angstrom_exponent);
+}
+double Component::extinction(double nm) const {
+  return extinction_m * std::pow(reference_nm / nm, angstrom_exponent);
+}
+
+Component earth_rayleigh() {
+  return {"rayleigh", kRayleighScaleHeight, kRayleighScattering550, kRayleighScattering550,
+          550.0,      kRayleighExponent,    PhaseKind::rayleigh,    0.0};
+}
+Component earth_mie(double g) {
+  return {"mie",
+          kMieScaleHeight,
+          kMieScattering,
+          kMieExtinction,
+          550.0,
+          0.0,
+          PhaseKind::cornette_shanks,
+          g};
+}
+
+namespace {
+void require(bool ok, std::string_view field, double value, std::string_view range) {
+  if (!ok || std::isnan(value))
+    throw InvalidArgument(fmt::format("{} = {} is outside {}", field, value, range));
+}
+}  // namespace
+
+void AtmosphereParameters::validate() const {
+  require(std::isfinite(ground_radius_m) && ground_radius_m > 0, "ground radius", ground_radius_m,
+          "(0, inf) m");
+  require(std::isfinite(top_radius_m) && top_radius_m > ground_radius_m, "top radius", top_radius_m,
+          "(ground radius, inf) m");
+  require(components.size() <= kMaxComponents, "number of components",
+          static_cast<double>(components.size()), fmt::format("[0, {}]", kMaxComponents));
+  for (const auto& c : components) {
+    require(std::isfinite(c.scale_height_m) && c.scale_height_m > 0, c.name + " scale height",
+            c.scale_height_m, "(0, inf) m");
+    require(std::isfinite(c.scattering_m) && c.scattering_m >= 0, c.name + " scattering",
+            c.scattering_m, "[0, inf) m^-1");
+    require(std::isfinite(c.extinction_m) && c.extinction_m >= c.scattering_m,
+            c.name + " extinction", c.extinction_m, "[scattering, inf) m^-1");
+    require(std::isfinite(c.reference_nm) && c.reference_nm > 0, c.name + " reference wavelength",
+            c.reference_nm, "(0, inf) nm");
+    require(std::isfinite(c.angstrom_exponent), c.name + " exponent", c.angstrom_exponent,
+            "finite");
+    require(c.g > -1 && c.g < 1, c.name + " g", c.g, "(-1, 1)");
+  }
+  if (ground_albedo)
+    require(*ground_albedo >= 0 && *ground_albedo <= 1, "ground albedo", *ground_albedo, "[0, 1]");
+}
+
+// ---- phase functions ----------------------------------------------------------------------------
+
+// Rayleigh: F(mu) = 3/(16 pi) (1 + mu^2)  [sr^-1]
+double phase_rayleigh(double mu) {
+  return 3.0 / (16.0 * kPi) * (1.0 + mu * mu);
+}
+// Henyey-Greenstein 1941: F(mu) = (1 - g^2) / (4 pi (1 + g^2 - 2 g mu)^{3/2})  [sr^-1]
+double phase_henyey_greenstein(double mu, double g) {
+  const double k = 1.0 + g * g - 2.0 * g * mu;
+  return (1.0 - g * g) / (4.0 * kPi * k * std::sqrt(k));
+}
+// Cornette & Shanks 1992 (as in Nishita 1993 / Bruneton 2008):
+//   F(mu) = 3/(8 pi) (1 - g^2)(1 + mu^2) / ((2 + g^2)(1 + g^2 - 2 g mu)^{3/2})  [sr^-1]
+double phase_cornette_shanks(double mu, double g) {
+  const double k = 1.0 + g * g - 2.0 * g * mu;
+  return 3.0 / (8.0 * kPi) * (1.0 - g * g) * (1.0 + mu * mu) / ((2.0 + g * g) * k * std::sqrt(k));
+}
+double phase(const Component& c, double mu) {
+  mu = clamp_cosine(mu);
+  switch (c.phase) {
+    case PhaseKind::rayleigh:
+      return phase_rayleigh(mu);
+    case PhaseKind::henyey_greenstein:
+      return phase_henyey_greenstein(mu, c.g);
+    case PhaseKind::cornette_shanks:
+      return phase_cornette_shanks(mu, c.g);
+  }
+  return 0.0;
+}
+
+// ---- geometry -----------------------------------------------------------------------------------
+
+// |p + s d|^2 = R^2  ->  s = -b -+ sqrt(b^2 - c), b = p.d, c = |p|^2 - R^2.
+double ray_sphere_far(Vec3 p, Vec3 d, double radius) {
+  const double b = dot(p, d);
+  const double disc = b * b - (dot(p, p) - radius * radius);
+  if (disc < 0) return -1.0;
+  return -b + std::sqrt(disc);
+}
+double ray_sphere_near(Vec3 p, Vec3 d, double radius) {
+  const double b = dot(p, d);
+  const double disc = b * b - (dot(p, p) - radius * radius);
+  if (disc < 0) return -1.0;
+  return -b - std::sqrt(disc);
+}
+
+// In the planet's shadow: the sun ray p + s sun (s > 0) meets the sphere of radius R0, i.e.
+// p.sun < 0 and the distance of p from the sun axis |p - (p.sun) sun| < R0 (Pietras §III:
+// cos(theta_v) < 0 and r_v sin(theta_v) < R0).
+bool in_planet_shadow(Vec3 p, Vec3 sun, double ground_radius) {
+  const double ps = dot(p, sun);
+  return ps < 0 && dot(p, p) - ps * ps < ground_radius * ground_radius;
+}
+
+ViewRay split_view_ray(Vec3 p, Vec3 d, Vec3 sun, double R0, double Rt, double max_distance) {
+  ViewRay v;
+  const double far_top = ray_sphere_far(p, d, Rt);
+  if (far_top <= 0) return v;  // the line misses the atmosphere or it lies behind
+  double s0 = std::max(0.0, ray_sphere_near(p, d, Rt));
+  double s1 = far_top;
+  // The ground is hit when the ray descends towards a sphere it meets (an observer exactly on
+  // the ground looking down hits it at s = 0).
+  const double near_ground = ray_sphere_near(p, d, R0);
+  if (dot(p, d) < 0 && ray_sphere_far(p, d, R0) >= 0) {
+    s1 = std::max(near_ground, 0.0);
+    v.hits_ground = true;
+  }
+  s1 = std::min(s1, max_distance);
+  if (!(s1 > s0)) return v;
+  v.begin = s0;
+  v.end = s1;
+
+  double cuts[6];
+  int n = 0;
+  cuts[n++] = s0;
+  const auto add = [&](double s) {
+    if (s > s0 && s < s1) cuts[n++] = s;
+  };
+  add(-dot(p, d));  // lowest altitude of the line
+  // Shadow: |q + s e|^2 < R0^2 (q, e = p, d without their sun components) and (p + s d).sun < 0.
+  const Vec3 q = p - dot(p, sun) * sun;
+  const Vec3 e = d - dot(d, sun) * sun;
+  const double A = dot(e, e), B = dot(q, e), C = dot(q, q) - R0 * R0;
+  double lo = -std::numeric_limits<double>::infinity(), hi = -lo;
+  bool empty = false;
+  if (A > 1e-300) {
+    const double disc = B * B - A * C;
+    if (disc <= 0) {
+      empty = true;
+    } else {
+      const double sq = std::sqrt(disc);
+      lo = (-B - sq) / A;
+      hi = (-B + sq) / A;
+    }
+  } else if (C >= 0) {
+    empty = true;
+  }
+  const double ps = dot(p, sun), ds = dot(d, sun);
+  if (ds > 0) {
+    hi = std::min(hi, -ps / ds);
+  } else if (ds < 0) {
+    lo = std::max(lo, -ps / ds);
+  } else if (ps >= 0) {
+    empty = true;
+  }
+  if (!empty && lo < hi) {
+    add(lo);
+    add(hi);
+  }
+  for (int k = 1; k < n; ++k)  // insertion sort of <= 4 values
+    for (int j = k; j > 0 && cuts[j] < cuts[j - 1]; --j) std::swap(cuts[j], cuts[j - 1]);
+  cuts[n] = s1;
+  for (int k = 0; k < n; ++k) {
+    const double a = cuts[k], b = cuts[k + 1];
+    if (!(b > a)) continue;
+    RayPiece& piece = v.pieces[v.count++];
+    piece.a = a;
+    piece.b = b;
+    const Vec3 pa = p + a * d, pb = p + b * d;
+    piece.anchor_at_a = dot(pa, pa) <= dot(pb, pb);
+    piece.lit = !in_planet_shadow(p + (0.5 * (a + b)) * d, sun, R0);
+  }
+  return v;
+}
+
+// ---- optical length -----------------------------------------------------------------------------
+
+namespace {
+
+// 4-point Gauss-Legendre nodes and weights on [-1, 1] (Abramowitz & Stegun 25.4.30).
+constexpr double kGaussNodes[4] = {-0.8611363115940526, -0.3399810435848563, 0.3399810435848563,
+                                   0.8611363115940526};
+constexpr double kGaussWeights[4] = {0.3478548451374538, 0.6521451548625461, 0.6521451548625461,
+                                     0.3478548451374538};
+
+// Simpson's rule for integral_a^b rho ds with s = anchor +- L u^2, u in [0, 1], 2n intervals.
+template <class Density>
+double simpson_piece(double a, double b, bool anchor_at_a, int n, const Density& rho) {
+  const double len = b - a;
+  if (!(len > 0)) return 0.0;
+  const int m = 2 * n;
+  double sum = 0.0;
+  for (int k = 0; k <= m; ++k) {
+    const double u = static_cast<double>(k) / m;
+    const double s = anchor_at_a ? a + len * u * u : b - len * u * u;
+    const double w = (k == 0 || k == m) ? 1.0 : (k % 2 == 1 ? 4.0 : 2.0);
+    sum += w * rho(s) * 2.0 * len * u;  // ds/du = 2 L u
+  }
+  return sum / (3.0 * m);
+}
+
+}  // namespace
+
+double optical_length_quadrature(double r, double mu, double H, double R0, double Rt, int n) {
+  // Ray from (0, 0, r) with direction (sqrt(1 - mu^2), 0, mu); radius r(s)^2 = r^2 + s^2 + 2 r mu
+  // s.
+  mu = clamp_cosine(mu);
+  const double p2 = r * r * (1.0 - mu * mu);  // squared tangent radius
+  if (mu < 0 && p2 < R0 * R0) return std::numeric_limits<double>::infinity();
+  const double exit = -r * mu + safe_sqrt(r * r * (mu * mu - 1.0) + Rt * Rt);
+  const auto rho = [&](double s) {
+    return std::exp(-(std::sqrt(std::max(r * r + s * s + 2.0 * r * mu * s, 0.0)) - R0) / H);
+  };
+  if (mu >= 0) return simpson_piece(0.0, exit, true, n, rho);
+  const double tangent = -r * mu;  // lowest point of the ray
+  return simpson_piece(0.0, tangent, false, n, rho) + simpson_piece(tangent, exit, true, n, rho);
+}
+
+Spectral make_spectral(const AtmosphereParameters& p, std::span<const double> nm,
+                       std::span<const double> solar) {
+  SKYLIGHT_CHECK(nm.size() == solar.size(), "make_spectral: size mismatch");
+  Spectral s;
+  s.nm.assign(nm.begin(), nm.end());
+  s.solar.assign(solar.begin(), solar.end());
+  for (const auto& c : p.components) {
+    std::vector<double> sc, ex;
+    for (double l : nm) {
+      sc.push_back(c.scattering(l));
+      ex.push_back(c.extinction(l));
+    }
+    s.scattering.push_back(std::move(sc));
+    s.extinction.push_back(std::move(ex));
+  }
+  s.padded = (nm.size() + 15) / 16 * 16;
+  s.extinction_padded.assign(p.components.size() * s.padded, 0.0f);
+  for (std::size_t i = 0; i < p.components.size(); ++i)
+    for (std::size_t l = 0; l < nm.size(); ++l)
+      s.extinction_padded[i * s.padded + l] = static_cast<float>(s.extinction[i][l]);
+  return s;
+}
+
+// ---- tables (Pietras §II) -----------------------------------------------------------------------
+//
+// L_i[rho, mu] = optical length from the density level rho (altitude h = -H_i ln rho) along
+// cos(zenith) mu >= 0 to the top. Pietras samples rho uniformly (rho_j = j/n) and mu uniformly;
+// here rho is uniform on [rho_top, 1] (so the top row is exactly 0) and mu = x^2 with x uniform
+// on [0, 1], which puts more samples where L grows fastest, at the horizon. Each entry is
+// computed directly by optical_length_quadrature (instead of Pietras' running sum of layer
+// segments S[rho, c], which would add the interpolation error of every layer).
+
+Atmosphere::Atmosphere(const AtmosphereParameters& p, const FastSettings& s)
+    : params_(p), settings_(s) {
+  params_.validate();
+  SKYLIGHT_CHECK(
+      s.table_rho >= 2 && s.table_mu >= 2 && s.table_quadrature >= 1 && s.view_steps >= 1,
+      "Atmosphere: bad FastSettings");
+  const double R0 = p.ground_radius_m, Rt = p.top_radius_m;
+  for (const auto& c : p.components) {
+    const double H = c.scale_height_m;
+    const double rho_top = std::exp(-(Rt - R0) / H);
+    rho_top_.push_back(rho_top);
+    rho_scale_.push_back((s.table_rho - 1) / (1.0 - rho_top));
+    std::vector<float> t(static_cast<std::size_t>(s.table_rho) * s.table_mu);
+    for (int i = 0; i < s.table_rho; ++i) {
+      const double rho = rho_top + (1.0 - rho_top) * i / (s.table_rho - 1);
+      const double r = i == 0 ? Rt : std::min(Rt, R0 - H * std::log(rho));
+      for (int j = 0; j < s.table_mu; ++j) {
+        const double x = static_cast<double>(j) / (s.table_mu - 1);
+        t[static_cast<std::size_t>(i) * s.table_mu + j] =
+            i == 0 ? 0.0f
+                   : static_cast<float>(
+                         optical_length_quadrature(r, x * x, H, R0, Rt, s.table_quadrature));
+      }
+    }
+    tables_.push_back(std::move(t));
+  }
+}
+
+double Atmosphere::density(std::size_t i, double r) const {
+  return std::exp(-(r - params_.ground_radius_m) / params_.components[i].scale_height_m);
+}
+
+// The table's mu coordinate: x = sqrt(mu) (mu in [0, 1]) scaled to cells, shared by components.
+Atmosphere::MuCoord Atmosphere::mu_coord(double mu) const {
+  const int nm = settings_.table_mu;
+  const double fy = std::sqrt(std::clamp(mu, 0.0, 1.0)) * (nm - 1);
+  const int iy = std::min(static_cast<int>(fy), nm - 2);
+  return {iy, fy - iy};
+}
+
+// Bilinear lookup in (rho, sqrt(mu)).
+double Atmosphere::lookup(std::size_t i, double rho, MuCoord c) const {
+  const int nr = settings_.table_rho, nm = settings_.table_mu;
+  const double fx = std::clamp((rho - rho_top_[i]) * rho_scale_[i], 0.0, nr - 1.0);
+  const int ix = std::min(static_cast<int>(fx), nr - 2);
+  const double ax = fx - ix, ay = c.a;
+  const float* row0 = tables_[i].data() + static_cast<std::size_t>(ix) * nm + c.i;
+  const float* row1 = row0 + nm;
+  return (1 - ax) * ((1 - ay) * row0[0] + ay * row0[1]) + ax * ((1 - ay) * row1[0] + ay * row1[1]);
+}
+
+Atmosphere::Direction Atmosphere::direction(double r, double mu) const {
+  if (mu >= 0) return {mu_coord(mu), false, r};
+  return {mu_coord(-mu), true, std::max(r * safe_sqrt(1.0 - mu * mu), params_.ground_radius_m)};
+}
+
+double Atmosphere::optical_length(std::size_t i, double rho, const Direction& d) const {
+  const double l = lookup(i, rho, d.mu);
+  if (!d.reflect) return l;
+  // Pietras eq. 8: L[rho, c] = 2 L[rho_x, 0] - L[rho, -c], rho_x = min(exp((R0 - r sin a)/H), 1).
+  return std::max(2.0 * lookup(i, density(i, d.tangent_radius), MuCoord{0, 0.0}) - l, 0.0);
+}
+
+double Atmosphere::optical_length(std::size_t i, double r, double mu) const {
+  return optical_length(i, density(i, r), direction(r, mu));
+}
+
+// ---- fast single scattering (Pietras eq. 9) -----------------------------------------------------
+//
+// I = sum_v b F rho_v exp(-b (L[rho_0, cos a_0] - L[rho_v, cos a_v] + L[rho_v, cos theta_v])) dv
+// per component and wavelength. For a ray that ends on the ground the view term uses the reversed
+// (upward) rays instead, L[rho_v, -cos a_v] - L[rho_0, -cos a_0], which never cross the ground.
+// The ray is cut at its lowest point and at the shadow boundaries (split_view_ray), so the
+// integrand is smooth on each lit piece; each is integrated in u, s = anchor +- L u^2 (denser at
+// the low, dense end), by composite 4-point Gauss-Legendre (view_steps / 4 panels).
+
+void Atmosphere::single_scattering(Vec3 p, Vec3 view, Vec3 sun, const Spectral& spec,
+                                   std::span<double> out, double max_distance) const {
+  const std::size_t nl = spec.nm.size(), nc = params_.components.size();
+  SKYLIGHT_CHECK(out.size() == nl, "single_scattering: output size");
+  std::fill(out.begin(), out.end(), 0.0);
+  const double R0 = params_.ground_radius_m;
+  const ViewRay ray = split_view_ray(p, view, sun, R0, params_.top_radius_m, max_distance);
+  if (ray.count == 0) return;
+
+  // Optical lengths at the start of the ray (the observer, or where the ray enters from space).
+  const Vec3 p0 = p + ray.begin * view;
+  const double r0 = length(p0);
+  const double mu0 = dot(p0, view) / r0;
+  SKYLIGHT_CHECK(nc <= kMaxComponents, "single_scattering: too many components");
+  double t0[kMaxComponents];
+  for (std::size_t i = 0; i < nc; ++i)
+    t0[i] = ray.hits_ground ? optical_length(i, r0, -mu0) : optical_length(i, r0, mu0);
+
+  // acc[i][k] = sum over samples of rho_i T_k ds (float, see scatter_kernel.h).
+  const std::size_t np = spec.padded;
+  const float* extinction = spec.extinction_padded.data();
+  constexpr std::size_t kStackAcc = 512;
+  float acc_stack[kStackAcc];
+  std::vector<float> acc_heap;
+  float* acc = acc_stack;
+  if (nc * np > kStackAcc) {
+    acc_heap.resize(nc * np);
+    acc = acc_heap.data();
+  }
+  std::fill(acc, acc + nc * np, 0.0f);
+  const int panels = (settings_.view_steps + 3) / 4;
+  const int n = 4 * panels;
+  for (int pi = 0; pi < ray.count; ++pi) {
+    const RayPiece& piece = ray.pieces[pi];
+    if (!piece.lit) continue;
+    const double len = piece.b - piece.a;
+    for (int k = 0; k < n; ++k) {
+      // Composite 4-point Gauss-Legendre in u: panel k / 4 of n / 4, node k % 4.
+      const double h = 1.0 / panels;
+      const double u = h * (k / 4 + 0.5 * (1.0 + kGaussNodes[k % 4]));
+      const double s = piece.anchor_at_a ? piece.a + len * u * u : piece.b - len * u * u;
+      const double w = 2.0 * len * u * 0.5 * h * kGaussWeights[k % 4];
+      const Vec3 q = p + s * view;
+      const double r = length(q);
+      const double mu_v = dot(q, view) / r, mu_s = dot(q, sun) / r;
+      if (mu_s < 0 && r * r * (1.0 - mu_s * mu_s) < R0 * R0) continue;  // planet shadow
+      float rho[kMaxComponents], t[kMaxComponents];
+      const Direction dv = direction(r, ray.hits_ground ? -mu_v : mu_v), ds = direction(r, mu_s);
+      for (std::size_t i = 0; i < nc; ++i) {
+        const double rho_r = density(i, r);
+        rho[i] = static_cast<float>(rho_r * w);
+        const double lv = optical_length(i, rho_r, dv);
+        const double tv = ray.hits_ground ? lv - t0[i] : t0[i] - lv;
+        t[i] = static_cast<float>(std::max(tv, 0.0) + optical_length(i, rho_r, ds));
+      }
+      detail::accumulate_in_scatter(extinction, t, rho, nc, np, acc);
+    }
+  }
+  const double mu = dot(view, sun);
+  for (std::size_t i = 0; i < nc; ++i) {
+    const double f = phase(params_.components[i], mu);
+    const double* bs = spec.scattering[i].data();
+    const float* a = acc + i * np;
+    for (std::size_t l = 0; l < nl; ++l) out[l] += spec.solar[l] * bs[l] * f * a[l];
+  }
+
+  // Ground reflection (Lambertian, direct sunlight only) when the ray ends on the ground.
+  if (params_.ground_albedo && ray.hits_ground && ray.end < max_distance) {
+    std::vector<double> g(nl);
+    transmittance(p, view, ray.end, spec, g);
+    ground_reflection(p + ray.end * view, sun, spec, g);
+    for (std::size_t l = 0; l < nl; ++l) out[l] += *params_.ground_albedo * g[l];
+  }
+}
+
+void Atmosphere::transmittance(Vec3 p, Vec3 view, double distance, const Spectral& spec,
+                               std::span<double> out) const {
+  const std::size_t nl = spec.nm.size(), nc = params_.components.size();
+  SKYLIGHT_CHECK(out.size() == nl, "transmittance: output size");
+  std::fill(out.begin(), out.end(), 1.0);
+  const ViewRay ray =
+      split_view_ray(p, view, view, params_.ground_radius_m, params_.top_radius_m, distance);
+  if (ray.count == 0) return;
+  const Vec3 a = p + ray.begin * view, b = p + ray.end * view;
+  const double ra = length(a), rb = length(b);
+  const double ma = dot(a, view) / ra, mb = dot(b, view) / rb;
+  std::vector<double> tau(nl, 0.0);
+  for (std::size_t i = 0; i < nc; ++i) {
+    const double t = ray.hits_ground ? optical_length(i, rb, -mb) - optical_length(i, ra, -ma)
+                                     : optical_length(i, ra, ma) - optical_length(i, rb, mb);
+    for (std::size_t l = 0; l < nl; ++l) tau[l] += spec.extinction[i][l] * std::max(t, 0.0);
+  }
+  for (std::size_t l = 0; l < nl; ++l) out[l] = std::exp(-tau[l]);
+}
+
+// io[k] *= I0 / pi * max(0, n.sun) * T_sun(q)   (the reflected radiance of a white Lambertian
+// surface at q lit by the attenuated sun; 0 in the planet's shadow).
+void Atmosphere::ground_reflection(Vec3 q, Vec3 sun, const Spectral& spec,
+                                   std::span<double> io) const {
+  const double r = length(q);
+  const double mu_s = dot(q, sun) / r;
+  if (mu_s <= 0 || in_planet_shadow(q, sun, params_.ground_radius_m)) {
+    std::fill(io.begin(), io.end(), 0.0);
+    return;
+  }
+  for (std::size_t l = 0; l < spec.nm.size(); ++l) {
+    double tau = 0.0;
+    for (std::size_t i = 0; i < params_.components.size(); ++i)
+      tau += spec.extinction[i][l] * optical_length(i, r, mu_s);
+    io[l] *= spec.solar[l] / kPi * mu_s * std::exp(-tau);
+  }
+}
+
+void Atmosphere::aerial_perspective(Vec3 p, Vec3 view, double distance,
+                                    std::span<const double> albedo, Vec3 sun, const Spectral& spec,
+                                    std::span<double> out) const {
+  const std::size_t nl = spec.nm.size();
+  SKYLIGHT_CHECK(albedo.size() == nl && out.size() == nl, "aerial_perspective: sizes");
+  single_scattering(p, view, sun, spec, out, distance);
+  std::vector<double> t(nl);
+  transmittance(p, view, distance, spec, t);
+  ground_reflection(p + distance * view, sun, spec, t);
+  for (std::size_t l = 0; l < nl; ++l) out[l] += albedo[l] * t[l];
+}
+
+}  // namespace skylight::atmosphere

@@ -1,0 +1,340 @@
+#include "skylight/models/atmosphere/atmosphere.h"
+
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "skylight/core/error.h"
+
+namespace skylight::atmosphere {
+namespace {
+
+// Simpson with 2 x 256 intervals on the u^2-mapped ray: a smooth Gaussian-like integrand
+// sampled at >= 20 points per width; observed < 1e-9.
+constexpr double kQuadratureRelTol = 1e-7;
+// Table entries: Simpson with 2 x 32 intervals (observed 1e-5 at the ground for H = 1.2 km) and
+// float storage (6e-8).
+constexpr double kTableVerticalRelTol = 3e-5;
+// Bilinear interpolation in (rho, sqrt(mu)) of a 256 x 256 table, horizontal and reflected
+// (Pietras eq. 8) rays: observed <= 7.2e-5.
+constexpr double kTableHorizontalRelTol = 1e-4;
+// Above ~4 scale heights rho < 1/255 lies in the table's first rho cell (linear from rho_top):
+// observed <= 1.8e-3 relative there, on optical lengths < 2e-2 of the ground value.
+constexpr double kTableThinRelTol = 3e-3;
+// Fast path vs brute force: the criterion.
+constexpr double kFastVsReferenceRelTol = 5e-3;
+// Radiances below this fraction of the largest radiance of the same observer and planet are
+// compared absolutely: deep twilight / views of space from orbit, where a relative error of a
+// value 1e-4 of the sky's scale is immaterial.
+constexpr double kRelativeFloor = 1e-4;
+// Additivity of single scattering and multiplicativity of transmittance, both from table
+// differences (errors of the individual lookups, <= 1e-3 of the optical length).
+constexpr double kAdditivityRelTol = 2e-3;
+
+AtmosphereParameters off_earth() {
+  // A 1000 km planet with a 100 km atmosphere and its own components (no Earth constant).
+  AtmosphereParameters p;
+  p.ground_radius_m = 1000e3;
+  p.top_radius_m = 1100e3;
+  p.components = {
+      {"gas", 12e3, 2e-5, 2e-5, 500.0, 4.0, PhaseKind::rayleigh, 0.0},
+      {"dust", 3e3, 6e-6, 9e-6, 500.0, 1.0, PhaseKind::henyey_greenstein, 0.6},
+  };
+  return p;
+}
+
+Vec3 dir_el_az(double el_deg, double az_deg) {
+  return direction_from_angles(deg_to_rad(90 - el_deg), deg_to_rad(az_deg));
+}
+
+TEST(Atmosphere, VerticalOpticalLengthClosedForm) {
+  // Vertical ray from altitude h: t = H (exp(-h/H) - exp(-(r_top - R0)/H))
+  //                                 = rho(h) H (1 - exp(-(r_top - r)/H)).
+  for (const auto& p : {AtmosphereParameters{}, off_earth()}) {
+    Atmosphere atm(p);
+    for (std::size_t i = 0; i < p.components.size(); ++i) {
+      const double H = p.components[i].scale_height_m;
+      for (double h : {0.0, 1e3, 10e3, 40e3}) {
+        const double r = p.ground_radius_m + h;
+        const double exact = std::exp(-h / H) * H * (1 - std::exp(-(p.top_radius_m - r) / H));
+        const double q = optical_length_quadrature(r, 1.0, H, p.ground_radius_m, p.top_radius_m);
+        EXPECT_NEAR(q, exact, kQuadratureRelTol * exact) << "H " << H << " h " << h;
+        EXPECT_NEAR(atm.optical_length(i, r, 1.0), exact, kTableVerticalRelTol * exact)
+            << "H " << H << " h " << h;
+      }
+    }
+  }
+}
+
+TEST(Atmosphere, HorizontalAndReflectedOpticalLength) {
+  // Against a high-accuracy quadrature (2 x 20000 intervals); rays below the horizontal use the
+  // table's reflection rule L[rho, -c] = 2 L[rho_x, 0] - L[rho, c].
+  for (const auto& p : {AtmosphereParameters{}, off_earth()}) {
+    Atmosphere atm(p);
+    const double R0 = p.ground_radius_m, Rt = p.top_radius_m;
+    for (std::size_t i = 0; i < p.components.size(); ++i) {
+      const double H = p.components[i].scale_height_m;
+      for (double h : {0.0, 2e3, 20e3}) {
+        const double r = R0 + h;
+        for (double mu : {0.0, 0.01, -0.001, -0.02}) {
+          if (mu < 0 && r * std::sqrt(1 - mu * mu) < R0) continue;  // would hit the ground
+          const double exact = optical_length_quadrature(r, mu, H, R0, Rt, 20000);
+          EXPECT_NEAR(optical_length_quadrature(r, mu, H, R0, Rt), exact, kQuadratureRelTol * exact)
+              << "H " << H << " h " << h << " mu " << mu;
+          const double tol = h > 4 * H ? kTableThinRelTol : kTableHorizontalRelTol;
+          EXPECT_NEAR(atm.optical_length(i, r, mu), exact, tol * exact)
+              << "H " << H << " h " << h << " mu " << mu;
+        }
+      }
+    }
+  }
+}
+
+TEST(Atmosphere, TransmittanceMultiplicative) {
+  const AtmosphereParameters p;
+  Atmosphere atm(p);
+  const std::vector<double> nm{440, 550, 680}, one(3, 1.0);
+  const Spectral spec = make_spectral(p, nm, one);
+  for (double h : {0.0, 5e3}) {
+    const Vec3 a{0, 0, p.ground_radius_m + h};
+    for (double el : {60.0, 5.0, 0.0, -0.5}) {
+      const Vec3 d = dir_el_az(el, 30);
+      const double s1 = 40e3, s2 = 90e3;
+      std::vector<double> tab(3), tbc(3), tac(3);
+      atm.transmittance(a, d, s1, spec, tab);
+      atm.transmittance(a + s1 * d, d, s2 - s1, spec, tbc);
+      atm.transmittance(a, d, s2, spec, tac);
+      for (int l = 0; l < 3; ++l) {
+        EXPECT_GT(tac[l], 0.0);
+        EXPECT_NEAR(tab[l] * tbc[l], tac[l], kAdditivityRelTol * tac[l])
+            << "h " << h << " el " << el << " nm " << nm[l];
+      }
+    }
+  }
+}
+
+TEST(Atmosphere, FullPlanetShadowIsExactlyZero) {
+  // Sun far below the horizon: every point of the atmosphere visible from the ground (or 10 km
+  // up) is in the planet's shadow, so nothing is scattered to the observer. Earth: -30 and -60
+  // deg; the small planet's visible atmosphere spans +-25 deg of arc, so only the sun at the
+  // nadir (-90) darkens all of it.
+  for (const auto& [p, elevations] : {std::pair{AtmosphereParameters{}, std::vector{-30.0, -60.0}},
+                                      std::pair{off_earth(), std::vector{-90.0}}}) {
+    Atmosphere atm(p);
+    const std::vector<double> nm{440, 550, 680}, one(3, 1.0);
+    const Spectral spec = make_spectral(p, nm, one);
+    for (double sun_el : elevations)
+      for (double h : {0.0, 10e3})
+        for (double el : {90.0, 30.0, 5.0, 0.0, -1.0})
+          for (double az : {0.0, 90.0, 180.0}) {
+            std::vector<double> f(3), r(3);
+            const Vec3 pos{0, 0, p.ground_radius_m + h};
+            atm.single_scattering(pos, dir_el_az(el, az), dir_el_az(sun_el, 180), spec, f);
+            atm.single_scattering_reference(pos, dir_el_az(el, az), dir_el_az(sun_el, 180), spec, r,
+                                            {50, 8});
+            for (int l = 0; l < 3; ++l) {
+              EXPECT_EQ(f[l], 0.0) << "sun " << sun_el << " h " << h << " el " << el;
+              EXPECT_EQ(r[l], 0.0) << "sun " << sun_el << " h " << h << " el " << el;
+            }
+          }
+  }
+}
+
+// Fast path vs reference over altitudes, sun elevations and view directions (3 wavelengths).
+// Returns the worst relative difference and where it occurs.
+std::pair<double, std::string> sweep(const AtmosphereParameters& p) {
+  Atmosphere atm(p);
+  const std::vector<double> nm{440, 550, 680}, one(3, 1.0);
+  const Spectral spec = make_spectral(p, nm, one);
+  // Reference: 400 trapezoid intervals per piece (converged to 3e-5 against 6400 on Earth) and
+  // Simpson 2 x 32 per sun-ray piece (1e-5).
+  const ReferenceSettings rs{400, 32};
+  double worst = 0;
+  std::string where;
+  for (double h : {0.0, 1e3, 10e3, 100e3, 1000e3}) {
+    const Vec3 pos{0, 0, p.ground_radius_m + h};
+    struct Res {
+      double fast, ref;
+      std::string tag;
+    };
+    std::vector<Res> res;
+    double scale = 0;
+    // Sun at -10 ... 90 deg (exactly 0 is avoided: from the ground the observer then sits on the
+    // terminator and a horizontal view ray runs along the shadow's boundary, an ill-posed case).
+    for (double sun_el : {-10.0, -4.0, -1.0, 0.5, 2.0, 10.0, 45.0, 90.0}) {
+      const Vec3 sun = dir_el_az(sun_el, 180);
+      for (double v_el : {90.0, 30.0, 5.0, 0.0, -1.0, -5.0, -30.0, -90.0})
+        for (double v_az : {180.0, 60.0, 0.0}) {
+          std::vector<double> f(3), r(3);
+          atm.single_scattering(pos, dir_el_az(v_el, v_az), sun, spec, f);
+          atm.single_scattering_reference(pos, dir_el_az(v_el, v_az), sun, spec, r, rs);
+          for (int l = 0; l < 3; ++l) {
+            res.push_back({f[l], r[l],
+                           fmt::format("h {} m, sun el {}, view el {} az {}, {} nm", h, sun_el,
+                                       v_el, v_az, nm[l])});
+            scale = std::max(scale, r[l]);
+          }
+        }
+    }
+    for (const auto& x : res) {
+      const double d = std::abs(x.fast - x.ref) / std::max(x.ref, kRelativeFloor * scale);
+      if (d > worst) {
+        worst = d;
+        where = fmt::format("{}: fast {} reference {}", x.tag, x.fast, x.ref);
+      }
+    }
+  }
+  return {worst, where};
+}
+
+TEST(Atmosphere, FastMatchesReferenceEarth) {
+  const auto [worst, where] = sweep(AtmosphereParameters{});
+  std::printf("Earth: worst fast/reference relative difference %.3g at %s\n", worst, where.c_str());
+  EXPECT_LT(worst, kFastVsReferenceRelTol) << where;
+}
+
+TEST(Atmosphere, FastMatchesReferenceOffEarth) {
+  const auto [worst, where] = sweep(off_earth());
+  std::printf("Off-Earth: worst fast/reference relative difference %.3g at %s\n", worst,
+              where.c_str());
+  EXPECT_LT(worst, kFastVsReferenceRelTol) << where;
+}
+
+TEST(Atmosphere, SingleScatteringIsAdditiveAlongTheRay) {
+  // Pietras §IV: the light scattered between p and q is the difference of two evaluations,
+  // I(p) = I(p -> q) + T(p, q) I(q).
+  const AtmosphereParameters p;
+  Atmosphere atm(p);
+  const std::vector<double> nm{440, 550, 680}, one(3, 1.0);
+  const Spectral spec = make_spectral(p, nm, one);
+  const Vec3 o{0, 0, p.ground_radius_m + 300}, sun = dir_el_az(20, 180);
+  for (double el : {10.0, 1.0, -0.3}) {
+    const Vec3 d = dir_el_az(el, 150);
+    const double dist = 30e3;
+    std::vector<double> full(3), part(3), rest(3), t(3);
+    atm.single_scattering(o, d, sun, spec, full);
+    atm.single_scattering(o, d, sun, spec, part, dist);
+    atm.single_scattering(o + dist * d, d, sun, spec, rest);
+    atm.transmittance(o, d, dist, spec, t);
+    for (int l = 0; l < 3; ++l)
+      EXPECT_NEAR(part[l] + t[l] * rest[l], full[l], kAdditivityRelTol * full[l])
+          << "el " << el << " nm " << nm[l];
+  }
+}
+
+TEST(Atmosphere, AerialPerspectiveOfABlackSurfaceIsTheInScatteredLight) {
+  const AtmosphereParameters p;
+  Atmosphere atm(p);
+  const std::vector<double> nm{440, 550, 680}, one(3, 1.0), black(3, 0.0), white(3, 1.0);
+  const Spectral spec = make_spectral(p, nm, one);
+  const Vec3 o{0, 0, p.ground_radius_m + 2000}, sun = dir_el_az(40, 180);
+  const Vec3 d = dir_el_az(-3, 170);
+  const double dist = 20e3;
+  std::vector<double> a(3), b(3), w(3), t(3);
+  atm.aerial_perspective(o, d, dist, black, sun, spec, a);
+  atm.single_scattering(o, d, sun, spec, b, dist);
+  atm.aerial_perspective(o, d, dist, white, sun, spec, w);
+  atm.transmittance(o, d, dist, spec, t);
+  for (int l = 0; l < 3; ++l) {
+    EXPECT_EQ(a[l], b[l]);
+    EXPECT_GT(w[l], a[l]);  // a lit white surface adds light
+    EXPECT_LT(t[l], 1.0);
+    if (l > 0) {
+      EXPECT_GT(t[l], t[l - 1]);  // blue is attenuated most (nm ascending)
+    }
+  }
+}
+
+TEST(Atmosphere, RayleighColourRatios) {
+  // Pure Rayleigh atmosphere (Earth): B/R = I(440 nm)/I(680 nm), unit solar irradiance.
+  AtmosphereParameters p;
+  p.components = {earth_rayleigh()};
+  Atmosphere atm(p);
+  const std::vector<double> nm{440, 680}, one(2, 1.0);
+  const Spectral spec = make_spectral(p, nm, one);
+  const Vec3 o{0, 0, p.ground_radius_m};
+  const auto blue_red = [&](double sun_el, Vec3 view) {
+    std::vector<double> f(2);
+    atm.single_scattering(o, view, dir_el_az(sun_el, 180), spec, f);
+    return f[0] / f[1];
+  };
+  const double zenith_high = blue_red(60, {0, 0, 1});
+  const double horizon_high = blue_red(60, dir_el_az(1, 0));
+  const double horizon_sunset = blue_red(1, dir_el_az(1, 180));
+  const double zenith_sunset = blue_red(1, {0, 0, 1});
+  std::printf(
+      "Rayleigh B/R (440/680 nm): sun 60 deg: zenith %.3f, horizon (1 deg, north) %.3f; "
+      "sun 1 deg: zenith %.3f, horizon towards the sun %.3f\n",
+      zenith_high, horizon_high, zenith_sunset, horizon_sunset);
+  // Optically thin zenith: close to the lambda^-4 ratio (680/440)^4 = 5.71; the long horizontal
+  // path saturates the blue and lowers the ratio.
+  EXPECT_GT(zenith_high, horizon_high);
+  EXPECT_GT(zenith_high, 3.0);
+  EXPECT_LT(zenith_high, 5.71);
+  // Near sunset the light towards the sun has crossed ~38 air masses: red dominates.
+  EXPECT_LT(horizon_sunset, 1.0);
+  EXPECT_LT(horizon_sunset, horizon_high);
+}
+
+TEST(Atmosphere, GroundReflectionMatchesReference) {
+  // Lambertian ground (albedo 0.3) seen from 1 km and 100 km: fast (tables) vs reference
+  // (quadrature) transmittances of the reflected sunlight plus the in-scattered light.
+  AtmosphereParameters p;
+  p.ground_albedo = 0.3;
+  Atmosphere atm(p);
+  const std::vector<double> nm{440, 550, 680}, one(3, 1.0);
+  const Spectral spec = make_spectral(p, nm, one);
+  for (double h : {1e3, 100e3})
+    for (double sun_el : {5.0, 30.0, 80.0})
+      for (double el : {-10.0, -45.0, -90.0}) {
+        const Vec3 pos{0, 0, p.ground_radius_m + h};
+        std::vector<double> f(3), r(3), plain(3);
+        atm.single_scattering(pos, dir_el_az(el, 20), dir_el_az(sun_el, 180), spec, f);
+        atm.single_scattering_reference(pos, dir_el_az(el, 20), dir_el_az(sun_el, 180), spec, r,
+                                        {200, 32});
+        for (int l = 0; l < 3; ++l)
+          EXPECT_NEAR(f[l], r[l], kFastVsReferenceRelTol * r[l])
+              << "h " << h << " sun " << sun_el << " el " << el << " nm " << nm[l];
+      }
+}
+
+TEST(Atmosphere, BadParametersAreRejected) {
+  const auto bad = [](auto change) {
+    AtmosphereParameters p;
+    change(p);
+    return p;
+  };
+  EXPECT_THROW(Atmosphere(bad([](auto& p) { p.top_radius_m = p.ground_radius_m; })),
+               InvalidArgument);
+  EXPECT_THROW(Atmosphere(bad([](auto& p) { p.ground_radius_m = -1; })), InvalidArgument);
+  EXPECT_THROW(Atmosphere(bad([](auto& p) { p.components[0].scale_height_m = 0; })),
+               InvalidArgument);
+  EXPECT_THROW(Atmosphere(bad([](auto& p) { p.components[1].g = 1.0; })), InvalidArgument);
+  EXPECT_THROW(Atmosphere(bad([](auto& p) { p.components[1].extinction_m = 1e-6; })),
+               InvalidArgument);
+  EXPECT_THROW(Atmosphere(bad([](auto& p) { p.ground_albedo = 1.5; })), InvalidArgument);
+  EXPECT_THROW(
+      Atmosphere(bad([](auto& p) { p.components.resize(kMaxComponents + 1, earth_mie()); })),
+      InvalidArgument);
+  EXPECT_THROW(Atmosphere(bad([](auto& p) { p.components[0].scattering_m = std::nan(""); })),
+               InvalidArgument);
+}
+
+TEST(Atmosphere, PhaseFunctionsAreNormalised) {
+  // Integral over the sphere of F = 1 (2 pi integral_{-1}^{1} F(mu) dmu), midpoint rule.
+  constexpr double kNormTol = 1e-4;  // 20000 midpoints, peaked g = 0.8 lobes
+  for (const auto& c : {earth_rayleigh(), earth_mie(),
+                        Component{"hg", 1, 0, 0, 550, 0, PhaseKind::henyey_greenstein, 0.7}}) {
+    double sum = 0;
+    const int n = 20000;
+    for (int k = 0; k < n; ++k) sum += phase(c, -1 + 2.0 * (k + 0.5) / n) * 2.0 / n;
+    EXPECT_NEAR(2 * kPi * sum, 1.0, kNormTol) << c.name;
+  }
+}
+
+}  // namespace
+}  // namespace skylight::atmosphere

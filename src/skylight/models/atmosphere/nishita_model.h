@@ -1,0 +1,63 @@
+// The `nishita` sky model: single scattering in a spherical planet's exponential atmosphere
+// (Nishita et al. 1993; fast path of Pietras with optical-length tables), see atmosphere.h.
+//
+// Outputs, for an observer at SkyParameters::observer_altitude_m above the ground at the
+// north pole of the planet frame (ENU = planet frame), looking in any direction (below the
+// horizon included: the in-scattered light up to the ground; from orbit: the planet and its limb):
+//  * spectral_radiance(view, nm) = I(lambda) [W m^-2 sr^-1 nm^-1] for the ASTM G-173 solar
+//    spectrum (data/bruneton/), or [sr^-1] x the flat irradiance SkyParameters::solar_irradiance;
+//    360-830 nm (the solar table's range).
+//  * tristimulus(view) = K_m sum_k (x, y, z)-bar(lambda_k) I(lambda_k) d lambda over
+//  kXyzWavelengths
+//    (20 nm bins, 390-770 nm midpoints): Y in cd/m^2 for the real spectrum; with a flat unit
+//    irradiance Y is in "cd/m^2 per W m^-2 nm^-1". Difference against a 5 nm trapezoid
+//    integration: see nishita_model_test.cpp.
+//  * No solar disc (has_sun() = false); the ground reflects only if atmosphere->ground_albedo.
+#pragma once
+
+#include <array>
+#include <memory>
+
+#include "skylight/models/atmosphere/atmosphere.h"
+#include "skylight/models/sky_model.h"
+
+namespace skylight {
+
+// Wavelengths of the XYZ integration [nm]: midpoints of 20 nm bins 380-780 nm.
+inline constexpr int kNishitaXyzCount = 20;
+inline constexpr double kNishitaXyzStep = 20.0;    // [nm]
+inline constexpr double kNishitaXyzFirst = 390.0;  // [nm]
+// Spectral range of spectral_radiance (the solar table's) [nm].
+inline constexpr double kNishitaMinNm = 360.0;
+inline constexpr double kNishitaMaxNm = 830.0;
+// Observer altitude range [m]: ground to 10 000 km.
+inline constexpr double kNishitaMaxAltitude = 1e7;
+
+// Extraterrestrial solar spectral irradiance [W m^-2 nm^-1] at nm (ASTM G-173 ETR in 10 nm bins,
+// Bruneton 2017), linear between bin values; 0 outside 360-830 nm.
+double solar_spectral_irradiance(double nm);
+
+class NishitaModel final : public SkyModel {
+ public:
+  explicit NishitaModel(const SkyParameters& params, const atmosphere::FastSettings& settings = {});
+  std::string_view name() const override { return "nishita"; }
+  Xyz tristimulus(Vec3 view) const override;
+  std::optional<double> spectral_radiance(Vec3 view, double nm) const override;
+  Domain domain() const override;
+
+  const atmosphere::Atmosphere& atmosphere() const { return *atmosphere_; }
+  Vec3 observer() const { return observer_; }  // planet-centred position [m]
+  // The reference path's XYZ (brute force; tests and benchmarks only: ~1000x slower).
+  Xyz tristimulus_reference(Vec3 view, const atmosphere::ReferenceSettings& rs = {}) const;
+
+ private:
+  Xyz to_xyz(const std::array<double, kNishitaXyzCount>& radiance) const;
+  double irradiance(double nm) const;
+
+  std::unique_ptr<atmosphere::Atmosphere> atmosphere_;
+  atmosphere::Spectral xyz_spectral_;
+  std::array<Cmf, kNishitaXyzCount> cmf_{};  // CIE 1931 CMFs at the XYZ wavelengths
+  Vec3 observer_, sun_;
+};
+
+}  // namespace skylight
