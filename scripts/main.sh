@@ -19,6 +19,7 @@ skies=(
   "cie_type7|--model cie --cie-type 7"
   "cie_type16|--model cie --cie-type 16"
   "hosek_T3|--model hosek --turbidity 3 --albedo 0.3"
+  "nishita_earth|--model nishita"
   "perez_clear|--model perez --perez -1,-0.32,10,-3,0.45 --zenith-luminance 5000"
 )
 n=${#skies[@]}; i=0
