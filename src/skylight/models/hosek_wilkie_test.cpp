@@ -12,8 +12,8 @@
 #include <sstream>
 #include <tuple>
 
-#include "skylight/models/batch_check.h"
 #include <vector>
+#include "skylight/models/batch_check.h"
 
 #include "skylight/core/data.h"
 #include "skylight/core/error.h"
@@ -44,19 +44,33 @@ double rel_error(double got, double want) {
 
 using StateKey = std::tuple<double, double, double>;
 
+// Spectral states by (turbidity, albedo, elevation [rad]), built once: the reference files list
+// many directions per state.
+class SpectralStates {
+ public:
+  const HwSpectralState& get(double turbidity, double albedo, double elevation) {
+    const StateKey key{turbidity, albedo, elevation};
+    auto it = states_.find(key);
+    if (it == states_.end())
+      it = states_.emplace(key, hw_spectral_state({turbidity, albedo, elevation})).first;
+    return it->second;
+  }
+
+ private:
+  std::map<StateKey, HwSpectralState> states_;
+};
+
 TEST(HosekReference, SpectralSkyAllRows) {
   const auto t = reference_table("hw_ref_spectral_sky.csv");
   ASSERT_EQ(t.rows(), 18144u);
-  std::map<StateKey, HwSpectralState> states;
+  SpectralStates states;
   double worst = 0.0;
   std::size_t worst_row = 0;
   for (std::size_t r = 0; r < t.rows(); ++r) {
-    const double T = t.number(r, 0), alb = t.number(r, 1), elev = deg_to_rad(t.number(r, 2));
-    auto it = states.find({T, alb, elev});
-    if (it == states.end())
-      it = states.emplace(StateKey{T, alb, elev}, hw_spectral_state({T, alb, elev})).first;
+    const double elev = deg_to_rad(t.number(r, 2));
+    const HwSpectralState& state = states.get(t.number(r, 0), t.number(r, 1), elev);
     const double got =
-        hw_spectral_radiance(it->second, {t.number(r, 5), t.number(r, 6)}, t.number(r, 7));
+        hw_spectral_radiance(state, {t.number(r, 5), t.number(r, 6)}, t.number(r, 7));
     const double e = rel_error(got, t.number(r, 8));
     if (e > worst) worst = e, worst_row = r;
   }
@@ -92,17 +106,14 @@ TEST(HosekReference, TristimulusSkyAllRows) {
 TEST(HosekReference, SolarRadianceAllRows) {
   const auto t = reference_table("hw_ref_solar_radiance.csv");
   ASSERT_EQ(t.rows(), 6048u);
-  std::map<StateKey, HwSpectralState> states;
+  SpectralStates states;
   double worst = 0.0;
   std::size_t worst_row = 0;
   for (std::size_t r = 0; r < t.rows(); ++r) {
-    const double T = t.number(r, 0), alb = t.number(r, 1), elev = deg_to_rad(t.number(r, 2));
-    auto it = states.find({T, alb, elev});
-    if (it == states.end())
-      it = states.emplace(StateKey{T, alb, elev}, hw_spectral_state({T, alb, elev})).first;
+    const double elev = deg_to_rad(t.number(r, 2));
+    const HwSpectralState& state = states.get(t.number(r, 0), t.number(r, 1), elev);
     // theta = the sun's zenith angle (reference_values/PROVENANCE.md).
-    const double got =
-        hw_solar_radiance(it->second, {0.5 * kPi - elev, t.number(r, 3)}, t.number(r, 4));
+    const double got = hw_solar_radiance(state, {0.5 * kPi - elev, t.number(r, 3)}, t.number(r, 4));
     const double e = rel_error(got, t.number(r, 5));
     if (e > worst) worst = e, worst_row = r;
   }
