@@ -214,6 +214,27 @@ TEST_F(Cli, EvalNishitaUnitIrradianceAndObserverAltitude) {
   EXPECT_GT(rows[2][2], 0.01);
 }
 
+TEST_F(Cli, EvalNishitaOzoneAbsorbsInTheChappuisBand) {
+  // Sun at 2 deg: the zenith's light crosses the ozone layer obliquely. Ozone only absorbs, most
+  // near 600 nm (cross-section 5.2e-25 m^2 vs 6.6e-27 at 440 nm).
+  const std::string in = "zenith_deg,azimuth_deg\n0,0\n";
+  const std::string q =
+      "eval --model nishita --sun-elevation 2 --solar-irradiance 1 --quantity "
+      "spectral --wavelengths 440,600";
+  const Result a = run(q, in), b = run(q + " --ozone 300", in);
+  ASSERT_EQ(a.status, 0) << a.err;
+  ASSERT_EQ(b.status, 0) << b.err;
+  std::string header;
+  const auto ra = parse_csv_numbers(a.out, &header), rb = parse_csv_numbers(b.out, &header);
+  ASSERT_EQ(ra.size(), 1u);
+  ASSERT_EQ(rb.size(), 1u);
+  const double loss440 = rb[0][2] / ra[0][2], loss600 = rb[0][3] / ra[0][3];
+  EXPECT_LT(loss440, 1.0);
+  EXPECT_LT(loss600, loss440);
+  EXPECT_GT(loss440, 0.95);  // 440 nm: ozone optical depth ~0.001 per column crossed
+  EXPECT_EQ(run("eval --model nishita --ozone -1", in).status, 2);
+}
+
 TEST_F(Cli, RenderNishitaFromOrbitWithCamera) {
   const fs::path exr = dir_ / "orbit.exr";
   const Result r =

@@ -64,7 +64,7 @@ struct ModelFlags {
   // nishita (physically based): observer, sun irradiance, planet and atmosphere overrides.
   double observer_altitude_m = 0.0;
   std::optional<double> solar_irradiance, ground_radius_m, top_radius_m, rayleigh_scale_height_m,
-      mie_scale_height_m, mie_g;
+      mie_scale_height_m, mie_g, ozone_du;
   std::optional<double> zenith_luminance;
   std::vector<double> perez;
   bool include_sun = false, sun_only = false;
@@ -115,6 +115,10 @@ struct ModelFlags {
                    "Mie Cornette-Shanks asymmetry g [1], -0.999-0.999; default "
                    "0.8 (nishita)")
         ->check(finite_range(-0.999, 0.999, "1"));
+    app.add_option("--ozone", ozone_du,
+                   "add an ozone layer (absorption only; tent 10-40 km peaking at 25 km) holding "
+                   "this column [Dobson units], 0-1000; Earth ~300; default: none (nishita)")
+        ->check(finite_range(0, 1000, "DU"));
     app.add_option("--cie-type", cie_type,
                    "CIE sky type 1-15, 16 = traditional overcast; default 12")
         ->check(CLI::Range(1, 16));
@@ -145,7 +149,7 @@ struct ModelFlags {
     p.observer_altitude_m = observer_altitude_m;
     p.solar_irradiance = solar_irradiance;
     if (albedo || ground_radius_m || top_radius_m || rayleigh_scale_height_m ||
-        mie_scale_height_m || mie_g) {
+        mie_scale_height_m || mie_g || ozone_du) {
       sl::atmosphere::AtmosphereParameters a;
       if (ground_radius_m) {
         a.ground_radius_m = *ground_radius_m;
@@ -159,6 +163,7 @@ struct ModelFlags {
       if (rayleigh_scale_height_m) a.components[0].scale_height_m = *rayleigh_scale_height_m;
       if (mie_scale_height_m) a.components[1].scale_height_m = *mie_scale_height_m;
       if (mie_g) a.components[1].g = *mie_g;
+      if (ozone_du) a.components.push_back(sl::atmosphere::earth_ozone(*ozone_du));
       a.ground_albedo = albedo;
       p.atmosphere = a;
     }
@@ -202,10 +207,12 @@ struct ModelFlags {
     if (p.atmosphere)
       md.emplace_back(
           "skylight:atmosphere",
-          fmt::format("ground_radius_m={} top_radius_m={} rayleigh_H_m={} mie_H_m={} mie_g={}",
-                      p.atmosphere->ground_radius_m, p.atmosphere->top_radius_m,
-                      p.atmosphere->components[0].scale_height_m,
-                      p.atmosphere->components[1].scale_height_m, p.atmosphere->components[1].g));
+          fmt::format(
+              "ground_radius_m={} top_radius_m={} rayleigh_H_m={} mie_H_m={} mie_g={} ozone_DU={}",
+              p.atmosphere->ground_radius_m, p.atmosphere->top_radius_m,
+              p.atmosphere->components[0].scale_height_m,
+              p.atmosphere->components[1].scale_height_m, p.atmosphere->components[1].g,
+              ozone_du.value_or(0.0)));
     if (zenith_luminance)
       md.emplace_back("skylight:zenith_luminance_cd_m2", fmt::format("{}", *zenith_luminance));
     if (!perez.empty())

@@ -102,7 +102,8 @@ const std::vector<ModelInfo>& model_registry() {
     r.push_back(ModelInfo{
         "nishita",
         "Physically based single scattering (Nishita et al. 1993) in a spherical planet's "
-        "exponential Rayleigh + Mie atmosphere, fast path with Pietras' optical-length tables; "
+        "exponential Rayleigh + Mie atmosphere (optional ozone layer), fast path with Pietras' "
+        "optical-length tables; "
         "Earth defaults, any observer altitude (ground to orbit), planet shadow at twilight",
         "XYZ with Y [cd/m^2] for the ASTM G-173 extraterrestrial sun (20 nm bins 380-780 nm); "
         "spectral radiance [W m^-2 sr^-1 nm^-1] 360-830 nm; with --solar-irradiance E both per "
@@ -119,7 +120,9 @@ const std::vector<ModelInfo>& model_registry() {
          {"top-radius", "m", 1.0, 1e9, "6420e3", "top of the atmosphere (> ground radius)"},
          {"rayleigh-scale-height", "m", 1.0, 1e7, "8000", "Rayleigh scale height H_R"},
          {"mie-scale-height", "m", 1.0, 1e7, "1200", "Mie scale height H_M"},
-         {"mie-g", "1", -0.999, 0.999, "0.8", "Cornette-Shanks asymmetry g"}},
+         {"mie-g", "1", -0.999, 0.999, "0.8", "Cornette-Shanks asymmetry g"},
+         {"ozone", "DU", 0.0, 1000.0, "none",
+          "ozone column of an absorbing layer at 10-40 km (Bruneton 2017 profile)"}},
         "any observer altitude 0-10000 km, any view direction, sun at any elevation (below the "
         "horizon: single scattering with the planet's shadow, flagged extrapolated); fast path "
         "within 0.5 % of the brute-force reference (tested)",

@@ -6,9 +6,9 @@
 #include <algorithm>
 #include <cmath>
 
+#include "skylight/core/data.h"
 #include "skylight/core/error.h"
 #include "skylight/core/math.h"
-#include "skylight/models/atmosphere/scatter_kernel.h"
 
 namespace skylight::atmosphere {
 
@@ -18,7 +18,37 @@ double Component::scattering(double nm) const {
   return scattering_m * std::pow(reference_nm / nm, angstrom_exponent);
 }
 double Component::extinction(double nm) const {
-  return extinction_m * std::pow(reference_nm / nm, angstrom_exponent);
+  double absorption = 0.0;
+  const auto& x = absorption_nm;
+  if (!x.empty() && nm >= x.front() && nm <= x.back()) {
+    const auto it = std::upper_bound(x.begin(), x.end(), nm);
+    const std::size_t i = it == x.end() ? x.size() - 1 : static_cast<std::size_t>(it - x.begin());
+    if (i == 0 || x[i] == nm) {
+      absorption = absorption_m[i];
+    } else {
+      const double a = (nm - x[i - 1]) / (x[i] - x[i - 1]);
+      absorption = (1.0 - a) * absorption_m[i - 1] + a * absorption_m[i];
+    }
+  }
+  return extinction_m * std::pow(reference_nm / nm, angstrom_exponent) + absorption;
+}
+double Component::density(double h) const {
+  if (profile == Profile::tent)
+    return std::max(0.0, 1.0 - std::abs(h - peak_altitude_m) / half_width_m);
+  return std::exp(-h / scale_height_m);
+}
+
+const ReferenceSpectra& bruneton_spectra() {
+  static const ReferenceSpectra t = [] {
+    constexpr std::string_view kPath = "bruneton/bruneton2017_solar_irradiance_ozone_xsec.csv";
+    const auto csv = data::load_table(kPath, /*has_header=*/true, 3);
+    ReferenceSpectra s{csv.numbers(0), csv.numbers(1), csv.numbers(2)};
+    for (std::size_t i = 1; i < s.nm.size(); ++i)
+      if (!(s.nm[i] > s.nm[i - 1]))
+        throw IoError(fmt::format("{}: wavelengths must ascend (row {})", kPath, i + 1));
+    return s;
+  }();
+  return t;
 }
 
 Component earth_rayleigh() {
@@ -34,6 +64,18 @@ Component earth_mie(double g) {
           0.0,
           PhaseKind::cornette_shanks,
           g};
+}
+Component earth_ozone(double dobson) {
+  Component c;
+  c.name = "ozone";
+  c.profile = Profile::tent;
+  c.peak_altitude_m = kOzonePeakAltitude;
+  c.half_width_m = kOzoneHalfWidth;
+  const double peak_density = dobson * kDobsonUnit / kOzoneHalfWidth;  // [molecules m^-3]
+  const ReferenceSpectra& s = bruneton_spectra();
+  c.absorption_nm = s.nm;
+  for (double x : s.ozone_cross_section) c.absorption_m.push_back(peak_density * x);
+  return c;
 }
 
 namespace {
@@ -51,8 +93,9 @@ void AtmosphereParameters::validate() const {
   require(components.size() <= kMaxComponents, "number of components",
           static_cast<double>(components.size()), fmt::format("[0, {}]", kMaxComponents));
   for (const auto& c : components) {
-    require(std::isfinite(c.scale_height_m) && c.scale_height_m > 0, c.name + " scale height",
-            c.scale_height_m, "(0, inf) m");
+    if (c.profile == Profile::exponential)
+      require(std::isfinite(c.scale_height_m) && c.scale_height_m > 0, c.name + " scale height",
+              c.scale_height_m, "(0, inf) m");
     require(std::isfinite(c.scattering_m) && c.scattering_m >= 0, c.name + " scattering",
             c.scattering_m, "[0, inf) m^-1");
     require(std::isfinite(c.extinction_m) && c.extinction_m >= c.scattering_m,
@@ -62,6 +105,23 @@ void AtmosphereParameters::validate() const {
     require(std::isfinite(c.angstrom_exponent), c.name + " exponent", c.angstrom_exponent,
             "finite");
     require(c.g > -1 && c.g < 1, c.name + " g", c.g, "(-1, 1)");
+    if (c.profile == Profile::tent) {
+      require(std::isfinite(c.peak_altitude_m), c.name + " peak altitude", c.peak_altitude_m,
+              "finite m");
+      require(std::isfinite(c.half_width_m) && c.half_width_m > 0, c.name + " half width",
+              c.half_width_m, "(0, inf) m");
+    }
+    require(c.absorption_nm.size() == c.absorption_m.size(), c.name + " absorption table size",
+            static_cast<double>(c.absorption_m.size()),
+            fmt::format("{} (the number of wavelengths)", c.absorption_nm.size()));
+    for (std::size_t k = 0; k < c.absorption_nm.size(); ++k) {
+      require(std::isfinite(c.absorption_nm[k]) && c.absorption_nm[k] > 0 &&
+                  (k == 0 || c.absorption_nm[k] > c.absorption_nm[k - 1]),
+              fmt::format("{} absorption wavelength [{}]", c.name, k), c.absorption_nm[k],
+              "(previous wavelength, inf) nm");
+      require(std::isfinite(c.absorption_m[k]) && c.absorption_m[k] >= 0,
+              fmt::format("{} absorption [{}]", c.name, k), c.absorption_m[k], "[0, inf) m^-1");
+    }
   }
   if (ground_albedo)
     require(*ground_albedo >= 0 && *ground_albedo <= 1, "ground albedo", *ground_albedo, "[0, 1]");
@@ -121,7 +181,10 @@ bool in_planet_shadow(Vec3 p, Vec3 sun, double ground_radius) {
   return ps < 0 && dot(p, p) - ps * ps < ground_radius * ground_radius;
 }
 
-ViewRay split_view_ray(Vec3 p, Vec3 d, Vec3 sun, double R0, double Rt, double max_distance) {
+ViewRay split_view_ray(Vec3 p, Vec3 d, Vec3 sun, double R0, double Rt, double max_distance,
+                       std::span<const double> cut_radii) {
+  SKYLIGHT_CHECK(cut_radii.size() <= static_cast<std::size_t>(kMaxCutRadii),
+                 "split_view_ray: too many cut radii");
   ViewRay v;
   const double far_top = ray_sphere_far(p, d, Rt);
   if (far_top <= 0) return v;  // the line misses the atmosphere or it lies behind
@@ -139,13 +202,20 @@ ViewRay split_view_ray(Vec3 p, Vec3 d, Vec3 sun, double R0, double Rt, double ma
   v.begin = s0;
   v.end = s1;
 
-  double cuts[6];
+  double cuts[kMaxRayPieces + 1];
   int n = 0;
   cuts[n++] = s0;
   const auto add = [&](double s) {
     if (s > s0 && s < s1) cuts[n++] = s;
   };
-  add(-dot(p, d));  // lowest altitude of the line
+  const double pd = dot(p, d);
+  add(-pd);                      // lowest altitude of the line
+  for (double rc : cut_radii) {  // |p + s d| = rc
+    const double disc = pd * pd - (dot(p, p) - rc * rc);
+    if (disc <= 0) continue;
+    add(-pd - std::sqrt(disc));
+    add(-pd + std::sqrt(disc));
+  }
   // Shadow: |q + s e|^2 < R0^2 (q, e = p, d without their sun components) and (p + s d).sun < 0.
   const Vec3 q = p - dot(p, sun) * sun;
   const Vec3 e = d - dot(d, sun) * sun;
@@ -176,8 +246,7 @@ ViewRay split_view_ray(Vec3 p, Vec3 d, Vec3 sun, double R0, double Rt, double ma
     add(lo);
     add(hi);
   }
-  for (int k = 1; k < n; ++k)  // insertion sort of <= 4 values
-    for (int j = k; j > 0 && cuts[j] < cuts[j - 1]; --j) std::swap(cuts[j], cuts[j - 1]);
+  std::sort(cuts + 1, cuts + n);
   cuts[n] = s1;
   for (int k = 0; k < n; ++k) {
     const double a = cuts[k], b = cuts[k + 1];
@@ -220,19 +289,45 @@ double simpson_piece(double a, double b, bool anchor_at_a, int n, const Density&
 
 }  // namespace
 
-double optical_length_quadrature(double r, double mu, double H, double R0, double Rt, int n) {
-  // Ray from (0, 0, r) with direction (sqrt(1 - mu^2), 0, mu); radius r(s)^2 = r^2 + s^2 + 2 r mu
-  // s.
+double optical_length_quadrature(double r, double mu, const Component& c, double R0, double Rt,
+                                 int n) {
+  // Ray from (0, 0, r) with direction (sqrt(1 - mu^2), 0, mu); radius r(s)^2 = r^2 + s^2 +
+  // 2 r mu s.
   mu = clamp_cosine(mu);
   const double p2 = r * r * (1.0 - mu * mu);  // squared tangent radius
   if (mu < 0 && p2 < R0 * R0) return std::numeric_limits<double>::infinity();
   const double exit = -r * mu + safe_sqrt(r * r * (mu * mu - 1.0) + Rt * Rt);
   const auto rho = [&](double s) {
-    return std::exp(-(std::sqrt(std::max(r * r + s * s + 2.0 * r * mu * s, 0.0)) - R0) / H);
+    return c.density(std::sqrt(std::max(r * r + s * s + 2.0 * r * mu * s, 0.0)) - R0);
   };
-  if (mu >= 0) return simpson_piece(0.0, exit, true, n, rho);
+  // A tent's density has kinks at three altitudes: the ray is also cut where it crosses them, so
+  // that Simpson's rule integrates a smooth function on every piece.
+  double kinks[3];
+  int nk = 0;
+  if (c.profile == Profile::tent)
+    for (double h : {c.peak_altitude_m - c.half_width_m, c.peak_altitude_m,
+                     c.peak_altitude_m + c.half_width_m})
+      if (R0 + h > std::sqrt(p2) && R0 + h < Rt) kinks[nk++] = R0 + h;
+  // integral over [a, b] on which r(s) is monotone (rising: anchored at a), cut at the kinks.
+  const auto monotone = [&](double a, double b, bool rising) {
+    double cuts[5];
+    int m = 0;
+    cuts[m++] = a;
+    for (int k = 0; k < nk; ++k) {
+      const double root = safe_sqrt(r * r * (mu * mu - 1.0) + kinks[k] * kinks[k]);
+      const double sk = rising ? -r * mu + root : -r * mu - root;
+      if (sk > a && sk < b) cuts[m++] = sk;
+    }
+    for (int k = 2; k < m; ++k)  // insertion sort of <= 3 values
+      for (int j = k; j > 1 && cuts[j] < cuts[j - 1]; --j) std::swap(cuts[j], cuts[j - 1]);
+    cuts[m] = b;
+    double sum = 0.0;
+    for (int k = 0; k < m; ++k) sum += simpson_piece(cuts[k], cuts[k + 1], rising, n, rho);
+    return sum;
+  };
+  if (mu >= 0) return monotone(0.0, exit, true);
   const double tangent = -r * mu;  // lowest point of the ray
-  return simpson_piece(0.0, tangent, false, n, rho) + simpson_piece(tangent, exit, true, n, rho);
+  return monotone(0.0, tangent, false) + monotone(tangent, exit, true);
 }
 
 Spectral make_spectral(const AtmosphereParameters& p, std::span<const double> nm,
@@ -250,7 +345,7 @@ Spectral make_spectral(const AtmosphereParameters& p, std::span<const double> nm
     s.scattering.push_back(std::move(sc));
     s.extinction.push_back(std::move(ex));
   }
-  s.padded = (nm.size() + 15) / 16 * 16;
+  s.padded = (nm.size() + 3) / 4 * 4;
   s.extinction_padded.assign(p.components.size() * s.padded, 0.0f);
   for (std::size_t i = 0; i < p.components.size(); ++i)
     for (std::size_t l = 0; l < nm.size(); ++l)
@@ -260,46 +355,67 @@ Spectral make_spectral(const AtmosphereParameters& p, std::span<const double> nm
 
 // ---- tables (Pietras §II) -----------------------------------------------------------------------
 //
-// L_i[rho, mu] = optical length from the density level rho (altitude h = -H_i ln rho) along
-// cos(zenith) mu >= 0 to the top. Pietras samples rho uniformly (rho_j = j/n) and mu uniformly;
-// here rho is uniform on [rho_top, 1] (so the top row is exactly 0) and mu = x^2 with x uniform
-// on [0, 1], which puts more samples where L grows fastest, at the horizon. Each entry is
-// computed directly by optical_length_quadrature (instead of Pietras' running sum of layer
-// segments S[rho, c], which would add the interpolation error of every layer).
+// L_i[x, mu] = optical length of component i from the height level x along cos(zenith) mu >= 0
+// to the top. The level coordinate x is the density for an exponential profile (Pietras samples
+// rho uniformly, rho_j = j/n; altitude h = -H ln rho) and 1 - h / (r_top - R0) for a tent
+// profile (whose density is not monotonic in h); either is uniform on [x_top, 1] (so the top row
+// is exactly 0). mu = y^2 with y uniform on [0, 1], which puts more samples where L grows
+// fastest, at the horizon. Each entry is computed directly by optical_length_quadrature (instead
+// of Pietras' running sum of layer segments S[rho, c], which would add the interpolation error of
+// every layer).
 
 Atmosphere::Atmosphere(const AtmosphereParameters& p, const FastSettings& s)
     : params_(p), settings_(s) {
   params_.validate();
-  SKYLIGHT_CHECK(
-      s.table_rho >= 2 && s.table_mu >= 2 && s.table_quadrature >= 1 && s.view_steps >= 1,
-      "Atmosphere: bad FastSettings");
+  SKYLIGHT_CHECK(s.table_rho >= 2 && s.table_mu >= 2 && s.table_quadrature >= 1 &&
+                     s.view_steps >= 1 &&
+                     static_cast<std::size_t>(s.view_steps) <= detail::kMaxPieceSamples,
+                 "Atmosphere: bad FastSettings");
   const double R0 = p.ground_radius_m, Rt = p.top_radius_m;
   for (const auto& c : p.components) {
-    const double H = c.scale_height_m;
-    const double rho_top = std::exp(-(Rt - R0) / H);
-    rho_top_.push_back(rho_top);
-    rho_scale_.push_back((s.table_rho - 1) / (1.0 - rho_top));
+    if (c.profile == Profile::tent)
+      for (double h : {c.peak_altitude_m - c.half_width_m, c.peak_altitude_m,
+                       c.peak_altitude_m + c.half_width_m})
+        if (h > 0 && R0 + h < Rt) kink_radii_.push_back(R0 + h);
+    const bool tent = c.profile == Profile::tent;
+    inv_height_.push_back(tent ? 1.0 / (Rt - R0) : 1.0 / c.scale_height_m);
+    const double x_top = tent ? 0.0 : std::exp(-(Rt - R0) / c.scale_height_m);
+    coord_top_.push_back(x_top);
+    coord_scale_.push_back((s.table_rho - 1) / (1.0 - x_top));
     std::vector<float> t(static_cast<std::size_t>(s.table_rho) * s.table_mu);
-    for (int i = 0; i < s.table_rho; ++i) {
-      const double rho = rho_top + (1.0 - rho_top) * i / (s.table_rho - 1);
-      const double r = i == 0 ? Rt : std::min(Rt, R0 - H * std::log(rho));
+    for (int i = 1; i < s.table_rho; ++i) {  // row 0 (the top) stays 0
+      const double x = x_top + (1.0 - x_top) * i / (s.table_rho - 1);
+      const double h = tent ? (1.0 - x) * (Rt - R0) : -c.scale_height_m * std::log(x);
+      const double r = std::min(Rt, R0 + h);
       for (int j = 0; j < s.table_mu; ++j) {
-        const double x = static_cast<double>(j) / (s.table_mu - 1);
+        const double y = static_cast<double>(j) / (s.table_mu - 1);
         t[static_cast<std::size_t>(i) * s.table_mu + j] =
-            i == 0 ? 0.0f
-                   : static_cast<float>(
-                         optical_length_quadrature(r, x * x, H, R0, Rt, s.table_quadrature));
+            static_cast<float>(optical_length_quadrature(r, y * y, c, R0, Rt, s.table_quadrature));
       }
     }
     tables_.push_back(std::move(t));
   }
+  for (std::size_t i = 0; i < p.components.size(); ++i) {
+    const Component& c = p.components[i];
+    detail::KernelTable& t = kernel_tables_[i];
+    t.data = tables_[i].data();
+    t.rows = s.table_rho;
+    t.cols = s.table_mu;
+    t.exponential = c.profile == Profile::exponential;
+    t.inv_height = static_cast<float>(inv_height_[i]);
+    t.coord_top = static_cast<float>(coord_top_[i]);
+    t.coord_scale = static_cast<float>(coord_scale_[i]);
+    t.peak = static_cast<float>(c.peak_altitude_m);
+    t.inv_half_width = t.exponential ? 0.0f : static_cast<float>(1.0 / c.half_width_m);
+  }
 }
 
-double Atmosphere::density(std::size_t i, double r) const {
-  return std::exp(-(r - params_.ground_radius_m) / params_.components[i].scale_height_m);
+double Atmosphere::coord(std::size_t i, double h) const {
+  if (params_.components[i].profile == Profile::tent) return 1.0 - h * inv_height_[i];
+  return std::exp(-h * inv_height_[i]);
 }
 
-// The table's mu coordinate: x = sqrt(mu) (mu in [0, 1]) scaled to cells, shared by components.
+// The table's mu coordinate: y = sqrt(mu) (mu in [0, 1]) scaled to cells, shared by components.
 Atmosphere::MuCoord Atmosphere::mu_coord(double mu) const {
   const int nm = settings_.table_mu;
   const double fy = std::sqrt(std::clamp(mu, 0.0, 1.0)) * (nm - 1);
@@ -307,10 +423,10 @@ Atmosphere::MuCoord Atmosphere::mu_coord(double mu) const {
   return {iy, fy - iy};
 }
 
-// Bilinear lookup in (rho, sqrt(mu)).
-double Atmosphere::lookup(std::size_t i, double rho, MuCoord c) const {
+// Bilinear lookup in (x, sqrt(mu)).
+double Atmosphere::lookup(std::size_t i, double x, MuCoord c) const {
   const int nr = settings_.table_rho, nm = settings_.table_mu;
-  const double fx = std::clamp((rho - rho_top_[i]) * rho_scale_[i], 0.0, nr - 1.0);
+  const double fx = std::clamp((x - coord_top_[i]) * coord_scale_[i], 0.0, nr - 1.0);
   const int ix = std::min(static_cast<int>(fx), nr - 2);
   const double ax = fx - ix, ay = c.a;
   const float* row0 = tables_[i].data() + static_cast<std::size_t>(ix) * nm + c.i;
@@ -319,29 +435,32 @@ double Atmosphere::lookup(std::size_t i, double rho, MuCoord c) const {
 }
 
 Atmosphere::Direction Atmosphere::direction(double r, double mu) const {
-  if (mu >= 0) return {mu_coord(mu), false, r};
-  return {mu_coord(-mu), true, std::max(r * safe_sqrt(1.0 - mu * mu), params_.ground_radius_m)};
+  if (mu >= 0) return {mu_coord(mu), false, 0.0};
+  const double R0 = params_.ground_radius_m;
+  return {mu_coord(-mu), true, std::max(r * safe_sqrt(1.0 - mu * mu) - R0, 0.0)};
 }
 
-double Atmosphere::optical_length(std::size_t i, double rho, const Direction& d) const {
-  const double l = lookup(i, rho, d.mu);
+double Atmosphere::optical_length(std::size_t i, double h, const Direction& d) const {
+  const double l = lookup(i, coord(i, h), d.mu);
   if (!d.reflect) return l;
-  // Pietras eq. 8: L[rho, c] = 2 L[rho_x, 0] - L[rho, -c], rho_x = min(exp((R0 - r sin a)/H), 1).
-  return std::max(2.0 * lookup(i, density(i, d.tangent_radius), MuCoord{0, 0.0}) - l, 0.0);
+  // Pietras eq. 8: L[x, c] = 2 L[x_t, 0] - L[x, -c], x_t the level of the tangent point (the
+  // ray's lowest point, clamped to the ground).
+  return std::max(2.0 * lookup(i, coord(i, d.tangent_altitude), MuCoord{0, 0.0}) - l, 0.0);
 }
 
 double Atmosphere::optical_length(std::size_t i, double r, double mu) const {
-  return optical_length(i, density(i, r), direction(r, mu));
+  return optical_length(i, r - params_.ground_radius_m, direction(r, mu));
 }
 
 // ---- fast single scattering (Pietras eq. 9) -----------------------------------------------------
 //
-// I = sum_v b F rho_v exp(-b (L[rho_0, cos a_0] - L[rho_v, cos a_v] + L[rho_v, cos theta_v])) dv
+// I = sum_v b F rho_v exp(-b (L[x_0, cos a_0] - L[x_v, cos a_v] + L[x_v, cos theta_v])) dv
 // per component and wavelength. For a ray that ends on the ground the view term uses the reversed
-// (upward) rays instead, L[rho_v, -cos a_v] - L[rho_0, -cos a_0], which never cross the ground.
+// (upward) rays instead, L[x_v, -cos a_v] - L[x_0, -cos a_0], which never cross the ground.
 // The ray is cut at its lowest point and at the shadow boundaries (split_view_ray), so the
 // integrand is smooth on each lit piece; each is integrated in u, s = anchor +- L u^2 (denser at
-// the low, dense end), by composite 4-point Gauss-Legendre (view_steps / 4 panels).
+// the low, dense end), by composite 4-point Gauss-Legendre (view_steps / 4 panels). The samples
+// of a piece go through the SIMD kernel together (scatter_kernel.h).
 
 void Atmosphere::single_scattering(Vec3 p, Vec3 view, Vec3 sun, const Spectral& spec,
                                    std::span<double> out, double max_distance) const {
@@ -349,7 +468,8 @@ void Atmosphere::single_scattering(Vec3 p, Vec3 view, Vec3 sun, const Spectral& 
   SKYLIGHT_CHECK(out.size() == nl, "single_scattering: output size");
   std::fill(out.begin(), out.end(), 0.0);
   const double R0 = params_.ground_radius_m;
-  const ViewRay ray = split_view_ray(p, view, sun, R0, params_.top_radius_m, max_distance);
+  const ViewRay ray =
+      split_view_ray(p, view, sun, R0, params_.top_radius_m, max_distance, kink_radii_);
   if (ray.count == 0) return;
 
   // Optical lengths at the start of the ray (the observer, or where the ray enters from space).
@@ -357,13 +477,12 @@ void Atmosphere::single_scattering(Vec3 p, Vec3 view, Vec3 sun, const Spectral& 
   const double r0 = length(p0);
   const double mu0 = dot(p0, view) / r0;
   SKYLIGHT_CHECK(nc <= kMaxComponents, "single_scattering: too many components");
-  double t0[kMaxComponents];
+  float t0[kMaxComponents];
   for (std::size_t i = 0; i < nc; ++i)
-    t0[i] = ray.hits_ground ? optical_length(i, r0, -mu0) : optical_length(i, r0, mu0);
-
+    t0[i] = static_cast<float>(ray.hits_ground ? optical_length(i, r0, -mu0)
+                                               : optical_length(i, r0, mu0));
   // acc[i][k] = sum over samples of rho_i T_k ds (float, see scatter_kernel.h).
   const std::size_t np = spec.padded;
-  const float* extinction = spec.extinction_padded.data();
   constexpr std::size_t kStackAcc = 512;
   float acc_stack[kStackAcc];
   std::vector<float> acc_heap;
@@ -374,32 +493,37 @@ void Atmosphere::single_scattering(Vec3 p, Vec3 view, Vec3 sun, const Spectral& 
   }
   std::fill(acc, acc + nc * np, 0.0f);
   const int panels = (settings_.view_steps + 3) / 4;
-  const int n = 4 * panels;
+  const std::size_t n = 4 * static_cast<std::size_t>(panels);
+  double sw[2 * (detail::kMaxPieceSamples + detail::kSamplePadding)];
+  double* s_k = sw;
+  double* w_k = s_k + n + detail::kSamplePadding;
+  detail::PieceSamples ps;
+  ps.s = s_k;
+  ps.w = w_k;
+  ps.n = n;
+  ps.pp = dot(p, p);
+  ps.pv = dot(p, view);
+  ps.ps = dot(p, sun);
+  ps.vs = dot(view, sun);
+  ps.ground_radius = R0;
+  ps.hits_ground = ray.hits_ground;
+  const double h = 1.0 / panels;
   for (int pi = 0; pi < ray.count; ++pi) {
     const RayPiece& piece = ray.pieces[pi];
     if (!piece.lit) continue;
     const double len = piece.b - piece.a;
-    for (int k = 0; k < n; ++k) {
+    for (std::size_t k = 0; k < n; ++k) {
       // Composite 4-point Gauss-Legendre in u: panel k / 4 of n / 4, node k % 4.
-      const double h = 1.0 / panels;
-      const double u = h * (k / 4 + 0.5 * (1.0 + kGaussNodes[k % 4]));
-      const double s = piece.anchor_at_a ? piece.a + len * u * u : piece.b - len * u * u;
-      const double w = 2.0 * len * u * 0.5 * h * kGaussWeights[k % 4];
-      const Vec3 q = p + s * view;
-      const double r = length(q);
-      const double mu_v = dot(q, view) / r, mu_s = dot(q, sun) / r;
-      if (mu_s < 0 && r * r * (1.0 - mu_s * mu_s) < R0 * R0) continue;  // planet shadow
-      float rho[kMaxComponents], t[kMaxComponents];
-      const Direction dv = direction(r, ray.hits_ground ? -mu_v : mu_v), ds = direction(r, mu_s);
-      for (std::size_t i = 0; i < nc; ++i) {
-        const double rho_r = density(i, r);
-        rho[i] = static_cast<float>(rho_r * w);
-        const double lv = optical_length(i, rho_r, dv);
-        const double tv = ray.hits_ground ? lv - t0[i] : t0[i] - lv;
-        t[i] = static_cast<float>(std::max(tv, 0.0) + optical_length(i, rho_r, ds));
-      }
-      detail::accumulate_in_scatter(extinction, t, rho, nc, np, acc);
+      const double u = h * (static_cast<double>(k / 4) + 0.5 * (1.0 + kGaussNodes[k % 4]));
+      s_k[k] = piece.anchor_at_a ? piece.a + len * u * u : piece.b - len * u * u;
+      w_k[k] = 2.0 * len * u * 0.5 * h * kGaussWeights[k % 4];
     }
+    for (std::size_t k = n; k < n + detail::kSamplePadding; ++k) {  // padding lanes: weight 0
+      s_k[k] = s_k[n - 1];
+      w_k[k] = 0.0;
+    }
+    detail::scatter_piece(kernel_tables_.data(), nc, t0, ps, spec.extinction_padded.data(), np,
+                          acc);
   }
   const double mu = dot(view, sun);
   for (std::size_t i = 0; i < nc; ++i) {

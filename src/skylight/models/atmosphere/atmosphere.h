@@ -10,13 +10,14 @@
 // The model (Pietras eq. 1, per wavelength lambda, per unit extraterrestrial irradiance I0):
 //   I(lambda) = I0(lambda) * sum_i beta_s,i(lambda) F_i(mu) * integral over the view ray of
 //               rho_i(s) exp(-sum_j beta_e,j(lambda) (t_j(P0 -> s) + t_j(s -> sun))) ds
-// rho_i = exp(-h / H_i) (Pietras eq. 3), t_j = integral of rho_j along a path [m] (the optical
-// length, "amount of air"), mu = dot(view, sun) (cosine of the scattering angle), F_i the phase
-// function [sr^-1]. Samples whose sun ray hits the planet are in its shadow and contribute 0
-// (Pietras §III). Units: beta [m^-1], F [sr^-1], ds [m] -> I [I0 units sr^-1], i.e.
-// W m^-2 sr^-1 nm^-1 for I0 in W m^-2 nm^-1.
+// rho_i = exp(-h / H_i) (Pietras eq. 3; or a tent profile, parameters.h), t_j = integral of rho_j
+// along a path [m] (the optical length, "amount of air"), mu = dot(view, sun) (cosine of the
+// scattering angle), F_i the phase function [sr^-1]. Samples whose sun ray hits the planet are in
+// its shadow and contribute 0 (Pietras §III). Units: beta [m^-1], F [sr^-1], ds [m] -> I [I0 units
+// sr^-1], i.e. W m^-2 sr^-1 nm^-1 for I0 in W m^-2 nm^-1.
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <limits>
 #include <span>
@@ -24,6 +25,7 @@
 
 #include "skylight/core/frame.h"
 #include "skylight/models/atmosphere/parameters.h"
+#include "skylight/models/atmosphere/scatter_kernel.h"
 
 namespace skylight::atmosphere {
 
@@ -48,38 +50,52 @@ struct RayPiece {
   bool lit = true;
 };
 // The part of the ray p + s d, s in [0, max_distance], inside the atmosphere and above the ground,
-// split at the point of lowest altitude and at the boundaries of the planet's shadow (the
-// half-cylinder of radius R0 behind the planet along -sun). Returns the number of pieces (<= 5),
-// sorted by s; `hits_ground` says whether the ray (ignoring max_distance) ends on the ground.
+// split at the point of lowest altitude, at the boundaries of the planet's shadow (the
+// half-cylinder of radius R0 behind the planet along -sun) and where it crosses the spheres of
+// radii `cut_radii` (the kinks of tent profiles, Atmosphere::kink_radii). Returns the pieces
+// (at most kMaxRayPieces), sorted by s; `hits_ground` says whether the ray (ignoring
+// max_distance) ends on the ground.
+inline constexpr int kMaxCutRadii = 3 * static_cast<int>(kMaxComponents);
+inline constexpr int kMaxRayPieces = 4 + 2 * kMaxCutRadii;
 struct ViewRay {
-  RayPiece pieces[5];
+  RayPiece pieces[kMaxRayPieces];
   int count = 0;
   double begin = 0, end = 0;  // s range inside the atmosphere (0 pieces: empty)
   bool hits_ground = false;
 };
 ViewRay split_view_ray(Vec3 p, Vec3 d, Vec3 sun, double ground_radius, double top_radius,
-                       double max_distance = std::numeric_limits<double>::infinity());
+                       double max_distance = std::numeric_limits<double>::infinity(),
+                       std::span<const double> cut_radii = {});
 // True if the sun ray from p hits the planet (p is in the planet's shadow).
 bool in_planet_shadow(Vec3 p, Vec3 sun, double ground_radius);
 
 // ---- optical length -----------------------------------------------------------------------------
 
-// Reference optical length t = integral of exp(-(r(s) - R0)/H) ds [m] from radius r along a ray
-// with cos(zenith) mu to the top of the atmosphere, by composite Simpson quadrature (2 n
-// intervals per monotone piece, nodes concentrated at the lower end: s = a + L u^2). The ray must
-// not hit the ground (returns +inf if it does).
-double optical_length_quadrature(double r, double mu, double scale_height, double ground_radius,
+// Reference optical length t = integral of rho(r(s) - R0) ds [m] of component c from radius r
+// along a ray with cos(zenith) mu to the top of the atmosphere, by composite Simpson quadrature
+// (2 n intervals per monotone piece, nodes concentrated at the lower end: s = a + L u^2). The ray
+// must not hit the ground (returns +inf if it does).
+double optical_length_quadrature(double r, double mu, const Component& c, double ground_radius,
                                  double top_radius, int n = 256);
+
+// The spectra of data/bruneton (Bruneton 2017, 360-830 nm in 10 nm bins): wavelengths [nm],
+// extraterrestrial solar irradiance (ASTM G-173) [W m^-2 nm^-1], ozone absorption cross-section
+// [m^2 per molecule]. Loaded once; throws IoError if the embedded table is malformed.
+struct ReferenceSpectra {
+  std::vector<double> nm, solar, ozone_cross_section;
+};
+const ReferenceSpectra& bruneton_spectra();
 
 // Table resolution and view-ray sampling of the fast path.
 struct FastSettings {
-  int table_rho = 256;  // density samples, uniform in rho on [rho_top, 1] (Pietras: rho_i = i/n)
+  int table_rho = 256;  // height levels, uniform in the level coordinate (density for exponential
+                        // profiles, Pietras: rho_i = i/n; altitude for tents), see atmosphere.cpp
   int table_mu = 256;   // cos-zenith samples on [0, 1], uniform in sqrt(mu) (finer at the horizon)
   int table_quadrature = 32;  // Simpson half-count per table entry (2 x 32 intervals)
   // Gauss-Legendre samples per lit piece of the view ray, rounded up to a multiple of 4 (4-point
   // panels). 12 keeps the fast path within 0.2 % of the reference in the tests' sweep; 8 does not
   // (0.9 %), 16 changes the worst case by < 1e-5.
-  int view_steps = 12;
+  int view_steps = 12;  // 1 .. detail::kMaxPieceSamples
 };
 
 // Spectral quantities for one list of wavelengths, prepared once per model.
@@ -89,7 +105,7 @@ struct Spectral {
   std::vector<std::vector<double>> scattering;  // [component][lambda] beta_s [m^-1]
   std::vector<std::vector<double>> extinction;  // [component][lambda] beta_e [m^-1]
   // extinction as one float [component][padded] array, rows zero-padded to `padded` (a multiple
-  // of 16) wavelengths for the SIMD kernel.
+  // of 4) wavelengths for the SIMD kernel.
   std::vector<float> extinction_padded;
   std::size_t padded = 0;
 };
@@ -105,14 +121,22 @@ struct ReferenceSettings {
 class Atmosphere {
  public:
   explicit Atmosphere(const AtmosphereParameters& p, const FastSettings& s = {});
+  // Not copyable (kernel_tables_ point into tables_); moving keeps the tables' buffers.
+  Atmosphere(const Atmosphere&) = delete;
+  Atmosphere& operator=(const Atmosphere&) = delete;
+  Atmosphere(Atmosphere&&) = default;
+  Atmosphere& operator=(Atmosphere&&) = default;
 
   const AtmosphereParameters& parameters() const { return params_; }
   const FastSettings& settings() const { return settings_; }
+  // Radii of the tent profiles' kinks inside the atmosphere (where view rays are cut).
+  std::span<const double> kink_radii() const { return kink_radii_; }
 
   // Optical length of component i from radius r along cos(zenith) mu to the top [m], from the
-  // table. mu >= 0: bilinear lookup L[rho, mu]. mu < 0 (Pietras eq. 8, the reflection rule):
-  //   L[rho, mu] = 2 L[rho_x, 0] - L[rho, -mu],  rho_x = rho at the tangent radius r sqrt(1 - mu^2)
-  // (clamped to the ground, rho_x <= 1). For rays that would hit the ground this is the optical
+  // table. mu >= 0: bilinear lookup L[x, mu] at the level x of r (its density for exponential
+  // profiles). mu < 0 (Pietras eq. 8, the reflection rule):
+  //   L[x, mu] = 2 L[x_t, 0] - L[x, -mu],  x_t = the level of the tangent radius r sqrt(1 - mu^2)
+  // (clamped to the ground). For rays that would hit the ground this is the optical
   // length through a transparent planet and is not used by single_scattering.
   double optical_length(std::size_t i, double r, double mu) const;
 
@@ -145,7 +169,7 @@ class Atmosphere {
 
  private:
   // A direction's table coordinates, shared by all components: the mu cell of |mu| and, below
-  // the horizontal, the tangent radius of the reflection rule.
+  // the horizontal, the altitude of the tangent point for the reflection rule.
   struct MuCoord {
     int i = 0;       // cell
     double a = 0.0;  // fraction in the cell
@@ -153,21 +177,25 @@ class Atmosphere {
   struct Direction {
     MuCoord mu;
     bool reflect = false;
-    double tangent_radius = 0.0;
+    double tangent_altitude = 0.0;  // [m], >= 0
   };
   MuCoord mu_coord(double mu) const;
   Direction direction(double r, double mu) const;
-  double lookup(std::size_t i, double rho, MuCoord c) const;
-  // optical_length with the density rho = rho_i(r) and the direction's coordinates known.
-  double optical_length(std::size_t i, double rho, const Direction& d) const;
-  double density(std::size_t i, double r) const;
+  // Level coordinate of component i at altitude h (the table's row coordinate, atmosphere.cpp).
+  double coord(std::size_t i, double h) const;
+  double lookup(std::size_t i, double x, MuCoord c) const;
+  // optical_length from altitude h with the direction's coordinates known.
+  double optical_length(std::size_t i, double h, const Direction& d) const;
   void ground_reflection(Vec3 q, Vec3 sun, const Spectral& spec, std::span<double> io_factor) const;
 
   AtmosphereParameters params_;
   FastSettings settings_;
-  std::vector<double> rho_top_;             // per component, density at the top radius
-  std::vector<double> rho_scale_;           // per component, (table_rho - 1) / (1 - rho_top)
-  std::vector<std::vector<float>> tables_;  // per component, [rho index][mu index]
+  std::vector<double> kink_radii_;
+  std::vector<double> inv_height_;   // per component, 1/H (exponential) or 1/(r_top - R0) (tent)
+  std::vector<double> coord_top_;    // per component, level coordinate at the top radius
+  std::vector<double> coord_scale_;  // per component, (table_rho - 1) / (1 - coord_top)
+  std::vector<std::vector<float>> tables_;  // per component, [level index][mu index]
+  std::array<detail::KernelTable, kMaxComponents> kernel_tables_{};  // views for the SIMD kernel
 };
 
 }  // namespace skylight::atmosphere

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <string>
@@ -61,7 +62,8 @@ TEST(Atmosphere, VerticalOpticalLengthClosedForm) {
       for (double h : {0.0, 1e3, 10e3, 40e3}) {
         const double r = p.ground_radius_m + h;
         const double exact = std::exp(-h / H) * H * (1 - std::exp(-(p.top_radius_m - r) / H));
-        const double q = optical_length_quadrature(r, 1.0, H, p.ground_radius_m, p.top_radius_m);
+        const double q =
+            optical_length_quadrature(r, 1.0, p.components[i], p.ground_radius_m, p.top_radius_m);
         EXPECT_NEAR(q, exact, kQuadratureRelTol * exact) << "H " << H << " h " << h;
         EXPECT_NEAR(atm.optical_length(i, r, 1.0), exact, kTableVerticalRelTol * exact)
             << "H " << H << " h " << h;
@@ -82,8 +84,9 @@ TEST(Atmosphere, HorizontalAndReflectedOpticalLength) {
         const double r = R0 + h;
         for (double mu : {0.0, 0.01, -0.001, -0.02}) {
           if (mu < 0 && r * std::sqrt(1 - mu * mu) < R0) continue;  // would hit the ground
-          const double exact = optical_length_quadrature(r, mu, H, R0, Rt, 20000);
-          EXPECT_NEAR(optical_length_quadrature(r, mu, H, R0, Rt), exact, kQuadratureRelTol * exact)
+          const double exact = optical_length_quadrature(r, mu, p.components[i], R0, Rt, 20000);
+          EXPECT_NEAR(optical_length_quadrature(r, mu, p.components[i], R0, Rt), exact,
+                      kQuadratureRelTol * exact)
               << "H " << H << " h " << h << " mu " << mu;
           const double tol = h > 4 * H ? kTableThinRelTol : kTableHorizontalRelTol;
           EXPECT_NEAR(atm.optical_length(i, r, mu), exact, tol * exact)
@@ -146,9 +149,10 @@ TEST(Atmosphere, FullPlanetShadowIsExactlyZero) {
 
 // Fast path vs reference over altitudes, sun elevations and view directions (3 wavelengths).
 // Returns the worst relative difference and where it occurs.
-std::pair<double, std::string> sweep(const AtmosphereParameters& p) {
+std::pair<double, std::string> sweep(const AtmosphereParameters& p,
+                                     const std::vector<double>& nm = {440, 550, 680}) {
   Atmosphere atm(p);
-  const std::vector<double> nm{440, 550, 680}, one(3, 1.0);
+  const std::vector<double> one(3, 1.0);
   const Spectral spec = make_spectral(p, nm, one);
   // Reference: 400 trapezoid intervals per piece (converged to 3e-5 against 6400 on Earth) and
   // Simpson 2 x 32 per sun-ray piece (1e-5).
@@ -195,6 +199,99 @@ TEST(Atmosphere, FastMatchesReferenceEarth) {
   const auto [worst, where] = sweep(AtmosphereParameters{});
   std::printf("Earth: worst fast/reference relative difference %.3g at %s\n", worst, where.c_str());
   EXPECT_LT(worst, kFastVsReferenceRelTol) << where;
+}
+
+// Earth with the 300 DU ozone layer; 600 nm is near the peak of its Chappuis band.
+AtmosphereParameters earth_with_ozone() {
+  AtmosphereParameters p;
+  p.components.push_back(earth_ozone());
+  return p;
+}
+
+TEST(Atmosphere, FastMatchesReferenceEarthWithOzone) {
+  const auto [worst, where] = sweep(earth_with_ozone(), {440, 600, 680});
+  std::printf("Earth + ozone: worst fast/reference relative difference %.3g at %s\n", worst,
+              where.c_str());
+  EXPECT_LT(worst, kFastVsReferenceRelTol) << where;
+}
+
+// Column of the tent profile above altitude h (closed form): integral_h^top max(0, 1 - |z - c| /
+// w) dz for a tent inside the atmosphere.
+double tent_column_above(double h, double c, double w) {
+  const auto F = [&](double z) {  // antiderivative of the tent on [c - w, c + w], 0 below
+    if (z <= c - w) return 0.0;
+    if (z <= c) return (z - (c - w)) * (z - (c - w)) / (2 * w);
+    if (z <= c + w) return w - (c + w - z) * (c + w - z) / (2 * w);
+    return w;
+  };
+  return w - F(h);
+}
+
+TEST(Atmosphere, OzoneTentOpticalLengthClosedForm) {
+  // Vertical optical length of the ozone tent (peak 25 km, half width 15 km, inside the 60 km
+  // atmosphere): the closed-form column above h (15 km at the ground).
+  const AtmosphereParameters p = earth_with_ozone();
+  const Atmosphere atm(p);
+  const std::size_t oz = 2;
+  const Component& c = p.components[oz];
+  // The quadrature cuts the ray at the tent's kinks, so Simpson integrates polynomials-like
+  // pieces: observed <= 1e-9.
+  constexpr double kTentQuadratureRelTol = 1e-7;
+  // The table interpolates linearly between levels 235 m apart (L is piecewise quadratic in h):
+  // observed <= 0.47 m, i.e. 3.1e-5 of the full 15 km column (the error is absolute: near the
+  // layer's top, where L -> 0, it is 3.5e-3 of the local value, which the column dwarfs).
+  constexpr double kTentTableColumnTol = 1e-4;
+  for (double h : {0.0, 5e3, 10e3, 17e3, 25e3, 31e3, 38e3}) {
+    const double exact = tent_column_above(h, kOzonePeakAltitude, kOzoneHalfWidth);
+    const double r = p.ground_radius_m + h;
+    EXPECT_NEAR(optical_length_quadrature(r, 1.0, c, p.ground_radius_m, p.top_radius_m), exact,
+                kTentQuadratureRelTol * exact)
+        << "h " << h;
+    EXPECT_NEAR(atm.optical_length(oz, r, 1.0), exact, kTentTableColumnTol * kOzoneHalfWidth)
+        << "h " << h;
+  }
+  EXPECT_DOUBLE_EQ(tent_column_above(0, kOzonePeakAltitude, kOzoneHalfWidth), 15e3);
+}
+
+TEST(Atmosphere, OzoneColumnAndBluerTwilightZenith) {
+  // Vertical transmittance of the ozone layer alone, ground to space:
+  //   T = exp(-N sigma(lambda)),  N = 300 DU x 2.687e20 m^-2 (Beer-Lambert, closed form).
+  AtmosphereParameters only;
+  only.components = {earth_ozone()};
+  const Atmosphere atm(only);
+  const ReferenceSpectra& bs = bruneton_spectra();
+  const std::vector<double> nm{440, 600, 680};
+  const Spectral spec = make_spectral(only, nm, std::vector<double>(3, 1.0));
+  std::vector<double> T(3);
+  const Vec3 ground{0, 0, only.ground_radius_m};
+  atm.transmittance(ground, {0, 0, 1}, only.top_radius_m - only.ground_radius_m, spec, T);
+  constexpr double kColumnTransmittanceRelTol = 1e-5;  // table error 1e-4 x optical depth < 0.04
+  for (int l = 0; l < 3; ++l) {
+    const auto it = std::find(bs.nm.begin(), bs.nm.end(), nm[l]);
+    ASSERT_NE(it, bs.nm.end());
+    const double sigma = bs.ozone_cross_section[static_cast<std::size_t>(it - bs.nm.begin())];
+    const double exact = std::exp(-kEarthOzoneColumn * kDobsonUnit * sigma);
+    EXPECT_NEAR(T[l], exact, kColumnTransmittanceRelTol) << nm[l] << " nm";
+  }
+  std::printf("300 DU ozone column: vertical transmittance %.4f / %.4f / %.4f at 440/600/680 nm\n",
+              T[0], T[1], T[2]);
+
+  // With the sun at the horizon, the zenith sky's light crosses the ozone layer on a long slant
+  // path: ozone absorbs its orange-red (Chappuis band) and keeps the twilight zenith blue.
+  const AtmosphereParameters plain, with = earth_with_ozone();
+  const Atmosphere a0(plain), a1(with);
+  const Spectral s0 = make_spectral(plain, nm, std::vector<double>(3, 1.0));
+  const Spectral s1 = make_spectral(with, nm, std::vector<double>(3, 1.0));
+  const Vec3 sun = dir_el_az(0.5, 180);
+  std::vector<double> i0(3), i1(3);
+  a0.single_scattering(ground, {0, 0, 1}, sun, s0, i0);
+  a1.single_scattering(ground, {0, 0, 1}, sun, s1, i1);
+  std::printf(
+      "zenith, sun at 0.5 deg: 440/600 nm ratio %.3f without ozone, %.3f with; "
+      "600 nm radiance x %.3f\n",
+      i0[0] / i0[1], i1[0] / i1[1], i1[1] / i0[1]);
+  EXPECT_GT(i1[0] / i1[1], 1.5 * (i0[0] / i0[1]));      // observed 2.9x bluer
+  for (int l = 0; l < 3; ++l) EXPECT_LT(i1[l], i0[l]);  // ozone only absorbs
 }
 
 TEST(Atmosphere, FastMatchesReferenceOffEarth) {

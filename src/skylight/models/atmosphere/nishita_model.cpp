@@ -12,22 +12,6 @@
 namespace skylight {
 namespace {
 
-struct SolarTable {
-  std::vector<double> nm, value;
-};
-const SolarTable& solar_table() {
-  static const SolarTable t = [] {
-    constexpr std::string_view kPath = "bruneton/bruneton2017_solar_irradiance_ozone_xsec.csv";
-    const auto csv = data::load_table(kPath, /*has_header=*/true, 3);
-    SolarTable s{csv.numbers(0), csv.numbers(1)};
-    for (std::size_t i = 1; i < s.nm.size(); ++i)
-      if (!(s.nm[i] > s.nm[i - 1]))
-        throw IoError(fmt::format("{}: wavelengths must ascend (row {})", kPath, i + 1));
-    return s;
-  }();
-  return t;
-}
-
 std::array<double, kNishitaXyzCount> xyz_wavelengths() {
   std::array<double, kNishitaXyzCount> w{};
   for (int k = 0; k < kNishitaXyzCount; ++k) w[k] = kNishitaXyzFirst + kNishitaXyzStep * k;
@@ -37,13 +21,13 @@ std::array<double, kNishitaXyzCount> xyz_wavelengths() {
 }  // namespace
 
 double solar_spectral_irradiance(double nm) {
-  const SolarTable& t = solar_table();
+  const atmosphere::ReferenceSpectra& t = atmosphere::bruneton_spectra();
   if (nm < t.nm.front() || nm > t.nm.back()) return 0.0;
   const auto it = std::upper_bound(t.nm.begin(), t.nm.end(), nm);
-  if (it == t.nm.end()) return t.value.back();
+  if (it == t.nm.end()) return t.solar.back();
   const std::size_t i = static_cast<std::size_t>(it - t.nm.begin()) - 1;
   const double a = (nm - t.nm[i]) / (t.nm[i + 1] - t.nm[i]);
-  return (1.0 - a) * t.value[i] + a * t.value[i + 1];
+  return (1.0 - a) * t.solar[i] + a * t.solar[i + 1];
 }
 
 NishitaModel::NishitaModel(const SkyParameters& p, const atmosphere::FastSettings& settings)

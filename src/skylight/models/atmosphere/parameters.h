@@ -21,11 +21,21 @@ enum class PhaseKind {
   cornette_shanks,    // 3/(8 pi) (1 - g^2)(1 + mu^2) / ((2 + g^2)(1 + g^2 - 2 g mu)^{3/2})
 };
 
-// One exponentially distributed component: density rho(h) = exp(-h / scale_height) relative to
-// the ground, h = altitude above the ground radius.
-// Spectral coefficients follow a power law from a reference wavelength:
+// Vertical density profile of a component, rho(h) relative to its reference density (rho = 1),
+// h = altitude above the ground radius [m].
+enum class Profile {
+  exponential,  // rho = exp(-h / scale_height_m)                (Pietras eq. 3; air, aerosols)
+  tent,         // rho = max(0, 1 - |h - peak_altitude_m| / half_width_m)
+                // (a layer peaking at one altitude, e.g. ozone; Bruneton 2017's ozone profile is
+                // the tent with peak 25 km and half width 15 km)
+};
+
+// One atmospheric component with a density profile (above) and spectral coefficients at rho = 1.
+// Scattering and extinction follow a power law from a reference wavelength:
 //   beta(lambda) = beta_ref * (reference_nm / lambda)^angstrom_exponent      [m^-1 at rho = 1]
-// (exponent 4 = Rayleigh's lambda^-4 law, 0 = grey Mie).
+// (exponent 4 = Rayleigh's lambda^-4 law, 0 = grey Mie), and the extinction adds an optional
+// tabulated absorption (linear between the table's wavelengths, 0 outside them), e.g. ozone's
+// absorption = number density x cross-section.
 struct Component {
   std::string name;              // "rayleigh", "mie", ... (used in messages)
   double scale_height_m = 0;     // H > 0 [m]
@@ -35,9 +45,15 @@ struct Component {
   double angstrom_exponent = 0;  // power-law exponent [1]
   PhaseKind phase = PhaseKind::rayleigh;
   double g = 0;  // asymmetry parameter for HG / Cornette-Shanks, (-1, 1)
+  Profile profile = Profile::exponential;
+  double peak_altitude_m = 0;  // tent: altitude of rho = 1 [m], finite
+  double half_width_m = 0;     // tent: rho falls to 0 this far below and above the peak [m], > 0
+  std::vector<double> absorption_nm{};  // ascending wavelengths [nm] of the absorption table
+  std::vector<double> absorption_m{};   // absorption at rho = 1 [m^-1], >= 0, same size
 
   double scattering(double nm) const;
-  double extinction(double nm) const;
+  double extinction(double nm) const;  // power law + tabulated absorption
+  double density(double altitude_m) const;
 };
 
 // Earth defaults (the issue; Bruneton 2017 demo values for the radii and Mie):
@@ -56,8 +72,18 @@ inline constexpr double kMieScattering = 3.996e-6;           // [m^-1], all wave
 inline constexpr double kMieExtinction = 4.440e-6;           // [m^-1], all wavelengths
 inline constexpr double kMieG = 0.8;                         // Cornette-Shanks asymmetry
 
+// Ozone (Bruneton 2017, demo.cc): a tent from 10 to 40 km peaking at 25 km whose column holds
+// `dobson` Dobson units (1 DU = 2.687e20 molecules m^-2; the tent's column is 15 km x the peak
+// number density), absorbing with the ozone cross-section of data/bruneton (IUP Bremen, 233 K,
+// 360-830 nm); no scattering. Earth's typical column is ~300 DU.
+inline constexpr double kOzonePeakAltitude = 25e3;  // [m]
+inline constexpr double kOzoneHalfWidth = 15e3;     // [m]
+inline constexpr double kDobsonUnit = 2.687e20;     // [molecules m^-2]
+inline constexpr double kEarthOzoneColumn = 300;    // [DU]
+
 Component earth_rayleigh();
 Component earth_mie(double g = kMieG);
+Component earth_ozone(double dobson = kEarthOzoneColumn);
 
 // At most this many components (the fast path keeps per-sample values on the stack).
 inline constexpr std::size_t kMaxComponents = 8;

@@ -25,7 +25,7 @@ void Atmosphere::single_scattering_reference(Vec3 p, Vec3 view, Vec3 sun, const 
   SKYLIGHT_CHECK(rs.view_nodes >= 1 && rs.sun_steps >= 1, "bad ReferenceSettings");
   std::fill(out.begin(), out.end(), 0.0);
   const double R0 = params_.ground_radius_m, Rt = params_.top_radius_m;
-  const ViewRay ray = split_view_ray(p, view, sun, R0, Rt, max_distance);
+  const ViewRay ray = split_view_ray(p, view, sun, R0, Rt, max_distance, kink_radii_);
   if (ray.count == 0) return;
 
   std::vector<double> t_view(nc, 0.0);  // running optical length from the ray start
@@ -43,8 +43,7 @@ void Atmosphere::single_scattering_reference(Vec3 p, Vec3 view, Vec3 sun, const 
       const double s = piece.anchor_at_a ? piece.a + len * u * u : piece.b - len * u * u;
       const Vec3 q = p + s * view;
       const double r = length(q);
-      for (std::size_t i = 0; i < nc; ++i)
-        rho[i] = std::exp(-(r - R0) / params_.components[i].scale_height_m);
+      for (std::size_t i = 0; i < nc; ++i) rho[i] = params_.components[i].density(r - R0);
       if (k > 0)
         for (std::size_t i = 0; i < nc; ++i)
           t_view[i] += 0.5 * (rho[i] + prev_rho[i]) * (s - prev_s);
@@ -55,8 +54,8 @@ void Atmosphere::single_scattering_reference(Vec3 p, Vec3 view, Vec3 sun, const 
         std::vector<double> t_sun(nc);
         bool shadow = false;
         for (std::size_t i = 0; i < nc; ++i) {
-          t_sun[i] = optical_length_quadrature(r, mu_s, params_.components[i].scale_height_m, R0,
-                                               Rt, rs.sun_steps);
+          t_sun[i] =
+              optical_length_quadrature(r, mu_s, params_.components[i], R0, Rt, rs.sun_steps);
           if (!std::isfinite(t_sun[i])) shadow = true;  // grazing the ground at a boundary node
         }
         if (!shadow)
@@ -89,10 +88,9 @@ void Atmosphere::single_scattering_reference(Vec3 p, Vec3 view, Vec3 sun, const 
       for (std::size_t l = 0; l < nl; ++l) {
         double tau = 0.0;
         for (std::size_t i = 0; i < nc; ++i)
-          tau +=
-              spec.extinction[i][l] *
-              (t_view[i] + optical_length_quadrature(R0, mu_s, params_.components[i].scale_height_m,
-                                                     R0, Rt, rs.sun_steps));
+          tau += spec.extinction[i][l] *
+                 (t_view[i] +
+                  optical_length_quadrature(R0, mu_s, params_.components[i], R0, Rt, rs.sun_steps));
         out[l] += *params_.ground_albedo * spec.solar[l] / kPi * mu_s * std::exp(-tau);
       }
   }
