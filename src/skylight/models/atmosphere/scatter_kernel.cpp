@@ -160,7 +160,10 @@ void ScatterPieceImpl(const detail::KernelTable* HWY_RESTRICT tables, size_t nc,
   // shadow); stored as float.
   alignas(64) float h[kArray], mv[kArray], ms[kArray], hv[kArray], hs[kArray], wf[kArray];
   bool any_lit = false;
-  for (size_t k0 = 0; k0 < ps.n; k0 += hn::Lanes(dd)) {
+  // Up to whole float vectors of pass 2 (the padding samples have w = 0), so that pass 2 reads
+  // only written values.
+  const size_t n_full = (ps.n + hn::Lanes(df) - 1) / hn::Lanes(df) * hn::Lanes(df);
+  for (size_t k0 = 0; k0 < n_full; k0 += hn::Lanes(dd)) {
     const auto s = hn::LoadU(dd, ps.s + k0);
     auto w = hn::LoadU(dd, ps.w + k0);
     const auto r2 = hn::MulAdd(s, hn::Add(s, hn::Set(dd, 2.0 * ps.pv)), hn::Set(dd, ps.pp));
