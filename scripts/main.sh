@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The main job (README): installs what is missing, builds, and renders the default sky of every
 # model into out/ — float EXR (with metadata), a tone-mapped PNG preview, and a log-luminance
-# false-colour map with legend — as a full-sphere equirect map and an upward fisheye.
+# false-colour map with legend — as a full-sphere equirect map and an upward fisheye; then writes
+# the validation and comparison report to out/report/ (docs/REPORT.md).
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "$root"
@@ -32,4 +33,6 @@ for entry in "${skies[@]}"; do
   "$sk" render "${flags[@]}" "${sun[@]}" --projection fisheye --width 512 --height 512 \
     -o "$out/${name}_fisheye.exr" --false-colour "$out/${name}_fisheye_false_colour.png"
 done
-echo "wrote $(ls "$out" | wc -l) files to $out"
+echo "[report] $out/report"
+"$sk" report -o "$out/report"
+echo "wrote $(ls "$out" | wc -l) entries to $out; the report: $out/report/index.html"

@@ -2,9 +2,11 @@
 # Installs the Debian packages skylight needs, if any is missing (we run as root; uses sudo when
 # not root and sudo exists). Safe to run repeatedly: does nothing when all are present.
 set -euo pipefail
+# chromium: the headless browser test of the report (tests/report_browser_test.sh).
 PACKAGES=(build-essential cmake ninja-build pkg-config git
   libeigen3-dev libopenexr-dev libimath-dev libstb-dev libcli11-dev libfmt-dev
-  nlohmann-json3-dev libhwy-dev libgtest-dev libgmock-dev libbenchmark-dev)
+  nlohmann-json3-dev libhwy-dev libgtest-dev libgmock-dev libbenchmark-dev
+  chromium)
 missing=()
 for p in "${PACKAGES[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -7,6 +7,8 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
+#include <unistd.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -23,6 +25,8 @@
 #include "skylight/core/parallel.h"
 #include "skylight/models/sky_model.h"
 #include "skylight/render/image.h"
+#include "skylight/render/measurements.h"
+#include "skylight/render/report.h"
 #include "skylight/render/sky_render.h"
 #include "skylight/version.h"
 
@@ -529,6 +533,61 @@ int run_bench(const ModelFlags& base, const BenchFlags& bf) {
   return kExitOk;
 }
 
+// ---- report -------------------------------------------------------------------------------------
+struct ReportFlags {
+  std::string output, measurements, write_synthetic;
+  std::optional<double> sun_azimuth_deg, sun_elevation_deg;
+  bool quick = false;
+};
+
+int run_report(const ReportFlags& f) {
+  namespace r = sl::render;
+  if (!f.write_synthetic.empty()) {
+    if (!f.output.empty() || !f.measurements.empty() || f.sun_azimuth_deg || f.sun_elevation_deg ||
+        f.quick)
+      throw sl::InvalidArgument("--write-synthetic-measurements takes no other report flag");
+    r::write_text_file(f.write_synthetic, r::format_sky_scan(r::synthetic_tregenza_scan(),
+                                                             r::synthetic_scan_comments()));
+    std::cerr << fmt::format("skylight report: wrote the synthetic scan to {}\n",
+                             f.write_synthetic);
+    return kExitOk;
+  }
+  if (f.output.empty()) throw sl::InvalidArgument("report: -o/--output DIR is required");
+  if (f.sun_azimuth_deg.has_value() != f.sun_elevation_deg.has_value())
+    throw sl::InvalidArgument("--sun-azimuth and --sun-elevation must be given together");
+  r::ReportOptions o;
+  o.output_dir = f.output;
+  if (!f.measurements.empty()) o.measurements = f.measurements;
+  if (f.sun_azimuth_deg)
+    o.measurement_sun_azimuth = sl::wrap_azimuth(sl::deg_to_rad(*f.sun_azimuth_deg));
+  if (f.sun_elevation_deg) o.measurement_sun_elevation = sl::deg_to_rad(*f.sun_elevation_deg);
+  o.quick = f.quick;
+  // A progress bar on a terminal; one line per step otherwise (logs, CI).
+  const bool tty = ::isatty(STDERR_FILENO) != 0;
+  const auto start = std::chrono::steady_clock::now();
+  auto elapsed = [&] {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  };
+  o.progress = [&](int done, int total, std::string_view step) {
+    if (tty) {
+      constexpr int kBar = 30;
+      const int filled = total > 0 ? done * kBar / total : kBar;
+      std::cerr << fmt::format("\r\x1b[K[{}{}] {:>2}/{} {:5.1f} s  {}", std::string(filled, '#'),
+                               std::string(kBar - filled, ' '), done, total, elapsed(), step)
+                << std::flush;
+      if (done == total) std::cerr << "\n";
+    } else {
+      std::cerr << fmt::format("skylight report: [{}/{}] {:.1f} s {}\n", done, total, elapsed(),
+                               step);
+    }
+  };
+  const r::ReportSummary s = r::write_report(o);
+  std::cerr << fmt::format("skylight report: wrote {} files to {} in {:.1f} s\n", s.files.size(),
+                           f.output, elapsed());
+  std::cout << fmt::format("{}\n", (std::filesystem::path(f.output) / "index.html").string());
+  return kExitOk;
+}
+
 std::string join_registry_names() {
   std::string names;
   for (const auto& m : sl::model_registry()) names += (names.empty() ? "" : ", ") + m.name;
@@ -638,6 +697,30 @@ int main(int argc, char** argv) {
   bench->add_option("--models", bf.models, "models to time; default preetham,cie,hosek")
       ->delimiter(',');
 
+  ReportFlags repf;
+  auto* report = app.add_subcommand(
+      "report", "write the validation and comparison report (HTML + SVG/PNG + report.json)");
+  report->add_option("-o,--output", repf.output,
+                     "output directory (created if needed): index.html, report.json, figures");
+  report->add_option("--measurements", repf.measurements,
+                     "sky-luminance scan CSV (azimuth_deg,elevation_deg,luminance_cd_m2); "
+                     "default: the shipped synthetic example");
+  report
+      ->add_option("--sun-azimuth", repf.sun_azimuth_deg,
+                   "sun azimuth of the scan [deg] from north towards east, -360-360 (overrides "
+                   "the file's '# sun_azimuth_deg')")
+      ->check(finite_range(-360, 360, "deg"));
+  report
+      ->add_option("--sun-elevation", repf.sun_elevation_deg,
+                   "sun elevation of the scan [deg], 0-90 (overrides the file's '# "
+                   "sun_elevation_deg')")
+      ->check(finite_range(0, 90, "deg"));
+  report->add_flag("--quick", repf.quick,
+                   "reduced resolution and fewer sun positions (seconds; for tests)");
+  report->add_option("--write-synthetic-measurements", repf.write_synthetic,
+                     "only write the synthetic example scan (CIE type 7 at the 145 Tregenza "
+                     "patches, 5 % noise, fixed seed) to this CSV file");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -665,6 +748,7 @@ int main(int argc, char** argv) {
     if (models->parsed()) return run_models(models_json);
     if (render->parsed()) return run_render(render_mf, rf);
     if (eval->parsed()) return run_eval(eval_mf, ef);
+    if (report->parsed()) return run_report(repf);
     if (bench->parsed()) {
       for (const auto& m : bf.models)
         if (!sl::find_model(m))

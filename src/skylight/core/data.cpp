@@ -87,6 +87,11 @@ const std::string& CsvTable::text(std::size_t row, std::size_t col) const {
   return cells_[row][col];
 }
 
+std::size_t CsvTable::line(std::size_t row) const {
+  SKYLIGHT_CHECK(row < line_numbers_.size(), "CsvTable row out of range");
+  return line_numbers_[row];
+}
+
 double CsvTable::number(std::size_t row, std::size_t col) const {
   const std::string& field = text(row, col);
   double value = 0.0;

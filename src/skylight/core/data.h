@@ -38,6 +38,8 @@ class CsvTable {
   // Column index by header name; throws IoError naming the table if absent.
   std::size_t column(std::string_view name) const;
   const std::string& text(std::size_t row, std::size_t col) const;
+  // The 1-based line of the source text that holds data row `row`.
+  std::size_t line(std::size_t row) const;
   // The field as a finite double; throws IoError "<source> line L column C: '<field>' is not a
   // finite number".
   double number(std::size_t row, std::size_t col) const;

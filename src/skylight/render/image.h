@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -65,6 +66,8 @@ ImageFormat format_from_path(const std::filesystem::path& path);
 void write_image(const std::filesystem::path& path, const ImageF& image, const Metadata& meta = {});
 // Writes an 8-bit image as PNG, atomically.
 void write_png(const std::filesystem::path& path, const Image8& image, const Metadata& meta = {});
+// Writes bytes (e.g. HTML, SVG, JSON text) to a file atomically, like the image writers.
+void write_text_file(const std::filesystem::path& path, std::string_view content);
 
 // Reads an EXR (R,G,B or Y channels, any pixel type converted to float), PFM or HDR file.
 // Throws skylight::IoError naming the path on a missing or corrupt file.

@@ -568,6 +568,12 @@ void write_png(const std::filesystem::path& path, const Image8& image, const Met
   file.commit();
 }
 
+void write_text_file(const std::filesystem::path& path, std::string_view content) {
+  AtomicFile file(path);
+  file.write(content.data(), content.size());
+  file.commit();
+}
+
 ImageF read_image(const std::filesystem::path& path) {
   switch (format_from_path(path)) {
     case ImageFormat::exr:

@@ -1,0 +1,233 @@
+#include "skylight/render/measurements.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <array>
+#include <charconv>
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+#include "skylight/core/data.h"
+#include "skylight/core/error.h"
+
+namespace skylight::render {
+namespace {
+
+constexpr std::string_view kAzimuthColumn = "azimuth_deg";
+constexpr std::string_view kElevationColumn = "elevation_deg";
+constexpr std::string_view kLuminanceColumn = "luminance_cd_m2";
+constexpr std::string_view kSunAzimuthKey = "sun_azimuth_deg";
+constexpr std::string_view kSunElevationKey = "sun_elevation_deg";
+
+std::string_view trim(std::string_view s) {
+  while (!s.empty() && (s.front() == ' ' || s.front() == '\t' || s.front() == '\r'))
+    s.remove_prefix(1);
+  while (!s.empty() && (s.back() == ' ' || s.back() == '\t' || s.back() == '\r'))
+    s.remove_suffix(1);
+  return s;
+}
+
+std::optional<double> parse_double(std::string_view s) {
+  if (!s.empty() && s.front() == '+') s.remove_prefix(1);
+  double v = 0.0;
+  const auto [ptr, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
+  if (s.empty() || ec != std::errc() || ptr != s.data() + s.size() || !std::isfinite(v))
+    return std::nullopt;
+  return v;
+}
+
+// `# key = value` comment: the sun position keys are read, anything else is free text.
+void read_comment(std::string_view body, const std::string& source, std::size_t line,
+                  SkyScan& scan) {
+  const auto eq = body.find('=');
+  if (eq == std::string_view::npos) return;
+  const std::string_view key = trim(body.substr(0, eq));
+  const std::string_view value = trim(body.substr(eq + 1));
+  const bool azimuth = key == kSunAzimuthKey, elevation = key == kSunElevationKey;
+  if (!azimuth && !elevation) return;
+  const auto v = parse_double(value);
+  if (!v)
+    throw InvalidArgument(
+        fmt::format("{} line {}: {} '{}' is not a finite number", source, line, key, value));
+  const double lo = azimuth ? -360.0 : 0.0, hi = azimuth ? 360.0 : 90.0;
+  if (*v < lo || *v > hi)
+    throw InvalidArgument(
+        fmt::format("{} line {}: {} = {} is outside [{}, {}]", source, line, key, *v, lo, hi));
+  if (azimuth)
+    scan.sun_azimuth = wrap_azimuth(deg_to_rad(*v));
+  else
+    scan.sun_elevation = deg_to_rad(*v);
+}
+
+// SplitMix64 (Steele, Lea & Flood 2014): a tiny generator whose sequence is fixed by its seed on
+// every platform (std::uniform_real_distribution is not).
+class SplitMix64 {
+ public:
+  explicit SplitMix64(std::uint64_t seed) : state_(seed) {}
+  std::uint64_t next() {
+    std::uint64_t z = (state_ += 0x9E3779B97F4A7C15ull);
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+    return z ^ (z >> 31);
+  }
+  // Uniform in [-1, 1): the top 53 bits as a double in [0, 1), mapped.
+  double symmetric() { return 2.0 * static_cast<double>(next() >> 11) * 0x1.0p-53 - 1.0; }
+
+ private:
+  std::uint64_t state_;
+};
+
+}  // namespace
+
+SkyScan parse_sky_scan(std::string_view text, std::string source) {
+  SkyScan scan;
+  scan.source = source;
+  // Comment lines become blank lines, so that the table's line numbers stay those of the file.
+  std::string table;
+  table.reserve(text.size());
+  std::size_t line = 0, pos = 0;
+  while (pos <= text.size()) {
+    const std::size_t nl = text.find('\n', pos);
+    const std::string_view raw = text.substr(pos, nl == text.npos ? text.npos : nl - pos);
+    ++line;
+    pos = nl == text.npos ? text.size() + 1 : nl + 1;
+    const std::string_view t = trim(raw);
+    if (!t.empty() && t.front() == '#') {
+      read_comment(t.substr(1), source, line, scan);
+    } else {
+      table += raw;
+    }
+    table += '\n';
+  }
+  try {
+    const data::CsvTable csv(table, source, /*has_header=*/true);
+    const std::size_t ca = csv.column(kAzimuthColumn), ce = csv.column(kElevationColumn),
+                      cl = csv.column(kLuminanceColumn);
+    for (std::size_t r = 0; r < csv.rows(); ++r) {
+      const double az = csv.number(r, ca), el = csv.number(r, ce), lum = csv.number(r, cl);
+      auto out_of_range = [&](std::size_t col, std::string_view name, double v,
+                              std::string_view range) {
+        return InvalidArgument(fmt::format("{} line {} column {}: {} = {} is outside {}", source,
+                                           csv.line(r), col + 1, name, v, range));
+      };
+      if (az < -360.0 || az > 360.0) throw out_of_range(ca, kAzimuthColumn, az, "[-360, 360]");
+      if (el < 0.0 || el > 90.0) throw out_of_range(ce, kElevationColumn, el, "[0, 90]");
+      if (!(lum > 0.0)) throw out_of_range(cl, kLuminanceColumn, lum, "(0, inf)");
+      scan.samples.push_back({wrap_azimuth(deg_to_rad(az)), deg_to_rad(el), lum, csv.line(r)});
+    }
+  } catch (const IoError& e) {
+    // The CSV loader reports malformed tables as IoError; here they are bad user input.
+    throw InvalidArgument(e.what());
+  }
+  if (scan.samples.empty()) throw InvalidArgument(fmt::format("{}: no samples", source));
+  return scan;
+}
+
+SkyScan read_sky_scan(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in)
+    throw IoError(fmt::format("cannot read '{}': no such file or not readable", path.string()));
+  std::ostringstream s;
+  s << in.rdbuf();
+  if (in.bad()) throw IoError(fmt::format("cannot read '{}': read error", path.string()));
+  return parse_sky_scan(s.str(), path.string());
+}
+
+std::string format_sky_scan(const SkyScan& scan, const std::vector<std::string>& comments) {
+  std::string out;
+  for (const auto& c : comments) out += "# " + c + "\n";
+  if (scan.sun_azimuth)
+    out += fmt::format("# {} = {:.6g}\n", kSunAzimuthKey, rad_to_deg(*scan.sun_azimuth));
+  if (scan.sun_elevation)
+    out += fmt::format("# {} = {:.6g}\n", kSunElevationKey, rad_to_deg(*scan.sun_elevation));
+  out += fmt::format("{},{},{}\n", kAzimuthColumn, kElevationColumn, kLuminanceColumn);
+  for (const auto& s : scan.samples)
+    out += fmt::format("{:.6g},{:.6g},{:.6g}\n", rad_to_deg(s.azimuth), rad_to_deg(s.elevation),
+                       s.luminance);
+  return out;
+}
+
+std::vector<PatchCentre> tregenza_patch_centres() {
+  // Tregenza 1987, Table 1: band centre elevation [deg] and number of patches.
+  constexpr std::array<std::array<int, 2>, 8> kBands = {
+      {{6, 30}, {18, 30}, {30, 24}, {42, 24}, {54, 18}, {66, 12}, {78, 6}, {90, 1}}};
+  std::vector<PatchCentre> out;
+  for (const auto& [elevation, count] : kBands)
+    for (int k = 0; k < count; ++k)
+      out.push_back({deg_to_rad(360.0 * k / count), deg_to_rad(static_cast<double>(elevation))});
+  SKYLIGHT_CHECK(out.size() == kTregenzaPatchCount, "Tregenza bands must give 145 patches");
+  return out;
+}
+
+std::vector<std::string> synthetic_scan_comments(const SyntheticScanSettings& s) {
+  return {
+      "Synthetic sky-luminance scan (NOT a measurement), written by",
+      "`skylight report --write-synthetic-measurements FILE` (render/measurements.h).",
+      fmt::format("CIE S 011 type {} sky with the Kittler-Darula typical zenith luminance at the",
+                  s.cie_type),
+      fmt::format("145 Tregenza (1987) patch centres, times (1 + {} u), u uniform in [-1, 1)",
+                  s.noise),
+      fmt::format("from SplitMix64 with seed {}.", s.seed),
+  };
+}
+
+SkyScan synthetic_tregenza_scan(const SyntheticScanSettings& s) {
+  require_in_range("noise", s.noise, 0.0, 0.999);
+  SkyParameters p;
+  p.cie_type = s.cie_type;
+  p.sun = {kPi / 2 - s.sun_elevation, wrap_azimuth(s.sun_azimuth)};
+  const auto sky = make_sky_model("cie", p);
+  SplitMix64 rng(s.seed);
+  SkyScan scan;
+  scan.source = "synthetic";
+  scan.sun_azimuth = p.sun.azimuth;
+  scan.sun_elevation = s.sun_elevation;
+  std::size_t line = 0;
+  for (const auto& c : tregenza_patch_centres()) {
+    const Vec3 v = direction_from_angles(kPi / 2 - c.elevation, c.azimuth);
+    const double L = sky->tristimulus(v).Y * (1.0 + s.noise * rng.symmetric());
+    scan.samples.push_back({c.azimuth, c.elevation, L, ++line});
+  }
+  return scan;
+}
+
+ScanErrors compare_to_scan(const SkyModel& model, const SkyScan& scan, double sun_exclusion) {
+  const Vec3 sun = model.parameters().sun.direction();
+  std::vector<double> d;
+  const LuminanceSample* top = nullptr;
+  double top_ratio = 0.0;
+  for (const auto& s : scan.samples) {
+    const Vec3 v = direction_from_angles(kPi / 2 - s.elevation, s.azimuth);
+    if (angle_between(v, sun) < sun_exclusion) continue;
+    const double m = model.tristimulus(v).Y;
+    if (!(m > 0.0) || !(s.luminance > 0.0)) continue;
+    d.push_back(std::log10(m / s.luminance));
+    if (top == nullptr || s.elevation > top->elevation) {
+      top = &s;
+      top_ratio = d.back();
+    }
+  }
+  if (d.empty())
+    throw InvalidArgument(
+        fmt::format("{}: no sample usable for comparing model '{}'", scan.source, model.name()));
+  ScanErrors e;
+  e.samples_used = d.size();
+  double s1 = 0, s2 = 0, r1 = 0, r2 = 0;
+  for (double x : d) {
+    s1 += x;
+    s2 += x * x;
+    const double r = x - top_ratio;  // both normalised at the highest sample
+    r1 += r;
+    r2 += r * r;
+  }
+  const double n = static_cast<double>(d.size());
+  e.bias_log10_absolute = s1 / n;
+  e.rms_log10_absolute = std::sqrt(s2 / n);
+  e.bias_log10_relative = r1 / n;
+  e.rms_log10_relative = std::sqrt(r2 / n);
+  return e;
+}
+
+}  // namespace skylight::render
