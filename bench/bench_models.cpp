@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "skylight/core/parallel.h"
-#include "skylight/models/atmosphere/nishita_model.h"
+#include "skylight/models/nishita.h"
 #include "skylight/models/sky_model.h"
 #include "skylight/render/sky_render.h"
 

@@ -11,7 +11,7 @@
 
 #include "skylight/core/colorimetry.h"
 #include "skylight/core/frame.h"
-#include "skylight/render/image.h"
+#include "skylight/io/image.h"
 
 namespace fs = std::filesystem;
 
@@ -82,7 +82,7 @@ TEST_F(Cli, RenderedExrPixelMatchesEval) {
   const fs::path exr = dir_ / "sky.exr";
   const Result r = run("render " + model + " --width 64 --height 32 -o '" + exr.string() + "'");
   ASSERT_EQ(r.status, 0) << r.err;
-  const render::ImageF img = render::read_image(exr);
+  const io::ImageF img = io::read_image(exr);
   ASSERT_EQ(img.width, 64);
   ASSERT_EQ(img.height, 32);
   ASSERT_EQ(img.channels, 3);
@@ -103,7 +103,7 @@ TEST_F(Cli, RenderedExrPixelMatchesEval) {
   // Lower half (below the horizon) is 0 for the analytic skies.
   EXPECT_EQ(img.pixel(20, 25)[1], 0.0f);
   // Every parameter and the version are recorded.
-  const auto md = render::read_exr_metadata(exr);
+  const auto md = io::read_exr_metadata(exr);
   auto find = [&](const std::string& k) {
     for (const auto& [key, value] : md)
       if (key == k) return value;
@@ -129,7 +129,7 @@ TEST_F(Cli, RenderAllFormatsAndProjections) {
           "--height 40 -o '" +
           fe.string() + "' --false-colour '" + fc.string() + "'");
   ASSERT_EQ(r.status, 0) << r.err;
-  const render::ImageF img = render::read_image(fe);
+  const io::ImageF img = io::read_image(fe);
   EXPECT_EQ(img.pixel(0, 0)[1], 0.0f) << "corner outside the image circle";
   EXPECT_GT(img.pixel(20, 20)[1], 0.0f) << "zenith";
   EXPECT_TRUE(fs::exists(fc));
@@ -143,7 +143,7 @@ TEST_F(Cli, RenderAllFormatsAndProjections) {
   r = run("render --model preetham --sun-zenith 45 --include-sun --width 2048 --height 1024 -o '" +
           (dir_ / "s.pfm").string() + "'");
   ASSERT_EQ(r.status, 0) << r.err;
-  const render::ImageF sun = render::read_image(dir_ / "s.pfm");
+  const io::ImageF sun = io::read_image(dir_ / "s.pfm");
   float peak = 0;
   for (int x = 0; x < sun.width; ++x)
     for (int y = 0; y < sun.height; ++y) peak = std::max(peak, sun.pixel(x, y)[1]);
@@ -242,7 +242,7 @@ TEST_F(Cli, RenderNishitaFromOrbitWithCamera) {
           "--look-elevation -30 --fov 70 --width 32 --height 16 -o '" +
           exr.string() + "'");
   ASSERT_EQ(r.status, 0) << r.err;
-  const render::ImageF img = render::read_image(exr);
+  const io::ImageF img = io::read_image(exr);
   ASSERT_EQ(img.width, 32);
   EXPECT_EQ(img.pixel(16, 0)[1], 0.0f) << "top centre: space above the limb";
   EXPECT_GT(img.pixel(16, 15)[1], 0.0f) << "bottom centre: the lit atmosphere over the planet";
@@ -353,7 +353,7 @@ TEST_F(Cli, HosekEvalAllQuantitiesAndRender) {
   const fs::path exr = dir_ / "hosek.exr";
   r = run("render " + model + " --width 64 --height 32 -o '" + exr.string() + "'");
   ASSERT_EQ(r.status, 0) << r.err;
-  const render::ImageF img = render::read_image(exr);
+  const io::ImageF img = io::read_image(exr);
   const double zen = 180.0 * 9.5 / 32.0, az = 360.0 * 20.5 / 64.0;
   r = run("eval " + model + " --quantity xyz",
           "zenith_deg,azimuth_deg\n" + std::to_string(zen) + "," + std::to_string(az) + "\n");
@@ -370,7 +370,7 @@ TEST_F(Cli, HosekEvalAllQuantitiesAndRender) {
   r = run("render " + model + " --sun-only --width 256 --height 128 -o '" +
           (dir_ / "so.pfm").string() + "'");
   ASSERT_EQ(r.status, 0) << r.err;
-  const render::ImageF so = render::read_image(dir_ / "so.pfm");
+  const io::ImageF so = io::read_image(dir_ / "so.pfm");
   float peak = 0;
   for (int x = 0; x < so.width; ++x)
     for (int y = 0; y < so.height; ++y) peak = std::max(peak, so.pixel(x, y)[1]);

@@ -21,13 +21,16 @@
 #include <string>
 #include <vector>
 
+#include "skylight/analysis/scan.h"
 #include "skylight/core/error.h"
 #include "skylight/core/parallel.h"
+#include "skylight/io/file.h"
+#include "skylight/io/image.h"
 #include "skylight/models/sky_model.h"
-#include "skylight/render/image.h"
-#include "skylight/render/measurements.h"
-#include "skylight/render/report.h"
+#include "skylight/render/false_colour.h"
 #include "skylight/render/sky_render.h"
+#include "skylight/render/tonemap.h"
+#include "skylight/report/report.h"
 #include "skylight/version.h"
 
 namespace sl = skylight;
@@ -190,9 +193,9 @@ struct ModelFlags {
     return m;
   }
 
-  sl::render::Metadata metadata() const {
+  sl::io::Metadata metadata() const {
     const auto p = parameters();
-    sl::render::Metadata md{
+    sl::io::Metadata md{
         {"skylight:version", sl::kVersion},
         {"skylight:model", model},
         {"skylight:sun_zenith_deg", fmt::format("{}", sl::rad_to_deg(p.sun.zenith))},
@@ -295,10 +298,11 @@ int run_render(const ModelFlags& mf, const RenderFlags& rf) {
           : mf.include_sun ? r::SunMode::sky_and_sun
                            : r::SunMode::sky;
   r::validate(s);
-  (void)r::format_from_path(rf.output);
-  if (!rf.preview.empty() && r::format_from_path(rf.preview) != r::ImageFormat::png)
+  (void)sl::io::format_from_path(rf.output);
+  if (!rf.preview.empty() && sl::io::format_from_path(rf.preview) != sl::io::ImageFormat::png)
     throw sl::InvalidArgument(fmt::format("--preview '{}' must be a .png file", rf.preview));
-  if (!rf.false_colour.empty() && r::format_from_path(rf.false_colour) != r::ImageFormat::png)
+  if (!rf.false_colour.empty() &&
+      sl::io::format_from_path(rf.false_colour) != sl::io::ImageFormat::png)
     throw sl::InvalidArgument(
         fmt::format("--false-colour '{}' must be a .png file", rf.false_colour));
   if (!(rf.fc_range[0] < rf.fc_range[1]))
@@ -325,15 +329,15 @@ int run_render(const ModelFlags& mf, const RenderFlags& rf) {
   md.emplace_back("skylight:zenith_luminance_evaluated_cd_m2",
                   fmt::format("{}", model->tristimulus({0.0, 0.0, 1.0}).Y));
   md.emplace_back("skylight:domain", std::string(sl::to_string(model->domain().worst())));
-  r::write_image(rf.output, img.rgb, md);
-  if (!rf.preview.empty()) r::write_image(rf.preview, img.rgb, md);
+  r::write_image_or_preview(rf.output, img.rgb, md);
+  if (!rf.preview.empty()) r::write_image_or_preview(rf.preview, img.rgb, md);
   if (!rf.false_colour.empty()) {
-    r::ImageF lum(img.xyz.width, img.xyz.height, 1);
+    sl::io::ImageF lum(img.xyz.width, img.xyz.height, 1);
     for (std::size_t i = 0; i < lum.data.size(); ++i) lum.data[i] = img.xyz.data[3 * i + 1];
     r::FalseColourOptions fo;
     fo.log10_min = rf.fc_range[0];
     fo.log10_max = rf.fc_range[1];
-    r::write_png(rf.false_colour, r::false_colour(lum, fo, &img.mask), md);
+    sl::io::write_png(rf.false_colour, r::false_colour(lum, fo, &img.mask), md);
   }
   return kExitOk;
 }
@@ -546,8 +550,9 @@ int run_report(const ReportFlags& f) {
     if (!f.output.empty() || !f.measurements.empty() || f.sun_azimuth_deg || f.sun_elevation_deg ||
         f.quick)
       throw sl::InvalidArgument("--write-synthetic-measurements takes no other report flag");
-    r::write_text_file(f.write_synthetic, r::format_sky_scan(r::synthetic_tregenza_scan(),
-                                                             r::synthetic_scan_comments()));
+    sl::io::write_text_file(f.write_synthetic,
+                            sl::analysis::format_sky_scan(sl::analysis::synthetic_tregenza_scan(),
+                                                          sl::analysis::synthetic_scan_comments()));
     std::cerr << fmt::format("skylight report: wrote the synthetic scan to {}\n",
                              f.write_synthetic);
     return kExitOk;
@@ -555,7 +560,7 @@ int run_report(const ReportFlags& f) {
   if (f.output.empty()) throw sl::InvalidArgument("report: -o/--output DIR is required");
   if (f.sun_azimuth_deg.has_value() != f.sun_elevation_deg.has_value())
     throw sl::InvalidArgument("--sun-azimuth and --sun-elevation must be given together");
-  r::ReportOptions o;
+  sl::report::ReportOptions o;
   o.output_dir = f.output;
   if (!f.measurements.empty()) o.measurements = f.measurements;
   if (f.sun_azimuth_deg)
@@ -581,7 +586,7 @@ int run_report(const ReportFlags& f) {
                                step);
     }
   };
-  const r::ReportSummary s = r::write_report(o);
+  const sl::report::ReportSummary s = sl::report::write_report(o);
   std::cerr << fmt::format("skylight report: wrote {} files to {} in {:.1f} s\n", s.files.size(),
                            f.output, elapsed());
   std::cout << fmt::format("{}\n", (std::filesystem::path(f.output) / "index.html").string());

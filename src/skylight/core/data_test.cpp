@@ -2,13 +2,10 @@
 
 #include <gtest/gtest.h>
 
-#include <atomic>
-#include <numeric>
 #include <string>
 #include <vector>
 
 #include "skylight/core/error.h"
-#include "skylight/core/parallel.h"
 
 namespace skylight {
 namespace {
@@ -44,28 +41,6 @@ TEST(Data, BadFieldIsNamedWithLineAndColumn) {
       std::string::npos)
       << "NaN in a table is an error";
   EXPECT_NE(error_of([&] { t.column("c"); }).find("no column 'c'"), std::string::npos);
-}
-
-TEST(Parallel, CoversEveryIndexOnce) {
-  for (int threads : {1, 2, 3}) {
-    set_thread_count(threads);
-    std::vector<std::atomic<int>> hits(10007);
-    parallel_for(hits.size(), 64, [&](std::size_t b, std::size_t e) {
-      for (std::size_t i = b; i < e; ++i) hits[i]++;
-    });
-    for (std::size_t i = 0; i < hits.size(); ++i) ASSERT_EQ(hits[i].load(), 1) << i;
-  }
-  set_thread_count(0);
-}
-
-TEST(Parallel, PropagatesExceptions) {
-  set_thread_count(2);
-  EXPECT_THROW(parallel_for(1000, 10,
-                            [](std::size_t b, std::size_t) {
-                              if (b == 500) throw IoError("boom");
-                            }),
-               IoError);
-  set_thread_count(0);
 }
 
 }  // namespace

@@ -5,9 +5,9 @@
 #include <vector>
 
 #include "skylight/core/error.h"
-#include "skylight/models/batch_check.h"
 #include "skylight/models/perez.h"
 #include "skylight/models/sky_model.h"
+#include "support/batch_check.h"
 
 namespace skylight {
 namespace {

@@ -13,7 +13,7 @@
 #include <tuple>
 
 #include <vector>
-#include "skylight/models/batch_check.h"
+#include "support/batch_check.h"
 
 #include "skylight/core/data.h"
 #include "skylight/core/error.h"

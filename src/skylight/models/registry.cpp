@@ -1,9 +1,9 @@
 // The model registry: name -> documentation, parameters (unit, range, default) and factory.
 #include <memory>
 
-#include "skylight/models/atmosphere/nishita_model.h"
 #include "skylight/models/cie_sky.h"
 #include "skylight/models/hosek_wilkie.h"
+#include "skylight/models/nishita.h"
 #include "skylight/models/perez.h"
 #include "skylight/models/preetham.h"
 #include "skylight/models/sky_model.h"

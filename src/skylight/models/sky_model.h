@@ -15,9 +15,9 @@
 #include <string_view>
 #include <vector>
 
+#include "skylight/atmosphere/parameters.h"
 #include "skylight/core/colorimetry.h"
 #include "skylight/core/frame.h"
-#include "skylight/models/atmosphere/parameters.h"
 
 namespace skylight {
 

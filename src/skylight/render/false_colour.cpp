@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "skylight/core/error.h"
-#include "skylight/render/image.h"
+#include "skylight/render/false_colour.h"
 
 // stb_easy_font.h is a header of static functions; we use only some of them.
 #pragma GCC diagnostic push

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "skylight/core/error.h"
-#include "skylight/render/image.h"
+#include "skylight/render/false_colour.h"
 
 namespace skylight::render {
 namespace {

@@ -8,10 +8,12 @@
 #include <vector>
 
 #include "skylight/core/frame.h"
+#include "skylight/io/image.h"
 #include "skylight/models/sky_model.h"
-#include "skylight/render/image.h"
 
 namespace skylight::render {
+
+using io::ImageF;
 
 enum class Projection { equirect, hemisphere, fisheye, cubemap, camera };
 std::optional<Projection> parse_projection(std::string_view name);

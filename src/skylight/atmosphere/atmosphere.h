@@ -23,9 +23,9 @@
 #include <span>
 #include <vector>
 
+#include "skylight/atmosphere/parameters.h"
+#include "skylight/atmosphere/scatter_kernel.h"
 #include "skylight/core/frame.h"
-#include "skylight/models/atmosphere/parameters.h"
-#include "skylight/models/atmosphere/scatter_kernel.h"
 
 namespace skylight::atmosphere {
 

@@ -1,5 +1,5 @@
 // Image files: EXR (OpenEXR), Radiance HDR (own RGBE writer, stb_image reader), PFM (own code),
-// PNG (stb_image_write), and the tone-mapped 8-bit preview.
+// PNG (stb_image_write) with text chunks.
 #include <unistd.h>
 
 #include <OpenEXR/ImfChannelList.h>
@@ -28,31 +28,13 @@
 #include <system_error>
 
 #include "skylight/core/error.h"
-#include "skylight/render/image.h"
+#include "skylight/io/file.h"
+#include "skylight/io/image.h"
 
-namespace skylight::render {
+namespace skylight::io {
 namespace {
 
 namespace fs = std::filesystem;
-
-std::string errno_message(int err) {
-  return std::error_code(err, std::generic_category()).message();
-}
-
-// Library messages (OpenEXR's in particular) may span lines; ours are one line.
-std::string one_line(std::string s) {
-  std::replace_if(
-      s.begin(), s.end(), [](char c) { return c == '\n' || c == '\r'; }, ' ');
-  while (!s.empty() && s.back() == ' ') s.pop_back();
-  return s;
-}
-
-[[noreturn]] void write_error(const fs::path& path, const std::string& why) {
-  throw IoError(fmt::format("cannot write '{}': {}", path.string(), one_line(why)));
-}
-[[noreturn]] void read_error(const fs::path& path, const std::string& why) {
-  throw IoError(fmt::format("cannot read '{}': {}", path.string(), one_line(why)));
-}
 
 // Runs `body`, turning library exceptions (Iex::BaseExc and other std::exceptions) into one-line
 // IoErrors naming `path`. Our own errors and std::bad_alloc pass through unchanged.
@@ -67,90 +49,10 @@ auto converting_errors(const fs::path& path, bool reading, F&& body) {
   } catch (const std::bad_alloc&) {
     throw;
   } catch (const std::exception& e) {
-    if (reading) read_error(path, e.what());
-    write_error(path, e.what());
+    if (reading) throw_read_error(path, e.what());
+    throw_write_error(path, e.what());
   }
 }
-
-// ---- atomic output ---------------------------------------------------------------------------
-
-// A temporary file next to the target, `<stem>.tmp-<pid>-<counter><ext>` (the real extension
-// last), renamed onto the target by commit(). Destroyed uncommitted, it removes the temporary, so
-// the target is either untouched or complete. All writers go through write(), which checks every
-// call, and commit() flushes and fsyncs before the rename.
-class AtomicFile {
- public:
-  explicit AtomicFile(fs::path target) : target_(std::move(target)) {
-    static std::atomic<unsigned> counter{0};
-    for (int attempt = 0;; ++attempt) {
-      temp_ = target_.parent_path() / fmt::format("{}.tmp-{}-{}{}", target_.stem().string(),
-                                                  static_cast<long>(::getpid()), counter++,
-                                                  target_.extension().string());
-      file_ = std::fopen(temp_.c_str(), "wbx");  // x: exclusive, never clobbers another writer
-      if (file_ != nullptr) break;
-      const int err = errno;
-      if (err != EEXIST || attempt >= 100) write_error(target_, errno_message(err));
-    }
-  }
-  AtomicFile(const AtomicFile&) = delete;
-  AtomicFile& operator=(const AtomicFile&) = delete;
-  ~AtomicFile() {
-    if (file_ != nullptr) std::fclose(file_);
-    if (!committed_) {
-      std::error_code ignored;
-      fs::remove(temp_, ignored);
-    }
-  }
-
-  const fs::path& target() const { return target_; }
-
-  void write(const void* bytes, size_t n) {
-    if (failed_) write_error(target_, errno_message(failed_errno_));
-    if (n > 0 && std::fwrite(bytes, 1, n, file_) != n) fail(errno);
-  }
-  void write(const std::string& s) { write(s.data(), s.size()); }
-  // Never throws (~OutputFile calls it outside its try block); a failure is remembered and
-  // reported by the next write() or by commit().
-  std::uint64_t tell() noexcept {
-    const off_t pos = ::ftello(file_);
-    if (pos >= 0) return static_cast<std::uint64_t>(pos);
-    remember(errno);
-    return 0;
-  }
-  void seek(std::uint64_t pos) {
-    if (::fseeko(file_, static_cast<off_t>(pos), SEEK_SET) != 0) fail(errno);
-  }
-
-  void commit() {
-    if (failed_) write_error(target_, errno_message(failed_errno_));
-    if (std::fflush(file_) != 0 || ::fsync(::fileno(file_)) != 0) fail(errno);
-    std::FILE* f = std::exchange(file_, nullptr);
-    if (std::fclose(f) != 0) fail(errno);
-    std::error_code ec;
-    fs::rename(temp_, target_, ec);
-    if (ec) write_error(target_, ec.message());
-    committed_ = true;
-  }
-
- private:
-  // Failures are remembered: OpenEXR swallows exceptions thrown while it closes a file.
-  void remember(int err) noexcept {
-    if (failed_) return;
-    failed_ = true;
-    failed_errno_ = err != 0 ? err : EIO;
-  }
-  [[noreturn]] void fail(int err) {
-    remember(err);
-    write_error(target_, errno_message(failed_errno_));
-  }
-
-  fs::path target_;
-  fs::path temp_;
-  std::FILE* file_ = nullptr;
-  bool committed_ = false;
-  bool failed_ = false;
-  int failed_errno_ = 0;
-};
 
 // OpenEXR output through an AtomicFile (so that write errors are never lost, even those raised
 // while ~OutputFile writes the line-offset table).
@@ -165,35 +67,6 @@ class AtomicExrStream : public Imf::OStream {
  private:
   AtomicFile& file_;
 };
-
-// ---- input -----------------------------------------------------------------------------------
-
-struct FileCloser {
-  void operator()(std::FILE* f) const { std::fclose(f); }
-};
-using FilePtr = std::unique_ptr<std::FILE, FileCloser>;
-
-// Opens a regular file for reading, or throws an IoError with the system's reason.
-FilePtr open_for_read(const fs::path& path) {
-  std::error_code ec;
-  if (fs::is_directory(path, ec)) read_error(path, "is a directory");
-  FilePtr f(std::fopen(path.c_str(), "rb"));
-  if (!f) read_error(path, errno_message(errno));
-  return f;
-}
-
-std::vector<char> read_all(const fs::path& path) {
-  FilePtr f = open_for_read(path);
-  std::vector<char> bytes;
-  char buffer[1 << 16];
-  for (;;) {
-    const size_t n = std::fread(buffer, 1, sizeof buffer, f.get());
-    bytes.insert(bytes.end(), buffer, buffer + n);
-    if (n < sizeof buffer) break;
-  }
-  if (std::ferror(f.get())) read_error(path, errno_message(errno));
-  return bytes;
-}
 
 // ---- validation ------------------------------------------------------------------------------
 
@@ -277,7 +150,7 @@ ImageF read_exr(const fs::path& path) {
     const std::int64_t h = std::int64_t{window.max.y} - window.min.y + 1;
     if (w <= 0 || h <= 0 || w > std::numeric_limits<int>::max() ||
         h > std::numeric_limits<int>::max())
-      read_error(path, fmt::format("bad data window {}x{}", w, h));
+      throw_read_error(path, fmt::format("bad data window {}x{}", w, h));
 
     const Imf::ChannelList& channels = header.channels();
     std::vector<const char*> names;
@@ -289,7 +162,7 @@ ImageF read_exr(const fs::path& path) {
       std::string present;
       for (auto it = channels.begin(); it != channels.end(); ++it)
         present += (present.empty() ? "" : ", ") + std::string(it.name());
-      read_error(path, fmt::format("no R,G,B or Y channels (has: {})", present));
+      throw_read_error(path, fmt::format("no R,G,B or Y channels (has: {})", present));
     }
 
     ImageF image(static_cast<int>(w), static_cast<int>(h), static_cast<int>(names.size()));
@@ -329,7 +202,7 @@ void write_pfm(const fs::path& path, const ImageF& image) {
 }
 
 ImageF read_pfm(const fs::path& path) {
-  const std::vector<char> bytes = read_all(path);
+  const std::vector<char> bytes = read_file(path);
   size_t pos = 0;
   auto is_space = [](char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\n'; };
   // Next whitespace-separated header token (short: the header is a few numbers).
@@ -339,7 +212,9 @@ ImageF read_pfm(const fs::path& path) {
     while (pos < bytes.size() && !is_space(bytes[pos]) && t.size() < 64) t += bytes[pos++];
     return t;
   };
-  auto corrupt = [&](const std::string& why) { read_error(path, "not a valid PFM file: " + why); };
+  auto corrupt = [&](const std::string& why) {
+    throw_read_error(path, "not a valid PFM file: " + why);
+  };
 
   const std::string magic = token();
   if (magic != "PF" && magic != "Pf") corrupt("missing PF/Pf signature");
@@ -455,11 +330,11 @@ void write_hdr(const fs::path& path, const ImageF& image, const Metadata& meta) 
 ImageF read_hdr(const fs::path& path) {
   FilePtr f = open_for_read(path);
   // stbi_loadf would also accept an 8-bit image and apply a gamma to it: insist on Radiance.
-  if (!stbi_is_hdr_from_file(f.get())) read_error(path, "not a Radiance HDR file");
+  if (!stbi_is_hdr_from_file(f.get())) throw_read_error(path, "not a Radiance HDR file");
   stbi_set_flip_vertically_on_load_thread(0);  // row 0 at the top, whatever others set globally
   int w = 0, h = 0, n = 0;
   float* pixels = stbi_loadf_from_file(f.get(), &w, &h, &n, 3);  // .hdr: linear, no gamma
-  if (pixels == nullptr) read_error(path, stbi_failure_reason());
+  if (pixels == nullptr) throw_read_error(path, stbi_failure_reason());
   ImageF image(w, h, 3);
   std::copy(pixels, pixels + image.data.size(), image.data.begin());
   stbi_image_free(pixels);
@@ -540,8 +415,10 @@ void write_image(const std::filesystem::path& path, const ImageF& image, const M
       write_pfm(path, image);
       return;
     case ImageFormat::png:
-      write_png(path, tonemap_preview(image), meta);
-      return;
+      throw InvalidArgument(
+          fmt::format("cannot write '{}': PNG holds 8-bit data; tone-map the float image first "
+                      "(render::write_image_or_preview)",
+                      path.string()));
   }
 }
 
@@ -551,11 +428,11 @@ void write_png(const std::filesystem::path& path, const Image8& image, const Met
   std::vector<std::uint8_t> png;
   if (!stbi_write_png_to_func(append_bytes, &png, image.width, image.height, 3, image.data.data(),
                               image.width * 3))
-    write_error(path, "PNG encoding failed");
+    throw_write_error(path, "PNG encoding failed");
   // Text chunks go right after IHDR (8-byte signature + 25-byte IHDR chunk).
   constexpr size_t kAfterIhdr = 33;
   if (png.size() < kAfterIhdr || std::memcmp(png.data() + 12, "IHDR", 4) != 0)
-    write_error(path, "unexpected PNG encoder output");
+    throw_write_error(path, "unexpected PNG encoder output");
   std::vector<std::uint8_t> chunks;
   for (const auto& [key, value] : meta) {
     const auto chunk = text_chunk(key, value);
@@ -565,12 +442,6 @@ void write_png(const std::filesystem::path& path, const Image8& image, const Met
 
   AtomicFile file(path);
   file.write(png.data(), png.size());
-  file.commit();
-}
-
-void write_text_file(const std::filesystem::path& path, std::string_view content) {
-  AtomicFile file(path);
-  file.write(content.data(), content.size());
   file.commit();
 }
 
@@ -601,69 +472,4 @@ Metadata read_exr_metadata(const std::filesystem::path& path) {
     return meta;
   });
 }
-
-Image8 tonemap_preview(const ImageF& image, const ToneMapOptions& options) {
-  if (!(options.percentile > 0.0 && options.percentile <= 1.0))
-    throw InvalidArgument(
-        fmt::format("tone-map percentile must be in (0, 1], got {}", options.percentile));
-  if (!(std::isfinite(options.exposure) && options.exposure > 0.0))
-    throw InvalidArgument(fmt::format("tone-map exposure must be > 0, got {}", options.exposure));
-  if (image.channels != 1 && image.channels != 3)
-    throw InvalidArgument(
-        fmt::format("tone-map: image has {} channels, expected 1 or 3", image.channels));
-  const size_t pixels = static_cast<size_t>(std::max(image.width, 0)) *
-                        static_cast<size_t>(std::max(image.height, 0));
-  if (image.data.size() != pixels * static_cast<size_t>(image.channels))
-    throw InvalidArgument(fmt::format("tone-map: image data has {} values, expected {}",
-                                      image.data.size(), pixels * image.channels));
-
-  // Linear colour of pixel i with negative and non-finite channels set to 0, and its luminance
-  // (Rec. 709 / sRGB weights).
-  auto colour = [&](size_t i) {
-    std::array<double, 3> c{};
-    const float* p = image.data.data() + i * static_cast<size_t>(image.channels);
-    for (int k = 0; k < 3; ++k) {
-      const float v = p[image.channels == 3 ? k : 0];
-      c[k] = std::isfinite(v) && v > 0.0f ? v : 0.0;
-    }
-    return c;
-  };
-  auto luminance = [&](const std::array<double, 3>& c) {
-    return image.channels == 3 ? 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2] : c[0];
-  };
-
-  // Auto exposure: the percentile of luminance over pixels that have some light.
-  std::vector<double> lum;
-  lum.reserve(pixels);
-  for (size_t i = 0; i < pixels; ++i) {
-    const double l = luminance(colour(i));
-    if (l > 0.0 && std::isfinite(l)) lum.push_back(l);
-  }
-  double reference = 1.0;
-  if (!lum.empty()) {
-    const double rank = std::ceil(options.percentile * static_cast<double>(lum.size())) - 1.0;
-    const size_t index = std::min(lum.size() - 1, static_cast<size_t>(std::max(0.0, rank)));
-    std::nth_element(lum.begin(), lum.begin() + static_cast<std::ptrdiff_t>(index), lum.end());
-    reference = lum[index];
-  }
-  const double k = options.exposure / reference;
-
-  auto srgb8 = [](double x) {
-    x = std::clamp(x, 0.0, 1.0);
-    const double v = x <= 0.0031308 ? 12.92 * x : 1.055 * std::pow(x, 1.0 / 2.4) - 0.055;
-    return static_cast<std::uint8_t>(std::lround(std::clamp(v, 0.0, 1.0) * 255.0));
-  };
-
-  Image8 out(image.width, image.height);
-  for (size_t i = 0; i < pixels; ++i) {
-    const auto c = colour(i);
-    const double lk = luminance(c) * k;
-    // Reinhard on luminance, L' = Lk / (1 + Lk); the colour keeps its ratios: c * k * L' / (Lk).
-    const double factor = lk > 0.0 && std::isfinite(lk) ? k / (1.0 + lk) : 0.0;
-    for (int ch = 0; ch < 3; ++ch)
-      out.data[i * 3 + static_cast<size_t>(ch)] = srgb8(c[ch] * factor);
-  }
-  return out;
-}
-
-}  // namespace skylight::render
+}  // namespace skylight::io

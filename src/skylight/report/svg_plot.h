@@ -14,9 +14,9 @@
 #include <utility>
 #include <vector>
 
-#include "skylight/render/image.h"
+#include "skylight/render/false_colour.h"
 
-namespace skylight::render::svg {
+namespace skylight::report::svg {
 
 // XML-escapes text for element content and attribute values (&, <, >, ", ').
 std::string escape(std::string_view text);
@@ -159,4 +159,4 @@ struct Mosaic {
 };
 Canvas draw(const Mosaic& mosaic);
 
-}  // namespace skylight::render::svg
+}  // namespace skylight::report::svg

@@ -23,45 +23,17 @@
 #include <vector>
 
 #include "skylight/core/error.h"
-#include "skylight/render/image.h"
+#include "skylight/io/image.h"
+#include "support/scratch_dir.h"
 
-namespace skylight::render {
+namespace skylight::io {
 namespace {
 
 namespace fs = std::filesystem;
+using testing_support::ScratchDir;
+using testing_support::slurp;
 
 // A fresh directory per test, removed afterwards.
-class ScratchDir {
- public:
-  ScratchDir() {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    path_ = fs::path(::testing::TempDir()) / fmt::format("skylight_image_io_{}_{}_{}", ::getpid(),
-                                                         info->test_suite_name(), info->name());
-    fs::remove_all(path_);
-    fs::create_directories(path_);
-  }
-  ~ScratchDir() {
-    std::error_code ignored;
-    fs::remove_all(path_, ignored);
-  }
-  fs::path operator/(const std::string& name) const { return path_ / name; }
-  const fs::path& path() const { return path_; }
-  std::vector<std::string> entries() const {
-    std::vector<std::string> names;
-    for (const auto& e : fs::directory_iterator(path_)) names.push_back(e.path().filename());
-    std::sort(names.begin(), names.end());
-    return names;
-  }
-
- private:
-  fs::path path_;
-};
-
-std::string slurp(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
 void spit(const fs::path& path, const std::string& bytes) {
   std::ofstream out(path, std::ios::binary);
   out << bytes;
@@ -99,6 +71,20 @@ ImageF ramp_grey(int w, int h) {
   for (size_t i = 0; i < image.data.size(); ++i)
     image.data[i] = 0.001f * static_cast<float>(i * i) - 0.5f;
   return image;
+}
+
+// Writes `image` in the format of the extension; .png gets 8-bit data derived from the floats
+// (PNG holds 8-bit data only; incompressible floats stay incompressible) so that every format's
+// writer goes through the same checks.
+void write_any(const fs::path& path, const ImageF& image, const Metadata& meta = {}) {
+  if (format_from_path(path) != ImageFormat::png) return write_image(path, image, meta);
+  Image8 img(image.width, image.height);
+  for (std::size_t i = 0; i < img.data.size(); ++i) {
+    const float v = image.data[(i / 3) * static_cast<std::size_t>(image.channels) +
+                               (image.channels == 3 ? i % 3 : 0)];
+    img.data[i] = static_cast<std::uint8_t>(static_cast<unsigned>(std::abs(v) * 977.0f) & 0xffu);
+  }
+  write_png(path, img, meta);
 }
 
 bool has(const Metadata& meta, const std::string& key, const std::string& value) {
@@ -251,10 +237,11 @@ TEST(ImageIo, HdrWritesGreyAsRgbAndZeroesNonFinite) {
 
 // ---- PNG ---------------------------------------------------------------------------------------
 
-TEST(ImageIo, PngPreviewIsWrittenWithTextChunks) {
+TEST(ImageIo, PngIsWrittenWithTextChunks) {
   ScratchDir dir;
-  write_image(dir / "p.png", ramp_grey(6, 5),
-              {{"Software", "skylight"}, {"Title", "Sky \xc3\xa9"}});
+  Image8 img(6, 5);
+  img.pixel(1, 0)[0] = 200;
+  write_png(dir / "p.png", img, {{"Software", "skylight"}, {"Title", "Sky \xc3\xa9"}});
   const std::string bytes = slurp(dir / "p.png");
   EXPECT_NE(bytes.find(std::string("tEXtSoftware\0skylight", 21)), std::string::npos);
   EXPECT_NE(bytes.find(std::string("iTXtTitle\0\0\0\0\0Sky \xc3\xa9", 20)), std::string::npos);
@@ -263,8 +250,15 @@ TEST(ImageIo, PngPreviewIsWrittenWithTextChunks) {
   ASSERT_NE(pixels, nullptr) << stbi_failure_reason();
   EXPECT_EQ(w, 6);
   EXPECT_EQ(h, 5);
-  EXPECT_EQ(pixels[0], 0);  // the ramp starts negative: black
+  EXPECT_EQ(pixels[0], 0);
+  EXPECT_EQ(pixels[3], 200);
   stbi_image_free(pixels);
+}
+
+TEST(ImageIo, FloatImageToPngIsRefused) {
+  ScratchDir dir;
+  EXPECT_THROW(write_image(dir / "p.png", ramp_grey(2, 2)), InvalidArgument);
+  EXPECT_TRUE(dir.entries().empty());
 }
 
 // ---- atomicity and errors ----------------------------------------------------------------------
@@ -274,7 +268,7 @@ TEST(ImageIo, WriteIntoMissingDirectoryThrowsAndCreatesNothing) {
   for (const char* name : {"x.exr", "x.hdr", "x.pfm", "x.png"}) {
     const fs::path path = dir / "missing" / name;
     try {
-      write_image(path, distinctive_rgb());
+      write_any(path, distinctive_rgb());
       FAIL() << "no exception for " << path;
     } catch (const IoError& e) {
       EXPECT_NE(std::string(e.what()).find(path.string()), std::string::npos) << e.what();
@@ -287,8 +281,8 @@ TEST(ImageIo, WriteIntoMissingDirectoryThrowsAndCreatesNothing) {
 TEST(ImageIo, SuccessfulWritesLeaveNoTemporaryFiles) {
   ScratchDir dir;
   for (const char* name : {"a.exr", "a.hdr", "a.pfm", "a.png"}) {
-    write_image(dir / name, distinctive_rgb(), {{"k", "v"}});
-    write_image(dir / name, ramp_grey(3, 3), {{"k", "v"}});  // overwriting works too
+    write_any(dir / name, distinctive_rgb(), {{"k", "v"}});
+    write_any(dir / name, ramp_grey(3, 3), {{"k", "v"}});  // overwriting works too
   }
   EXPECT_EQ(dir.entries(), (std::vector<std::string>{"a.exr", "a.hdr", "a.pfm", "a.png"}));
   EXPECT_EQ(read_image(dir / "a.pfm").channels, 1);
@@ -336,7 +330,7 @@ TEST(ImageIo, WriteFailingPartWayLeavesNoTargetAndNoTemporary) {
   for (const char* name : {"n.exr", "n.hdr", "n.pfm", "n.png"}) {
     FileSizeLimit limit(2000);  // bytes
     try {
-      write_image(dir / name, noise);
+      write_any(dir / name, noise);
       ADD_FAILURE() << "no exception for " << name;
     } catch (const IoError& e) {
       EXPECT_NE(std::string(e.what()).find((dir / name).string()), std::string::npos) << e.what();
@@ -402,44 +396,5 @@ TEST(ImageIo, WriteRejectsEmptyOrInconsistentImages) {
   EXPECT_TRUE(dir.entries().empty());
 }
 
-// ---- tone mapping ------------------------------------------------------------------------------
-
-TEST(ToneMap, UniformGreyMapsToUniformValue) {
-  ImageF image(7, 5, 3);
-  std::fill(image.data.begin(), image.data.end(), 123.0f);
-  const Image8 out = tonemap_preview(image);
-  // Auto exposure puts the grey at Lk = 1, Reinhard gives 0.5, sRGB-encoded 0.7354 -> 188.
-  for (auto v : out.data) EXPECT_EQ(v, 188);
-}
-
-TEST(ToneMap, MonotonicAndZeroIsBlack) {
-  ImageF image(64, 1, 1);
-  for (int x = 0; x < image.width; ++x)
-    image.data[x] = x == 0 ? 0.0f : std::pow(10.0f, (static_cast<float>(x) - 32.0f) / 8.0f);
-  const Image8 out = tonemap_preview(image, {.percentile = 0.5, .exposure = 1.0});
-  EXPECT_EQ(out.pixel(0, 0)[0], 0);
-  for (int x = 1; x < image.width; ++x) {
-    EXPECT_GE(out.pixel(x, 0)[0], out.pixel(x - 1, 0)[0]) << x;
-    EXPECT_EQ(out.pixel(x, 0)[0], out.pixel(x, 0)[1]);  // grey stays grey
-  }
-  EXPECT_GT(out.pixel(63, 0)[0], 250);  // far above the percentile: nearly white
-}
-
-TEST(ToneMap, InvalidValuesAreBlackAndHueIsKept) {
-  ImageF image(4, 1, 3);
-  const float nan = std::numeric_limits<float>::quiet_NaN();
-  const float inf = std::numeric_limits<float>::infinity();
-  const float values[] = {-1.0f, -2.0f, -3.0f, nan, inf, nan, 4.0f, 0.0f, 0.0f, 1.0f, 1.0f, 1.0f};
-  std::copy(std::begin(values), std::end(values), image.data.begin());
-  const Image8 out = tonemap_preview(image);
-  for (int x = 0; x < 2; ++x)
-    for (int c = 0; c < 3; ++c) EXPECT_EQ(out.pixel(x, 0)[c], 0) << x;
-  EXPECT_GT(out.pixel(2, 0)[0], 0);  // pure red stays pure red
-  EXPECT_EQ(out.pixel(2, 0)[1], 0);
-  EXPECT_EQ(out.pixel(2, 0)[2], 0);
-  EXPECT_THROW(tonemap_preview(image, {.percentile = 0.0}), InvalidArgument);
-  EXPECT_THROW(tonemap_preview(image, {.exposure = -1.0}), InvalidArgument);
-}
-
 }  // namespace
-}  // namespace skylight::render
+}  // namespace skylight::io

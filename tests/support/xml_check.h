@@ -11,7 +11,7 @@
 #include <string_view>
 #include <vector>
 
-namespace skylight::xml_test {
+namespace skylight::testing_support {
 
 struct XmlCheck {
   bool ok = true;
@@ -136,4 +136,4 @@ inline XmlCheck check_xml(std::string_view x) {
   return r;
 }
 
-}  // namespace skylight::xml_test
+}  // namespace skylight::testing_support

@@ -1,26 +1,19 @@
-// The validation and comparison report (`skylight report`): which sky model to trust where.
-// Reproduces the analyses of Zotti, Wilkie & Purgathofer 2007 ("A Critical Review of the Preetham
-// Skylight Model", WSCG) for the models of the registry, and writes a self-contained HTML page with
-// SVG/PNG figures and a report.json of the headline numbers. Methods: docs/REPORT.md.
-//
-// Every analysis is a library function returning numbers (tested in report_test.cpp); write_report
-// only arranges them into files. Angles are radians here; the files use degrees.
+// Comparing sky models' luminance distributions (the analyses of Zotti, Wilkie & Purgathofer 2007,
+// "A Critical Review of the Preetham Skylight Model", WSCG): Preetham's negative zenith luminance,
+// zenith-normalised RMS of log ratios, absolute luminance ratios, the best CIE type per turbidity,
+// the best turbidity per CIE type, the antisolar horizon, and validity maps. Angles in radians.
 #pragma once
 
 #include <array>
-#include <filesystem>
 #include <functional>
 #include <memory>
-#include <optional>
 #include <string>
-#include <string_view>
 #include <vector>
 
-#include "skylight/core/frame.h"
+#include "skylight/analysis/hemisphere.h"
 #include "skylight/models/sky_model.h"
-#include "skylight/render/measurements.h"
 
-namespace skylight::render {
+namespace skylight::analysis {
 
 // ---- Preetham's zenith luminance (Zotti Fig. 1) ------------------------------------------------
 
@@ -36,17 +29,6 @@ struct ZenithRoot {
 // `t_step`, then bisected to |dT| < 1e-10.
 std::vector<ZenithRoot> preetham_zenith_roots(const std::vector<double>& sun_zeniths, double t_min,
                                               double t_max, double t_step = 0.01);
-
-// ---- sampling the sky --------------------------------------------------------------------------
-
-// Midpoint grid over the upper hemisphere: n_theta rings of equal zenith-angle width, n_phi
-// azimuth sectors; each cell's exact solid angle (cos theta0 - cos theta1) dphi [sr].
-struct HemisphereGrid {
-  std::vector<Vec3> directions;
-  std::vector<double> solid_angle;  // [sr], sums to 2 pi
-};
-HemisphereGrid hemisphere_grid(int n_theta, int n_phi);
-
 // A model and its parameters; the sun position is set per use.
 struct ModelSpec {
   std::string name;  // registry name
@@ -55,8 +37,11 @@ struct ModelSpec {
 };
 std::unique_ptr<SkyModel> make_model(const ModelSpec& spec, double sun_zenith, double sun_azimuth);
 
-// Scalar (double) sky luminance Y [cd/m^2] of `model` at each direction, on all threads.
-std::vector<double> sky_luminance(const SkyModel& model, const std::vector<Vec3>& directions);
+// Specs of the models compared by the report (labels for legends and tables).
+ModelSpec cie_spec(int type);
+ModelSpec preetham_spec(double turbidity);
+ModelSpec hosek_spec(double turbidity);  // albedo 0.3
+ModelSpec nishita_spec();                // Earth defaults
 
 // How two luminance distributions are compared (Zotti's normalisation: to the zenith).
 struct ComparisonSettings {
@@ -121,34 +106,6 @@ struct AntisolarRow {
 std::vector<AntisolarRow> antisolar_horizon_ratios(double turbidity,
                                                    const std::vector<double>& sun_zeniths,
                                                    const std::vector<double>& view_elevations);
-
-// ---- horizontal illuminance and irradiance -----------------------------------------------------
-
-struct IlluminationSettings {
-  int n_theta = 90, n_phi = 180;                          // sky hemisphere grid (luminance)
-  int n_theta_spectral = 24, n_phi_spectral = 48;         // coarser grid for spectral irradiance
-  int sun_rings = 8, sun_sectors = 16;                    // polar grid over the solar disc
-  double nm_min = 380.0, nm_max = 720.0, nm_step = 10.0;  // spectral range [nm], trapezoid rule
-};
-// Horizontal illuminance [lx] and irradiance [W/m^2] of one model:
-//  * diffuse = the sky's luminance (radiance) integrated over the upper hemisphere with weight
-//    cos theta (midpoint rule on hemisphere_grid);
-//  * direct = the solar disc's luminance (radiance) integrated over the disc with weight
-//    max(cos theta, 0) (polar grid), for models with a sun; 0 otherwise;
-//  * irradiance: spectral radiance integrated over [nm_min, nm_max] as well; nullopt for models
-//    without spectral output (and direct nullopt without a sun).
-struct HorizontalIllumination {
-  double sun_elevation = 0.0;  // [rad]
-  double diffuse_lx = 0.0, direct_lx = 0.0;
-  bool has_sun = false;
-  std::optional<double> diffuse_w_m2, direct_w_m2;
-  double global_lx() const { return diffuse_lx + direct_lx; }
-};
-double diffuse_horizontal_illuminance(const SkyModel& model, int n_theta, int n_phi);
-double direct_horizontal_illuminance(const SkyModel& model, int rings, int sectors);
-HorizontalIllumination horizontal_illumination(const SkyModel& model,
-                                               const IlluminationSettings& settings, bool spectral);
-
 // ---- validity ----------------------------------------------------------------------------------
 
 // domain().worst() of `spec` with the sun at each zenith [rad] (azimuth pi) and, per row, the
@@ -157,34 +114,4 @@ std::vector<std::vector<Validity>> validity_grid(
     const ModelSpec& spec, const std::vector<double>& sun_zeniths,
     const std::vector<double>& row_values,
     const std::function<void(SkyParameters&, double)>& row_setter);
-
-// ---- the report --------------------------------------------------------------------------------
-
-struct ReportOptions {
-  std::filesystem::path output_dir;
-  // A sky-luminance scan (measurements.h); nullopt: the shipped synthetic example.
-  std::optional<std::filesystem::path> measurements;
-  // Override the scan's sun position (both or neither), [rad].
-  std::optional<double> measurement_sun_azimuth, measurement_sun_elevation;
-  // Reduced resolution and fewer sun positions: for tests (a few seconds instead of ~20 s).
-  bool quick = false;
-  // Progress: step `done` of `total` finished (called on the calling thread).
-  std::function<void(int done, int total, std::string_view step)> progress;
-};
-
-// The headline numbers (also in report.json).
-struct ReportSummary {
-  std::vector<ZenithRoot> negative_zenith_boundary;
-  double antisolar_ratio = 0.0;  // Preetham / CIE 12 at the conditions below
-  double antisolar_sun_zenith = 0.0, antisolar_view_elevation = 0.0, antisolar_turbidity = 0.0;
-  TurbidityFit best_turbidity_for_cie12;
-  std::vector<CieTypeMatch> cie_matches;
-  std::vector<std::string> files;  // written, relative to output_dir
-};
-
-// Writes DIR/index.html, DIR/report.json and the figures (DIR/*.svg, DIR/*.png), each atomically
-// (temporary file + rename); creates DIR if needed. Throws InvalidArgument for bad options or a bad
-// measurement file, IoError when a file cannot be read or written.
-ReportSummary write_report(const ReportOptions& options);
-
-}  // namespace skylight::render
+}  // namespace skylight::analysis

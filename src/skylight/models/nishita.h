@@ -18,7 +18,7 @@
 #include <array>
 #include <memory>
 
-#include "skylight/models/atmosphere/atmosphere.h"
+#include "skylight/atmosphere/atmosphere.h"
 #include "skylight/models/sky_model.h"
 
 namespace skylight {

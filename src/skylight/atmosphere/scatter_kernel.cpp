@@ -1,6 +1,6 @@
 // Highway dynamic dispatch: this file is compiled once per SIMD target (foreach_target.h).
 #undef HWY_TARGET_INCLUDE
-#define HWY_TARGET_INCLUDE "skylight/models/atmosphere/scatter_kernel.cpp"
+#define HWY_TARGET_INCLUDE "skylight/atmosphere/scatter_kernel.cpp"
 #include <hwy/foreach_target.h>  // IWYU pragma: keep
 //
 #include <algorithm>
@@ -10,8 +10,8 @@
 #include <hwy/contrib/math/math-inl.h>
 #include <hwy/highway.h>
 
-#include "skylight/models/atmosphere/atmosphere.h"
-#include "skylight/models/atmosphere/scatter_kernel.h"
+#include "skylight/atmosphere/atmosphere.h"
+#include "skylight/atmosphere/scatter_kernel.h"
 
 HWY_BEFORE_NAMESPACE();
 namespace skylight::atmosphere {

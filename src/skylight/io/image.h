@@ -10,7 +10,7 @@
 #include <utility>
 #include <vector>
 
-namespace skylight::render {
+namespace skylight::io {
 
 struct ImageF {
   int width = 0;
@@ -61,13 +61,11 @@ ImageFormat format_from_path(const std::filesystem::path& path);
 // Writes a float image atomically (temporary file in the same directory + rename), choosing the
 // format from the extension. EXR: 32-bit float channels (R,G,B or Y) with metadata as string
 // attributes. HDR: RGBE (negative values clamped to 0 first: RGBE cannot store them). PFM: float
-// little-endian. PNG: a tone-mapped 8-bit preview (tonemap_preview with default exposure).
+// little-endian. PNG holds 8-bit data: InvalidArgument (tone-map first, render/tonemap.h).
 // Throws skylight::IoError naming the path on failure, InvalidArgument for an empty image.
 void write_image(const std::filesystem::path& path, const ImageF& image, const Metadata& meta = {});
 // Writes an 8-bit image as PNG, atomically.
 void write_png(const std::filesystem::path& path, const Image8& image, const Metadata& meta = {});
-// Writes bytes (e.g. HTML, SVG, JSON text) to a file atomically, like the image writers.
-void write_text_file(const std::filesystem::path& path, std::string_view content);
 
 // Reads an EXR (R,G,B or Y channels, any pixel type converted to float), PFM or HDR file.
 // Throws skylight::IoError naming the path on a missing or corrupt file.
@@ -75,28 +73,4 @@ ImageF read_image(const std::filesystem::path& path);
 // Reads the string attributes of an EXR header.
 Metadata read_exr_metadata(const std::filesystem::path& path);
 
-// Linear -> 8-bit preview: scales so that the given percentile of luminance maps to `white`
-// (auto exposure), applies the Reinhard operator L/(1+L) per channel ratio and the sRGB OETF.
-struct ToneMapOptions {
-  double percentile = 0.99;  // luminance percentile that sets the exposure, (0, 1]
-  double exposure = 1.0;     // extra linear factor after auto exposure
-};
-Image8 tonemap_preview(const ImageF& image, const ToneMapOptions& options = {});
-
-// Log-luminance false-colour map with a legend bar (style of Zotti et al. 2007, Figs. 4-7: each
-// decade of magnitude gets its own hue, brightness ramps within the decade). `luminance` is a
-// one-channel image; pixels with a zero, negative or non-finite value (log undefined), or flagged
-// in `mask` (same size, non-zero = outside the image), are drawn dark grey (40, 40, 40). Decades
-// from 10^log10_min to 10^log10_max.
-struct FalseColourOptions {
-  double log10_min = 0.0;
-  double log10_max = 6.0;
-  std::string unit = "cd/m2";  // printed on the legend
-  bool legend = true;
-};
-Image8 false_colour(const ImageF& luminance, const FalseColourOptions& options = {},
-                    const std::vector<std::uint8_t>* mask = nullptr);
-// The colour of one log10 value under the false-colour scale (for plots that need the same scale).
-std::array<std::uint8_t, 3> false_colour_of(double log10_value, const FalseColourOptions& options);
-
-}  // namespace skylight::render
+}  // namespace skylight::io

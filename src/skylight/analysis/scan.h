@@ -20,7 +20,7 @@
 #include "skylight/core/frame.h"
 #include "skylight/models/sky_model.h"
 
-namespace skylight::render {
+namespace skylight::analysis {
 
 struct LuminanceSample {
   double azimuth = 0.0;    // [rad], from north towards east, [0, 2 pi)
@@ -88,4 +88,4 @@ struct ScanErrors {
 // is usable.
 ScanErrors compare_to_scan(const SkyModel& model, const SkyScan& scan, double sun_exclusion);
 
-}  // namespace skylight::render
+}  // namespace skylight::analysis

@@ -1,4 +1,4 @@
-#include "skylight/render/svg_plot.h"
+#include "skylight/report/svg_plot.h"
 
 #include <gtest/gtest.h>
 
@@ -7,13 +7,13 @@
 #include <string>
 
 #include "skylight/core/error.h"
-#include "skylight/render/image.h"
-#include "skylight/render/xml_check_test.h"
+#include "skylight/io/image.h"
+#include "support/xml_check.h"
 
-namespace skylight::render::svg {
+namespace skylight::report::svg {
 namespace {
 
-using skylight::xml_test::check_xml;
+using skylight::testing_support::check_xml;
 
 TEST(SvgXmlCheck, AcceptsWellFormedAndRejectsBroken) {
   EXPECT_TRUE(check_xml("<?xml version=\"1.0\"?>\n<a x=\"1\"><b/>t &amp; u</a>").ok);
@@ -116,9 +116,9 @@ TEST(SvgColourBar, GradientStopsAreTheFalseColourScale) {
        ++it)
     stops.emplace_back(std::stod((*it)[1]), (*it)[2]);
   ASSERT_EQ(stops.size(), 6u);
-  const FalseColourOptions fo{2.0, 5.0, "cd/m2", false};
-  EXPECT_EQ(stops.front().second, hex_colour(false_colour_of(5.0 - 1e-9, fo)));
-  EXPECT_EQ(stops.back().second, hex_colour(false_colour_of(2.0 + 1e-9, fo)));
+  const render::FalseColourOptions fo{2.0, 5.0, "cd/m2", false};
+  EXPECT_EQ(stops.front().second, hex_colour(render::false_colour_of(5.0 - 1e-9, fo)));
+  EXPECT_EQ(stops.back().second, hex_colour(render::false_colour_of(2.0 + 1e-9, fo)));
   EXPECT_DOUBLE_EQ(stops.front().first, 0.0);
   EXPECT_DOUBLE_EQ(stops.back().first, 1.0);
   // Decade boundaries at 1/3 and 2/3 of the bar, each with a jump in colour.
@@ -150,4 +150,4 @@ TEST(SvgMosaic, LabelsAndImage) {
 }
 
 }  // namespace
-}  // namespace skylight::render::svg
+}  // namespace skylight::report::svg

@@ -1,6 +1,6 @@
 // Planet geometry, phase functions, optical-length tables and the fast single-scattering path.
 // Equations: see atmosphere.h (Nishita et al. 1993; Pietras §II-IV).
-#include "skylight/models/atmosphere/atmosphere.h"
+#include "skylight/atmosphere/atmosphere.h"
 
 #include <fmt/format.h>
 #include <algorithm>

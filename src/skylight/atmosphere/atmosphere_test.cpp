@@ -1,4 +1,4 @@
-#include "skylight/models/atmosphere/atmosphere.h"
+#include "skylight/atmosphere/atmosphere.h"
 
 #include <fmt/format.h>
 #include <gtest/gtest.h>

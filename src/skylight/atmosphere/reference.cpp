@@ -12,8 +12,8 @@
 #include <cmath>
 #include <vector>
 
+#include "skylight/atmosphere/atmosphere.h"
 #include "skylight/core/error.h"
-#include "skylight/models/atmosphere/atmosphere.h"
 
 namespace skylight::atmosphere {
 

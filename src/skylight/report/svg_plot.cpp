@@ -1,4 +1,4 @@
-#include "skylight/render/svg_plot.h"
+#include "skylight/report/svg_plot.h"
 
 #include <fmt/format.h>
 
@@ -7,7 +7,7 @@
 
 #include "skylight/core/error.h"
 
-namespace skylight::render::svg {
+namespace skylight::report::svg {
 namespace {
 
 constexpr std::string_view kFont = "DejaVu Sans, Arial, Helvetica, sans-serif";
@@ -249,7 +249,7 @@ std::string tick_label(double v) {
 // ---- colour bar ------------------------------------------------------------------------------
 
 void draw_colour_bar(Canvas& c, double x, double y, double w, double h, const ColourBar& bar) {
-  const FalseColourOptions fo{bar.log10_min, bar.log10_max, bar.unit, false};
+  const render::FalseColourOptions fo{bar.log10_min, bar.log10_max, bar.unit, false};
   const double lo = bar.log10_min, hi = bar.log10_max;
   // The scale is linear in the sRGB-encoded value within each decade and jumps at decade
   // boundaries, so a vertical linear gradient with two stops per decade reproduces it exactly.
@@ -257,7 +257,7 @@ void draw_colour_bar(Canvas& c, double x, double y, double w, double h, const Co
   std::string stops;
   auto stop = [&](double v, double at) {
     stops += fmt::format(R"(<stop offset="{:.6f}" stop-color="{}"/>)", (hi - at) / (hi - lo),
-                         hex_colour(false_colour_of(v, fo)));
+                         hex_colour(render::false_colour_of(v, fo)));
   };
   // From the top (hi) down to lo, offset 0 at the top.
   double top = hi;
@@ -428,4 +428,4 @@ Canvas draw(const Mosaic& m) {
   return c;
 }
 
-}  // namespace skylight::render::svg
+}  // namespace skylight::report::svg

@@ -1,4 +1,4 @@
-#include "skylight/render/measurements.h"
+#include "skylight/analysis/scan.h"
 
 #include <fmt/format.h>
 
@@ -12,7 +12,7 @@
 #include "skylight/core/data.h"
 #include "skylight/core/error.h"
 
-namespace skylight::render {
+namespace skylight::analysis {
 namespace {
 
 constexpr std::string_view kAzimuthColumn = "azimuth_deg";
@@ -230,4 +230,4 @@ ScanErrors compare_to_scan(const SkyModel& model, const SkyScan& scan, double su
   return e;
 }
 
-}  // namespace skylight::render
+}  // namespace skylight::analysis

@@ -1,4 +1,4 @@
-#include "skylight/models/atmosphere/nishita_model.h"
+#include "skylight/models/nishita.h"
 
 #include <gtest/gtest.h>
 

@@ -1,0 +1,303 @@
+#include "skylight/analysis/comparison.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numeric>
+
+#include "skylight/core/error.h"
+#include "skylight/core/parallel.h"
+#include "skylight/models/cie_sky.h"
+#include "skylight/models/preetham.h"
+
+namespace skylight::analysis {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr double kInf = std::numeric_limits<double>::infinity();
+// Bisection of Yz(T) = 0 stops when the bracket is narrower than this (in T).
+constexpr double kRootTolerance = 1e-10;
+// Golden-section search for the best turbidity stops at this bracket width (in T).
+constexpr double kTurbidityTolerance = 1e-4;
+
+}  // namespace
+
+// ---- Preetham's zenith luminance ---------------------------------------------------------------
+
+std::vector<ZenithRoot> preetham_zenith_roots(const std::vector<double>& sun_zeniths, double t_min,
+                                              double t_max, double t_step) {
+  require_in_range("t_min", t_min, 1.0, 1e3);
+  require_in_range("t_max", t_max, t_min, 1e3);
+  require_in_range("t_step", t_step, 1e-6, t_max - t_min + 1.0);
+  std::vector<ZenithRoot> roots;
+  for (double ts : sun_zeniths) {
+    require_in_range("sun_zenith", ts, 0.0, kPi / 2);
+    auto yz = [ts](double T) { return preetham_zenith_luminance(T, ts); };
+    const int n = static_cast<int>(std::ceil((t_max - t_min) / t_step));
+    double a = t_min, ya = yz(a);
+    for (int i = 1; i <= n; ++i) {
+      const double b = std::min(t_max, t_min + i * t_step), yb = yz(b);
+      if ((ya < 0.0) != (yb < 0.0)) {
+        double lo = a, hi = b;
+        const bool lo_negative = ya < 0.0;
+        while (hi - lo > kRootTolerance) {
+          const double mid = 0.5 * (lo + hi);
+          if ((yz(mid) < 0.0) == lo_negative)
+            lo = mid;
+          else
+            hi = mid;
+        }
+        roots.push_back({ts, 0.5 * (lo + hi), !lo_negative});
+      }
+      a = b;
+      ya = yb;
+    }
+  }
+  return roots;
+}
+
+std::unique_ptr<SkyModel> make_model(const ModelSpec& spec, double sun_zenith, double sun_azimuth) {
+  SkyParameters p = spec.params;
+  p.sun = {sun_zenith, wrap_azimuth(sun_azimuth)};
+  return make_sky_model(spec.name, p);
+}
+RelativeSamples relative_samples(const ModelSpec& spec, const ComparisonSettings& s,
+                                 const HemisphereGrid& grid) {
+  RelativeSamples r;
+  for (double ts : s.sun_zeniths) {
+    const auto model = make_model(spec, ts, s.sun_azimuth);
+    std::vector<double> abs = sky_luminance(*model, grid.directions);
+    const double z = model->tristimulus({0.0, 0.0, 1.0}).Y;
+    const Vec3 sun = model->parameters().sun.direction();
+    std::vector<double> rel(abs.size(), kNaN);
+    for (std::size_t i = 0; i < abs.size(); ++i) {
+      if (angle_between(grid.directions[i], sun) < s.sun_exclusion) {
+        abs[i] = kNaN;
+        continue;
+      }
+      if (z > 0.0) rel[i] = abs[i] / z;
+    }
+    r.relative.push_back(std::move(rel));
+    r.absolute.push_back(std::move(abs));
+  }
+  return r;
+}
+
+double relative_log_rms(const RelativeSamples& a, const RelativeSamples& b,
+                        const HemisphereGrid& grid) {
+  SKYLIGHT_CHECK(a.relative.size() == b.relative.size(), "sample sets of different sun zeniths");
+  double sw = 0.0, sd = 0.0;
+  for (std::size_t k = 0; k < a.relative.size(); ++k) {
+    for (std::size_t i = 0; i < grid.solid_angle.size(); ++i) {
+      const double x = a.relative[k][i], y = b.relative[k][i];
+      if (!(x > 0.0) || !(y > 0.0) || !std::isfinite(x) || !std::isfinite(y)) continue;
+      const double d = std::log10(x / y);
+      sw += grid.solid_angle[i];
+      sd += grid.solid_angle[i] * d * d;
+    }
+  }
+  return sw > 0.0 ? std::sqrt(sd / sw) : kInf;
+}
+
+LuminanceRatio absolute_luminance_ratio(const RelativeSamples& a, const RelativeSamples& b,
+                                        const HemisphereGrid& grid) {
+  SKYLIGHT_CHECK(a.absolute.size() == b.absolute.size(), "sample sets of different sun zeniths");
+  LuminanceRatio r{kNaN, kInf, -kInf};
+  double sum_log = 0.0;
+  int n = 0;
+  for (std::size_t k = 0; k < a.absolute.size(); ++k) {
+    double sw = 0.0, sl = 0.0;
+    for (std::size_t i = 0; i < grid.solid_angle.size(); ++i) {
+      const double x = a.absolute[k][i], y = b.absolute[k][i];
+      if (!(x > 0.0) || !(y > 0.0) || !std::isfinite(x) || !std::isfinite(y)) continue;
+      sw += grid.solid_angle[i];
+      sl += grid.solid_angle[i] * std::log10(x / y);
+    }
+    if (!(sw > 0.0)) continue;
+    const double ratio = std::pow(10.0, sl / sw);
+    r.min = std::min(r.min, ratio);
+    r.max = std::max(r.max, ratio);
+    sum_log += sl / sw;
+    ++n;
+  }
+  if (n == 0) return {kNaN, kNaN, kNaN};
+  r.mean = std::pow(10.0, sum_log / n);
+  return r;
+}
+
+ModelSpec cie_spec(int type) {
+  ModelSpec s{"cie", {}, fmt::format("CIE type {}", type)};
+  s.params.cie_type = type;
+  return s;
+}
+
+ModelSpec preetham_spec(double T) {
+  ModelSpec s{"preetham", {}, fmt::format("Preetham T = {:g}", T)};
+  s.params.turbidity = T;
+  return s;
+}
+
+ModelSpec hosek_spec(double T) {
+  ModelSpec s{"hosek", {}, fmt::format("Hosek-Wilkie T = {:g}", T)};
+  s.params.turbidity = T;
+  s.params.ground_albedo = 0.3;
+  return s;
+}
+
+ModelSpec nishita_spec() {
+  return {"nishita", {}, "Nishita (Earth defaults)"};
+}
+
+std::vector<RelativeSamples> cie_type_samples(const ComparisonSettings& s,
+                                              const HemisphereGrid& grid) {
+  std::vector<RelativeSamples> out;
+  for (int type = 1; type <= kCieTypeCount; ++type)
+    out.push_back(relative_samples(cie_spec(type), s, grid));
+  return out;
+}
+
+namespace {
+
+CieTypeMatch rank_against(const RelativeSamples& target, const std::vector<RelativeSamples>& cie,
+                          const HemisphereGrid& grid) {
+  CieTypeMatch m;
+  std::vector<int> order(kCieTypeCount);
+  for (int t = 0; t < kCieTypeCount; ++t) {
+    m.rms_by_type[t] = relative_log_rms(target, cie[t], grid);
+    order[t] = t;
+  }
+  std::stable_sort(order.begin(), order.end(),
+                   [&](int x, int y) { return m.rms_by_type[x] < m.rms_by_type[y]; });
+  m.best_type = order[0] + 1;
+  m.second_type = order[1] + 1;
+  m.best_rms = m.rms_by_type[order[0]];
+  m.second_rms = m.rms_by_type[order[1]];
+  m.ratio_best = absolute_luminance_ratio(target, cie[order[0]], grid);
+  return m;
+}
+
+}  // namespace
+
+CieTypeMatch rank_cie_types(const ModelSpec& spec, const ComparisonSettings& s) {
+  const HemisphereGrid grid = hemisphere_grid(s.n_theta, s.n_phi);
+  CieTypeMatch m = rank_against(relative_samples(spec, s, grid), cie_type_samples(s, grid), grid);
+  m.turbidity = spec.params.turbidity;
+  return m;
+}
+
+std::vector<CieTypeMatch> best_cie_type_per_turbidity(const std::vector<double>& turbidities,
+                                                      const ComparisonSettings& s) {
+  const HemisphereGrid grid = hemisphere_grid(s.n_theta, s.n_phi);
+  const auto cie = cie_type_samples(s, grid);
+  std::vector<CieTypeMatch> out;
+  for (double T : turbidities) {
+    CieTypeMatch m = rank_against(relative_samples(preetham_spec(T), s, grid), cie, grid);
+    m.turbidity = T;
+    out.push_back(m);
+  }
+  return out;
+}
+
+TurbidityFit best_preetham_turbidity_for_cie(int cie_type, double t_min, double t_max,
+                                             double t_step, const ComparisonSettings& s) {
+  require_in_range("cie_type", cie_type, 1, kCieTypeCount);
+  require_in_range("t_min", t_min, 1.0, 64.0);
+  require_in_range("t_max", t_max, t_min, 64.0);
+  require_in_range("t_step", t_step, 1e-4, 64.0);
+  const HemisphereGrid grid = hemisphere_grid(s.n_theta, s.n_phi);
+  const RelativeSamples cie = relative_samples(cie_spec(cie_type), s, grid);
+  auto rms = [&](double T) {
+    return relative_log_rms(relative_samples(preetham_spec(T), s, grid), cie, grid);
+  };
+  TurbidityFit fit;
+  const int n = std::max(1, static_cast<int>(std::lround((t_max - t_min) / t_step)));
+  for (int i = 0; i <= n; ++i) {
+    const double T = i == n ? t_max : std::min(t_max, t_min + i * t_step);
+    fit.curve_t.push_back(T);
+    fit.curve_rms.push_back(rms(T));
+  }
+  const auto best = static_cast<std::size_t>(
+      std::min_element(fit.curve_rms.begin(), fit.curve_rms.end()) - fit.curve_rms.begin());
+  // Golden-section search in the grid cells on either side of the best grid point.
+  double a = fit.curve_t[best > 0 ? best - 1 : 0];
+  double b = fit.curve_t[std::min(best + 1, fit.curve_t.size() - 1)];
+  const double g = (std::sqrt(5.0) - 1.0) / 2.0;
+  double c = b - g * (b - a), d = a + g * (b - a);
+  double fc = rms(c), fd = rms(d);
+  while (b - a > kTurbidityTolerance) {
+    if (fc < fd) {
+      b = d;
+      d = c;
+      fd = fc;
+      c = b - g * (b - a);
+      fc = rms(c);
+    } else {
+      a = c;
+      c = d;
+      fc = fd;
+      d = a + g * (b - a);
+      fd = rms(d);
+    }
+  }
+  fit.turbidity = 0.5 * (a + b);
+  fit.rms = rms(fit.turbidity);
+  if (fit.curve_rms[best] < fit.rms) {  // the search can only refine the grid's best point
+    fit.turbidity = fit.curve_t[best];
+    fit.rms = fit.curve_rms[best];
+  }
+  return fit;
+}
+
+std::vector<AntisolarRow> antisolar_horizon_ratios(double turbidity,
+                                                   const std::vector<double>& sun_zeniths,
+                                                   const std::vector<double>& view_elevations) {
+  std::vector<AntisolarRow> out;
+  for (double ts : sun_zeniths) {
+    // Sun in the south (azimuth pi); the antisolar direction is north (azimuth 0).
+    const auto pr = make_model(preetham_spec(turbidity), ts, kPi);
+    const auto cie = make_model(cie_spec(12), ts, kPi);
+    const double pz = pr->tristimulus({0, 0, 1}).Y, cz = cie->tristimulus({0, 0, 1}).Y;
+    for (double e : view_elevations) {
+      const Vec3 v = direction_from_angles(kPi / 2 - e, 0.0);
+      AntisolarRow r;
+      r.sun_zenith = ts;
+      r.view_elevation = e;
+      r.preetham = pr->tristimulus(v).Y;
+      r.cie = cie->tristimulus(v).Y;
+      r.ratio = r.cie > 0.0 ? r.preetham / r.cie : kNaN;
+      r.relative_ratio = (pz > 0.0 && r.cie > 0.0) ? (r.preetham / pz) / (r.cie / cz) : kNaN;
+      out.push_back(r);
+    }
+  }
+  return out;
+}
+// ---- validity ----------------------------------------------------------------------------------
+
+std::vector<std::vector<Validity>> validity_grid(
+    const ModelSpec& spec, const std::vector<double>& sun_zeniths,
+    const std::vector<double>& row_values,
+    const std::function<void(SkyParameters&, double)>& row_setter) {
+  const std::size_t cols = sun_zeniths.size(), rows = std::max<std::size_t>(row_values.size(), 1);
+  std::vector<std::vector<Validity>> out(rows, std::vector<Validity>(cols, Validity::valid));
+  parallel_for(rows * cols, 1, [&](std::size_t b, std::size_t e) {
+    for (std::size_t i = b; i < e; ++i) {
+      const std::size_t r = i / cols, c = i % cols;
+      SkyParameters p = spec.params;
+      if (!row_values.empty() && row_setter) row_setter(p, row_values[r]);
+      p.sun = {sun_zeniths[c], kPi};
+      try {
+        out[r][c] = make_sky_model(spec.name, p)->domain().worst();
+      } catch (const InvalidArgument&) {
+        out[r][c] = Validity::undefined;  // parameters the model rejects
+      }
+    }
+  });
+  return out;
+}
+
+// ================================================================================================
+// The report files.
+// ================================================================================================
+}  // namespace skylight::analysis

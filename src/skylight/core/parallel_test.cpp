@@ -1,0 +1,36 @@
+#include "skylight/core/parallel.h"
+
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <vector>
+
+#include "skylight/core/error.h"
+
+namespace skylight {
+namespace {
+
+TEST(Parallel, CoversEveryIndexOnce) {
+  for (int threads : {1, 2, 3}) {
+    set_thread_count(threads);
+    std::vector<std::atomic<int>> hits(10007);
+    parallel_for(hits.size(), 64, [&](std::size_t b, std::size_t e) {
+      for (std::size_t i = b; i < e; ++i) hits[i]++;
+    });
+    for (std::size_t i = 0; i < hits.size(); ++i) ASSERT_EQ(hits[i].load(), 1) << i;
+  }
+  set_thread_count(0);
+}
+
+TEST(Parallel, PropagatesExceptions) {
+  set_thread_count(2);
+  EXPECT_THROW(parallel_for(1000, 10,
+                            [](std::size_t b, std::size_t) {
+                              if (b == 500) throw IoError("boom");
+                            }),
+               IoError);
+  set_thread_count(0);
+}
+
+}  // namespace
+}  // namespace skylight

@@ -1,0 +1,74 @@
+// Files: reading whole files with one-line errors, and atomic output (a temporary file next to the
+// target, renamed onto it only when everything was written). Every output of the library and the
+// CLI goes through AtomicFile, so a target is either untouched or complete.
+#pragma once
+
+#include <cstdint>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace skylight::io {
+
+// The system's message for errno value `err`.
+std::string errno_message(int err);
+// A message on one line: newlines and carriage returns become spaces, trailing spaces removed
+// (library messages, OpenEXR's in particular, may span lines; ours are one line).
+std::string one_line(std::string s);
+// IoError("cannot write '<path>': <why>") / IoError("cannot read '<path>': <why>").
+[[noreturn]] void throw_write_error(const std::filesystem::path& path, const std::string& why);
+[[noreturn]] void throw_read_error(const std::filesystem::path& path, const std::string& why);
+
+struct FileCloser {
+  void operator()(std::FILE* f) const { std::fclose(f); }
+};
+using FilePtr = std::unique_ptr<std::FILE, FileCloser>;
+// Opens a regular file for reading (binary), or throws an IoError naming the path with the
+// system's reason ("is a directory" for a directory).
+FilePtr open_for_read(const std::filesystem::path& path);
+
+// The whole content of a regular file. Throws IoError naming the path (missing, unreadable, a
+// directory, read error).
+std::vector<char> read_file(const std::filesystem::path& path);
+std::string read_text_file(const std::filesystem::path& path);
+
+// A temporary file next to the target, `<stem>.tmp-<pid>-<counter><ext>` (the real extension
+// last), renamed onto the target by commit(). Destroyed uncommitted, it removes the temporary, so
+// the target is either untouched or complete. Every write is checked; commit() flushes and fsyncs
+// before the rename. Errors are IoErrors naming the target.
+class AtomicFile {
+ public:
+  explicit AtomicFile(std::filesystem::path target);
+  AtomicFile(const AtomicFile&) = delete;
+  AtomicFile& operator=(const AtomicFile&) = delete;
+  ~AtomicFile();
+
+  const std::filesystem::path& target() const { return target_; }
+
+  void write(const void* bytes, std::size_t n);
+  void write(std::string_view s) { write(s.data(), s.size()); }
+  // Never throws (OpenEXR calls it from a destructor); a failure is remembered and reported by the
+  // next write() or by commit().
+  std::uint64_t tell() noexcept;
+  void seek(std::uint64_t pos);
+  void commit();
+
+ private:
+  void remember(int err) noexcept;
+  [[noreturn]] void fail(int err);
+
+  std::filesystem::path target_;
+  std::filesystem::path temp_;
+  std::FILE* file_ = nullptr;
+  bool committed_ = false;
+  bool failed_ = false;
+  int failed_errno_ = 0;
+};
+
+// Writes bytes (e.g. HTML, SVG, JSON, CSV text) to a file atomically.
+void write_text_file(const std::filesystem::path& path, std::string_view content);
+
+}  // namespace skylight::io

@@ -1,0 +1,56 @@
+// The validation and comparison report (`skylight report`): which sky model to trust where.
+// Reproduces the analyses of Zotti, Wilkie & Purgathofer 2007 ("A Critical Review of the Preetham
+// Skylight Model", WSCG) for the models of the registry, and writes a self-contained HTML page with
+// SVG/PNG figures and a report.json of the headline numbers. Methods: docs/REPORT.md.
+//
+// Every analysis is a library function in analysis/ returning numbers (tested there); write_report
+// only arranges them into files. Angles are radians here; the files use degrees.
+#pragma once
+
+#include <array>
+#include <filesystem>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "skylight/analysis/comparison.h"
+
+namespace skylight::report {
+
+using analysis::CieTypeMatch;
+using analysis::TurbidityFit;
+using analysis::ZenithRoot;
+
+// ---- the report --------------------------------------------------------------------------------
+
+struct ReportOptions {
+  std::filesystem::path output_dir;
+  // A sky-luminance scan (analysis/scan.h); nullopt: the shipped synthetic example.
+  std::optional<std::filesystem::path> measurements;
+  // Override the scan's sun position (both or neither), [rad].
+  std::optional<double> measurement_sun_azimuth, measurement_sun_elevation;
+  // Reduced resolution and fewer sun positions: for tests (a few seconds instead of ~20 s).
+  bool quick = false;
+  // Progress: step `done` of `total` finished (called on the calling thread).
+  std::function<void(int done, int total, std::string_view step)> progress;
+};
+
+// The headline numbers (also in report.json).
+struct ReportSummary {
+  std::vector<ZenithRoot> negative_zenith_boundary;
+  double antisolar_ratio = 0.0;  // Preetham / CIE 12 at the conditions below
+  double antisolar_sun_zenith = 0.0, antisolar_view_elevation = 0.0, antisolar_turbidity = 0.0;
+  TurbidityFit best_turbidity_for_cie12;
+  std::vector<CieTypeMatch> cie_matches;
+  std::vector<std::string> files;  // written, relative to output_dir
+};
+
+// Writes DIR/index.html, DIR/report.json and the figures (DIR/*.svg, DIR/*.png), each atomically
+// (temporary file + rename); creates DIR if needed. Throws InvalidArgument for bad options or a bad
+// measurement file, IoError when a file cannot be read or written.
+ReportSummary write_report(const ReportOptions& options);
+
+}  // namespace skylight::report

@@ -1,0 +1,174 @@
+#include "skylight/report/report.h"
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include "skylight/analysis/scan.h"
+#include "skylight/core/data.h"
+#include "skylight/core/error.h"
+#include "skylight/models/cie_sky.h"
+#include "skylight/models/preetham.h"
+#include "support/xml_check.h"
+
+namespace skylight::report {
+namespace {
+
+namespace fs = std::filesystem;
+
+// report.json's boundary points are bisected to 1e-10 in T (analysis/comparison.cpp); |dYz/dT| <
+// 2e5 cd/m^2 per unit T, so |Yz| there is below 2e-5 cd/m^2: 1e-4 leaves room for round-off.
+constexpr double kYzAtRootTol = 1e-4;  // [cd/m^2]
+// ---- the report files (quick mode, written once) --------------------------------------------
+
+class ReportFiles : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    dir_ = new fs::path(fs::temp_directory_path() /
+                        ("skylight_report_test_" + std::to_string(::getpid())));
+    fs::remove_all(*dir_);
+    ReportOptions o;
+    o.output_dir = *dir_;
+    o.quick = true;
+    o.progress = [](int done, int total, std::string_view) {
+      ++steps_;
+      total_ = total;
+      last_ = done;
+    };
+    summary_ = new ReportSummary(write_report(o));
+  }
+  static void TearDownTestSuite() {
+    fs::remove_all(*dir_);
+    delete dir_;
+    delete summary_;
+  }
+  static std::string slurp(const fs::path& p) {
+    std::ifstream f(p, std::ios::binary);
+    std::stringstream s;
+    s << f.rdbuf();
+    return s.str();
+  }
+  static fs::path* dir_;
+  static ReportSummary* summary_;
+  static int steps_, total_, last_;
+};
+fs::path* ReportFiles::dir_ = nullptr;
+ReportSummary* ReportFiles::summary_ = nullptr;
+int ReportFiles::steps_ = 0;
+int ReportFiles::total_ = 0;
+int ReportFiles::last_ = 0;
+
+TEST_F(ReportFiles, ProgressReachesTheEnd) {
+  EXPECT_EQ(steps_, total_);
+  EXPECT_EQ(last_, total_);
+  EXPECT_GT(total_, 5);
+}
+
+TEST_F(ReportFiles, JsonHasTheHeadlineNumbers) {
+  const auto j = nlohmann::json::parse(slurp(*dir_ / "report.json"));
+  ASSERT_TRUE(j.contains("preetham_negative_zenith"));
+  ASSERT_TRUE(j["preetham_negative_zenith"].is_array());
+  ASSERT_FALSE(j["preetham_negative_zenith"].empty());
+  for (const auto& p : j["preetham_negative_zenith"]) {
+    ASSERT_TRUE(p["sun_zenith_deg"].is_number());
+    ASSERT_TRUE(p["turbidity"].is_number());
+    const double ts = p["sun_zenith_deg"], T = p["turbidity"];
+    EXPECT_LT(std::abs(preetham_zenith_luminance(T, deg_to_rad(ts))), kYzAtRootTol);
+  }
+  ASSERT_TRUE(j["antisolar_horizon_ratio_preetham_vs_cie12"].is_number());
+  const double ratio = j["antisolar_horizon_ratio_preetham_vs_cie12"];
+  EXPECT_TRUE(std::isfinite(ratio));
+  EXPECT_GT(ratio, 0.0);
+  EXPECT_DOUBLE_EQ(ratio, summary_->antisolar_ratio);
+  const auto& ad = j["antisolar_horizon_ratio_details"];
+  EXPECT_TRUE(ad["sun_zenith_deg"].is_number());
+  EXPECT_TRUE(ad["view_elevation_deg"].is_number());
+  EXPECT_TRUE(ad["preetham_turbidity"].is_number());
+  ASSERT_TRUE(j["best_preetham_turbidity_for_cie12"].is_number());
+  const double T = j["best_preetham_turbidity_for_cie12"];
+  EXPECT_GE(T, 1.7);
+  EXPECT_LE(T, 10.0);
+  ASSERT_TRUE(j["best_cie_type_per_preetham_turbidity"].is_array());
+  ASSERT_FALSE(j["best_cie_type_per_preetham_turbidity"].empty());
+  for (const auto& m : j["best_cie_type_per_preetham_turbidity"]) {
+    ASSERT_TRUE(m["turbidity"].is_number());
+    ASSERT_TRUE(m["cie_type"].is_number_integer());
+    EXPECT_GE(m["cie_type"].get<int>(), 1);
+    EXPECT_LE(m["cie_type"].get<int>(), 16);
+    ASSERT_TRUE(m["rms_log10"].is_number());
+    ASSERT_TRUE(m["luminance_ratio_preetham_over_cie"].is_number());
+    EXPECT_TRUE(std::isfinite(m["rms_log10"].get<double>()));
+  }
+  EXPECT_TRUE(j["measurements"]["synthetic"].get<bool>());
+}
+
+TEST_F(ReportFiles, SvgFilesAreWellFormedAndTheirImagesExist) {
+  int svgs = 0, images = 0;
+  for (const auto& e : fs::directory_iterator(*dir_)) {
+    if (e.path().extension() != ".svg") continue;
+    ++svgs;
+    SCOPED_TRACE(e.path().filename().string());
+    const auto check = skylight::testing_support::check_xml(slurp(e.path()));
+    EXPECT_TRUE(check.ok) << check.error;
+    EXPECT_EQ(check.elements.front(), "svg");
+    for (const auto& h : check.hrefs) {
+      ++images;
+      EXPECT_TRUE(fs::is_regular_file(*dir_ / h)) << h;
+      EXPECT_GT(fs::file_size(*dir_ / h), 0u) << h;
+    }
+  }
+  EXPECT_GT(svgs, 10);
+  EXPECT_GT(images, 0);
+}
+
+TEST_F(ReportFiles, HtmlIsWellFormedAndReferencesOnlyExistingFiles) {
+  const std::string html = slurp(*dir_ / "index.html");
+  // The inline script has no markup characters inside, so the page also parses as XML.
+  const auto check = skylight::testing_support::check_xml(html);
+  EXPECT_TRUE(check.ok) << check.error;
+  int images = 0;
+  for (const auto& h : check.hrefs) {
+    EXPECT_TRUE(fs::is_regular_file(*dir_ / h)) << h;
+    if (h.ends_with(".png")) ++images;
+  }
+  EXPECT_GT(images, 5);
+  EXPECT_NE(html.find("id=\"image-check\""), std::string::npos);
+  EXPECT_NE(html.find("Closing note"), std::string::npos);
+  // Every file the summary lists was written, and nothing temporary is left.
+  for (const auto& f : summary_->files) EXPECT_TRUE(fs::is_regular_file(*dir_ / f)) << f;
+  for (const auto& e : fs::directory_iterator(*dir_))
+    EXPECT_EQ(e.path().filename().string().find(".tmp-"), std::string::npos);
+}
+
+TEST(ReportOptionsCheck, BadOptionsAndFiles) {
+  const fs::path dir =
+      fs::temp_directory_path() / ("skylight_report_bad_" + std::to_string(::getpid()));
+  ReportOptions o;
+  o.output_dir = dir;
+  o.quick = true;
+  o.measurement_sun_azimuth = 1.0;  // without the elevation
+  EXPECT_THROW(write_report(o), InvalidArgument);
+  o.measurement_sun_azimuth.reset();
+  o.measurements = dir / "missing.csv";
+  EXPECT_THROW(write_report(o), IoError);
+  fs::create_directories(dir);
+  { std::ofstream(dir / "nosun.csv") << "azimuth_deg,elevation_deg,luminance_cd_m2\n0,6,100\n"; }
+  o.measurements = dir / "nosun.csv";
+  try {
+    write_report(o);
+    ADD_FAILURE() << "no error for a scan without a sun position";
+  } catch (const InvalidArgument& e) {
+    EXPECT_NE(std::string(e.what()).find("no sun position"), std::string::npos);
+  }
+  fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace skylight::report
