@@ -11,6 +11,7 @@
 
 #include "skylight/core/data.h"
 #include "skylight/core/error.h"
+#include "skylight/core/numbers.h"
 
 namespace skylight::analysis {
 namespace {
@@ -29,15 +30,6 @@ std::string_view trim(std::string_view s) {
   return s;
 }
 
-std::optional<double> parse_double(std::string_view s) {
-  if (!s.empty() && s.front() == '+') s.remove_prefix(1);
-  double v = 0.0;
-  const auto [ptr, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
-  if (s.empty() || ec != std::errc() || ptr != s.data() + s.size() || !std::isfinite(v))
-    return std::nullopt;
-  return v;
-}
-
 // `# key = value` comment: the sun position keys are read, anything else is free text.
 void read_comment(std::string_view body, const std::string& source, std::size_t line,
                   SkyScan& scan) {
@@ -47,7 +39,7 @@ void read_comment(std::string_view body, const std::string& source, std::size_t 
   const std::string_view value = trim(body.substr(eq + 1));
   const bool azimuth = key == kSunAzimuthKey, elevation = key == kSunElevationKey;
   if (!azimuth && !elevation) return;
-  const auto v = parse_double(value);
+  const auto v = parse_number(value);
   if (!v)
     throw InvalidArgument(
         fmt::format("{} line {}: {} '{}' is not a finite number", source, line, key, value));

@@ -18,19 +18,7 @@ double Component::scattering(double nm) const {
   return scattering_m * std::pow(reference_nm / nm, angstrom_exponent);
 }
 double Component::extinction(double nm) const {
-  double absorption = 0.0;
-  const auto& x = absorption_nm;
-  if (!x.empty() && nm >= x.front() && nm <= x.back()) {
-    const auto it = std::upper_bound(x.begin(), x.end(), nm);
-    const std::size_t i = it == x.end() ? x.size() - 1 : static_cast<std::size_t>(it - x.begin());
-    if (i == 0 || x[i] == nm) {
-      absorption = absorption_m[i];
-    } else {
-      const double a = (nm - x[i - 1]) / (x[i] - x[i - 1]);
-      absorption = (1.0 - a) * absorption_m[i - 1] + a * absorption_m[i];
-    }
-  }
-  return extinction_m * std::pow(reference_nm / nm, angstrom_exponent) + absorption;
+  return extinction_m * std::pow(reference_nm / nm, angstrom_exponent) + absorption_per_m(nm);
 }
 double Component::density(double h) const {
   if (profile == Profile::tent)
@@ -42,11 +30,8 @@ const ReferenceSpectra& bruneton_spectra() {
   static const ReferenceSpectra t = [] {
     constexpr std::string_view kPath = "bruneton/bruneton2017_solar_irradiance_ozone_xsec.csv";
     const auto csv = data::load_table(kPath, /*has_header=*/true, 3);
-    ReferenceSpectra s{csv.numbers(0), csv.numbers(1), csv.numbers(2)};
-    for (std::size_t i = 1; i < s.nm.size(); ++i)
-      if (!(s.nm[i] > s.nm[i - 1]))
-        throw IoError(fmt::format("{}: wavelengths must ascend (row {})", kPath, i + 1));
-    return s;
+    return ReferenceSpectra{Spectrum::from_table(csv, 0, 1, kPath),
+                            Spectrum::from_table(csv, 0, 2, kPath)};
   }();
   return t;
 }
@@ -72,9 +57,7 @@ Component earth_ozone(double dobson) {
   c.peak_altitude_m = kOzonePeakAltitude;
   c.half_width_m = kOzoneHalfWidth;
   const double peak_density = dobson * kDobsonUnit / kOzoneHalfWidth;  // [molecules m^-3]
-  const ReferenceSpectra& s = bruneton_spectra();
-  c.absorption_nm = s.nm;
-  for (double x : s.ozone_cross_section) c.absorption_m.push_back(peak_density * x);
+  c.absorption_per_m = bruneton_spectra().ozone_cross_section.scaled(peak_density);
   return c;
 }
 
@@ -111,17 +94,9 @@ void AtmosphereParameters::validate() const {
       require(std::isfinite(c.half_width_m) && c.half_width_m > 0, c.name + " half width",
               c.half_width_m, "(0, inf) m");
     }
-    require(c.absorption_nm.size() == c.absorption_m.size(), c.name + " absorption table size",
-            static_cast<double>(c.absorption_m.size()),
-            fmt::format("{} (the number of wavelengths)", c.absorption_nm.size()));
-    for (std::size_t k = 0; k < c.absorption_nm.size(); ++k) {
-      require(std::isfinite(c.absorption_nm[k]) && c.absorption_nm[k] > 0 &&
-                  (k == 0 || c.absorption_nm[k] > c.absorption_nm[k - 1]),
-              fmt::format("{} absorption wavelength [{}]", c.name, k), c.absorption_nm[k],
-              "(previous wavelength, inf) nm");
-      require(std::isfinite(c.absorption_m[k]) && c.absorption_m[k] >= 0,
-              fmt::format("{} absorption [{}]", c.name, k), c.absorption_m[k], "[0, inf) m^-1");
-    }
+    for (std::size_t k = 0; k < c.absorption_per_m.size(); ++k)
+      require(c.absorption_per_m.values()[k] >= 0, fmt::format("{} absorption [{}]", c.name, k),
+              c.absorption_per_m.values()[k], "[0, inf) m^-1");
   }
   if (ground_albedo)
     require(*ground_albedo >= 0 && *ground_albedo <= 1, "ground albedo", *ground_albedo, "[0, 1]");

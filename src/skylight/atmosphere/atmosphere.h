@@ -78,11 +78,11 @@ bool in_planet_shadow(Vec3 p, Vec3 sun, double ground_radius);
 double optical_length_quadrature(double r, double mu, const Component& c, double ground_radius,
                                  double top_radius, int n = 256);
 
-// The spectra of data/bruneton (Bruneton 2017, 360-830 nm in 10 nm bins): wavelengths [nm],
-// extraterrestrial solar irradiance (ASTM G-173) [W m^-2 nm^-1], ozone absorption cross-section
-// [m^2 per molecule]. Loaded once; throws IoError if the embedded table is malformed.
+// The spectra of data/bruneton (Bruneton 2017, 360-830 nm in 10 nm bins): extraterrestrial solar
+// irradiance (ASTM G-173) [W m^-2 nm^-1] and ozone absorption cross-section [m^2 per molecule].
+// Loaded once; throws IoError if the embedded table is malformed.
 struct ReferenceSpectra {
-  std::vector<double> nm, solar, ozone_cross_section;
+  Spectrum solar_irradiance, ozone_cross_section;
 };
 const ReferenceSpectra& bruneton_spectra();
 

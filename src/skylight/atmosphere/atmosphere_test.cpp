@@ -268,9 +268,10 @@ TEST(Atmosphere, OzoneColumnAndBluerTwilightZenith) {
   atm.transmittance(ground, {0, 0, 1}, only.top_radius_m - only.ground_radius_m, spec, T);
   constexpr double kColumnTransmittanceRelTol = 1e-5;  // table error 1e-4 x optical depth < 0.04
   for (int l = 0; l < 3; ++l) {
-    const auto it = std::find(bs.nm.begin(), bs.nm.end(), nm[l]);
-    ASSERT_NE(it, bs.nm.end());
-    const double sigma = bs.ozone_cross_section[static_cast<std::size_t>(it - bs.nm.begin())];
+    const auto& w = bs.ozone_cross_section.wavelengths();
+    const auto it = std::find(w.begin(), w.end(), nm[l]);
+    ASSERT_NE(it, w.end());
+    const double sigma = bs.ozone_cross_section.values()[static_cast<std::size_t>(it - w.begin())];
     const double exact = std::exp(-kEarthOzoneColumn * kDobsonUnit * sigma);
     EXPECT_NEAR(T[l], exact, kColumnTransmittanceRelTol) << nm[l] << " nm";
   }

@@ -12,6 +12,8 @@
 #include <string>
 #include <vector>
 
+#include "skylight/core/spectrum.h"
+
 namespace skylight::atmosphere {
 
 // Phase function F(mu) [sr^-1] of one component, mu = cos(scattering angle) = dot(view, sun).
@@ -34,7 +36,7 @@ enum class Profile {
 // Scattering and extinction follow a power law from a reference wavelength:
 //   beta(lambda) = beta_ref * (reference_nm / lambda)^angstrom_exponent      [m^-1 at rho = 1]
 // (exponent 4 = Rayleigh's lambda^-4 law, 0 = grey Mie), and the extinction adds an optional
-// tabulated absorption (linear between the table's wavelengths, 0 outside them), e.g. ozone's
+// tabulated absorption (a Spectrum: linear between its wavelengths, 0 outside them), e.g. ozone's
 // absorption = number density x cross-section.
 struct Component {
   std::string name;              // "rayleigh", "mie", ... (used in messages)
@@ -46,10 +48,9 @@ struct Component {
   PhaseKind phase = PhaseKind::rayleigh;
   double g = 0;  // asymmetry parameter for HG / Cornette-Shanks, (-1, 1)
   Profile profile = Profile::exponential;
-  double peak_altitude_m = 0;  // tent: altitude of rho = 1 [m], finite
-  double half_width_m = 0;     // tent: rho falls to 0 this far below and above the peak [m], > 0
-  std::vector<double> absorption_nm{};  // ascending wavelengths [nm] of the absorption table
-  std::vector<double> absorption_m{};   // absorption at rho = 1 [m^-1], >= 0, same size
+  double peak_altitude_m = 0;   // tent: altitude of rho = 1 [m], finite
+  double half_width_m = 0;      // tent: rho falls to 0 this far below and above the peak [m], > 0
+  Spectrum absorption_per_m{};  // absorption at rho = 1 [m^-1], >= 0; empty = none
 
   double scattering(double nm) const;
   double extinction(double nm) const;  // power law + tabulated absorption

@@ -1,56 +1,54 @@
 #include "skylight/core/colorimetry.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <vector>
 
 #include "skylight/core/data.h"
 #include "skylight/core/error.h"
+#include "skylight/core/spectrum.h"
 
 namespace skylight {
 namespace {
 
-// A table sampled on a uniform wavelength grid, with linear interpolation and zero outside.
-struct UniformTable {
-  double first_nm = 0.0;
-  double step_nm = 1.0;
-  std::vector<std::array<double, 3>> values;
-
+// The three columns of a table on a uniform wavelength grid (wavelength + 3 values per row).
+struct UniformTriple {
+  std::array<Spectrum, 3> columns;
   std::array<double, 3> at(double nm) const {
-    const double u = (nm - first_nm) / step_nm;
-    if (!(u >= 0.0) || u > static_cast<double>(values.size() - 1)) return {0.0, 0.0, 0.0};
-    const std::size_t i = std::min(static_cast<std::size_t>(u), values.size() - 2);
-    const double t = u - static_cast<double>(i);
-    std::array<double, 3> out{};
-    for (int k = 0; k < 3; ++k) out[k] = (1.0 - t) * values[i][k] + t * values[i + 1][k];
-    return out;
+    return {columns[0](nm), columns[1](nm), columns[2](nm)};
   }
 };
 
-UniformTable load_uniform(std::string_view path, double expected_step) {
+UniformTriple load_uniform(std::string_view path, double expected_step) {
   const auto table = data::load_table(path, /*has_header=*/false, 4);
-  UniformTable t;
   SKYLIGHT_CHECK(table.rows() >= 2, "colorimetric table too short");
-  t.first_nm = table.number(0, 0);
-  t.step_nm = table.number(1, 0) - t.first_nm;
+  const double first_nm = table.number(0, 0);
+  std::array<std::vector<double>, 3> values;
   for (std::size_t r = 0; r < table.rows(); ++r) {
     const double nm = table.number(r, 0);
-    if (std::abs(nm - (t.first_nm + static_cast<double>(r) * expected_step)) > 1e-9) {
+    if (std::abs(nm - (first_nm + static_cast<double>(r) * expected_step)) > 1e-9) {
       throw IoError(std::string(path) + " line " + std::to_string(r + 1) +
                     ": wavelengths are not on a uniform grid");
     }
-    t.values.push_back({table.number(r, 1), table.number(r, 2), table.number(r, 3)});
+    for (int k = 0; k < 3; ++k) values[k].push_back(table.number(r, k + 1));
   }
+  const double step = table.number(1, 0) - first_nm;
+  UniformTriple t;
+  for (int k = 0; k < 3; ++k)
+    t.columns[k] = Spectrum::uniform(first_nm, step, std::move(values[k]),
+                                     fmt::format("{} column {}", path, k + 2));
   return t;
 }
 
-const UniformTable& cmf_table() {
-  static const UniformTable t = load_uniform("cie_colorimetry/CIE_xyz_1931_2deg.csv", 1.0);
+const UniformTriple& cmf_table() {
+  static const UniformTriple t = load_uniform("cie_colorimetry/CIE_xyz_1931_2deg.csv", 1.0);
   return t;
 }
 
-const UniformTable& daylight_table() {
-  static const UniformTable t = load_uniform("cie_colorimetry/CIE_illum_Dxx_comp.csv", 5.0);
+const UniformTriple& daylight_table() {
+  static const UniformTriple t = load_uniform("cie_colorimetry/CIE_illum_Dxx_comp.csv", 5.0);
   return t;
 }
 

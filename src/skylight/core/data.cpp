@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "skylight/core/error.h"
+#include "skylight/core/numbers.h"
 
 namespace skylight::data {
 
@@ -94,17 +95,11 @@ std::size_t CsvTable::line(std::size_t row) const {
 
 double CsvTable::number(std::size_t row, std::size_t col) const {
   const std::string& field = text(row, col);
-  double value = 0.0;
-  const char* first = field.data();
-  const char* last = field.data() + field.size();
-  // from_chars does not accept a leading '+'; "1.", ".5" and exponents are accepted.
-  if (first != last && *first == '+') ++first;
-  const auto [ptr, ec] = std::from_chars(first, last, value);
-  if (field.empty() || ec != std::errc() || ptr != last || !std::isfinite(value)) {
+  const auto value = parse_number(field);
+  if (!value)
     throw IoError(fmt::format("{} line {} column {}: '{}' is not a finite number", source_,
-                              line_numbers_[row], col + 1, field));
-  }
-  return value;
+                              line_numbers_[row], col + 1, excerpt(field)));
+  return *value;
 }
 
 std::vector<double> CsvTable::numbers(std::size_t col) const {

@@ -1,5 +1,7 @@
 #include "skylight/core/parallel.h"
 
+#include "skylight/core/numbers.h"
+
 #include <algorithm>
 #include <atomic>
 #include <condition_variable>
@@ -16,11 +18,8 @@ namespace {
 std::atomic<int> g_thread_override{0};
 
 int default_thread_count() {
-  if (const char* env = std::getenv("SKYLIGHT_THREADS")) {
-    char* end = nullptr;
-    const long v = std::strtol(env, &end, 10);
-    if (end != env && *end == '\0' && v >= 1 && v <= 1024) return static_cast<int>(v);
-  }
+  if (const char* env = std::getenv("SKYLIGHT_THREADS"))
+    if (const auto n = parse_thread_count(env)) return *n;
   return std::max(1u, std::thread::hardware_concurrency());
 }
 
@@ -136,6 +135,12 @@ Pool& pool() {
 std::mutex g_pool_mutex;  // one parallel_for at a time uses the pool; others wait
 
 }  // namespace
+
+std::optional<int> parse_thread_count(std::string_view text) {
+  const auto v = parse_integer(text);
+  if (v && *v >= 1 && *v <= kMaxThreads) return static_cast<int>(*v);
+  return std::nullopt;
+}
 
 int thread_count() {
   const int o = g_thread_override.load();

@@ -3,12 +3,21 @@
 
 #include <cstddef>
 #include <functional>
+#include <optional>
+#include <string_view>
 
 namespace skylight {
 
+// Thread counts accepted from set_thread_count, SKYLIGHT_THREADS and the CLI's --threads.
+inline constexpr int kMaxThreads = 1024;
+
 // Number of worker threads batch helpers use: set_thread_count(n) (n >= 1), else the environment
-// variable SKYLIGHT_THREADS, else std::thread::hardware_concurrency().
+// variable SKYLIGHT_THREADS if it is an integer in [1, kMaxThreads], else
+// std::thread::hardware_concurrency().
 int thread_count();
+// A thread count as text (SKYLIGHT_THREADS, --threads): an integer in [1, kMaxThreads], else
+// nullopt. The library ignores an invalid SKYLIGHT_THREADS; the CLI refuses it.
+std::optional<int> parse_thread_count(std::string_view text);
 // n >= 1; 0 restores the default.
 void set_thread_count(int n);
 

@@ -28,6 +28,7 @@
 #include <system_error>
 
 #include "skylight/core/error.h"
+#include "skylight/core/numbers.h"
 #include "skylight/io/file.h"
 #include "skylight/io/image.h"
 
@@ -221,20 +222,16 @@ ImageF read_pfm(const fs::path& path) {
   const int channels = magic == "PF" ? 3 : 1;
   auto dimension = [&](const char* what) {
     const std::string t = token();
-    char* end = nullptr;
-    errno = 0;
-    const long long v = std::strtoll(t.c_str(), &end, 10);
-    if (t.empty() || *end != '\0' || errno != 0 || v <= 0 || v > std::numeric_limits<int>::max())
-      corrupt(fmt::format("bad {} '{}'", what, t));
-    return static_cast<int>(v);
+    const auto v = parse_integer(t);
+    if (!v || *v <= 0 || *v > std::numeric_limits<int>::max())
+      corrupt(fmt::format("bad {} '{}'", what, excerpt(t)));
+    return static_cast<int>(*v);
   };
   const int width = dimension("width");
   const int height = dimension("height");
   const std::string scale_text = token();
-  char* end = nullptr;
-  const double scale = std::strtod(scale_text.c_str(), &end);
-  if (scale_text.empty() || *end != '\0' || !std::isfinite(scale) || scale == 0.0)
-    corrupt(fmt::format("bad scale '{}'", scale_text));
+  const auto scale = parse_number(scale_text);
+  if (!scale || *scale == 0.0) corrupt(fmt::format("bad scale '{}'", excerpt(scale_text)));
   if (pos >= bytes.size() || !is_space(bytes[pos])) corrupt("truncated header");
   ++pos;  // exactly one whitespace byte before the raster
 
@@ -245,7 +242,7 @@ ImageF read_pfm(const fs::path& path) {
                         width, height, channels));
 
   // The magnitude of the scale is ignored (it is 1 in practice); its sign gives the byte order.
-  const bool file_little = scale < 0.0;
+  const bool file_little = *scale < 0.0;
   const bool swap = file_little != (std::endian::native == std::endian::little);
   ImageF image(width, height, channels);
   for (int row = 0; row < height; ++row) {

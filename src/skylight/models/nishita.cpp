@@ -21,13 +21,7 @@ std::array<double, kNishitaXyzCount> xyz_wavelengths() {
 }  // namespace
 
 double solar_spectral_irradiance(double nm) {
-  const atmosphere::ReferenceSpectra& t = atmosphere::bruneton_spectra();
-  if (nm < t.nm.front() || nm > t.nm.back()) return 0.0;
-  const auto it = std::upper_bound(t.nm.begin(), t.nm.end(), nm);
-  if (it == t.nm.end()) return t.solar.back();
-  const std::size_t i = static_cast<std::size_t>(it - t.nm.begin()) - 1;
-  const double a = (nm - t.nm[i]) / (t.nm[i + 1] - t.nm[i]);
-  return (1.0 - a) * t.solar[i] + a * t.solar[i + 1];
+  return atmosphere::bruneton_spectra().solar_irradiance(nm);
 }
 
 NishitaModel::NishitaModel(const SkyParameters& p, const atmosphere::FastSettings& settings)

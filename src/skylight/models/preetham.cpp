@@ -8,46 +8,29 @@
 
 #include "skylight/core/data.h"
 #include "skylight/core/error.h"
+#include "skylight/core/spectrum.h"
 
 namespace skylight {
 namespace {
 
-// A (wavelength, value) table with linear interpolation; `outside` beyond its ends.
-struct SpectralTable {
-  std::vector<double> nm, value;
-  double at(double l, double outside) const {
-    if (nm.empty() || l < nm.front() || l > nm.back()) return outside;
-    const auto it = std::upper_bound(nm.begin(), nm.end(), l);
-    if (it == nm.end()) return value.back();
-    const std::size_t i = static_cast<std::size_t>(it - nm.begin()) - 1;
-    const double t = (l - nm[i]) / (nm[i + 1] - nm[i]);
-    return (1.0 - t) * value[i] + t * value[i + 1];
-  }
-};
-
-SpectralTable load_spectral(std::string_view path) {
-  const auto t = data::load_table(path, /*has_header=*/true, 2);
-  SpectralTable s{t.numbers(0), t.numbers(1)};
-  for (std::size_t i = 1; i < s.nm.size(); ++i)
-    if (!(s.nm[i] > s.nm[i - 1]))
-      throw IoError(fmt::format("{}: wavelengths must ascend (row {})", path, i + 1));
-  return s;
+Spectrum load_spectral(std::string_view path) {
+  return Spectrum::from_table(data::load_table(path, /*has_header=*/true, 2), 0, 1, path);
 }
 
-const SpectralTable& ozone_table() {
-  static const SpectralTable t = load_spectral("preetham/preetham_ozone_k_o.csv");
+const Spectrum& ozone_table() {
+  static const Spectrum t = load_spectral("preetham/preetham_ozone_k_o.csv");
   return t;
 }
-const SpectralTable& mixed_gas_table() {
-  static const SpectralTable t = load_spectral("preetham/preetham_mixed_gas_k_g.csv");
+const Spectrum& mixed_gas_table() {
+  static const Spectrum t = load_spectral("preetham/preetham_mixed_gas_k_g.csv");
   return t;
 }
-const SpectralTable& water_table() {
-  static const SpectralTable t = load_spectral("preetham/preetham_water_vapour_k_wa.csv");
+const Spectrum& water_table() {
+  static const Spectrum t = load_spectral("preetham/preetham_water_vapour_k_wa.csv");
   return t;
 }
-const SpectralTable& sun_table() {
-  static const SpectralTable t = load_spectral("preetham/preetham_sun_spectral_radiance.csv");
+const Spectrum& sun_table() {
+  static const Spectrum t = load_spectral("preetham/preetham_sun_spectral_radiance.csv");
   return t;
 }
 
@@ -165,11 +148,11 @@ SolarTransmittance preetham_solar_transmittance(double sun_zenith, double T, dou
   const double beta = 0.04608 * T - 0.04586;  // Angstrom turbidity coefficient
   t.aerosol = std::exp(-beta * std::pow(um, -alpha) * m);
   const double ozone_cm = 0.35;
-  t.ozone = std::exp(-ozone_table().at(nm, 0.0) * ozone_cm * m);
-  const double kg = mixed_gas_table().at(nm, 0.0);
+  t.ozone = std::exp(-ozone_table()(nm) * ozone_cm * m);
+  const double kg = mixed_gas_table()(nm);
   t.mixed_gas = std::exp(-1.41 * kg * m / std::pow(1.0 + 118.93 * kg * m, 0.45));
   const double water_cm = 2.0;
-  const double kwa = water_table().at(nm, 0.0);
+  const double kwa = water_table()(nm);
   t.water =
       std::exp(-0.2385 * kwa * water_cm * m / std::pow(1.0 + 20.07 * kwa * water_cm * m, 0.45));
   return t;
@@ -177,7 +160,7 @@ SolarTransmittance preetham_solar_transmittance(double sun_zenith, double T, dou
 
 std::optional<double> extraterrestrial_sun_radiance(double nm) {
   if (!(nm >= kPreethamSunMinNm && nm <= kPreethamSunMaxNm)) return std::nullopt;
-  return sun_table().at(nm, 0.0);
+  return sun_table()(nm);
 }
 
 PreethamModel::PreethamModel(const SkyParameters& p) : SkyModel(p) {
