@@ -36,10 +36,10 @@ Grid& grid() {
 
 std::unique_ptr<SkyModel> model(const char* name) {
   SkyParameters p;
-  p.turbidity = 3.0;
+  p.values.set("turbidity", 3.0);
   p.sun = {deg_to_rad(45.0), deg_to_rad(180.0)};
-  p.perez_coefficients = std::array<double, 5>{-1.0, -0.32, 10.0, -3.0, 0.45};
-  p.zenith_luminance = 5000.0;
+  p.values.set("perez", std::vector<double>{-1.0, -0.32, 10.0, -3.0, 0.45});
+  p.values.set("zenith-luminance", 5000.0);
   return make_sky_model(name, p);
 }
 
@@ -80,7 +80,7 @@ void Threads(benchmark::State& state, const char* name) {
 // nishita's brute-force reference path on a 64 x 32 grid (the full frame would take minutes),
 // all threads; the counter scales the time to one 1024 x 512 frame for comparison with Threads.
 void NishitaReference(benchmark::State& state) {
-  SkyParameters p;
+  NishitaParameters p;
   p.sun = {deg_to_rad(45.0), deg_to_rad(180.0)};
   const NishitaModel m(p);
   render::RenderSettings s;

@@ -70,7 +70,7 @@ RelativeSamples relative_samples(const ModelSpec& spec, const ComparisonSettings
     const auto model = make_model(spec, ts, s.sun_azimuth);
     std::vector<double> abs = sky_luminance(*model, grid.directions);
     const double z = model->tristimulus({0.0, 0.0, 1.0}).Y;
-    const Vec3 sun = model->parameters().sun.direction();
+    const Vec3 sun = model->sun().direction();
     std::vector<double> rel(abs.size(), kNaN);
     for (std::size_t i = 0; i < abs.size(); ++i) {
       if (angle_between(grid.directions[i], sun) < s.sun_exclusion) {
@@ -129,20 +129,20 @@ LuminanceRatio absolute_luminance_ratio(const RelativeSamples& a, const Relative
 
 ModelSpec cie_spec(int type) {
   ModelSpec s{"cie", {}, fmt::format("CIE type {}", type)};
-  s.params.cie_type = type;
+  s.params.values.set("cie-type", type);
   return s;
 }
 
 ModelSpec preetham_spec(double T) {
   ModelSpec s{"preetham", {}, fmt::format("Preetham T = {:g}", T)};
-  s.params.turbidity = T;
+  s.params.values.set("turbidity", T);
   return s;
 }
 
 ModelSpec hosek_spec(double T) {
   ModelSpec s{"hosek", {}, fmt::format("Hosek-Wilkie T = {:g}", T)};
-  s.params.turbidity = T;
-  s.params.ground_albedo = 0.3;
+  s.params.values.set("turbidity", T);
+  s.params.values.set("albedo", 0.3);
   return s;
 }
 
@@ -183,7 +183,7 @@ CieTypeMatch rank_against(const RelativeSamples& target, const std::vector<Relat
 CieTypeMatch rank_cie_types(const ModelSpec& spec, const ComparisonSettings& s) {
   const HemisphereGrid grid = hemisphere_grid(s.n_theta, s.n_phi);
   CieTypeMatch m = rank_against(relative_samples(spec, s, grid), cie_type_samples(s, grid), grid);
-  m.turbidity = spec.params.turbidity;
+  m.turbidity = spec.params.values.number("turbidity").value_or(0.0);
   return m;
 }
 
@@ -275,17 +275,17 @@ std::vector<AntisolarRow> antisolar_horizon_ratios(double turbidity,
 }
 // ---- validity ----------------------------------------------------------------------------------
 
-std::vector<std::vector<Validity>> validity_grid(
-    const ModelSpec& spec, const std::vector<double>& sun_zeniths,
-    const std::vector<double>& row_values,
-    const std::function<void(SkyParameters&, double)>& row_setter) {
+std::vector<std::vector<Validity>> validity_grid(const ModelSpec& spec,
+                                                 const std::vector<double>& sun_zeniths,
+                                                 const std::vector<double>& row_values,
+                                                 const std::string& row_parameter) {
   const std::size_t cols = sun_zeniths.size(), rows = std::max<std::size_t>(row_values.size(), 1);
   std::vector<std::vector<Validity>> out(rows, std::vector<Validity>(cols, Validity::valid));
   parallel_for(rows * cols, 1, [&](std::size_t b, std::size_t e) {
     for (std::size_t i = b; i < e; ++i) {
       const std::size_t r = i / cols, c = i % cols;
       SkyParameters p = spec.params;
-      if (!row_values.empty() && row_setter) row_setter(p, row_values[r]);
+      if (!row_values.empty()) p.values.set(row_parameter, row_values[r]);
       p.sun = {sun_zeniths[c], kPi};
       try {
         out[r][c] = make_sky_model(spec.name, p)->domain().worst();

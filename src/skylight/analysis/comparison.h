@@ -109,9 +109,10 @@ std::vector<AntisolarRow> antisolar_horizon_ratios(double turbidity,
 // ---- validity ----------------------------------------------------------------------------------
 
 // domain().worst() of `spec` with the sun at each zenith [rad] (azimuth pi) and, per row, the
-// parameters changed by `row_setter(params, row_value)`.
-std::vector<std::vector<Validity>> validity_grid(
-    const ModelSpec& spec, const std::vector<double>& sun_zeniths,
-    const std::vector<double>& row_values,
-    const std::function<void(SkyParameters&, double)>& row_setter);
+// model parameter named `row_parameter` (a schema name, e.g. "turbidity") set to the row's value
+// (no rows: `row_values` empty). Parameters the model rejects give Validity::undefined.
+std::vector<std::vector<Validity>> validity_grid(const ModelSpec& spec,
+                                                 const std::vector<double>& sun_zeniths,
+                                                 const std::vector<double>& row_values,
+                                                 const std::string& row_parameter);
 }  // namespace skylight::analysis

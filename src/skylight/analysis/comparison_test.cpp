@@ -75,7 +75,7 @@ TEST(Comparison, EachCieTypeBestMatchesItself) {
   for (int type = 1; type <= kCieTypeCount; ++type) {
     SCOPED_TRACE(testing::Message() << "CIE type " << type);
     ModelSpec spec{"cie", {}, "target"};
-    spec.params.cie_type = type;
+    spec.params.values.set("cie-type", type);
     const CieTypeMatch m = rank_cie_types(spec, s);
     EXPECT_EQ(m.best_type, type);
     EXPECT_NEAR(m.best_rms, 0.0, kSelfRmsTol);
@@ -89,10 +89,11 @@ TEST(Comparison, RmsIsSymmetricAndScaleFree) {
   const auto s = small_settings();
   const auto g = hemisphere_grid(s.n_theta, s.n_phi);
   ModelSpec a{"cie", {}, "a"}, b{"cie", {}, "b"}, b10{"cie", {}, "b x 10"};
-  a.params.cie_type = 12;
-  b.params.cie_type = 13;
-  b10.params.cie_type = 13;
-  b10.params.zenith_luminance = 10.0 * kittler_darula_zenith_luminance(13, deg_to_rad(60.0));
+  a.params.values.set("cie-type", 12);
+  b.params.values.set("cie-type", 13);
+  b10.params.values.set("cie-type", 13);
+  b10.params.values.set("zenith-luminance",
+                        10.0 * kittler_darula_zenith_luminance(13, deg_to_rad(60.0)));
   const auto sa = relative_samples(a, s, g), sb = relative_samples(b, s, g);
   const double ab = relative_log_rms(sa, sb, g);
   EXPECT_GT(ab, 0.0);
@@ -132,9 +133,9 @@ TEST(Comparison, AntisolarHorizonRatioIsTheModelsRatio) {
   ASSERT_EQ(rows.size(), 1u);
   SkyParameters p;
   p.sun = {deg_to_rad(80.0), kPi};
-  p.turbidity = 2.4;
+  p.values.set("turbidity", 2.4);
   const auto pr = make_sky_model("preetham", p);
-  p.cie_type = 12;
+  p.values = ParameterValues().set("cie-type", 12);
   const auto cie = make_sky_model("cie", p);
   const Vec3 v = direction_from_angles(deg_to_rad(87.0), 0.0);  // north, 3 deg up
   EXPECT_DOUBLE_EQ(rows[0].preetham, pr->tristimulus(v).Y);
@@ -146,8 +147,8 @@ TEST(Comparison, AntisolarHorizonRatioIsTheModelsRatio) {
 
 TEST(ValidityGrid, GridReportsTheModelsDomain) {
   ModelSpec spec{"preetham", {}, "p"};
-  const auto g = validity_grid(spec, {deg_to_rad(45.0), deg_to_rad(100.0)}, {3.0, 8.0, 20.0},
-                               [](SkyParameters& p, double v) { p.turbidity = v; });
+  const auto g =
+      validity_grid(spec, {deg_to_rad(45.0), deg_to_rad(100.0)}, {3.0, 8.0, 20.0}, "turbidity");
   ASSERT_EQ(g.size(), 3u);
   EXPECT_EQ(g[0][0], Validity::valid);
   EXPECT_EQ(g[1][0], Validity::extrapolated);
@@ -155,8 +156,7 @@ TEST(ValidityGrid, GridReportsTheModelsDomain) {
   EXPECT_EQ(g[0][1], Validity::undefined);  // sun below the horizon
   // Parameters the model rejects are drawn as undefined.
   ModelSpec hosek{"hosek", {}, "h"};
-  const auto h = validity_grid(hosek, {deg_to_rad(45.0)}, {5.0, 20.0},
-                               [](SkyParameters& p, double v) { p.turbidity = v; });
+  const auto h = validity_grid(hosek, {deg_to_rad(45.0)}, {5.0, 20.0}, "turbidity");
   EXPECT_EQ(h[0][0], Validity::valid);
   EXPECT_EQ(h[1][0], Validity::undefined);
 }

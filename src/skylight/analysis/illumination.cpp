@@ -24,7 +24,7 @@ struct DiscSamples {
 DiscSamples disc_samples(const SkyModel& model, int rings, int sectors) {
   DiscSamples d;
   const double r = model.sun_angular_radius();
-  const Vec3 s = model.parameters().sun.direction();
+  const Vec3 s = model.sun().direction();
   // An orthonormal basis (u, w) perpendicular to s.
   const Vec3 helper = std::abs(s.z) < 0.9 ? Vec3{0, 0, 1} : Vec3{1, 0, 0};
   const Vec3 u = normalize(cross(helper, s)), w = cross(s, u);
@@ -73,7 +73,7 @@ double direct_horizontal_illuminance(const SkyModel& model, int rings, int secto
 HorizontalIllumination horizontal_illumination(const SkyModel& model, const IlluminationSettings& s,
                                                bool spectral) {
   HorizontalIllumination h;
-  h.sun_elevation = model.parameters().sun.elevation();
+  h.sun_elevation = model.sun().elevation();
   h.has_sun = model.has_sun();
   h.diffuse_lx = diffuse_horizontal_illuminance(model, s.n_theta, s.n_phi);
   h.direct_lx = direct_horizontal_illuminance(model, s.sun_rings, s.sun_sectors);

@@ -22,14 +22,14 @@ TEST(Illumination, OvercastSkyMatchesItsClosedForm) {
   // Traditional overcast sky L = Lz (1 + 2 cos Z) / 3: E = 2 pi Lz int_0^1 mu (1 + 2 mu) / 3 dmu
   // = Lz pi 7 / 9.
   SkyParameters p;
-  p.cie_type = 16;
-  p.zenith_luminance = 1e4;
+  p.values.set("cie-type", 16);
+  p.values.set("zenith-luminance", 1e4);
   p.sun = {deg_to_rad(40.0), kPi};
   const auto sky = make_sky_model("cie", p);
   const double E = diffuse_horizontal_illuminance(*sky, 90, 180);
   EXPECT_NEAR(E, 1e4 * kPi * 7.0 / 9.0, kIlluminanceQuadratureRelTol * E);
   // The uniform sky (type 5): E = pi Lz.
-  p.cie_type = 5;
+  p.values.set("cie-type", 5);
   const auto uniform = make_sky_model("cie", p);
   EXPECT_NEAR(diffuse_horizontal_illuminance(*uniform, 90, 180), 1e4 * kPi,
               kIlluminanceQuadratureRelTol * 1e4 * kPi);
@@ -43,7 +43,7 @@ TEST(Illumination, OvercastSkyMatchesItsClosedForm) {
 
 TEST(Illumination, UniformSolarDiscGivesRadianceTimesSolidAngle) {
   SkyParameters p;
-  p.turbidity = 3.0;
+  p.values.set("turbidity", 3.0);
   p.sun = {deg_to_rad(60.0), kPi};
   const auto sky = make_sky_model("preetham", p);
   const double L = sky->sun_tristimulus(p.sun.direction()).Y;  // Preetham's disc is uniform

@@ -22,14 +22,6 @@ constexpr std::string_view kLuminanceColumn = "luminance_cd_m2";
 constexpr std::string_view kSunAzimuthKey = "sun_azimuth_deg";
 constexpr std::string_view kSunElevationKey = "sun_elevation_deg";
 
-std::string_view trim(std::string_view s) {
-  while (!s.empty() && (s.front() == ' ' || s.front() == '\t' || s.front() == '\r'))
-    s.remove_prefix(1);
-  while (!s.empty() && (s.back() == ' ' || s.back() == '\t' || s.back() == '\r'))
-    s.remove_suffix(1);
-  return s;
-}
-
 // `# key = value` comment: the sun position keys are read, anything else is free text.
 void read_comment(std::string_view body, const std::string& source, std::size_t line,
                   SkyScan& scan) {
@@ -168,7 +160,7 @@ std::vector<std::string> synthetic_scan_comments(const SyntheticScanSettings& s)
 SkyScan synthetic_tregenza_scan(const SyntheticScanSettings& s) {
   require_in_range("noise", s.noise, 0.0, 0.999);
   SkyParameters p;
-  p.cie_type = s.cie_type;
+  p.values.set("cie-type", s.cie_type);
   p.sun = {kPi / 2 - s.sun_elevation, wrap_azimuth(s.sun_azimuth)};
   const auto sky = make_sky_model("cie", p);
   SplitMix64 rng(s.seed);
@@ -186,7 +178,7 @@ SkyScan synthetic_tregenza_scan(const SyntheticScanSettings& s) {
 }
 
 ScanErrors compare_to_scan(const SkyModel& model, const SkyScan& scan, double sun_exclusion) {
-  const Vec3 sun = model.parameters().sun.direction();
+  const Vec3 sun = model.sun().direction();
   std::vector<double> d;
   const LuminanceSample* top = nullptr;
   double top_ratio = 0.0;

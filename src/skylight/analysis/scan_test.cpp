@@ -104,7 +104,7 @@ TEST(Scan, ErrorsAgainstTheGeneratingSky) {
   const SkyScan exact = synthetic_tregenza_scan(quiet);
   const SkyScan noisy = synthetic_tregenza_scan();
   SkyParameters p;
-  p.cie_type = 7;
+  p.values.set("cie-type", 7);
   p.sun = {kPi / 2 - quiet.sun_elevation, quiet.sun_azimuth};
   const auto sky = make_sky_model("cie", p);
   const ScanErrors e0 = compare_to_scan(*sky, exact, deg_to_rad(5.0));
@@ -117,7 +117,7 @@ TEST(Scan, ErrorsAgainstTheGeneratingSky) {
   EXPECT_LT(e.rms_log10_absolute, kNoiseLog10Bound);
   EXPECT_LT(std::abs(e.bias_log10_absolute), kNoiseLog10Bound);
   // Another type is clearly worse.
-  p.cie_type = 12;
+  p.values.set("cie-type", 12);
   const auto clear = make_sky_model("cie", p);
   EXPECT_GT(compare_to_scan(*clear, noisy, deg_to_rad(5.0)).rms_log10_relative,
             5 * e.rms_log10_relative);

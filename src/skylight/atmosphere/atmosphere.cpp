@@ -15,10 +15,10 @@ namespace skylight::atmosphere {
 // ---- parameters ---------------------------------------------------------------------------------
 
 double Component::scattering(double nm) const {
-  return scattering_m * std::pow(reference_nm / nm, angstrom_exponent);
+  return scattering_per_m * std::pow(reference_nm / nm, angstrom_exponent);
 }
 double Component::extinction(double nm) const {
-  return extinction_m * std::pow(reference_nm / nm, angstrom_exponent) + absorption_per_m(nm);
+  return extinction_per_m * std::pow(reference_nm / nm, angstrom_exponent) + absorption_per_m(nm);
 }
 double Component::density(double h) const {
   if (profile == Profile::tent)
@@ -79,10 +79,10 @@ void AtmosphereParameters::validate() const {
     if (c.profile == Profile::exponential)
       require(std::isfinite(c.scale_height_m) && c.scale_height_m > 0, c.name + " scale height",
               c.scale_height_m, "(0, inf) m");
-    require(std::isfinite(c.scattering_m) && c.scattering_m >= 0, c.name + " scattering",
-            c.scattering_m, "[0, inf) m^-1");
-    require(std::isfinite(c.extinction_m) && c.extinction_m >= c.scattering_m,
-            c.name + " extinction", c.extinction_m, "[scattering, inf) m^-1");
+    require(std::isfinite(c.scattering_per_m) && c.scattering_per_m >= 0, c.name + " scattering",
+            c.scattering_per_m, "[0, inf) m^-1");
+    require(std::isfinite(c.extinction_per_m) && c.extinction_per_m >= c.scattering_per_m,
+            c.name + " extinction", c.extinction_per_m, "[scattering, inf) m^-1");
     require(std::isfinite(c.reference_nm) && c.reference_nm > 0, c.name + " reference wavelength",
             c.reference_nm, "(0, inf) nm");
     require(std::isfinite(c.angstrom_exponent), c.name + " exponent", c.angstrom_exponent,

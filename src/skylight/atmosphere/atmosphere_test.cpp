@@ -27,7 +27,7 @@ constexpr double kTableHorizontalRelTol = 1e-4;
 // Above ~4 scale heights rho < 1/255 lies in the table's first rho cell (linear from rho_top):
 // observed <= 1.8e-3 relative there, on optical lengths < 2e-2 of the ground value.
 constexpr double kTableThinRelTol = 3e-3;
-// Fast path vs brute force: the criterion.
+// Fast path vs brute force: the bound docs/MODELS.md states for `nishita` (0.5 %).
 constexpr double kFastVsReferenceRelTol = 5e-3;
 // Radiances below this fraction of the largest radiance of the same observer and planet are
 // compared absolutely: deep twilight / views of space from orbit, where a relative error of a
@@ -448,13 +448,13 @@ TEST(Atmosphere, BadParametersAreRejected) {
   EXPECT_THROW(Atmosphere(bad([](auto& p) { p.components[0].scale_height_m = 0; })),
                InvalidArgument);
   EXPECT_THROW(Atmosphere(bad([](auto& p) { p.components[1].g = 1.0; })), InvalidArgument);
-  EXPECT_THROW(Atmosphere(bad([](auto& p) { p.components[1].extinction_m = 1e-6; })),
+  EXPECT_THROW(Atmosphere(bad([](auto& p) { p.components[1].extinction_per_m = 1e-6; })),
                InvalidArgument);
   EXPECT_THROW(Atmosphere(bad([](auto& p) { p.ground_albedo = 1.5; })), InvalidArgument);
   EXPECT_THROW(
       Atmosphere(bad([](auto& p) { p.components.resize(kMaxComponents + 1, earth_mie()); })),
       InvalidArgument);
-  EXPECT_THROW(Atmosphere(bad([](auto& p) { p.components[0].scattering_m = std::nan(""); })),
+  EXPECT_THROW(Atmosphere(bad([](auto& p) { p.components[0].scattering_per_m = std::nan(""); })),
                InvalidArgument);
 }
 

@@ -41,8 +41,8 @@ enum class Profile {
 struct Component {
   std::string name;              // "rayleigh", "mie", ... (used in messages)
   double scale_height_m = 0;     // H > 0 [m]
-  double scattering_m = 0;       // beta_s at reference_nm and sea level [m^-1], >= 0
-  double extinction_m = 0;       // beta_e at reference_nm and sea level [m^-1], >= scattering_m
+  double scattering_per_m = 0;   // beta_s at reference_nm and sea level [m^-1], >= 0
+  double extinction_per_m = 0;   // beta_e at reference_nm and sea level [m^-1], >= scattering_per_m
   double reference_nm = 550;     // wavelength of the two values above [nm], > 0
   double angstrom_exponent = 0;  // power-law exponent [1]
   PhaseKind phase = PhaseKind::rayleigh;
@@ -57,7 +57,7 @@ struct Component {
   double density(double altitude_m) const;
 };
 
-// Earth defaults (the issue; Bruneton 2017 demo values for the radii and Mie):
+// Earth defaults (docs/MODELS.md, `nishita`; Bruneton 2017 demo values for the radii and Mie):
 // Rayleigh: H = 8 km, beta_s = beta_e = 13.558e-6 m^-1 at 550 nm with the lambda^-4 law; this law
 //   reproduces the other two given values to 4 digits: 13.558 (550/680)^4 = 5.803 (given 5.802)
 //   and 13.558 (550/440)^4 = 33.10 (given 33.1), so the three RGB values are one law.
@@ -94,7 +94,7 @@ struct AtmosphereParameters {
   double top_radius_m = kEarthTopRadius;        // top of the atmosphere [m], > ground radius
   std::vector<Component> components{earth_rayleigh(), earth_mie()};  // at most kMaxComponents
   // Lambertian ground albedo [0, 1]; nullopt = the ground reflects nothing (eval returns only the
-  // in-scattered light, as the issue specifies).
+  // in-scattered light, docs/MODELS.md).
   std::optional<double> ground_albedo;
 
   // Throws InvalidArgument naming the field and value when out of range.

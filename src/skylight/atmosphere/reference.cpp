@@ -1,5 +1,5 @@
 // Brute-force reference of the single-scattering integral (atmosphere.h), used by the tests to
-// check the table-driven fast path (STYLE.md rule 4). Same equations, no tables:
+// check the table-driven fast path (docs/ARCHITECTURE.md, "Testing"). Same equations, no tables:
 //  * the view ray is cut at its lowest point and at the planet-shadow boundaries
 //    (split_view_ray), every piece - lit or not - is sampled at rs.view_nodes + 1 nodes
 //    s = anchor +- L u^2, u uniform;

@@ -26,14 +26,6 @@ std::vector<std::string_view> embedded_files() {
 
 namespace {
 
-std::string_view trim(std::string_view s) {
-  while (!s.empty() && (s.front() == ' ' || s.front() == '\t' || s.front() == '\r'))
-    s.remove_prefix(1);
-  while (!s.empty() && (s.back() == ' ' || s.back() == '\t' || s.back() == '\r'))
-    s.remove_suffix(1);
-  return s;
-}
-
 std::vector<std::string> split_fields(std::string_view line) {
   std::vector<std::string> fields;
   std::size_t start = 0;

@@ -1,4 +1,4 @@
-// Error tiers (STYLE.md §7):
+// Error tiers (docs/ARCHITECTURE.md, "Errors"):
 //  1. programmer errors: SKYLIGHT_CHECK(cond, msg) -> std::logic_error (a bug in skylight);
 //  2. bad user input or bad files: skylight::InvalidArgument / skylight::IoError, whose message
 //     names the offending field (or file) and value;

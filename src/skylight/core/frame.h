@@ -1,5 +1,5 @@
-// skylight's conventions, in one place (DESIGN.md §2). Every other file uses these helpers; code
-// that changes convention (e.g. a paper's own angles) says so in a comment where it happens.
+// skylight's conventions, in one place (docs/CONVENTIONS.md). Every other file uses these helpers;
+// code that changes convention (e.g. a paper's own angles) says so in a comment where it happens.
 //
 //  * Frame: right-handed East-North-Up. x = east, y = north, z = up (zenith).
 //  * Angles are radians inside the library; degrees exist only at the CLI and in files.

@@ -11,7 +11,7 @@ namespace {
 constexpr double kAngleTol = 1e-12;
 
 TEST(Frame, DirectionConventionEnu) {
-  // DESIGN.md §2: azimuth from north (+y) towards east (+x), zenith = +z.
+  // docs/CONVENTIONS.md: azimuth from north (+y) towards east (+x), zenith = +z.
   const Vec3 north = direction_from_angles(kPi / 2, 0.0);
   const Vec3 east = direction_from_angles(kPi / 2, kPi / 2);
   const Vec3 up = direction_from_angles(0.0, 1.234);

@@ -1,5 +1,5 @@
-// Small numeric helpers used wherever a formula approaches the edge of its domain (STYLE.md §7):
-// never let a NaN out of a library function.
+// Small numeric helpers used wherever a formula approaches the edge of its domain
+// (docs/ARCHITECTURE.md, "Errors"): never let a NaN out of a library function.
 #pragma once
 
 #include <algorithm>

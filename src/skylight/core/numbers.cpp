@@ -91,6 +91,13 @@ std::vector<double> parse_number_list(std::string_view text, std::string_view wh
   return out;
 }
 
+std::string_view trim(std::string_view s) {
+  auto blank = [](char c) { return c == ' ' || c == '\t' || c == '\r'; };
+  while (!s.empty() && blank(s.front())) s.remove_prefix(1);
+  while (!s.empty() && blank(s.back())) s.remove_suffix(1);
+  return s;
+}
+
 std::string excerpt(std::string_view text, std::size_t max_chars) {
   std::string out;
   const std::size_t n = std::min(text.size(), max_chars);

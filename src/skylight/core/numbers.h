@@ -29,6 +29,9 @@ long long parse_integer(std::string_view text, std::string_view what);
 // "1,,2" or "1,2,", is an error naming its position).
 std::vector<double> parse_number_list(std::string_view text, std::string_view what);
 
+// `text` without leading and trailing spaces, tabs and carriage returns (CSV fields).
+std::string_view trim(std::string_view text);
+
 // A bounded excerpt of untrusted text for error messages: at most `max_chars` characters (then
 // "..." and the total length), control characters, quotes, backslashes and bytes >= 0x7f escaped
 // as \n, \t, \r, \\, \' or \xHH, so a message is always one printable line.

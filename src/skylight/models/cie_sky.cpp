@@ -128,10 +128,25 @@ double kittler_darula_zenith_luminance(int type, double sun_elevation) {
   return 1000.0 * std::max(kcd, 0.0);
 }
 
-CieSkyModel::CieSkyModel(const SkyParameters& p) : SkyModel(p), type_(p.cie_type) {
-  require_type(type_, kCieTypeCount);
-  if (p.zenith_luminance)
-    require_in_range("zenith_luminance [cd/m^2]", *p.zenith_luminance, 1e-9, 1e9);
+const ParameterSchema<CieParameters>& CieParameters::schema() {
+  static const auto s = [] {
+    ParameterSchema<CieParameters> s;
+    s.integer(&CieParameters::type,
+              {"cie-type", "1", ParameterKind::integer, 1, kCieTypeCount, 1,
+               ParameterValue(static_cast<double>(CieParameters{}.type)),
+               "sky type 1-15 (CIE S 011), 16 = traditional overcast (1 + 2 cos Z)/3"});
+    s.optional_number(
+        &CieParameters::zenith_luminance,
+        {"zenith-luminance", "cd/m^2", ParameterKind::number, kMinZenithLuminance,
+         kMaxZenithLuminance, 1, Absent{"Kittler & Darula typical value for the type"},
+         "absolute zenith luminance Lz"});
+    return s;
+  }();
+  return s;
+}
+
+CieSkyModel::CieSkyModel(const CieParameters& p) : SkyModel(p.sun), params_(p), type_(p.type) {
+  CieParameters::schema().validate(p, model_context("cie"));
   sun_up_ = p.sun.zenith <= 0.5 * kPi;
   typical_luminance_ = !p.zenith_luminance.has_value();
   zenith_luminance_ = p.zenith_luminance
@@ -171,6 +186,10 @@ void CieSkyModel::tristimulus_batch(const DirectionsSoA& dirs, const XyzSoA& out
   }
 }
 
+ParameterValues CieSkyModel::parameter_values() const {
+  return CieParameters::schema().values_of(params_);
+}
+
 Domain CieSkyModel::domain() const {
   Domain d;
   if (!sun_up_) {
@@ -179,7 +198,7 @@ Domain CieSkyModel::domain() const {
          "sun below the horizon: the CIE general sky describes daylight only; sky is 0"});
     return d;
   }
-  const double gs = parameters().sun.elevation();
+  const double gs = sun().elevation();
   if (typical_luminance_ && (gs < kKittlerDarulaMinElevation || gs > kKittlerDarulaMaxElevation)) {
     d.issues.push_back({"sun_elevation", Validity::extrapolated,
                         fmt::format("Kittler-Darula typical zenith luminance is recommended for "

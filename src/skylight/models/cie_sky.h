@@ -4,6 +4,7 @@
 #pragma once
 
 #include <array>
+#include <optional>
 
 #include "skylight/models/perez_kernel.h"
 #include "skylight/models/sky_model.h"
@@ -52,19 +53,32 @@ inline constexpr double kKittlerDarulaClampElevation = 85.0 * kDegree;
 // Extraterrestrial horizontal illuminance at the sun's zenith: 133.8 klx (Kittler & Darula).
 inline constexpr double kExtraterrestrialIlluminanceKlx = 133.8;
 
+struct CieParameters {
+  SunPosition sun;
+  int type = 12;  // --cie-type: 1..15 (CIE S 011 types), 16 = traditional overcast
+  // --zenith-luminance Lz [cd/m^2], [kMinZenithLuminance, kMaxZenithLuminance]; absent: the
+  // Kittler-Darula typical value for the type and sun elevation.
+  std::optional<double> zenith_luminance;
+
+  static const ParameterSchema<CieParameters>& schema();
+};
+
 // The `cie` model: luminance only. tristimulus() returns Y = Lz L/Lz [cd/m^2] with the chromaticity
 // of D65 (x, y) = (0.3127, 0.3290), so rgb() is neutral grey with r = g = b = Y. Views below the
 // horizon: 0. Sun below the horizon: 0 everywhere (undefined; daylight only).
 class CieSkyModel final : public SkyModel {
  public:
-  explicit CieSkyModel(const SkyParameters& params);
+  explicit CieSkyModel(const CieParameters& params);
   std::string_view name() const override { return "cie"; }
+  const CieParameters& parameters() const { return params_; }
+  ParameterValues parameter_values() const override;
   Xyz tristimulus(Vec3 view) const override;
   void tristimulus_batch(const DirectionsSoA& dirs, const XyzSoA& out) const override;
   Domain domain() const override;
   double zenith_luminance() const { return zenith_luminance_; }
 
  private:
+  CieParameters params_;
   int type_ = 12;
   bool sun_up_ = true;
   bool typical_luminance_ = true;

@@ -13,9 +13,9 @@ constexpr double kHandValueTol = 1e-12;
 // a e^{b/0.01} <= 4 e^{-15} ~ 1.2e-6 instead of exactly 0.
 constexpr double kHorizonClampTol = 2e-6;
 
-SkyParameters params(int type, double sun_zenith_deg, double sun_azimuth_deg = 180.0) {
-  SkyParameters p;
-  p.cie_type = type;
+CieParameters params(int type, double sun_zenith_deg, double sun_azimuth_deg = 180.0) {
+  CieParameters p;
+  p.type = type;
   p.sun = {deg_to_rad(sun_zenith_deg), deg_to_rad(sun_azimuth_deg)};
   return p;
 }
@@ -59,7 +59,7 @@ TEST(CieSky, GradationAndIndicatrixByHand) {
 TEST(CieSky, ZenithEqualsLzForEveryType) {
   for (int type = 1; type <= 16; ++type) {
     for (double zs : {0.0, 20.0, 45.0, 70.0, 89.0}) {
-      SkyParameters p = params(type, zs, 33.0);
+      CieParameters p = params(type, zs, 33.0);
       p.zenith_luminance = 4321.0;
       const CieSkyModel m(p);
       EXPECT_NEAR(m.tristimulus({0, 0, 1}).Y, 4321.0, 4321.0 * kHandValueTol) << type << " " << zs;
@@ -68,7 +68,7 @@ TEST(CieSky, ZenithEqualsLzForEveryType) {
 }
 
 TEST(CieSky, TraditionalOvercastFormula) {
-  SkyParameters p = params(16, 40.0);
+  CieParameters p = params(16, 40.0);
   p.zenith_luminance = 3000.0;
   const CieSkyModel m(p);
   for (double Z : {0.0, 30.0, 60.0, 89.0, 90.0}) {

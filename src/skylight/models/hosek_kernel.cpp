@@ -7,8 +7,8 @@
 #include <hwy/highway.h>
 
 #include "skylight/core/math.h"
-#include "skylight/models/hosek_kernel.h"
-#include "skylight/models/sky_kernel-inl.h"
+#include "skylight/models/detail/hosek_kernel.h"
+#include "skylight/models/detail/sky_kernel-inl.h"
 
 #ifndef SKYLIGHT_HOSEK_KERNEL_CONSTANTS
 #define SKYLIGHT_HOSEK_KERNEL_CONSTANTS
@@ -24,7 +24,6 @@ inline constexpr float kHosekMaxExponent = 80.0f;
 HWY_BEFORE_NAMESPACE();
 namespace skylight {
 namespace HWY_NAMESPACE {
-namespace hn = hwy::HWY_NAMESPACE;
 
 void HosekBatchImpl(const detail::HosekBatchParams& p, const float* HWY_RESTRICT px,
                     const float* HWY_RESTRICT py, const float* HWY_RESTRICT pz,

@@ -9,7 +9,7 @@
 
 #include "skylight/core/data.h"
 #include "skylight/core/error.h"
-#include "skylight/models/hosek_kernel.h"
+#include "skylight/models/detail/hosek_kernel.h"
 
 namespace skylight {
 namespace {
@@ -481,15 +481,29 @@ const std::array<Xyz, kHwBands>& hw_band_xyz_weights() {
 
 // ---- the model ----
 
-HosekWilkieModel::HosekWilkieModel(const SkyParameters& p) : SkyModel(p) {
-  require_in_range("turbidity", p.turbidity, kHwTurbidityMin, kHwTurbidityMax);
-  require_in_range("albedo", p.ground_albedo, 0.0, 1.0);
-  require_in_range("sun_zenith [rad]", p.sun.zenith, 0.0, kPi);
+const ParameterSchema<HosekParameters>& HosekParameters::schema() {
+  static const auto s = [] {
+    ParameterSchema<HosekParameters> s;
+    const HosekParameters defaults;
+    s.number(&HosekParameters::turbidity,
+             {"turbidity", "1", ParameterKind::number, kHwTurbidityMin, kHwTurbidityMax, 1,
+              ParameterValue(defaults.turbidity),
+              "atmospheric turbidity T (dataset knots 1..10, linear in between)"});
+    s.number(&HosekParameters::albedo,
+             {"albedo", "1", ParameterKind::number, 0.0, 1.0, 1, ParameterValue(defaults.albedo),
+              "ground albedo (dataset knots 0 and 1, linear)"});
+    return s;
+  }();
+  return s;
+}
+
+HosekWilkieModel::HosekWilkieModel(const HosekParameters& p) : SkyModel(p.sun), params_(p) {
+  HosekParameters::schema().validate(p, model_context("hosek"));
   sun_ = p.sun.direction();
   const double elevation = p.sun.elevation();
   sun_up_ = elevation >= 0.0;
   // Below the horizon nothing is evaluated; the states are left at the horizon for inspection.
-  const HwStateParameters sp{p.turbidity, p.ground_albedo, std::clamp(elevation, 0.0, 0.5 * kPi)};
+  const HwStateParameters sp{p.turbidity, p.albedo, std::clamp(elevation, 0.0, 0.5 * kPi)};
   xyz_ = hw_tristim_state(HwDataset::ciexyz, sp);
   rgb_ = hw_tristim_state(HwDataset::rgb, sp);
   spectral_ = hw_spectral_state(sp);
@@ -635,8 +649,11 @@ std::optional<double> HosekWilkieModel::sun_spectral_radiance(Vec3 view, double 
   if (!sun_up_) return 0.0;
   const double gamma = angle_between(view, sun_);
   if (gamma > kHwSolarRadius) return 0.0;
-  return hw_solar_direct_radiance({parameters().turbidity, parameters().sun.elevation(), gamma},
-                                  nm);
+  return hw_solar_direct_radiance({params_.turbidity, sun().elevation(), gamma}, nm);
+}
+
+ParameterValues HosekWilkieModel::parameter_values() const {
+  return HosekParameters::schema().values_of(params_);
 }
 
 Domain HosekWilkieModel::domain() const {

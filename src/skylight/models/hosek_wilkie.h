@@ -147,8 +147,9 @@ const std::array<Xyz, kHwBands>& hw_band_xyz_weights();
 //    corresponds to luminance").
 //  * rgb(): the native RGB dataset, also times 683, so it is on the same photometric scale as
 //    tristimulus() (the RGB fit is in the same radiometric units as the XYZ fit; its primaries are
-//    linear sRGB/Rec.709 per the issue, not stated in the data files). It is a separate fit, so it
-//    differs from xyz_to_linear_srgb(tristimulus()) by a few percent (tested bound in the tests).
+//    linear sRGB/Rec.709 as docs/MODELS.md states; the data files do not say). It is a separate
+//    fit, so it differs from xyz_to_linear_srgb(tristimulus()) by a few percent (tested bound in
+//    the tests).
 //  * spectral_radiance(): 320-720 nm (nullopt outside), W m^-2 sr^-1 nm^-1, v1.4a interpolation.
 //  * tristimulus_from_spectral() / rgb_from_spectral(): the spectral model integrated (see
 //    hw_band_xyz_weights).
@@ -169,10 +170,20 @@ const std::array<Xyz, kHwBands>& hw_band_xyz_weights();
 //    kHosekBatchRelativeTolerance.
 //  * Set-up (the constructor): the XYZ, RGB and 11 spectral band states (Bezier weights formed
 //    once per state) and the sun's XYZ polynomial in mu in closed form over the band intervals.
+struct HosekParameters {
+  SunPosition sun;
+  double turbidity = 3.0;  // --turbidity T [1], [kHwTurbidityMin, kHwTurbidityMax] (dataset knots)
+  double albedo = 0.3;     // --albedo: ground albedo [1], [0, 1] (dataset knots 0 and 1)
+
+  static const ParameterSchema<HosekParameters>& schema();
+};
+
 class HosekWilkieModel final : public SkyModel {
  public:
-  explicit HosekWilkieModel(const SkyParameters& params);
+  explicit HosekWilkieModel(const HosekParameters& params);
   std::string_view name() const override { return "hosek"; }
+  const HosekParameters& parameters() const { return params_; }
+  ParameterValues parameter_values() const override;
   Xyz tristimulus(Vec3 view) const override;
   Rgb rgb(Vec3 view) const override;
   std::optional<double> spectral_radiance(Vec3 view, double nm) const override;
@@ -198,6 +209,7 @@ class HosekWilkieModel final : public SkyModel {
   // mu = sampleCosine inside the disc, or false outside it / sun down.
   bool disc_cosine(Vec3 view, double& mu) const;
 
+  HosekParameters params_;
   bool sun_up_ = true;
   Vec3 sun_;
   HwTristimState xyz_, rgb_;

@@ -24,16 +24,88 @@ double solar_spectral_irradiance(double nm) {
   return atmosphere::bruneton_spectra().solar_irradiance(nm);
 }
 
-NishitaModel::NishitaModel(const SkyParameters& p, const atmosphere::FastSettings& settings)
-    : SkyModel(p) {
-  require_in_range("sun_zenith", p.sun.zenith, 0.0, kPi);
-  require_in_range("observer_altitude", p.observer_altitude_m, 0.0, kNishitaMaxAltitude);
-  if (p.solar_irradiance) require_in_range("solar_irradiance", *p.solar_irradiance, 1e-30, 1e30);
-  const atmosphere::AtmosphereParameters ap =
-      p.atmosphere.value_or(atmosphere::AtmosphereParameters{});
+const ParameterSchema<NishitaParameters>& NishitaParameters::schema() {
+  static const auto s = [] {
+    namespace a = atmosphere;
+    using P = NishitaParameters;
+    const P d;
+    ParameterSchema<P> s;
+    s.number(&P::observer_altitude_m,
+             {"observer-altitude", "m", ParameterKind::number, 0.0, kNishitaMaxAltitude, 1,
+              ParameterValue(d.observer_altitude_m), "observer above the ground"});
+    s.optional_number(&P::solar_irradiance,
+                      {"solar-irradiance", "W m^-2 nm^-1", ParameterKind::number, 1e-30, 1e30, 1,
+                       Absent{"the ASTM G-173 extraterrestrial spectrum"},
+                       "flat extraterrestrial solar spectral irradiance (1 = radiance per unit "
+                       "irradiance)"});
+    s.optional_number(&P::albedo, {"albedo", "1", ParameterKind::number, 0.0, 1.0, 1,
+                                   Absent{"no ground reflection"},
+                                   "Lambertian ground albedo (direct sunlight reflected by the "
+                                   "ground)"});
+    s.number(&P::ground_radius_m, {"ground-radius", "m", ParameterKind::number, 1.0, 1e9, 1,
+                                   ParameterValue(d.ground_radius_m), "planet radius R0"});
+    s.custom(
+        {"top-radius", "m", ParameterKind::number, 1.0, 1e9, 1, Absent{"ground radius + 60 km"},
+         "top of the atmosphere (> ground radius)"},
+        [](P& p, const ParameterValue& v) { p.top_radius_m = std::get<double>(v); },
+        [](const P& p) -> std::optional<ParameterValue> { return p.top_radius(); });
+    s.number(&P::rayleigh_scale_height_m,
+             {"rayleigh-scale-height", "m", ParameterKind::number, 1.0, 1e7, 1,
+              ParameterValue(d.rayleigh_scale_height_m), "Rayleigh scale height H_R"});
+    s.number(&P::mie_scale_height_m,
+             {"mie-scale-height", "m", ParameterKind::number, 1.0, 1e7, 1,
+              ParameterValue(d.mie_scale_height_m), "Mie scale height H_M"});
+    s.number(&P::mie_g, {"mie-g", "1", ParameterKind::number, -0.999, 0.999, 1,
+                         ParameterValue(d.mie_g), "Cornette-Shanks asymmetry g"});
+    s.optional_number(
+        &P::ozone_du,
+        {"ozone", "DU", ParameterKind::number, 0.0, 1000.0, 1, Absent{"no ozone layer"},
+         "ozone column of an absorbing layer at 10-40 km (Bruneton 2017 profile; "
+         "Earth ~300 DU)"});
+    return s;
+  }();
+  return s;
+}
+
+double NishitaParameters::top_radius() const {
+  return top_radius_m.value_or(ground_radius_m +
+                               (atmosphere::kEarthTopRadius - atmosphere::kEarthGroundRadius));
+}
+
+NishitaSetup NishitaParameters::setup() const {
+  schema().validate(*this, model_context("nishita"));
+  NishitaSetup s;
+  s.sun = sun;
+  s.observer_altitude_m = observer_altitude_m;
+  s.solar_irradiance = solar_irradiance;
+  atmosphere::AtmosphereParameters& a = s.atmosphere;
+  a.ground_radius_m = ground_radius_m;
+  a.top_radius_m = top_radius();
+  if (!(a.top_radius_m > a.ground_radius_m))
+    throw InvalidArgument(fmt::format("--top-radius {} must exceed --ground-radius {}",
+                                      a.top_radius_m, a.ground_radius_m));
+  a.components[0].scale_height_m = rayleigh_scale_height_m;
+  a.components[1].scale_height_m = mie_scale_height_m;
+  a.components[1].g = mie_g;
+  if (ozone_du) a.components.push_back(atmosphere::earth_ozone(*ozone_du));
+  a.ground_albedo = albedo;
+  return s;
+}
+
+NishitaModel::NishitaModel(const NishitaParameters& p, const atmosphere::FastSettings& settings)
+    : NishitaModel(p.setup(), settings) {
+  params_ = p;
+}
+
+NishitaModel::NishitaModel(const NishitaSetup& setup, const atmosphere::FastSettings& settings)
+    : SkyModel(setup.sun), setup_(setup) {
+  require_in_range("observer_altitude [m]", setup.observer_altitude_m, 0.0, kNishitaMaxAltitude);
+  if (setup.solar_irradiance)
+    require_in_range("solar_irradiance [W m^-2 nm^-1]", *setup.solar_irradiance, 1e-30, 1e30);
+  const atmosphere::AtmosphereParameters& ap = setup.atmosphere;
   atmosphere_ = std::make_unique<atmosphere::Atmosphere>(ap, settings);
-  observer_ = {0.0, 0.0, ap.ground_radius_m + p.observer_altitude_m};
-  sun_ = p.sun.direction();
+  observer_ = {0.0, 0.0, ap.ground_radius_m + setup.observer_altitude_m};
+  sun_ = setup.sun.direction();
   const auto nm = xyz_wavelengths();
   std::array<double, kNishitaXyzCount> solar{};
   for (int k = 0; k < kNishitaXyzCount; ++k) solar[k] = irradiance(nm[k]);
@@ -41,9 +113,20 @@ NishitaModel::NishitaModel(const SkyParameters& p, const atmosphere::FastSetting
   for (int k = 0; k < kNishitaXyzCount; ++k) cmf_[k] = cie1931_cmf(nm[k]);
 }
 
+ParameterValues NishitaModel::parameter_values() const {
+  if (params_) return NishitaParameters::schema().values_of(*params_);
+  // A custom planet: what its setup states in the schema's terms.
+  ParameterValues v;
+  v.set("observer-altitude", setup_.observer_altitude_m);
+  if (setup_.solar_irradiance) v.set("solar-irradiance", *setup_.solar_irradiance);
+  if (setup_.atmosphere.ground_albedo) v.set("albedo", *setup_.atmosphere.ground_albedo);
+  v.set("ground-radius", setup_.atmosphere.ground_radius_m);
+  v.set("top-radius", setup_.atmosphere.top_radius_m);
+  return v;
+}
+
 double NishitaModel::irradiance(double nm) const {
-  return parameters().solar_irradiance ? *parameters().solar_irradiance
-                                       : solar_spectral_irradiance(nm);
+  return setup_.solar_irradiance ? *setup_.solar_irradiance : solar_spectral_irradiance(nm);
 }
 
 // X = K_m sum_k x-bar(lambda_k) I(lambda_k) d lambda (midpoint rule over 20 nm bins), same for Y,
@@ -83,7 +166,7 @@ std::optional<double> NishitaModel::spectral_radiance(Vec3 view, double nm) cons
 
 Domain NishitaModel::domain() const {
   Domain d;
-  if (parameters().sun.zenith > kPi / 2)
+  if (sun().zenith > kPi / 2)
     d.issues.push_back({"sun_zenith", Validity::extrapolated,
                         "sun below the horizon: single scattering only (planet shadow included); "
                         "twilight skies are dominated by multiple scattering, not modelled"});

@@ -1,7 +1,7 @@
 // The `nishita` sky model: single scattering in a spherical planet's exponential atmosphere
 // (Nishita et al. 1993; fast path of Pietras with optical-length tables), see atmosphere.h.
 //
-// Outputs, for an observer at SkyParameters::observer_altitude_m above the ground at the
+// Outputs, for an observer at observer_altitude_m above the ground at the
 // north pole of the planet frame (ENU = planet frame), looking in any direction (below the
 // horizon included: the in-scattered light up to the ground; from orbit: the planet and its limb):
 //  * spectral_radiance(view, nm) = I(lambda) [W m^-2 sr^-1 nm^-1] for the ASTM G-173 solar
@@ -17,6 +17,7 @@
 
 #include <array>
 #include <memory>
+#include <optional>
 
 #include "skylight/atmosphere/atmosphere.h"
 #include "skylight/models/sky_model.h"
@@ -37,10 +38,48 @@ inline constexpr double kNishitaMaxAltitude = 1e7;
 // Bruneton 2017), linear between bin values; 0 outside 360-830 nm.
 double solar_spectral_irradiance(double nm);
 
+// What a `nishita` sky evaluates, in physical terms: the sun, the observer, the sun's spectrum and
+// the planet with its atmosphere (any components, e.g. off-Earth test planets).
+struct NishitaSetup {
+  SunPosition sun;
+  double observer_altitude_m = 0.0;  // above the ground [m], [0, kNishitaMaxAltitude]
+  // Flat extraterrestrial solar spectral irradiance [W m^-2 nm^-1], (0, inf); nullopt = the ASTM
+  // G-173 spectrum. With 1, radiances are per unit irradiance [sr^-1].
+  std::optional<double> solar_irradiance;
+  atmosphere::AtmosphereParameters atmosphere;  // Earth defaults; its ground_albedo is the ground
+};
+
+// The `nishita` model's parameters as a user gives them (an Earth-like planet: Rayleigh + Mie with
+// adjustable scale heights and asymmetry, an optional ozone layer). setup() builds the planet.
+struct NishitaParameters {
+  SunPosition sun;
+  double observer_altitude_m = 0.0;        // --observer-altitude [m], [0, kNishitaMaxAltitude]
+  std::optional<double> solar_irradiance;  // --solar-irradiance [W m^-2 nm^-1]; none: ASTM G-173
+  std::optional<double> albedo;            // --albedo [1], [0, 1]; none: no ground reflection
+  double ground_radius_m = atmosphere::kEarthGroundRadius;  // --ground-radius [m]
+  // --top-radius [m], > ground radius; none: ground radius + Earth's atmosphere height (60 km).
+  std::optional<double> top_radius_m;
+  double rayleigh_scale_height_m = atmosphere::kRayleighScaleHeight;  // [m]
+  double mie_scale_height_m = atmosphere::kMieScaleHeight;            // [m]
+  double mie_g = atmosphere::kMieG;  // Cornette-Shanks asymmetry [1], [-0.999, 0.999]
+  std::optional<double> ozone_du;    // --ozone column [DU], [0, 1000]; none: no ozone layer
+
+  static const ParameterSchema<NishitaParameters>& schema();
+  // The top of the atmosphere used: top_radius_m, or the ground radius + 60 km.
+  double top_radius() const;
+  // The planet and atmosphere these values describe (checked: throws InvalidArgument naming the
+  // flag, e.g. a top radius not above the ground radius).
+  NishitaSetup setup() const;
+};
+
 class NishitaModel final : public SkyModel {
  public:
-  explicit NishitaModel(const SkyParameters& params, const atmosphere::FastSettings& settings = {});
+  explicit NishitaModel(const NishitaParameters& params,
+                        const atmosphere::FastSettings& settings = {});
+  explicit NishitaModel(const NishitaSetup& setup, const atmosphere::FastSettings& settings = {});
   std::string_view name() const override { return "nishita"; }
+  ParameterValues parameter_values() const override;
+  const NishitaSetup& setup() const { return setup_; }
   Xyz tristimulus(Vec3 view) const override;
   std::optional<double> spectral_radiance(Vec3 view, double nm) const override;
   Domain domain() const override;
@@ -54,6 +93,8 @@ class NishitaModel final : public SkyModel {
   Xyz to_xyz(const std::array<double, kNishitaXyzCount>& radiance) const;
   double irradiance(double nm) const;
 
+  NishitaSetup setup_;
+  std::optional<NishitaParameters> params_;  // when built from user parameters
   std::unique_ptr<atmosphere::Atmosphere> atmosphere_;
   atmosphere::Spectral xyz_spectral_;
   std::array<Cmf, kNishitaXyzCount> cmf_{};  // CIE 1931 CMFs at the XYZ wavelengths

@@ -6,16 +6,25 @@
 
 namespace skylight {
 
-PerezModel::PerezModel(const SkyParameters& p) : SkyModel(p) {
-  if (!p.perez_coefficients)
-    throw InvalidArgument("model perez needs the coefficients A,B,C,D,E (--perez A,B,C,D,E)");
-  if (!p.zenith_luminance)
-    throw InvalidArgument("model perez needs the zenith luminance (--zenith-luminance CD_M2)");
-  const auto& k = *p.perez_coefficients;
-  static constexpr const char* kNames[5] = {"perez A", "perez B", "perez C", "perez D", "perez E"};
-  for (int i = 0; i < 5; ++i)
-    require_in_range(kNames[i], k[i], -kPerezCoefficientLimit, kPerezCoefficientLimit);
-  require_in_range("zenith_luminance [cd/m^2]", *p.zenith_luminance, 1e-9, 1e9);
+const ParameterSchema<PerezParameters>& PerezParameters::schema() {
+  static const auto s = [] {
+    ParameterSchema<PerezParameters> s;
+    s.optional_numbers(&PerezParameters::coefficients,
+                       {"perez", "1", ParameterKind::numbers, -kPerezCoefficientLimit,
+                        kPerezCoefficientLimit, 5, Required{},
+                        "coefficients A,B,C,D,E of F = (1 + A e^{B/cos theta})(1 + C e^{D gamma} "
+                        "+ E cos^2 gamma)"});
+    s.optional_number(&PerezParameters::zenith_luminance,
+                      {"zenith-luminance", "cd/m^2", ParameterKind::number, kMinZenithLuminance,
+                       kMaxZenithLuminance, 1, Required{}, "absolute zenith luminance Lz"});
+    return s;
+  }();
+  return s;
+}
+
+PerezModel::PerezModel(const PerezParameters& p) : SkyModel(p.sun), params_(p) {
+  PerezParameters::schema().validate(p, model_context("perez"));
+  const auto& k = *p.coefficients;
   sun_up_ = p.sun.zenith <= 0.5 * kPi;
   const PerezCoefficients c{k[0], k[1], k[2], k[3], k[4], 1.0};
   const double f0 = perez_function(c, 1.0, p.sun.zenith);
@@ -29,6 +38,10 @@ PerezModel::PerezModel(const SkyParameters& p) : SkyModel(p) {
   distribution_.coefficients[0] = c;
   distribution_.sun = p.sun.direction();
   distribution_.scale[0] = sun_up_ ? *p.zenith_luminance / f0 : 0.0;
+}
+
+ParameterValues PerezModel::parameter_values() const {
+  return PerezParameters::schema().values_of(params_);
 }
 
 Xyz PerezModel::tristimulus(Vec3 view) const {
@@ -49,7 +62,7 @@ Domain PerezModel::domain() const {
   }
   // F's sign is set by (1 + A e^{B/cos}) at the horizon and (1 + C e^{D gamma} + E cos^2) across
   // gamma; check both factors over their ranges.
-  const auto& k = *parameters().perez_coefficients;
+  const auto& k = *params_.coefficients;
   const PerezCoefficients c{k[0], k[1], k[2], k[3], k[4], 1.0};
   double min_grad = 1e300, min_ind = 1e300;
   for (int i = 0; i <= 90; ++i) {

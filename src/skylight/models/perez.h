@@ -4,6 +4,9 @@
 //   F(theta, gamma) = (1 + A exp(B / cos theta)) (1 + C exp(D gamma) + E cos^2 gamma).
 #pragma once
 
+#include <array>
+#include <optional>
+
 #include "skylight/models/perez_kernel.h"
 #include "skylight/models/sky_model.h"
 
@@ -13,19 +16,32 @@ namespace skylight {
 // Preetham's fits stay within |value| < 10), narrow enough that F stays finite.
 inline constexpr double kPerezCoefficientLimit = 50.0;
 
+// Parameters of the `perez` model (both required).
+struct PerezParameters {
+  SunPosition sun;
+  // --perez A,B,C,D,E: the coefficients [1], each in [-kPerezCoefficientLimit, +limit].
+  std::optional<std::array<double, 5>> coefficients;
+  // --zenith-luminance: absolute zenith luminance Lz [cd/m^2], [kMinZenithLuminance, kMax...].
+  std::optional<double> zenith_luminance;
+
+  static const ParameterSchema<PerezParameters>& schema();
+};
+
 // The `perez` model: luminance only; XYZ with the D65 chromaticity (0.3127, 0.3290), so rgb() is
-// neutral. Needs SkyParameters::perez_coefficients and ::zenith_luminance. Views below the
-// horizon and a sun below the horizon: 0. Negative F (possible with arbitrary coefficients) is
-// returned as 0 and reported by domain().
+// neutral. Views below the horizon and a sun below the horizon: 0. Negative F (possible with
+// arbitrary coefficients) is returned as 0 and reported by domain().
 class PerezModel final : public SkyModel {
  public:
-  explicit PerezModel(const SkyParameters& params);
+  explicit PerezModel(const PerezParameters& params);
   std::string_view name() const override { return "perez"; }
+  const PerezParameters& parameters() const { return params_; }
+  ParameterValues parameter_values() const override;
   Xyz tristimulus(Vec3 view) const override;
   void tristimulus_batch(const DirectionsSoA& dirs, const XyzSoA& out) const override;
   Domain domain() const override;
 
  private:
+  PerezParameters params_;
   bool sun_up_ = true;
   PerezDistribution distribution_;
 };

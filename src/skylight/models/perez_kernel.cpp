@@ -6,7 +6,7 @@
 #include <hwy/contrib/math/math-inl.h>
 #include <hwy/highway.h>
 
-#include "skylight/models/sky_kernel-inl.h"
+#include "skylight/models/detail/sky_kernel-inl.h"
 
 #include <algorithm>
 #include <cmath>
@@ -30,7 +30,6 @@ struct PerezBatchParams {
 HWY_BEFORE_NAMESPACE();
 namespace skylight {
 namespace HWY_NAMESPACE {
-namespace hn = hwy::HWY_NAMESPACE;
 using BatchParams = detail::PerezBatchParams;
 
 template <class DF, class V>

@@ -163,8 +163,20 @@ std::optional<double> extraterrestrial_sun_radiance(double nm) {
   return sun_table()(nm);
 }
 
-PreethamModel::PreethamModel(const SkyParameters& p) : SkyModel(p) {
-  require_in_range("turbidity", p.turbidity, 1.0, 64.0);
+const ParameterSchema<PreethamParameters>& PreethamParameters::schema() {
+  static const auto s = [] {
+    ParameterSchema<PreethamParameters> s;
+    s.number(&PreethamParameters::turbidity,
+             {"turbidity", "1", ParameterKind::number, kPreethamTurbidityMin, kPreethamTurbidityMax,
+              1, ParameterValue(PreethamParameters{}.turbidity),
+              "atmospheric turbidity T (fitted for 2-6)"});
+    return s;
+  }();
+  return s;
+}
+
+PreethamModel::PreethamModel(const PreethamParameters& p) : SkyModel(p.sun), params_(p) {
+  PreethamParameters::schema().validate(p, model_context("preetham"));
   const double T = p.turbidity;
   const double ts = p.sun.zenith;
   sun_up_ = ts <= 0.5 * kPi;
@@ -219,23 +231,24 @@ std::optional<double> PreethamModel::spectral_radiance(Vec3 view, double nm) con
 }
 
 Xyz PreethamModel::sun_tristimulus(Vec3 view) const {
-  if (!sun_up_ || angle_between(view, parameters().sun.direction()) > kPreethamSunAngularRadius)
-    return {};
+  if (!sun_up_ || angle_between(view, sun().direction()) > kPreethamSunAngularRadius) return {};
   return sun_xyz_;
 }
 
 std::optional<double> PreethamModel::sun_spectral_radiance(Vec3 view, double nm) const {
   const auto e = extraterrestrial_sun_radiance(nm);
   if (!e) return std::nullopt;
-  if (!sun_up_ || angle_between(view, parameters().sun.direction()) > kPreethamSunAngularRadius)
-    return 0.0;
-  return *e *
-         preetham_solar_transmittance(parameters().sun.zenith, parameters().turbidity, nm).total();
+  if (!sun_up_ || angle_between(view, sun().direction()) > kPreethamSunAngularRadius) return 0.0;
+  return *e * preetham_solar_transmittance(sun().zenith, params_.turbidity, nm).total();
+}
+
+ParameterValues PreethamModel::parameter_values() const {
+  return PreethamParameters::schema().values_of(params_);
 }
 
 Domain PreethamModel::domain() const {
   Domain d;
-  const double T = parameters().turbidity;
+  const double T = params_.turbidity;
   if (!sun_up_) {
     d.issues.push_back({"sun_zenith", Validity::undefined,
                         "sun below the horizon: the Preetham model has no twilight; sky is 0"});

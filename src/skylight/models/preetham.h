@@ -62,6 +62,18 @@ inline constexpr double kPreethamSunMaxNm = 750.0;
 // Angular radius of the solar disc used by the Preetham sun: 0.5 * 0.5358 deg.
 inline constexpr double kPreethamSunAngularRadius = 0.5 * 0.5358 * kDegree;
 
+// Turbidity accepted by the model (beyond the fitted range it is flagged, not refused; Zotti et al.
+// 2007 Fig. 1 studies T up to 64).
+inline constexpr double kPreethamTurbidityMin = 1.0;
+inline constexpr double kPreethamTurbidityMax = 64.0;
+
+struct PreethamParameters {
+  SunPosition sun;
+  double turbidity = 3.0;  // --turbidity T [1], [kPreethamTurbidityMin, kPreethamTurbidityMax]
+
+  static const ParameterSchema<PreethamParameters>& schema();
+};
+
 // The `preetham` model.
 //  * tristimulus(): sky XYZ, Y [cd/m^2] = Yz F_Y(theta, gamma) / F_Y(0, theta_s), chromaticity
 //    x = x_z F_x / F_x(0, theta_s) (same for y). Views below the horizon: 0. Where the formula
@@ -73,8 +85,10 @@ inline constexpr double kPreethamSunAngularRadius = 0.5 * 0.5358 * kDegree;
 //    kPreethamSunAngularRadius, 380-750 nm (XYZ integrated over that range).
 class PreethamModel final : public SkyModel {
  public:
-  explicit PreethamModel(const SkyParameters& params);
+  explicit PreethamModel(const PreethamParameters& params);
   std::string_view name() const override { return "preetham"; }
+  const PreethamParameters& parameters() const { return params_; }
+  ParameterValues parameter_values() const override;
   Xyz tristimulus(Vec3 view) const override;
   std::optional<double> spectral_radiance(Vec3 view, double nm) const override;
   void tristimulus_batch(const DirectionsSoA& dirs, const XyzSoA& out) const override;
@@ -88,6 +102,7 @@ class PreethamModel final : public SkyModel {
   Chromaticity zenith_chromaticity() const { return zenith_xy_; }
 
  private:
+  PreethamParameters params_;
   bool sun_up_ = true;
   double zenith_luminance_ = 0.0;
   Chromaticity zenith_xy_;

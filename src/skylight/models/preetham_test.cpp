@@ -12,8 +12,8 @@ namespace {
 // Closed forms evaluated in double: only round-off separates the library from the hand value.
 constexpr double kClosedFormRelTol = 1e-12;
 
-SkyParameters params(double T, double sun_zenith_deg, double sun_azimuth_deg = 180.0) {
-  SkyParameters p;
+PreethamParameters params(double T, double sun_zenith_deg, double sun_azimuth_deg = 180.0) {
+  PreethamParameters p;
   p.turbidity = T;
   p.sun = {deg_to_rad(sun_zenith_deg), deg_to_rad(sun_azimuth_deg)};
   return p;
@@ -119,7 +119,7 @@ TEST(Preetham, DefinedBelowHorizonAndForSunBelowHorizon) {
   EXPECT_EQ(night.domain().worst(), Validity::undefined);
   EXPECT_EQ(night.tristimulus({0, 0, 1}).Y, 0.0);
   EXPECT_EQ(*night.spectral_radiance({0, 0, 1}, 550.0), 0.0);
-  EXPECT_EQ(night.sun_tristimulus(night.parameters().sun.direction()).Y, 0.0);
+  EXPECT_EQ(night.sun_tristimulus(night.sun().direction()).Y, 0.0);
   // The horizon itself is finite for every turbidity in the accepted range.
   for (double T : {1.0, 1.1, 2.0, 10.0, 30.0, 64.0}) {
     const PreethamModel h(params(T, 60.0));
@@ -176,7 +176,7 @@ TEST(Preetham, SunTransmittanceClosedForms) {
 
 TEST(Preetham, SunDiscRadiance) {
   const PreethamModel m(params(3.0, 30.0));
-  const Vec3 s = m.parameters().sun.direction();
+  const Vec3 s = m.sun().direction();
   // Inside the disc: extraterrestrial table value x transmittance; 550 nm table value 25503.8.
   const double expected =
       25503.8 * preetham_solar_transmittance(deg_to_rad(30.0), 3.0, 550.0).total();

@@ -30,6 +30,39 @@ Validity Domain::worst() const {
   return w;
 }
 
+const std::vector<ParameterSpec>& sun_parameter_specs() {
+  static const std::vector<ParameterSpec> specs = {
+      {"sun-zenith", "deg", ParameterKind::number, 0.0, 180.0, 1,
+       ParameterValue(kDefaultSunZenithDeg),
+       "solar zenith angle (or --sun-elevation = 90 - zenith); > 90 = below the horizon"},
+      {"sun-azimuth", "deg", ParameterKind::number, -360.0, 360.0, 1,
+       ParameterValue(kDefaultSunAzimuthDeg),
+       "solar azimuth from north towards east (180 = south)"},
+  };
+  return specs;
+}
+
+SunPosition sun_from_degrees(double zenith_deg, double azimuth_deg) {
+  const auto& specs = sun_parameter_specs();
+  specs[0].check(zenith_deg);
+  specs[1].check(azimuth_deg);
+  return {deg_to_rad(zenith_deg), wrap_azimuth(deg_to_rad(azimuth_deg))};
+}
+
+void validate_sun(const SunPosition& sun) {
+  require_in_range("sun_zenith [rad]", sun.zenith, 0.0, kPi);
+  if (!std::isfinite(sun.azimuth))
+    throw InvalidArgument(fmt::format("sun_azimuth = {} is not a finite angle", sun.azimuth));
+}
+
+std::string model_context(std::string_view name) {
+  return fmt::format("model '{}'", name);
+}
+
+SkyModel::SkyModel(const SunPosition& sun) : sun_(sun) {
+  validate_sun(sun);
+}
+
 std::optional<double> SkyModel::spectral_radiance(Vec3, double) const {
   return std::nullopt;
 }
@@ -69,6 +102,17 @@ void require_in_range(std::string_view name, double value, double min, double ma
   }
 }
 
+std::vector<ParameterSpec> all_parameters(const ModelInfo& model) {
+  std::vector<ParameterSpec> out = sun_parameter_specs();
+  out.insert(out.end(), model.parameters.begin(), model.parameters.end());
+  return out;
+}
+
+std::string parameter_docs_block(const ModelInfo& model) {
+  return fmt::format("<!-- parameters {0} -->\n{1}<!-- end parameters {0} -->\n", model.name,
+                     markdown_table(all_parameters(model)));
+}
+
 const ModelInfo* find_model(std::string_view name) {
   for (const auto& m : model_registry())
     if (m.name == name) return &m;
@@ -82,10 +126,7 @@ std::unique_ptr<SkyModel> make_sky_model(std::string_view name, const SkyParamet
     for (const auto& m : model_registry()) names += (names.empty() ? "" : ", ") + m.name;
     throw InvalidArgument(fmt::format("unknown model '{}' (known: {})", name, names));
   }
-  require_in_range("sun_zenith [rad]", params.sun.zenith, 0.0, kPi);
-  if (!std::isfinite(params.sun.azimuth))
-    throw InvalidArgument(
-        fmt::format("sun_azimuth = {} is not a finite angle", params.sun.azimuth));
+  validate_sun(params.sun);
   return info->make(params);
 }
 

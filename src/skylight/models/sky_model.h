@@ -1,4 +1,4 @@
-// The SkyModel interface and the model registry (DESIGN.md §3).
+// The SkyModel interface and the model registry (docs/ARCHITECTURE.md).
 //
 // A SkyModel is immutable once built for one SkyParameters. It answers per direction (the simple
 // reference path) and per batch of directions (the fast path: SIMD + threads). Every model
@@ -15,37 +15,40 @@
 #include <string_view>
 #include <vector>
 
-#include "skylight/atmosphere/parameters.h"
 #include "skylight/core/colorimetry.h"
+#include "skylight/core/error.h"
 #include "skylight/core/frame.h"
+#include "skylight/core/parameters.h"
 
 namespace skylight {
 
-// All inputs a model may use. Angles in radians; each model reads the fields it needs and ignores
-// the rest (ModelInfo::parameters lists which).
+// ---- parameters
+// -----------------------------------------------------------------------------------
+
+// The sun, common to every model. Inside the library a SunPosition in radians; at the command
+// line and in metadata in degrees, declared once in sun_parameter_specs().
+inline constexpr double kDefaultSunZenithDeg = 45.0;
+inline constexpr double kDefaultSunAzimuthDeg = 180.0;  // due south
+// "sun-zenith" [deg] 0 .. 180 (> 90: below the horizon) and "sun-azimuth" [deg] -360 .. 360 from
+// north towards east.
+const std::vector<ParameterSpec>& sun_parameter_specs();
+// The sun from degrees, checked against sun_parameter_specs(); the azimuth is wrapped into
+// [0, 2 pi). Throws InvalidArgument naming the flag and value.
+SunPosition sun_from_degrees(double zenith_deg, double azimuth_deg);
+// Throws InvalidArgument unless the zenith angle is in [0, pi] and the azimuth is finite.
+void validate_sun(const SunPosition& sun);
+
+// Absolute zenith luminance accepted by the models that take one (`perez`, `cie`) [cd/m^2].
+inline constexpr double kMinZenithLuminance = 1e-9;
+inline constexpr double kMaxZenithLuminance = 1e9;
+
+// A model's inputs as the registry takes them: the sun, and named values of the model's own
+// parameters (ModelInfo::parameters; e.g. {"turbidity": 4}). Each model binds them into its typed
+// parameter struct (PreethamParameters, ...) through its ParameterSchema, which applies the
+// defaults and checks every value. Library code may also build a model from its typed struct.
 struct SkyParameters {
-  SunPosition sun{kPi / 4, kPi};  // default: 45 deg zenith angle, due south
-  // Atmospheric turbidity T (Preetham: ratio of the optical thickness of haze + air to pure air),
-  // [1, 64]. Models flag where it is outside their fitted range.
-  double turbidity = 3.0;
-  // Ground albedo, [0, 1] (models without a ground ignore it).
-  double ground_albedo = 0.3;
-  // CIE Standard General Sky type: 1..15, or 16 for the traditional CIE overcast sky.
-  int cie_type = 12;
-  // Absolute zenith luminance [cd/m^2], > 0. Required by `perez`; optional for `cie` (otherwise
-  // the Kittler-Darula typical value); ignored by `preetham` (which has its own Yz).
-  std::optional<double> zenith_luminance;
-  // Perez all-weather coefficients A, B, C, D, E (dimensionless) for the `perez` model.
-  std::optional<std::array<double, 5>> perez_coefficients;
-  // Observer altitude above the ground [m], [0, 1e7] (physically based models; `nishita`).
-  double observer_altitude_m = 0.0;
-  // Flat extraterrestrial solar spectral irradiance [W m^-2 nm^-1], > 0, at every wavelength;
-  // nullopt = the model's real solar spectrum. With 1, radiances are per unit irradiance [sr^-1]
-  // (physically based models; `nishita`).
-  std::optional<double> solar_irradiance;
-  // Planet and atmosphere for `nishita` (models/atmosphere/parameters.h); nullopt = Earth
-  // defaults. Its ground_albedo (not the field above) switches the ground reflection on.
-  std::optional<atmosphere::AtmosphereParameters> atmosphere;
+  SunPosition sun{kDefaultSunZenithDeg * kDegree, kDefaultSunAzimuthDeg* kDegree};
+  ParameterValues values;
 };
 
 // Where a model's result stands for given parameters.
@@ -87,7 +90,11 @@ class SkyModel {
   SkyModel& operator=(const SkyModel&) = delete;
 
   virtual std::string_view name() const = 0;
-  const SkyParameters& parameters() const { return params_; }
+  // The sun position the model was built for.
+  const SunPosition& sun() const { return sun_; }
+  // The parameters the model read (its schema's names and units, defaults applied; the sun is
+  // sun()): what outputs record as metadata.
+  virtual ParameterValues parameter_values() const = 0;
 
   // Sky (without the solar disc) CIE 1931 XYZ in direction `view` (unit vector, ENU), Y =
   // luminance [cd/m^2]. Directions below the horizon return 0 for the analytic sky models.
@@ -115,47 +122,61 @@ class SkyModel {
   virtual Domain domain() const = 0;
 
  protected:
-  explicit SkyModel(const SkyParameters& p) : params_(p) {}
+  // Checks the sun (validate_sun).
+  explicit SkyModel(const SunPosition& sun);
 
  private:
-  SkyParameters params_;
+  SunPosition sun_;
 };
 
 // Evaluates the batch path over all directions on all threads (parallel_for over chunks).
 void tristimulus_parallel(const SkyModel& model, const DirectionsSoA& dirs, const XyzSoA& out);
 
-// ---- Registry -----------------------------------------------------------------------------------
+// "model '<name>'": the context of a model's parameter errors.
+std::string model_context(std::string_view name);
 
-// A model parameter as the user sees it (CLI flag / JSON), with unit, range and default.
-struct ParameterInfo {
-  std::string name;  // flag name without dashes, e.g. "turbidity"
-  std::string unit;  // "1", "deg", "cd/m^2"
-  double min = 0.0;  // inclusive valid range (CLI rejects values outside)
-  double max = 0.0;
-  std::string default_value;  // as text ("45", "required", "Kittler-Darula typical")
-  std::string description;
-};
+// The typed parameters P of model `name` from generic SkyParameters: P's defaults, the sun, and
+// the values bound through P::schema() (unknown, missing and out-of-range values throw).
+template <class P>
+P bind_parameters(const SkyParameters& sp, std::string_view name) {
+  P p;
+  p.sun = sp.sun;
+  P::schema().bind(sp.values, p, model_context(name));
+  return p;
+}
+
+// ---- Registry -----------------------------------------------------------------------------------
 
 struct ModelInfo {
   std::string name;
   std::string description;
-  std::string output;                     // what tristimulus()/luminance mean, with units
-  std::vector<ParameterInfo> parameters;  // the parameters this model reads
-  std::string domain;                     // where it is valid, in words
+  std::string output;  // what tristimulus()/luminance mean, with units
+  std::vector<ParameterSpec>
+      parameters;      // the model's own parameters (the sun comes first, common)
+  std::string domain;  // where it is valid, in words
   bool spectral = false;
   bool sun = false;
   std::function<std::unique_ptr<SkyModel>(const SkyParameters&)> make;
+  // Values that make a typical sky where the defaults do not (the required parameters): used by
+  // benchmarks, the report and the docs' examples.
+  ParameterValues example{};
 };
 
 const std::vector<ModelInfo>& model_registry();
+// Every parameter of a model as the user sees it: the sun (sun_parameter_specs()) and its own.
+std::vector<ParameterSpec> all_parameters(const ModelInfo& model);
+// The parameter table of a model in docs/MODELS.md between its markers
+// "<!-- parameters NAME -->" and "<!-- end parameters NAME -->" (`skylight models --markdown`).
+std::string parameter_docs_block(const ModelInfo& model);
 // nullptr if unknown.
 const ModelInfo* find_model(std::string_view name);
-// Builds a model; throws InvalidArgument for an unknown name or a parameter out of range (the
-// message names the parameter and the value).
+// Builds a model; throws InvalidArgument for an unknown name, a parameter the model does not have,
+// a missing required one, or a value out of range (the message names the parameter and the value).
 std::unique_ptr<SkyModel> make_sky_model(std::string_view name, const SkyParameters& params);
 
-// Validation shared by models: throws InvalidArgument("<name> = <value> is outside [min, max]...")
-// for NaN or out-of-range values.
+// Validation of values that are not schema parameters (wavelengths, dataset inputs): throws
+// InvalidArgument("<name> = <value> is outside the valid range [min, max]") for NaN or
+// out-of-range values.
 void require_in_range(std::string_view name, double value, double min, double max);
 
 }  // namespace skylight

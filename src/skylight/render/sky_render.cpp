@@ -41,7 +41,7 @@ std::string_view to_string(Projection p) {
 }
 
 void validate(const RenderSettings& s) {
-  constexpr int kMaxSide = 32768;  // keeps width * height * 3 floats addressable and sane
+  constexpr int kMaxSide = kMaxImageSide;
   if (s.width < 1 || s.width > kMaxSide)
     throw InvalidArgument(fmt::format("width = {} is outside [1, {}]", s.width, kMaxSide));
   if (s.height < 1 || s.height > kMaxSide)
@@ -134,7 +134,7 @@ PixelDirections pixel_directions(const RenderSettings& s) {
 }
 
 Xyz average_sun_over_pixel(const SkyModel& model, const RenderSettings& s, int col, int row) {
-  const Vec3 sun = model.parameters().sun.direction();
+  const Vec3 sun = model.sun().direction();
   const double r_sun = model.sun_angular_radius();
   const auto centre = pixel_direction(s, col + 0.5, row + 0.5);
   if (!centre || r_sun <= 0.0) return {};

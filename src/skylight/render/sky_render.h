@@ -33,6 +33,9 @@ struct CameraLayout {
   double vertical_fov = kPi / 3;  // [rad], (0, pi)
 };
 
+// Largest image side [px]: keeps width x height x 3 floats addressable and sane.
+inline constexpr int kMaxImageSide = 32768;
+
 struct RenderSettings {
   Projection projection = Projection::equirect;
   int width = 1024;

@@ -13,7 +13,7 @@ constexpr double kSunEnergyRelTol = 0.02;
 
 std::unique_ptr<SkyModel> preetham(double sun_zenith_deg, double sun_azimuth_deg) {
   SkyParameters p;
-  p.turbidity = 3.0;
+  p.values.set("turbidity", 3.0);
   p.sun = {deg_to_rad(sun_zenith_deg), deg_to_rad(sun_azimuth_deg)};
   return make_sky_model("preetham", p);
 }
@@ -33,7 +33,7 @@ double equirect_integral(const SkyImage& img) {
 TEST(SkyRender, SunEnergyIndependentOfResolution) {
   const auto m = preetham(45.0, 200.0);
   const double r = m->sun_angular_radius();
-  const double L_sun = m->sun_tristimulus(m->parameters().sun.direction()).Y;
+  const double L_sun = m->sun_tristimulus(m->sun().direction()).Y;
   const double expected = L_sun * 2.0 * kPi * (1.0 - std::cos(r));  // uniform disc, cd/m^2 * sr
   for (int W : {128, 256, 1024, 2048}) {
     RenderSettings s;

@@ -12,45 +12,15 @@
 #include <sstream>
 #include <string>
 
+#include "support/cli_run.h"
+
 namespace fs = std::filesystem;
 
 namespace skylight {
 namespace {
 
-struct Result {
-  int status = -1;
-  std::string out, err;
-};
-
-class ReportCli : public ::testing::Test {
- protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("skylight_report_cli_" + std::to_string(::getpid()) + "_" +
-            ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-
-  Result run(const std::string& args) {
-    const fs::path out = dir_ / "stdout.txt", err = dir_ / "stderr.txt";
-    const std::string cmd = std::string("'") + SKYLIGHT_CLI_PATH + "' " + args +
-                            " < /dev/null > '" + out.string() + "' 2> '" + err.string() + "'";
-    const int raw = std::system(cmd.c_str());
-    Result r;
-    r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-    r.out = slurp(out);
-    r.err = slurp(err);
-    return r;
-  }
-  static std::string slurp(const fs::path& p) {
-    std::ifstream f(p, std::ios::binary);
-    std::stringstream s;
-    s << f.rdbuf();
-    return s.str();
-  }
-  fs::path dir_;
-};
+using ReportCli = testing_support::CliTest;
+using Result = testing_support::CliResult;
 
 TEST_F(ReportCli, QuickReportWithAScanFile) {
   const fs::path scan = dir_ / "scan.csv";

@@ -1,0 +1,116 @@
+// `skylight bench`: the batch path of each model timed against an in-run baseline (the plain
+// scalar loop of the same model), medians of repeated runs, printed as ratios.
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <chrono>
+
+#include "common.h"
+#include "skylight/core/error.h"
+#include "skylight/core/parallel.h"
+#include "skylight/render/sky_render.h"
+
+namespace skylight::cli {
+namespace {
+
+struct BenchFlags {
+  int width = 1024, height = 512, repeats = 7;
+  std::vector<std::string> models{"preetham", "cie", "hosek"};
+};
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  const std::size_t n = v.size();
+  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+template <class F>
+double median_seconds(int repeats, F&& f) {
+  std::vector<double> t;
+  for (int i = 0; i < repeats; ++i) {
+    const auto a = std::chrono::steady_clock::now();
+    f();
+    t.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - a).count());
+  }
+  return median(std::move(t));
+}
+
+int run_bench(const BenchFlags& f) {
+  std::vector<const ModelInfo*> models;
+  for (const auto& name : f.models) {
+    const ModelInfo* m = find_model(name);
+    if (!m) {
+      std::string known;
+      for (const auto& r : model_registry()) known += (known.empty() ? "" : ", ") + r.name;
+      throw InvalidArgument(fmt::format("--models: unknown model '{}' (known: {})", name, known));
+    }
+    models.push_back(m);
+  }
+  render::RenderSettings s;
+  s.width = f.width;
+  s.height = f.height;
+  const auto dirs = render::pixel_directions(s);
+  const std::size_t n = dirs.x.size();
+  std::vector<float> X(n), Y(n), Z(n);
+  write_stdout(
+      fmt::format("skylight bench: {}x{} equirect directions, median of {} runs, {} threads\n"
+                  "{:<10} {:>12} {:>12} {:>12} {:>10} {:>10}\n",
+                  f.width, f.height, f.repeats, thread_count(), "model", "scalar ms", "batch1 ms",
+                  "batchN ms", "SIMD x", "threads x"));
+  for (const ModelInfo* info : models) {
+    // Each model at its defaults (plus the registry's example values for required parameters).
+    SkyParameters p;
+    p.values = info->example;
+    const auto model = info->make(p);
+    volatile float sink = 0.0f;
+    // In-run baseline: the plain scalar loop of the same model (double precision, one thread).
+    const double scalar = median_seconds(f.repeats, [&] {
+      float acc = 0.0f;
+      for (std::size_t i = 0; i < n; ++i)
+        acc += static_cast<float>(model->tristimulus({dirs.x[i], dirs.y[i], dirs.z[i]}).Y);
+      sink = acc;
+    });
+    const double batch1 = median_seconds(f.repeats, [&] {
+      model->tristimulus_batch({dirs.x, dirs.y, dirs.z}, {X, Y, Z});
+      sink = Y[n / 2];
+    });
+    const double batchN = median_seconds(f.repeats, [&] {
+      tristimulus_parallel(*model, {dirs.x, dirs.y, dirs.z}, {X, Y, Z});
+      sink = Y[n / 2];
+    });
+    (void)sink;
+    write_stdout(fmt::format("{:<10} {:>12.2f} {:>12.2f} {:>12.2f} {:>10.2f} {:>10.2f}\n",
+                             info->name, 1e3 * scalar, 1e3 * batch1, 1e3 * batchN, scalar / batch1,
+                             batch1 / batchN));
+  }
+  write_stdout(
+      "SIMD x = scalar loop / batch on one thread; threads x = batch one thread / batch all "
+      "threads\n");
+  return kExitOk;
+}
+
+}  // namespace
+
+void add_bench_command(CLI::App& app, Commands& commands) {
+  auto f = std::make_shared<BenchFlags>();
+  auto* cmd = app.add_subcommand(
+      "bench", "time the batch path against an in-run scalar loop (ratios, medians)");
+  add_integer(*cmd,
+              {"width", "px", ParameterKind::integer, 1, render::kMaxImageSide, 1,
+               ParameterValue(static_cast<double>(f->width)), "grid width"},
+              f->width);
+  add_integer(*cmd,
+              {"height", "px", ParameterKind::integer, 1, render::kMaxImageSide, 1,
+               ParameterValue(static_cast<double>(f->height)), "grid height"},
+              f->height);
+  add_integer(*cmd,
+              {"repeats", "1", ParameterKind::integer, 1, 1000, 1,
+               ParameterValue(static_cast<double>(f->repeats)),
+               "runs per measurement (the median is reported)"},
+              f->repeats);
+  cmd->add_option("--models", f->models, "models to time; default preetham,cie,hosek")
+      ->delimiter(',');
+  commands.push_back({cmd, [f] { return run_bench(*f); }});
+}
+
+}  // namespace skylight::cli

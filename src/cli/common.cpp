@@ -1,0 +1,276 @@
+#include "common.h"
+
+#include <fmt/format.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstdio>
+#include <iostream>
+
+#include "skylight/core/error.h"
+#include "skylight/core/numbers.h"
+#include "skylight/io/file.h"
+#include "skylight/version.h"
+
+namespace skylight::cli {
+
+// ---- flags from the schema ----------------------------------------------------------------------
+
+CLI::Validator number_in(const ParameterSpec& spec) {
+  return CLI::Validator(
+      [spec](std::string& text) -> std::string {
+        try {
+          spec.check(spec.parse(text));
+        } catch (const InvalidArgument& e) {
+          return e.what();
+        }
+        return {};
+      },
+      spec.kind == ParameterKind::numbers
+          ? fmt::format("{} values in [{}, {}]", spec.count, spec.min, spec.max)
+          : fmt::format("{} in [{}, {}]", spec.unit, spec.min, spec.max));
+}
+
+namespace {
+
+template <class T, class Convert>
+CLI::Option* add_parsed(CLI::App& app, const ParameterSpec& spec, T& target, Convert convert) {
+  return app
+      .add_option_function<std::string>(
+          spec.flag(), [&target, spec, convert](const std::string& s) { convert(target, spec, s); },
+          spec.help())
+      ->check(number_in(spec));
+}
+
+}  // namespace
+
+CLI::Option* add_number(CLI::App& app, const ParameterSpec& spec, double& target) {
+  return add_parsed(app, spec, target,
+                    [](double& t, const ParameterSpec& sp, const std::string& s) {
+                      t = std::get<double>(sp.parse(s));
+                    });
+}
+
+CLI::Option* add_number(CLI::App& app, const ParameterSpec& spec, std::optional<double>& target) {
+  return add_parsed(app, spec, target,
+                    [](std::optional<double>& t, const ParameterSpec& sp, const std::string& s) {
+                      t = std::get<double>(sp.parse(s));
+                    });
+}
+
+CLI::Option* add_integer(CLI::App& app, const ParameterSpec& spec, int& target) {
+  ParameterSpec s = spec;
+  s.kind = ParameterKind::integer;
+  return add_parsed(app, s, target, [](int& t, const ParameterSpec& sp, const std::string& text) {
+    t = static_cast<int>(std::get<double>(sp.parse(text)));
+  });
+}
+
+CLI::Option* add_numbers(CLI::App& app, const ParameterSpec& spec, std::vector<double>& target) {
+  ParameterSpec s = spec;
+  s.kind = ParameterKind::numbers;
+  auto* opt = app.add_option_function<std::string>(
+      s.flag(),
+      [&target, s](const std::string& text) {
+        target = std::get<std::vector<double>>(s.parse(text));
+      },
+      s.help());
+  if (s.count > 0) return opt->check(number_in(s));
+  // Any length: check each element only.
+  return opt->check(CLI::Validator(
+      [s](std::string& text) -> std::string {
+        try {
+          for (double v : parse_number_list(text, s.flag())) {
+            ParameterSpec one = s;
+            one.kind = ParameterKind::number;
+            one.check(v);
+          }
+        } catch (const InvalidArgument& e) {
+          return e.what();
+        }
+        return {};
+      },
+      fmt::format("{} in [{}, {}], comma-separated", s.unit, s.min, s.max)));
+}
+
+// ---- model flags --------------------------------------------------------------------------------
+
+std::vector<std::pair<std::string, std::vector<std::pair<std::string, ParameterSpec>>>>
+model_parameter_names() {
+  std::vector<std::pair<std::string, std::vector<std::pair<std::string, ParameterSpec>>>> out;
+  for (const auto& m : model_registry()) {
+    for (const auto& spec : m.parameters) {
+      auto it = std::find_if(out.begin(), out.end(),
+                             [&](const auto& entry) { return entry.first == spec.name; });
+      if (it == out.end()) {
+        out.push_back({spec.name, {}});
+        it = out.end() - 1;
+      }
+      it->second.emplace_back(m.name, spec);
+    }
+  }
+  return out;
+}
+
+namespace {
+
+// The solar elevation flag: --sun-zenith's alternative, its range derived from the zenith's.
+ParameterSpec sun_elevation_spec() {
+  const ParameterSpec& z = sun_parameter_specs()[0];
+  return {"sun-elevation",
+          "deg",
+          ParameterKind::number,
+          90.0 - z.max,
+          90.0 - z.min,
+          1,
+          Absent{"90 - sun zenith"},
+          "solar elevation (alternative to --sun-zenith)"};
+}
+
+// Help for a parameter several models declare: the first description, then each model's range
+// and default.
+std::string model_flag_help(const std::vector<std::pair<std::string, ParameterSpec>>& specs) {
+  const ParameterSpec& first = specs.front().second;
+  std::string h = first.description;
+  if (!first.unit.empty()) h += fmt::format(" [{}]", first.unit);
+  for (const auto& [model, spec] : specs) {
+    h += fmt::format("; {}: ", model);
+    if (spec.kind == ParameterKind::numbers) h += fmt::format("{} values, each ", spec.count);
+    h += fmt::format("{}, default {}", spec.range_text(), spec.default_text());
+  }
+  return h;
+}
+
+}  // namespace
+
+void ModelOptions::add(CLI::App& app) {
+  std::string names;
+  for (const auto& m : model_registry()) names += (names.empty() ? "" : "|") + m.name;
+  app.add_option("--model", model_, "sky model: " + names + " (see `skylight models`)")->required();
+  const auto& sun = sun_parameter_specs();
+  auto* z = add_number(app, sun[0], sun_zenith_deg_);
+  auto* e = add_number(app, sun_elevation_spec(), sun_elevation_deg_);
+  z->excludes(e);
+  add_number(app, sun[1], sun_azimuth_deg_);
+  for (const auto& [name, specs] : model_parameter_names())
+    app.add_option("--" + name, raw_[name], model_flag_help(specs));
+  auto* inc = app.add_flag("--include-sun", include_sun_, "add the solar disc (models with a sun)");
+  auto* only = app.add_flag("--sun-only", sun_only_, "the solar disc alone, without the sky");
+  inc->excludes(only);
+}
+
+const ModelInfo& ModelOptions::info() const {
+  const ModelInfo* m = find_model(model_);
+  if (!m) {
+    std::string names;
+    for (const auto& r : model_registry()) names += (names.empty() ? "" : ", ") + r.name;
+    throw InvalidArgument(fmt::format("unknown model '{}' (known: {})", excerpt(model_), names));
+  }
+  return *m;
+}
+
+SkyParameters ModelOptions::parameters() const {
+  const ModelInfo& m = info();
+  SkyParameters p;
+  const double zenith_deg = sun_zenith_deg_      ? *sun_zenith_deg_
+                            : sun_elevation_deg_ ? 90.0 - *sun_elevation_deg_
+                                                 : kDefaultSunZenithDeg;
+  p.sun = sun_from_degrees(zenith_deg, sun_azimuth_deg_);
+  for (const auto& [name, text] : raw_) {
+    if (!text) continue;
+    const auto spec = std::find_if(m.parameters.begin(), m.parameters.end(),
+                                   [&](const ParameterSpec& s) { return s.name == name; });
+    if (spec == m.parameters.end()) {
+      warn(fmt::format("--{} is not a parameter of model '{}'; ignored", name, m.name));
+      continue;
+    }
+    p.values.set(name, spec->parse(*text));
+  }
+  return p;
+}
+
+std::unique_ptr<SkyModel> ModelOptions::make() const {
+  auto model = make_sky_model(info().name, parameters());
+  if ((include_sun_ || sun_only_) && !model->has_sun())
+    throw InvalidArgument(
+        fmt::format("--include-sun/--sun-only: model '{}' has no sun", model->name()));
+  return model;
+}
+
+void warn(std::string_view message) {
+  std::cerr << "skylight: warning: " << message << "\n";
+}
+
+void warn_domain(const SkyModel& model) {
+  for (const auto& issue : model.domain().issues)
+    warn(fmt::format("{} ({}): {}", model.name(), to_string(issue.validity), issue.message));
+}
+
+io::Metadata model_metadata(const SkyModel& model, std::string_view sun_mode) {
+  const auto& sun = sun_parameter_specs();
+  io::Metadata md{
+      {"skylight:version", kVersion},
+      {"skylight:model", std::string(model.name())},
+      {sun[0].metadata_key(), fmt::format("{}", rad_to_deg(model.sun().zenith))},
+      {sun[1].metadata_key(), fmt::format("{}", rad_to_deg(model.sun().azimuth))},
+  };
+  const ParameterValues values = model.parameter_values();
+  for (const auto& spec : find_model(model.name())->parameters)
+    if (const ParameterValue* v = values.find(spec.name))
+      md.emplace_back(spec.metadata_key(), spec.format(*v));
+  md.emplace_back("skylight:sun", std::string(sun_mode));
+  return md;
+}
+
+// ---- output -------------------------------------------------------------------------------------
+
+void write_stdout(std::string_view text) {
+  std::cout.write(text.data(), static_cast<std::streamsize>(text.size()));
+  std::cout.flush();
+  if (!std::cout) {
+    const int err = errno;
+    std::cout.clear();
+    throw IoError(fmt::format("cannot write to standard output: {}",
+                              err != 0 ? io::errno_message(err) : "write failed"));
+  }
+}
+
+std::string read_stdin() {
+  std::string text;
+  char buffer[1 << 16];
+  for (;;) {
+    const ssize_t n = ::read(STDIN_FILENO, buffer, sizeof buffer);
+    if (n > 0) {
+      text.append(buffer, static_cast<std::size_t>(n));
+    } else if (n == 0) {
+      return text;
+    } else if (errno != EINTR) {
+      throw IoError(fmt::format("cannot read standard input: {}", io::errno_message(errno)));
+    }
+  }
+}
+
+Progress::Progress(std::string command)
+    : command_(std::move(command)),
+      tty_(::isatty(STDERR_FILENO) != 0),
+      start_(std::chrono::steady_clock::now()) {}
+
+double Progress::elapsed_s() const {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+}
+
+void Progress::operator()(int done, int total, std::string_view step) {
+  if (tty_) {
+    constexpr int kBar = 30;
+    const int filled = total > 0 ? done * kBar / total : kBar;
+    std::cerr << fmt::format("\r\x1b[K[{}{}] {:>2}/{} {:5.1f} s  {}", std::string(filled, '#'),
+                             std::string(kBar - filled, ' '), done, total, elapsed_s(), step)
+              << std::flush;
+    if (done == total) std::cerr << "\n";
+  } else {
+    std::cerr << fmt::format("skylight {}: [{}/{}] {:.1f} s {}\n", command_, done, total,
+                             elapsed_s(), step);
+  }
+}
+
+}  // namespace skylight::cli

@@ -1,0 +1,120 @@
+// Shared machinery of the command-line tool: the subcommand table, exit statuses, flags built from
+// the parameter schema (core/parameters.h), the model flags of `render` and `eval`, output
+// metadata, checked writes to standard output and progress lines. Each subcommand family lives in
+// its own file (models_cmd.cpp, render_cmd.cpp, eval_cmd.cpp, bench_cmd.cpp, report_cmd.cpp) and
+// only parses, validates through the schema, calls the library and writes outputs.
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+#include <chrono>
+#include <functional>
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "skylight/core/parameters.h"
+#include "skylight/io/image.h"
+#include "skylight/models/sky_model.h"
+
+namespace skylight::cli {
+
+// Exit status: 0 success, 1 runtime failure (I/O, ...), 2 usage error or invalid value.
+inline constexpr int kExitOk = 0;
+inline constexpr int kExitRuntime = 1;
+inline constexpr int kExitUsage = 2;
+
+// One subcommand: its CLI11 app and what runs when it was given.
+struct Command {
+  CLI::App* app = nullptr;
+  std::function<int()> run;
+};
+using Commands = std::vector<Command>;
+
+// The subcommand families; each adds its subcommands to `app` and `commands`.
+void add_models_command(CLI::App& app, Commands& commands);
+void add_render_command(CLI::App& app, Commands& commands);
+void add_eval_command(CLI::App& app, Commands& commands);
+void add_bench_command(CLI::App& app, Commands& commands);
+void add_report_command(CLI::App& app, Commands& commands);
+
+// ---- flags from the schema ----------------------------------------------------------------------
+
+// A CLI11 check that the text is a number (strict parser) in the spec's range; the help text shows
+// the unit and range.
+CLI::Validator number_in(const ParameterSpec& spec);
+// Adds --<spec.name> with the spec's help; the value is parsed and range-checked.
+CLI::Option* add_number(CLI::App& app, const ParameterSpec& spec, double& target);
+CLI::Option* add_number(CLI::App& app, const ParameterSpec& spec, std::optional<double>& target);
+CLI::Option* add_integer(CLI::App& app, const ParameterSpec& spec, int& target);
+// A comma-separated list of `spec.count` numbers (spec.count 0: any length >= 1).
+CLI::Option* add_numbers(CLI::App& app, const ParameterSpec& spec, std::vector<double>& target);
+
+// ---- model flags (render, eval) -----------------------------------------------------------------
+
+// --model, the sun (--sun-zenith | --sun-elevation, --sun-azimuth), one flag per parameter name of
+// every registered model (its help lists each model's unit, range and default), and the solar
+// disc switches. The values are kept as text and parsed by the chosen model's schema.
+class ModelOptions {
+ public:
+  void add(CLI::App& app);
+  // The registry entry of --model (InvalidArgument for an unknown name).
+  const ModelInfo& info() const;
+  // The sun and the chosen model's values. A given flag that the model does not read is reported
+  // on stderr as a warning and ignored.
+  SkyParameters parameters() const;
+  // The model (InvalidArgument for bad values, or for --include-sun/--sun-only without a sun).
+  std::unique_ptr<SkyModel> make() const;
+  bool include_sun() const { return include_sun_; }
+  bool sun_only() const { return sun_only_; }
+  const std::string& model_name() const { return model_; }
+
+ private:
+  std::string model_;
+  std::optional<double> sun_zenith_deg_, sun_elevation_deg_;
+  double sun_azimuth_deg_ = kDefaultSunAzimuthDeg;
+  std::map<std::string, std::optional<std::string>> raw_;  // parameter name -> text as given
+  bool include_sun_ = false, sun_only_ = false;
+};
+
+// Every parameter name of the registry's models, in first-seen order, with the specs declaring it.
+std::vector<std::pair<std::string, std::vector<std::pair<std::string, ParameterSpec>>>>
+model_parameter_names();
+
+// "skylight: warning: MODEL (VALIDITY): message" for each issue of model.domain().
+void warn_domain(const SkyModel& model);
+// One warning line on stderr.
+void warn(std::string_view message);
+
+// Metadata of an output made from `model`: version, model, the sun and every parameter the model
+// read (ParameterSpec::metadata_key()), plus the solar disc mode.
+io::Metadata model_metadata(const SkyModel& model, std::string_view sun_mode);
+
+// ---- output -------------------------------------------------------------------------------------
+
+// Writes `text` to standard output and flushes; a failed write (closed stdout, full disk) throws
+// IoError "cannot write to standard output: <reason>".
+void write_stdout(std::string_view text);
+
+// The whole of standard input; a read error (e.g. stdin is a directory) throws IoError "cannot read
+// standard input: <reason>".
+std::string read_stdin();
+
+// Progress of a long command on stderr: a bar redrawn in place on a terminal, one line per step
+// otherwise (logs, CI).
+class Progress {
+ public:
+  explicit Progress(std::string command);
+  void operator()(int done, int total, std::string_view step);
+  double elapsed_s() const;
+
+ private:
+  std::string command_;
+  bool tty_ = false;
+  std::chrono::steady_clock::time_point start_;
+};
+
+}  // namespace skylight::cli

@@ -1,0 +1,164 @@
+// `skylight eval`: a model evaluated for directions read as CSV (zenith_deg,azimuth_deg), written
+// as CSV on standard output (rgb, xyz, luminance or spectral radiance).
+#include <fmt/format.h>
+
+#include "common.h"
+#include "skylight/core/error.h"
+#include "skylight/core/numbers.h"
+#include "skylight/io/file.h"
+
+namespace skylight::cli {
+namespace {
+
+struct EvalFlags {
+  ModelOptions model;
+  std::string input;
+  std::string quantity = "rgb";
+  std::vector<double> wavelengths;
+};
+
+constexpr std::string_view kHeader = "zenith_deg,azimuth_deg";
+
+// The CSV text split into non-empty lines (CRLF accepted), each with its 1-based line number.
+std::vector<std::pair<std::size_t, std::string_view>> lines_of(std::string_view text) {
+  std::vector<std::pair<std::size_t, std::string_view>> out;
+  std::size_t line_no = 0, start = 0;
+  while (start < text.size()) {
+    std::size_t end = text.find('\n', start);
+    if (end == std::string_view::npos) end = text.size();
+    std::string_view line = text.substr(start, end - start);
+    if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+    ++line_no;
+    if (!line.empty()) out.emplace_back(line_no, line);
+    start = end + 1;
+  }
+  return out;
+}
+
+int run_eval(const EvalFlags& f) {
+  const bool spectral = f.quantity == "spectral";
+  if (spectral && f.wavelengths.empty())
+    throw InvalidArgument("--quantity spectral needs --wavelengths NM[,NM...]");
+  if (!spectral && !f.wavelengths.empty())
+    throw InvalidArgument("--wavelengths is only used with --quantity spectral");
+  const auto model = f.model.make();
+  warn_domain(*model);
+  if (spectral && !f.model.info().spectral)
+    throw InvalidArgument(
+        fmt::format("--quantity spectral: model '{}' has no spectral output", model->name()));
+
+  const bool from_stdin = f.input.empty() || f.input == "-";
+  const std::string source = from_stdin ? "<stdin>" : f.input;
+  const std::string text = from_stdin ? read_stdin() : io::read_text_file(f.input);
+  const auto lines = lines_of(text);
+  if (lines.empty())
+    throw InvalidArgument(fmt::format("{}: empty input, expected header '{}'", source, kHeader));
+  if (lines.front().second != kHeader)
+    throw InvalidArgument(fmt::format("{} line {}: header must be '{}', got '{}'", source,
+                                      lines.front().first, kHeader, excerpt(lines.front().second)));
+  std::string out(kHeader);
+  if (f.quantity == "rgb")
+    out += ",r,g,b";
+  else if (f.quantity == "xyz")
+    out += ",x,y,z";
+  else if (f.quantity == "luminance")
+    out += ",luminance";
+  else
+    for (double nm : f.wavelengths) out += fmt::format(",L{}", nm);
+  out += "\n";
+
+  // The eval columns are angles in degrees, declared like the sun's.
+  const ParameterSpec zenith_spec{
+      "zenith_deg", "deg", ParameterKind::number, 0.0, 180.0, 1, Required{}, "view zenith angle"};
+  const ParameterSpec azimuth_spec{"azimuth_deg",
+                                   "deg",
+                                   ParameterKind::number,
+                                   -360.0,
+                                   360.0,
+                                   1,
+                                   Required{},
+                                   "view azimuth from north towards east"};
+  auto field = [&](std::size_t line_no, std::string_view s, const ParameterSpec& spec) {
+    const auto v = parse_number(s);
+    if (!v)
+      throw InvalidArgument(fmt::format("{} line {}: {} '{}' is not a finite number", source,
+                                        line_no, spec.name, excerpt(s)));
+    if (*v < spec.min || *v > spec.max)
+      throw InvalidArgument(fmt::format("{} line {}: {} = {} is outside [{}, {}]", source, line_no,
+                                        spec.name, excerpt(s), spec.min, spec.max));
+    return *v;
+  };
+  const bool sky = !f.model.sun_only(), sun = f.model.include_sun() || f.model.sun_only();
+  for (std::size_t k = 1; k < lines.size(); ++k) {
+    const auto [line_no, line] = lines[k];
+    const auto comma = line.find(',');
+    if (comma == std::string_view::npos || line.find(',', comma + 1) != std::string_view::npos)
+      throw InvalidArgument(fmt::format("{} line {}: expected 2 fields '{}', got '{}'", source,
+                                        line_no, kHeader, excerpt(line)));
+    const double zen = field(line_no, line.substr(0, comma), zenith_spec);
+    const double az = field(line_no, line.substr(comma + 1), azimuth_spec);
+    const Vec3 v = direction_from_angles(deg_to_rad(zen), wrap_azimuth(deg_to_rad(az)));
+    out += line;
+    if (spectral) {
+      for (double nm : f.wavelengths) {
+        double L = 0.0;
+        if (sky) {
+          const auto s = model->spectral_radiance(v, nm);
+          if (!s)
+            throw InvalidArgument(fmt::format(
+                "--wavelengths: {} nm is outside the range of model '{}'", nm, model->name()));
+          L += *s;
+        }
+        if (sun) {
+          const auto s = model->sun_spectral_radiance(v, nm);
+          if (!s)
+            throw InvalidArgument(
+                fmt::format("--wavelengths: {} nm is outside the sun's range of model '{}'", nm,
+                            model->name()));
+          L += *s;
+        }
+        out += fmt::format(",{}", L);
+      }
+    } else {
+      Xyz c;
+      if (sky) c = model->tristimulus(v);
+      if (sun) {
+        const Xyz s = model->sun_tristimulus(v);
+        c = {c.X + s.X, c.Y + s.Y, c.Z + s.Z};
+      }
+      if (f.quantity == "xyz") {
+        out += fmt::format(",{},{},{}", c.X, c.Y, c.Z);
+      } else if (f.quantity == "luminance") {
+        out += fmt::format(",{}", c.Y);
+      } else {
+        const Rgb rgb = (sky && !sun) ? model->rgb(v) : xyz_to_linear_srgb(c);
+        out += fmt::format(",{},{},{}", rgb.r, rgb.g, rgb.b);
+      }
+    }
+    out += "\n";
+  }
+  // Written only once everything parsed: a bad row produces no partial output.
+  write_stdout(out);
+  return kExitOk;
+}
+
+}  // namespace
+
+void add_eval_command(CLI::App& app, Commands& commands) {
+  auto f = std::make_shared<EvalFlags>();
+  auto* cmd = app.add_subcommand(
+      "eval", "evaluate a model for directions read as CSV (zenith_deg,azimuth_deg)");
+  f->model.add(*cmd);
+  cmd->add_option("--input", f->input, "input CSV file; default: standard input");
+  cmd->add_option("--quantity", f->quantity,
+                  "rgb (linear sRGB), xyz (Y in cd/m^2), luminance (cd/m^2), spectral (W m^-2 "
+                  "sr^-1 nm^-1); default rgb")
+      ->check(CLI::IsMember({"rgb", "xyz", "luminance", "spectral"}));
+  add_numbers(*cmd,
+              {"wavelengths", "nm", ParameterKind::numbers, 1.0, 10000.0, 0, Absent{"none"},
+               "wavelengths for --quantity spectral, e.g. 450,550,650"},
+              f->wavelengths);
+  commands.push_back({cmd, [f] { return run_eval(*f); }});
+}
+
+}  // namespace skylight::cli

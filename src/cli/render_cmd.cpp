@@ -1,0 +1,145 @@
+// `skylight render`: a sky model into an image (EXR, HDR, PFM or a PNG preview by extension), with
+// optional tone-mapped preview and log-luminance false-colour map.
+#include <fmt/format.h>
+
+#include "common.h"
+#include "skylight/core/error.h"
+#include "skylight/io/image.h"
+#include "skylight/render/false_colour.h"
+#include "skylight/render/sky_render.h"
+#include "skylight/render/tonemap.h"
+
+namespace skylight::cli {
+namespace {
+
+struct RenderFlags {
+  ModelOptions model;
+  std::string projection = "equirect";
+  std::string lens = "equidistant";
+  std::optional<double> fov_deg;  // fisheye default 180, camera default 60
+  double north_angle_deg = 0.0;
+  double look_elevation_deg = 0.0, look_azimuth_deg = 0.0;
+  int width = 1024, height = 512;
+  std::string output, preview, false_colour;
+  std::vector<double> fc_range{0.0, 6.0};
+};
+
+// Defaults of the field of view [deg] per projection.
+constexpr double kFisheyeFovDeg = 180.0;
+constexpr double kCameraFovDeg = 60.0;
+
+int run_render(const RenderFlags& f) {
+  render::RenderSettings s;
+  s.projection = *render::parse_projection(f.projection);
+  s.width = f.width;
+  s.height = f.height;
+  s.fisheye.lens = *parse_fisheye_lens(f.lens);
+  s.fisheye.fov = deg_to_rad(f.fov_deg.value_or(kFisheyeFovDeg));
+  s.fisheye.north_angle = deg_to_rad(f.north_angle_deg);
+  s.camera.look_zenith = deg_to_rad(90.0 - f.look_elevation_deg);
+  s.camera.look_azimuth = wrap_azimuth(deg_to_rad(f.look_azimuth_deg));
+  s.camera.vertical_fov = deg_to_rad(f.fov_deg.value_or(kCameraFovDeg));
+  s.sun = f.model.sun_only()      ? render::SunMode::sun_only
+          : f.model.include_sun() ? render::SunMode::sky_and_sun
+                                  : render::SunMode::sky;
+  render::validate(s);
+  (void)io::format_from_path(f.output);
+  if (!f.preview.empty() && io::format_from_path(f.preview) != io::ImageFormat::png)
+    throw InvalidArgument(fmt::format("--preview '{}' must be a .png file", f.preview));
+  if (!f.false_colour.empty() && io::format_from_path(f.false_colour) != io::ImageFormat::png)
+    throw InvalidArgument(fmt::format("--false-colour '{}' must be a .png file", f.false_colour));
+  if (!(f.fc_range[0] < f.fc_range[1]))
+    throw InvalidArgument(fmt::format("--false-colour-range {},{}: LO must be below HI",
+                                      f.fc_range[0], f.fc_range[1]));
+  const auto model = f.model.make();
+  warn_domain(*model);
+  const render::SkyImage img = render::render_sky(*model, s);
+
+  auto md = model_metadata(*model, s.sun == render::SunMode::sun_only      ? "sun-only"
+                                   : s.sun == render::SunMode::sky_and_sun ? "sky+sun"
+                                                                           : "sky");
+  md.emplace_back("skylight:projection", f.projection);
+  if (s.projection == render::Projection::camera) {
+    md.emplace_back("skylight:fov_deg", fmt::format("{}", f.fov_deg.value_or(kCameraFovDeg)));
+    md.emplace_back("skylight:look_elevation_deg", fmt::format("{}", f.look_elevation_deg));
+    md.emplace_back("skylight:look_azimuth_deg", fmt::format("{}", f.look_azimuth_deg));
+  }
+  if (s.projection == render::Projection::fisheye) {
+    md.emplace_back("skylight:lens", f.lens);
+    md.emplace_back("skylight:fov_deg", fmt::format("{}", f.fov_deg.value_or(kFisheyeFovDeg)));
+    md.emplace_back("skylight:north_angle_deg", fmt::format("{}", f.north_angle_deg));
+  }
+  md.emplace_back("skylight:pixel_unit", "linear sRGB (D65), Y = luminance [cd/m^2]");
+  // What the model actually used: its zenith luminance and where it stands in its domain.
+  md.emplace_back("skylight:zenith_luminance_evaluated_cd_m2",
+                  fmt::format("{}", model->tristimulus({0.0, 0.0, 1.0}).Y));
+  md.emplace_back("skylight:domain", std::string(to_string(model->domain().worst())));
+  render::write_image_or_preview(f.output, img.rgb, md);
+  if (!f.preview.empty()) render::write_image_or_preview(f.preview, img.rgb, md);
+  if (!f.false_colour.empty()) {
+    io::ImageF lum(img.xyz.width, img.xyz.height, 1);
+    for (std::size_t i = 0; i < lum.data.size(); ++i) lum.data[i] = img.xyz.data[3 * i + 1];
+    render::FalseColourOptions fo;
+    fo.log10_min = f.fc_range[0];
+    fo.log10_max = f.fc_range[1];
+    io::write_png(f.false_colour, render::false_colour(lum, fo, &img.mask), md);
+  }
+  return kExitOk;
+}
+
+}  // namespace
+
+void add_render_command(CLI::App& app, Commands& commands) {
+  auto f = std::make_shared<RenderFlags>();
+  auto* cmd = app.add_subcommand("render",
+                                 "render a sky into an image (EXR, HDR, PFM or PNG by extension)");
+  f->model.add(*cmd);
+  cmd->add_option("--projection", f->projection,
+                  "equirect|hemisphere|fisheye|cubemap|camera (perspective, e.g. of the planet "
+                  "from orbit with --observer-altitude); default equirect")
+      ->check(CLI::IsMember({"equirect", "hemisphere", "fisheye", "cubemap", "camera"}));
+  cmd->add_option(
+         "--lens", f->lens,
+         "fisheye lens equidistant|equisolid|orthographic|stereographic; default equidistant")
+      ->check(CLI::IsMember({"equidistant", "equisolid", "orthographic", "stereographic"}));
+  add_number(
+      *cmd,
+      {"fov", "deg", ParameterKind::number, 1e-6, 360.0, 1, Absent{"180 (fisheye), 60 (camera)"},
+       "fisheye: field of view across the image circle ((0, 360], orthographic <= 180, "
+       "stereographic < 360); camera: vertical field of view (< 180)"},
+      f->fov_deg);
+  add_number(*cmd,
+             {"look-elevation", "deg", ParameterKind::number, -90.0, 90.0, 1, ParameterValue(0.0),
+              "camera: elevation of the view centre"},
+             f->look_elevation_deg);
+  add_number(*cmd,
+             {"look-azimuth", "deg", ParameterKind::number, -360.0, 360.0, 1, ParameterValue(0.0),
+              "camera: azimuth of the view centre from north towards east"},
+             f->look_azimuth_deg);
+  add_number(*cmd,
+             {"north-angle", "deg", ParameterKind::number, -360.0, 360.0, 1, ParameterValue(0.0),
+              "fisheye: north drawn this many deg counter-clockwise from image up"},
+             f->north_angle_deg);
+  add_integer(*cmd,
+              {"width", "px", ParameterKind::integer, 1, render::kMaxImageSide, 1,
+               ParameterValue(static_cast<double>(f->width)), "image width (cubemap: 6 x height)"},
+              f->width);
+  add_integer(*cmd,
+              {"height", "px", ParameterKind::integer, 1, render::kMaxImageSide, 1,
+               ParameterValue(static_cast<double>(f->height)), "image height"},
+              f->height);
+  cmd->add_option("-o,--output", f->output,
+                  "output image: .exr (float + metadata), .hdr, .pfm or .png (preview)")
+      ->required();
+  cmd->add_option("--preview", f->preview, "also write a tone-mapped PNG preview here");
+  cmd->add_option("--false-colour", f->false_colour,
+                  "also write a log-luminance false-colour PNG with legend here");
+  add_numbers(
+      *cmd,
+      {"false-colour-range", "log10 cd/m^2", ParameterKind::numbers, -20.0, 20.0, 2,
+       ParameterValue(f->fc_range), "log10 luminance range LO,HI of the false-colour scale"},
+      f->fc_range);
+  commands.push_back({cmd, [f] { return run_render(*f); }});
+}
+
+}  // namespace skylight::cli

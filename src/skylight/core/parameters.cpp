@@ -1,0 +1,204 @@
+#include "skylight/core/parameters.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+
+#include "skylight/core/error.h"
+#include "skylight/core/numbers.h"
+
+namespace skylight {
+namespace {
+
+std::string format_number(double v) {
+  return fmt::format("{}", v);
+}
+
+// Compact form for people (ranges, defaults in help and docs): 6 significant digits.
+std::string display_number(double v) {
+  return fmt::format("{:.6g}", v);
+}
+
+std::string join(const std::vector<double>& list) {
+  std::string out;
+  for (std::size_t i = 0; i < list.size(); ++i) {
+    if (i > 0) out += ',';
+    out += format_number(list[i]);
+  }
+  return out;
+}
+
+std::string where(std::string_view context) {
+  return context.empty() ? std::string() : fmt::format(" ({})", context);
+}
+
+const char* kind_name(ParameterKind k) {
+  switch (k) {
+    case ParameterKind::number:
+      return "a number";
+    case ParameterKind::integer:
+      return "an integer";
+    case ParameterKind::numbers:
+      return "a list of numbers";
+    case ParameterKind::text:
+      return "text";
+    case ParameterKind::flag:
+      return "a flag";
+  }
+  return "?";
+}
+
+}  // namespace
+
+std::string ParameterSpec::metadata_key() const {
+  std::string key = "skylight:" + name;
+  std::replace(key.begin(), key.end(), '-', '_');
+  if (unit == "deg") return key + "_deg";
+  if (unit == "m") return key + "_m";
+  if (unit == "cd/m^2") return key + "_cd_m2";
+  if (unit == "W m^-2 nm^-1") return key + "_W_m2_nm";
+  if (unit == "DU") return key + "_DU";
+  if (unit == "nm") return key + "_nm";
+  if (unit == "px") return key + "_px";
+  return key;  // "1" (dimensionless) and text
+}
+
+std::string ParameterSpec::range_text() const {
+  if (kind == ParameterKind::text || kind == ParameterKind::flag) return {};
+  return fmt::format("{} .. {}", display_number(min), display_number(max));
+}
+
+std::string ParameterSpec::default_text() const {
+  if (std::holds_alternative<Required>(default_value)) return "required";
+  if (const auto* a = std::get_if<Absent>(&default_value)) return "none (" + a->meaning + ")";
+  const ParameterValue& v = std::get<ParameterValue>(default_value);
+  if (const auto* d = std::get_if<double>(&v)) return display_number(*d);
+  return format(v);
+}
+
+std::string ParameterSpec::help() const {
+  std::string h = description;
+  if (!unit.empty()) h += fmt::format(" [{}]", unit);
+  if (kind == ParameterKind::numbers) h += fmt::format(", {} values", count);
+  if (const std::string r = range_text(); !r.empty())
+    h += fmt::format(", {}{}", kind == ParameterKind::numbers ? "each " : "", r);
+  if (kind != ParameterKind::flag) h += "; default " + default_text();
+  return h;
+}
+
+ParameterValue ParameterSpec::parse(std::string_view text) const {
+  switch (kind) {
+    case ParameterKind::number:
+      return parse_number(text, flag());
+    case ParameterKind::integer:
+      return static_cast<double>(parse_integer(text, flag()));
+    case ParameterKind::numbers:
+      return parse_number_list(text, flag());
+    case ParameterKind::text:
+      return std::string(text);
+    case ParameterKind::flag:
+      if (text == "true" || text == "1") return true;
+      if (text == "false" || text == "0") return false;
+      throw InvalidArgument(fmt::format("{}: '{}' is not true or false", flag(), excerpt(text)));
+  }
+  return {};
+}
+
+std::string ParameterSpec::format(const ParameterValue& value) const {
+  if (const auto* d = std::get_if<double>(&value)) return format_number(*d);
+  if (const auto* l = std::get_if<std::vector<double>>(&value)) return join(*l);
+  if (const auto* s = std::get_if<std::string>(&value)) return *s;
+  return std::get<bool>(value) ? "true" : "false";
+}
+
+void ParameterSpec::check(const ParameterValue& value, std::string_view context) const {
+  auto wrong_kind = [&] {
+    throw InvalidArgument(fmt::format("{}{} must be {}", flag(), where(context), kind_name(kind)));
+  };
+  auto in_range = [&](double v, std::string_view shown) {
+    if (!std::isfinite(v) || v < min || v > max)
+      throw InvalidArgument(fmt::format("{} = {} is outside [{}, {}]{}", flag(), shown,
+                                        format_number(min), format_number(max), where(context)));
+  };
+  switch (kind) {
+    case ParameterKind::number:
+    case ParameterKind::integer: {
+      const auto* d = std::get_if<double>(&value);
+      if (!d) wrong_kind();
+      in_range(*d, format_number(*d));
+      if (kind == ParameterKind::integer && std::trunc(*d) != *d)
+        throw InvalidArgument(
+            fmt::format("{} = {} is not an integer{}", flag(), format_number(*d), where(context)));
+      return;
+    }
+    case ParameterKind::numbers: {
+      const auto* l = std::get_if<std::vector<double>>(&value);
+      if (!l) wrong_kind();
+      if (l->size() != count)
+        throw InvalidArgument(
+            fmt::format("{} needs {} values, got {}{}", flag(), count, l->size(), where(context)));
+      for (std::size_t i = 0; i < l->size(); ++i)
+        in_range((*l)[i], fmt::format("{} (value {})", format_number((*l)[i]), i + 1));
+      return;
+    }
+    case ParameterKind::text:
+      if (!std::holds_alternative<std::string>(value)) wrong_kind();
+      return;
+    case ParameterKind::flag:
+      if (!std::holds_alternative<bool>(value)) wrong_kind();
+      return;
+  }
+}
+
+std::string markdown_table(const std::vector<ParameterSpec>& specs) {
+  std::string t = "| flag | unit | range | default | description |\n|---|---|---|---|---|\n";
+  for (const auto& s : specs) {
+    std::string range = s.range_text();
+    if (s.kind == ParameterKind::numbers) range = fmt::format("{} values, each {}", s.count, range);
+    if (s.kind == ParameterKind::integer) range += " (integer)";
+    std::string description = s.description;
+    std::replace(description.begin(), description.end(), '|', '/');
+    t += fmt::format("| `{}` | {} | {} | {} | {} |\n", s.flag(), s.unit, range, s.default_text(),
+                     description);
+  }
+  return t;
+}
+
+ParameterValues& ParameterValues::set(std::string_view name, ParameterValue value) {
+  values_.insert_or_assign(std::string(name), std::move(value));
+  return *this;
+}
+
+const ParameterValue* ParameterValues::find(std::string_view name) const {
+  const auto it = values_.find(name);
+  return it == values_.end() ? nullptr : &it->second;
+}
+
+std::optional<double> ParameterValues::number(std::string_view name) const {
+  const ParameterValue* v = find(name);
+  if (const auto* d = v ? std::get_if<double>(v) : nullptr) return *d;
+  return std::nullopt;
+}
+
+void ParameterValues::erase(std::string_view name) {
+  const auto it = values_.find(name);
+  if (it != values_.end()) values_.erase(it);
+}
+
+namespace detail {
+
+void throw_missing_parameter(const ParameterSpec& spec, std::string_view context) {
+  throw InvalidArgument(
+      fmt::format("{} is required{}: {}", spec.flag(), where(context), spec.description));
+}
+
+void throw_unknown_parameter(std::string_view name, std::string_view context,
+                             const std::vector<std::string>& known) {
+  std::string list;
+  for (const auto& k : known) list += (list.empty() ? "--" : ", --") + k;
+  throw InvalidArgument(fmt::format("--{} is not a parameter{} (parameters: {})", name,
+                                    where(context), list.empty() ? "none" : list));
+}
+
+}  // namespace detail
+}  // namespace skylight

@@ -1,0 +1,278 @@
+// The parameter schema: every parameter of a model (and of commands that take numbers) is
+// declared once, as a ParameterSpec: name, unit, kind, inclusive range, a typed default (or
+// "required", or "absent" with what the model does then) and a description. Constructor
+// validation, command-line flags, `skylight models --json`, file metadata and the parameter
+// tables of docs/MODELS.md all derive from it (docs/ARCHITECTURE.md, "Parameters").
+//
+// ParameterSchema<P> binds the specs to the fields of a typed parameter struct P (one per model,
+// e.g. PreethamParameters): named values from the command line or from code are bound into a P
+// (defaults applied, required ones and ranges checked), a P built in code is validated with the
+// same checks, and a P is turned back into named values for metadata.
+#pragma once
+
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <functional>
+#include <map>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <variant>
+#include <vector>
+
+namespace skylight {
+
+enum class ParameterKind {
+  number,   // a finite double
+  integer,  // a whole number (stored as double in a ParameterValue)
+  numbers,  // a fixed-length list of finite doubles (`count` values, comma-separated as text)
+  text,     // a string (e.g. a file path)
+  flag,     // a boolean switch (present = true)
+};
+
+// A value: number/integer -> double, numbers -> vector<double>, text -> string, flag -> bool.
+using ParameterValue = std::variant<double, std::vector<double>, std::string, bool>;
+
+struct Required {};
+// No default value: the model then does something else, said in `meaning` (e.g. "the
+// Kittler-Darula typical value", "no ground reflection").
+struct Absent {
+  std::string meaning;
+};
+using ParameterDefault = std::variant<Required, Absent, ParameterValue>;
+
+struct ParameterSpec {
+  std::string name;  // flag name without dashes, e.g. "turbidity", "sun-zenith"
+  std::string unit;  // "1" (dimensionless), "deg", "m", "cd/m^2", "W m^-2 nm^-1", "DU", "" (text)
+  ParameterKind kind = ParameterKind::number;
+  double min = 0.0, max = 0.0;  // inclusive range of each number
+  std::size_t count = 1;        // values of a `numbers` parameter
+  ParameterDefault default_value = Required{};
+  std::string description;
+
+  std::string flag() const { return "--" + name; }
+  bool required() const { return std::holds_alternative<Required>(default_value); }
+  // "skylight:" + name with '-' -> '_' + a unit suffix ("_deg", "_m", "_cd_m2", "_W_m2_nm",
+  // "_DU"; none for "1" and ""): e.g. skylight:zenith_luminance_cd_m2.
+  std::string metadata_key() const;
+  // "1 .. 64" for numbers; "" for text and flags.
+  std::string range_text() const;
+  // The default as the user sees it: "3", "-1,-0.32,10,-3,0.45", "required", "none (<meaning>)".
+  std::string default_text() const;
+  // One line for --help: "<description> [<unit>], <range>; default <default>".
+  std::string help() const;
+
+  // Parses the text form (command line, metadata) with the strict number parser. Throws
+  // InvalidArgument "--<name>: ..." for malformed text.
+  ParameterValue parse(std::string_view text) const;
+  // The text form: numbers in shortest round-trip form, lists comma-separated.
+  std::string format(const ParameterValue& value) const;
+  // Throws InvalidArgument naming the parameter, the value and the range (and `context`, e.g.
+  // "model 'hosek'", when not empty) if the value has the wrong kind or is outside the range.
+  void check(const ParameterValue& value, std::string_view context = {}) const;
+};
+
+// The specs as a Markdown table (flag, unit, range, default, description), as docs/MODELS.md shows
+// them (a test keeps the two equal; `skylight models --markdown` prints them).
+std::string markdown_table(const std::vector<ParameterSpec>& specs);
+
+// Named values as a user gives them (command line, JSON, code).
+class ParameterValues {
+ public:
+  ParameterValues& set(std::string_view name, ParameterValue value);
+  // Typed overloads, so that set("n", 3) stores a number and set("fast", true) a flag.
+  ParameterValues& set(std::string_view name, double value) {
+    return set(name, ParameterValue(value));
+  }
+  ParameterValues& set(std::string_view name, int value) {
+    return set(name, ParameterValue(static_cast<double>(value)));
+  }
+  ParameterValues& set(std::string_view name, bool value) {
+    return set(name, ParameterValue(value));
+  }
+  ParameterValues& set(std::string_view name, const char* value) {
+    return set(name, ParameterValue(std::string(value)));
+  }
+  const ParameterValue* find(std::string_view name) const;
+  // A number's value, nullopt if absent (or not a number).
+  std::optional<double> number(std::string_view name) const;
+  bool has(std::string_view name) const { return find(name) != nullptr; }
+  void erase(std::string_view name);
+  bool empty() const { return values_.empty(); }
+  const std::map<std::string, ParameterValue, std::less<>>& all() const { return values_; }
+
+ private:
+  std::map<std::string, ParameterValue, std::less<>> values_;
+};
+
+// Binds specs to the fields of a parameter struct P. Field setters/getters convert between the
+// user's value (the spec's unit) and the field (the library's unit, e.g. deg -> rad).
+template <class P>
+class ParameterSchema {
+ public:
+  struct Entry {
+    ParameterSpec spec;
+    std::function<void(P&, const ParameterValue&)> set;
+    std::function<std::optional<ParameterValue>(const P&)> get;  // nullopt: absent
+  };
+
+  // A field of type double; `scale` converts the user's unit into the field's (field = value x
+  // scale, e.g. kDegree).
+  ParameterSchema& number(double P::*field, ParameterSpec spec, double scale = 1.0) {
+    spec.kind = ParameterKind::number;
+    return add(
+        std::move(spec),
+        [field, scale](P& p, const ParameterValue& v) { p.*field = std::get<double>(v) * scale; },
+        [field, scale](const P& p) -> std::optional<ParameterValue> { return p.*field / scale; });
+  }
+  ParameterSchema& optional_number(std::optional<double> P::*field, ParameterSpec spec) {
+    spec.kind = ParameterKind::number;
+    return add(
+        std::move(spec), [field](P& p, const ParameterValue& v) { p.*field = std::get<double>(v); },
+        [field](const P& p) -> std::optional<ParameterValue> {
+          if (!(p.*field)) return std::nullopt;
+          return *(p.*field);
+        });
+  }
+  ParameterSchema& integer(int P::*field, ParameterSpec spec) {
+    spec.kind = ParameterKind::integer;
+    return add(
+        std::move(spec),
+        [field](P& p, const ParameterValue& v) {
+          p.*field = static_cast<int>(std::get<double>(v));
+        },
+        [field](const P& p) -> std::optional<ParameterValue> {
+          return static_cast<double>(p.*field);
+        });
+  }
+  template <std::size_t N>
+  ParameterSchema& numbers(std::array<double, N> P::*field, ParameterSpec spec) {
+    spec.kind = ParameterKind::numbers;
+    spec.count = N;
+    return add(
+        std::move(spec),
+        [field](P& p, const ParameterValue& v) {
+          const auto& list = std::get<std::vector<double>>(v);
+          for (std::size_t i = 0; i < N; ++i) (p.*field)[i] = list[i];
+        },
+        [field](const P& p) -> std::optional<ParameterValue> {
+          return std::vector<double>((p.*field).begin(), (p.*field).end());
+        });
+  }
+  template <std::size_t N>
+  ParameterSchema& optional_numbers(std::optional<std::array<double, N>> P::*field,
+                                    ParameterSpec spec) {
+    spec.kind = ParameterKind::numbers;
+    spec.count = N;
+    return add(
+        std::move(spec),
+        [field](P& p, const ParameterValue& v) {
+          const auto& list = std::get<std::vector<double>>(v);
+          std::array<double, N> a{};
+          for (std::size_t i = 0; i < N; ++i) a[i] = list[i];
+          p.*field = a;
+        },
+        [field](const P& p) -> std::optional<ParameterValue> {
+          if (!(p.*field)) return std::nullopt;
+          return std::vector<double>((p.*field)->begin(), (p.*field)->end());
+        });
+  }
+  ParameterSchema& text(std::string P::*field, ParameterSpec spec) {
+    spec.kind = ParameterKind::text;
+    return add(
+        std::move(spec),
+        [field](P& p, const ParameterValue& v) { p.*field = std::get<std::string>(v); },
+        [field](const P& p) -> std::optional<ParameterValue> {
+          if ((p.*field).empty()) return std::nullopt;
+          return p.*field;
+        });
+  }
+  ParameterSchema& flag(bool P::*field, ParameterSpec spec) {
+    spec.kind = ParameterKind::flag;
+    spec.default_value = ParameterValue(false);
+    return add(
+        std::move(spec), [field](P& p, const ParameterValue& v) { p.*field = std::get<bool>(v); },
+        [field](const P& p) -> std::optional<ParameterValue> { return p.*field; });
+  }
+  // Any other mapping (e.g. one value into two fields).
+  ParameterSchema& custom(ParameterSpec spec, std::function<void(P&, const ParameterValue&)> set,
+                          std::function<std::optional<ParameterValue>(const P&)> get) {
+    return add(std::move(spec), std::move(set), std::move(get));
+  }
+
+  const std::vector<Entry>& entries() const { return entries_; }
+  std::vector<ParameterSpec> specs() const {
+    std::vector<ParameterSpec> out;
+    for (const auto& e : entries_) out.push_back(e.spec);
+    return out;
+  }
+  const ParameterSpec* find(std::string_view name) const {
+    for (const auto& e : entries_)
+      if (e.spec.name == name) return &e.spec;
+    return nullptr;
+  }
+
+  // Applies `values` over `p` (which holds the defaults): each given value is checked and set, a
+  // required parameter that is missing throws, and so does a name that is not in the schema.
+  // `context` names the model in messages.
+  void bind(const ParameterValues& values, P& p, std::string_view context) const;
+  // Checks every field of `p` against its spec (the same checks as bind; a required field that is
+  // absent, e.g. an empty optional, throws).
+  void validate(const P& p, std::string_view context) const;
+  // The present fields of `p` as named values (for metadata and listings).
+  ParameterValues values_of(const P& p) const;
+
+ private:
+  ParameterSchema& add(ParameterSpec spec, std::function<void(P&, const ParameterValue&)> set,
+                       std::function<std::optional<ParameterValue>(const P&)> get) {
+    entries_.push_back({std::move(spec), std::move(set), std::move(get)});
+    return *this;
+  }
+  std::vector<Entry> entries_;
+};
+
+namespace detail {
+[[noreturn]] void throw_missing_parameter(const ParameterSpec& spec, std::string_view context);
+[[noreturn]] void throw_unknown_parameter(std::string_view name, std::string_view context,
+                                          const std::vector<std::string>& known);
+}  // namespace detail
+
+template <class P>
+void ParameterSchema<P>::bind(const ParameterValues& values, P& p, std::string_view context) const {
+  for (const auto& [name, value] : values.all()) {
+    if (!find(name)) {
+      std::vector<std::string> known;
+      for (const auto& e : entries_) known.push_back(e.spec.name);
+      detail::throw_unknown_parameter(name, context, known);
+    }
+  }
+  for (const auto& e : entries_) {
+    if (const ParameterValue* v = values.find(e.spec.name)) {
+      e.spec.check(*v, context);
+      e.set(p, *v);
+    } else if (e.spec.required()) {
+      detail::throw_missing_parameter(e.spec, context);
+    }
+  }
+}
+
+template <class P>
+void ParameterSchema<P>::validate(const P& p, std::string_view context) const {
+  for (const auto& e : entries_) {
+    if (const auto v = e.get(p))
+      e.spec.check(*v, context);
+    else if (e.spec.required())
+      detail::throw_missing_parameter(e.spec, context);
+  }
+}
+
+template <class P>
+ParameterValues ParameterSchema<P>::values_of(const P& p) const {
+  ParameterValues out;
+  for (const auto& e : entries_)
+    if (const auto v = e.get(p)) out.set(e.spec.name, *v);
+  return out;
+}
+
+}  // namespace skylight

@@ -1,0 +1,158 @@
+// Internal to the report (report/*.cpp): its configuration, helpers and the writer class whose
+// sections live in section_*.cpp. Not installed.
+#pragma once
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include <array>
+#include <cmath>
+#include <limits>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "skylight/analysis/comparison.h"
+#include "skylight/analysis/illumination.h"
+#include "skylight/analysis/scan.h"
+#include "skylight/io/file.h"
+#include "skylight/io/image.h"
+#include "skylight/render/false_colour.h"
+#include "skylight/render/sky_render.h"
+#include "skylight/report/report.h"
+#include "skylight/report/svg_plot.h"
+#include "skylight/version.h"
+
+namespace skylight::report::detail {
+
+namespace fs = std::filesystem;
+// The report arranges the numbers of analysis/ into files (io/) with figures (render/).
+using namespace analysis;
+using namespace io;
+using namespace render;
+using Json = nlohmann::ordered_json;
+
+inline constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+inline constexpr double kInf = std::numeric_limits<double>::infinity();
+
+// Colour of the validity classes (valid, extrapolated, unphysical, undefined).
+inline constexpr std::array<std::string_view, 4> kValidityColours = {"#4caf50", "#ffc107",
+                                                                     "#e53935", "#9e9e9e"};
+inline constexpr std::array<std::uint8_t, 3> kMaskColour = {255, 255,
+                                                            255};  // outside the hemisphere
+inline constexpr std::array<std::uint8_t, 3> kInvalidColour = {40, 40, 40};    // zero / negative
+inline constexpr std::array<std::uint8_t, 3> kNegativeYzColour = {230, 0, 0};  // Yz < 0 in Fig. 1
+// Colour scales (log10 decades) of the maps.
+inline constexpr double kRelativeLog10Min = 0.0, kRelativeLog10Max = 4.0;  // % of zenith luminance
+inline constexpr double kAbsoluteLog10Min = 2.0, kAbsoluteLog10Max = 6.0;  // cd/m^2
+// Model colours in line plots.
+inline constexpr std::string_view kPreethamColour = "#000000";
+inline constexpr std::string_view kCieColour = "#d62728";
+inline constexpr std::string_view kHosekColour = "#1f77b4";
+inline constexpr std::string_view kNishitaColour = "#2ca02c";
+inline constexpr std::string_view kCie16Colour = "#9467bd";
+// Within this distance of an integer, a log10 value is taken as that integer: the float batch
+// path (relative error ~1e-7, i.e. ~4e-8 in log10) must not flip a value that is exactly on a
+// decade (the uniform sky, type 5, at 100 %) between the two hues of the false-colour scale.
+inline constexpr double kDecadeSnap = 1e-6;
+
+// Everything that the quick (test) report reduces.
+struct Config {
+  int yz_width, yz_height;
+  double root_step_deg;
+  int tile_px, tile_gap;
+  std::vector<double> map_sun_zeniths_deg;
+  std::vector<double> map_preetham_t, map_hosek_t;
+  ComparisonSettings comparison;
+  std::vector<double> match_turbidities;
+  double fit_t_min, fit_t_max, fit_t_step;
+  std::vector<double> antisolar_sun_zeniths_deg, antisolar_elevations_deg;
+  double antisolar_headline_sun_zenith_deg, antisolar_headline_elevation_deg;
+  double vertical_step_deg;
+  std::vector<std::array<double, 2>> vertical_cases;  // (T, theta_s deg); T < 0: best T for CIE 12
+  std::vector<double> illum_elevations_deg;
+  IlluminationSettings illum;
+  double scan_t_step;
+  double validity_step_deg;
+  int validity_preetham_rows;
+  double validity_hosek_step;
+  std::vector<double> validity_nishita_deg;
+};
+Config make_config(bool quick);
+
+std::string g3(double v);  // 3 significant digits, "n/a" if not finite
+std::string f2(double v);  // 2 decimals, "n/a" if not finite
+// JSON numbers must be finite: non-finite values become null.
+Json num(double v);
+double finite_or(double v, double fallback);
+// log10, snapped to the nearest integer within kDecadeSnap (see report.cpp).
+double snapped_log10(double v);
+// The y axis of a validity map with a single row (the model has no second parameter).
+svg::Axis one_row_axis();
+std::string validity_name(Validity v);
+
+class ReportWriter {
+ public:
+  ReportWriter(const ReportOptions& o) : opt_(o), cfg_(make_config(o.quick)) {}
+
+  ReportSummary run();
+
+ private:
+  void step(std::string_view what) {
+    ++done_;
+    if (opt_.progress) opt_.progress(done_, kSteps, what);
+  }
+  void write_text(const std::string& name, std::string_view content) {
+    write_text_file(opt_.output_dir / name, content);
+    summary_.files.push_back(name);
+  }
+  void write_png_file(const std::string& name, const Image8& img) {
+    write_png(opt_.output_dir / name, img, {{"skylight:version", kVersion}});
+    summary_.files.push_back(name);
+  }
+  // Writes the SVG file and returns the inline <svg> element for the HTML.
+  std::string figure(const std::string& name, const svg::Canvas& c, const std::string& caption) {
+    write_text(name, c.document());
+    return fmt::format(
+        "<figure>\n{}<figcaption>{} <a href=\"{}\">[SVG]</a></figcaption>\n</figure>\n", c.svg(),
+        caption, name);
+  }
+
+  bool has_model(std::string_view name) const { return find_model(name) != nullptr; }
+
+  void section_zenith();
+  void section_maps();
+  void section_matching();
+  void section_vertical();
+  void section_illumination();
+  void section_measurements();
+  void section_validity();
+  void write_html_and_json();
+
+  // Renders one family of tiles into a relative and an absolute mosaic.
+  // relative_rows (optional): the specs whose L / L(zenith) the relative map shows.
+  void mosaic(const std::string& key, const std::string& title, const std::string& what,
+              const std::string& row_header, const std::vector<ModelSpec>& rows,
+              const std::vector<std::string>& row_labels,
+              const std::vector<ModelSpec>& relative_rows = {});
+
+  static constexpr int kSteps = 12;
+  const ReportOptions& opt_;
+  Config cfg_;
+  int done_ = 0;
+  ReportSummary summary_;
+  Json json_;
+  // HTML fragments by section.
+  std::string html_zenith_, html_rel_, html_abs_, html_match_, html_vertical_, html_illum_,
+      html_scan_, html_validity_, html_notes_;
+  // Numbers for the closing note.
+  double low_branch_max_sun_zenith_ = kNaN, low_branch_t_at_zenith_ = kNaN;
+  double high_branch_t_at_horizon_ = kNaN, high_branch_t_at_zenith_ = kNaN;
+  std::vector<AntisolarRow> antisolar_;
+  std::string scan_best_;
+  std::string pairs_note_;                // Zotti's pairs, our numbers
+  double antisolar_relative_ = kNaN;      // the headline ratio of zenith-normalised values
+  double antisolar_zenith_ratio_ = kNaN;  // Preetham Yz / CIE 12 Lz at the headline theta_s
+};
+
+}  // namespace skylight::report::detail

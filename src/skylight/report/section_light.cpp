@@ -1,0 +1,388 @@
+// The report's illuminance/irradiance, measurement-scan and validity-map sections.
+#include <algorithm>
+#include <numeric>
+
+#include "skylight/core/data.h"
+#include "skylight/core/error.h"
+#include "skylight/core/parallel.h"
+#include "skylight/models/cie_sky.h"
+#include "skylight/models/preetham.h"
+#include "skylight/report/detail/writer.h"
+
+namespace skylight::report::detail {
+
+// ---- illuminance / irradiance -----------------------------------------------------------------
+
+void ReportWriter::section_illumination() {
+  struct Row {
+    ModelSpec spec;
+    std::string colour;
+    bool spectral;
+  };
+  std::vector<Row> models = {{preetham_spec(3.0), std::string(kPreethamColour), true},
+                             {cie_spec(12), std::string(kCieColour), false},
+                             {cie_spec(16), std::string(kCie16Colour), false}};
+  models[2].spec.label = "CIE type 16 (traditional overcast)";
+  if (has_model("hosek")) models.push_back({hosek_spec(3.0), std::string(kHosekColour), true});
+  if (has_model("nishita")) models.push_back({nishita_spec(), std::string(kNishitaColour), true});
+  const auto& el = cfg_.illum_elevations_deg;
+  svg::Plot lx, wm;
+  lx.id = "illum";
+  wm.id = "irrad";
+  lx.title = "Horizontal illuminance against sun elevation";
+  wm.title = fmt::format("Horizontal irradiance {:g}-{:g} nm against sun elevation",
+                         cfg_.illum.nm_min, cfg_.illum.nm_max);
+  double lx_max = 0.0, wm_max = 0.0;
+  std::string table =
+      "<table><tr><th>model</th><th>sun elevation [deg]</th><th>diffuse "
+      "[lx]</th><th>direct [lx]</th><th>global [lx]</th><th>diffuse "
+      "[W/m2]</th><th>direct [W/m2]</th><th>global [W/m2]</th></tr>\n";
+  Json out = Json::array();
+  for (const auto& m : models) {
+    std::vector<double> d, g, dw, gw;
+    bool has_sun = false, spectral = false;
+    for (double e : el) {
+      const auto model = make_model(m.spec, (90.0 - e) * kDegree, kPi);
+      const auto h = horizontal_illumination(*model, cfg_.illum, m.spectral);
+      has_sun = h.has_sun;
+      d.push_back(h.diffuse_lx);
+      g.push_back(h.global_lx());
+      const double dwv = h.diffuse_w_m2.value_or(kNaN);
+      const double gwv = dwv + (h.has_sun ? h.direct_w_m2.value_or(kNaN) : 0.0);
+      spectral = spectral || h.diffuse_w_m2.has_value();
+      dw.push_back(dwv);
+      gw.push_back(gwv);
+      lx_max = std::max(lx_max, h.global_lx());
+      if (std::isfinite(gwv)) wm_max = std::max(wm_max, gwv);
+      table += fmt::format(
+          "<tr><td>{}</td><td>{:g}</td><td>{:.0f}</td><td>{}</td><td>{:.0f}</td>"
+          "<td>{}</td><td>{}</td><td>{}</td></tr>\n",
+          m.spec.label, e, h.diffuse_lx, h.has_sun ? fmt::format("{:.0f}", h.direct_lx) : "no sun",
+          h.global_lx(), g3(dwv), h.has_sun ? g3(h.direct_w_m2.value_or(kNaN)) : "no sun", g3(gwv));
+      out.push_back({{"model", m.spec.label},
+                     {"sun_elevation_deg", e},
+                     {"diffuse_lx", num(h.diffuse_lx)},
+                     {"direct_lx", h.has_sun ? num(h.direct_lx) : Json(nullptr)},
+                     {"global_lx", num(h.global_lx())},
+                     {"diffuse_w_m2", num(dwv)},
+                     {"direct_w_m2", h.has_sun ? num(h.direct_w_m2.value_or(kNaN)) : Json(nullptr)},
+                     {"global_w_m2", num(gwv)}});
+    }
+    lx.series.push_back(svg::line_series(m.spec.label + " diffuse", el, d, m.colour, 1.6));
+    if (has_sun)
+      lx.series.push_back(svg::line_series(m.spec.label + " global", el, g, m.colour, 1.6, "6 3"));
+    if (spectral) {
+      wm.series.push_back(svg::line_series(m.spec.label + " diffuse", el, dw, m.colour, 1.6));
+      if (has_sun)
+        wm.series.push_back(
+            svg::line_series(m.spec.label + " global", el, gw, m.colour, 1.6, "6 3"));
+    }
+  }
+  table += "</table>\n";
+  lx.x = wm.x = {0, 90, false, "sun elevation [deg]", {0, 10, 20, 30, 40, 50, 60, 70, 80, 90}};
+  lx.y = {0, std::max(1.0, lx_max * 1.05), false, "horizontal illuminance [lx]", {}};
+  wm.y = {0, std::max(1.0, wm_max * 1.05), false, "horizontal irradiance [W/m2]", {}};
+  lx.width = wm.width = 900;
+  lx.height = wm.height = 420;
+  lx.legend_outside = wm.legend_outside = true;
+  html_illum_ =
+      fmt::format(
+          "<p>Diffuse: the sky's luminance integrated over the upper hemisphere with weight cos "
+          "theta on a {}x{} midpoint grid (lx). Direct: the solar disc integrated over a {}x{} "
+          "polar grid with weight max(cos theta, 0), for models with a sun (Preetham, "
+          "Hosek-Wilkie); the CIE and Nishita models have no sun here, so their curves are "
+          "diffuse only. Irradiance: spectral radiance integrated over {:g}-{:g} nm (trapezoid, "
+          "{:g} nm steps; the range every spectral model covers) on a {}x{} grid: a partial "
+          "(visible) irradiance, not the broadband solar total. Preetham and Hosek-Wilkie at T "
+          "= 3 (Hosek albedo 0.3), CIE with the Kittler-Darula typical zenith luminance.</p>\n",
+          cfg_.illum.n_theta, cfg_.illum.n_phi, cfg_.illum.sun_rings, cfg_.illum.sun_sectors,
+          cfg_.illum.nm_min, cfg_.illum.nm_max, cfg_.illum.nm_step, cfg_.illum.n_theta_spectral,
+          cfg_.illum.n_phi_spectral) +
+      figure(
+          "illuminance.svg", svg::draw(lx),
+          "Horizontal illuminance: diffuse (solid) and global = diffuse + direct sun (dashed).") +
+      figure("irradiance.svg", svg::draw(wm),
+             fmt::format("Horizontal irradiance {:g}-{:g} nm of the spectral models: diffuse "
+                         "(solid) and global (dashed).",
+                         cfg_.illum.nm_min, cfg_.illum.nm_max)) +
+      table;
+  json_["horizontal_illumination"] = {
+      {"irradiance_wavelength_range_nm", {cfg_.illum.nm_min, cfg_.illum.nm_max}},
+      {"note",
+       "CIE and nishita have no solar disc: diffuse only; irradiance only for spectral "
+       "models"},
+      {"rows", out}};
+}
+
+// ---- measurements ------------------------------------------------------------------------------
+
+void ReportWriter::section_measurements() {
+  SkyScan scan;
+  std::string origin;
+  if (opt_.measurements) {
+    scan = read_sky_scan(*opt_.measurements);
+    origin = fmt::format("the scan <code>{}</code>", svg::escape(opt_.measurements->string()));
+  } else {
+    scan = parse_sky_scan(data::embedded_file(kSyntheticScanDataPath),
+                          std::string("data/") + std::string(kSyntheticScanDataPath));
+    origin = fmt::format(
+        "the shipped <b>synthetic</b> example <code>data/{}</code> (no public measurement set is "
+        "shipped; it is CIE type 7 at the 145 Tregenza patches with ±5 % noise, so CIE 7 "
+        "should win)",
+        kSyntheticScanDataPath);
+  }
+  if (opt_.measurement_sun_azimuth) scan.sun_azimuth = *opt_.measurement_sun_azimuth;
+  if (opt_.measurement_sun_elevation) scan.sun_elevation = *opt_.measurement_sun_elevation;
+  if (!scan.sun_azimuth || !scan.sun_elevation)
+    throw InvalidArgument(fmt::format(
+        "{}: no sun position: add '# sun_azimuth_deg = A' and '# sun_elevation_deg = E' lines or "
+        "pass --sun-azimuth and --sun-elevation",
+        scan.source));
+  const double ts = kPi / 2 - *scan.sun_elevation, az = *scan.sun_azimuth;
+  const double excl = cfg_.comparison.sun_exclusion;
+
+  struct Entry {
+    std::string label, colour;
+    ScanErrors e;
+    std::unique_ptr<SkyModel> model;
+  };
+  std::vector<Entry> entries;
+  auto best_t = [&](const std::string& name, double t0, double t1) {
+    double best = t0, best_rms = kInf;
+    for (double T = t0; T <= t1 + 1e-9; T += cfg_.scan_t_step) {
+      ModelSpec s{name, {}, ""};
+      s.params.values.set("turbidity", T);
+      const auto m = make_model(s, ts, az);
+      const double r = compare_to_scan(*m, scan, excl).rms_log10_relative;
+      if (r < best_rms) {
+        best_rms = r;
+        best = T;
+      }
+    }
+    return best;
+  };
+  for (int t = 1; t <= kCieTypeCount; ++t) {
+    auto m = make_model(cie_spec(t), ts, az);
+    entries.push_back({cie_spec(t).label, std::string(kCieColour), compare_to_scan(*m, scan, excl),
+                       std::move(m)});
+  }
+  {
+    const double T = best_t("preetham", cfg_.fit_t_min, cfg_.fit_t_max);
+    auto m = make_model(preetham_spec(T), ts, az);
+    entries.push_back({fmt::format("Preetham T = {:.2f} (best)", T), std::string(kPreethamColour),
+                       compare_to_scan(*m, scan, excl), std::move(m)});
+  }
+  if (has_model("hosek")) {
+    const double T = best_t("hosek", 1.0, 10.0);
+    auto m = make_model(hosek_spec(T), ts, az);
+    entries.push_back({fmt::format("Hosek-Wilkie T = {:.2f} (best)", T), std::string(kHosekColour),
+                       compare_to_scan(*m, scan, excl), std::move(m)});
+  }
+  if (has_model("nishita")) {
+    auto m = make_model(nishita_spec(), ts, az);
+    entries.push_back({nishita_spec().label, std::string(kNishitaColour),
+                       compare_to_scan(*m, scan, excl), std::move(m)});
+  }
+  // The best CIE type by relative RMS goes into the plot with the other families.
+  std::size_t best_cie = 0;
+  for (std::size_t i = 1; i < static_cast<std::size_t>(kCieTypeCount); ++i)
+    if (entries[i].e.rms_log10_relative < entries[best_cie].e.rms_log10_relative) best_cie = i;
+  std::size_t best_all = 0;
+  for (std::size_t i = 1; i < entries.size(); ++i)
+    if (entries[i].e.rms_log10_relative < entries[best_all].e.rms_log10_relative) best_all = i;
+  scan_best_ = entries[best_all].label;
+
+  svg::Plot p;
+  p.id = "scan";
+  p.title = "Measured against modelled luminance";
+  double lo = kInf, hi = 0.0;
+  for (const auto& s : scan.samples) {
+    lo = std::min(lo, s.luminance);
+    hi = std::max(hi, s.luminance);
+  }
+  std::vector<std::size_t> shown = {best_cie};
+  for (std::size_t i = kCieTypeCount; i < entries.size(); ++i) shown.push_back(i);
+  if (best_cie != 11) shown.insert(shown.begin() + 1, 11);  // CIE 12 for reference
+  for (std::size_t i : shown) {
+    svg::Series s = svg::marker_series(entries[i].label, {}, {}, entries[i].colour, 2.2);
+    if (i == 11 && best_cie != 11) s.colour = "#ff9896";
+    const Vec3 sun = entries[i].model->sun().direction();
+    for (const auto& m : scan.samples) {
+      const Vec3 v = direction_from_angles(kPi / 2 - m.elevation, m.azimuth);
+      if (angle_between(v, sun) < excl) continue;
+      const double L = entries[i].model->tristimulus(v).Y;
+      if (!(L > 0.0)) continue;
+      s.x.push_back(m.luminance);
+      s.y.push_back(L);
+      lo = std::min(lo, L);
+      hi = std::max(hi, L);
+    }
+    p.series.push_back(s);
+  }
+  lo = std::pow(10.0, std::floor(std::log10(lo)));
+  hi = std::pow(10.0, std::ceil(std::log10(hi)));
+  p.series.insert(p.series.begin(),
+                  svg::line_series("1:1", {lo, hi}, {lo, hi}, "#888888", 1.0, "4 3"));
+  p.x = {lo, hi, true, "measured luminance [cd/m2]", {}};
+  p.y = {lo, hi, true, "model luminance [cd/m2]", {}};
+  p.width = 900;
+  p.height = 480;
+  p.legend_outside = true;
+
+  std::string t =
+      "<table><tr><th>model</th><th>samples</th><th>RMS log10, absolute</th><th>bias "
+      "log10, absolute</th><th>RMS log10, zenith-normalised</th><th>bias log10, "
+      "zenith-normalised</th></tr>\n";
+  Json rows = Json::array();
+  for (std::size_t i = 0; i < entries.size(); ++i) {
+    const auto& e = entries[i].e;
+    t += fmt::format(
+        "<tr{}><td>{}</td><td>{}</td><td>{:.3f}</td><td>{:+.3f}</td><td>{:.3f}</td>"
+        "<td>{:+.3f}</td></tr>\n",
+        i == best_all ? " class=\"best\"" : "", entries[i].label, e.samples_used,
+        e.rms_log10_absolute, e.bias_log10_absolute, e.rms_log10_relative, e.bias_log10_relative);
+    rows.push_back({{"model", entries[i].label},
+                    {"samples", e.samples_used},
+                    {"rms_log10_absolute", num(e.rms_log10_absolute)},
+                    {"bias_log10_absolute", num(e.bias_log10_absolute)},
+                    {"rms_log10_zenith_normalised", num(e.rms_log10_relative)},
+                    {"bias_log10_zenith_normalised", num(e.bias_log10_relative)}});
+  }
+  t += "</table>\n";
+  html_scan_ =
+      fmt::format(
+          "<p>Compared with {}: {} samples, sun azimuth {:.4g} deg, elevation {:.4g} deg; "
+          "samples within {:g} deg of the sun are left out. For each sample d = log10(L_model / "
+          "L_measured); RMS = sqrt(mean d^2), bias = mean d (10^bias - 1 is the mean relative "
+          "bias). <i>Absolute</i>: each model's own absolute luminance (CIE: Kittler-Darula "
+          "typical zenith luminance). <i>Zenith-normalised</i>: the model scaled to the "
+          "measurement at the highest sample (the zenith patch of a Tregenza scan). Preetham and "
+          "Hosek-Wilkie: the turbidity with the lowest zenith-normalised RMS on a {:g} grid. "
+          "Best overall (zenith-normalised): <b>{}</b>.</p>\n",
+          origin, scan.samples.size(), rad_to_deg(az), rad_to_deg(*scan.sun_elevation),
+          rad_to_deg(excl), cfg_.scan_t_step, entries[best_all].label) +
+      figure("measurements.svg", svg::draw(p),
+             "Each sample's measured luminance against the models' (best CIE type, CIE 12, and the "
+             "best-turbidity Preetham and Hosek-Wilkie skies, Nishita).") +
+      t;
+  json_["measurements"] = {{"source", scan.source},
+                           {"synthetic", !opt_.measurements.has_value()},
+                           {"samples", scan.samples.size()},
+                           {"sun_azimuth_deg", rad_to_deg(az)},
+                           {"sun_elevation_deg", rad_to_deg(*scan.sun_elevation)},
+                           {"sun_exclusion_deg", rad_to_deg(excl)},
+                           {"best_model_zenith_normalised", entries[best_all].label},
+                           {"models", rows}};
+}
+
+// ---- validity ----------------------------------------------------------------------------------
+
+void ReportWriter::section_validity() {
+  std::vector<double> zen_deg;
+  for (double d = 0.0; d <= 110.0 + 1e-9; d += cfg_.validity_step_deg) zen_deg.push_back(d);
+  auto to_rad = [](const std::vector<double>& d) {
+    std::vector<double> r;
+    for (double v : d) r.push_back(v * kDegree);
+    return r;
+  };
+  // Cells span halfway to the neighbouring samples.
+  auto edges = [](const std::vector<double>& v, double lo, double hi) {
+    std::vector<double> e;
+    e.push_back(lo);
+    for (std::size_t i = 1; i < v.size(); ++i) e.push_back(0.5 * (v[i - 1] + v[i]));
+    e.push_back(hi);
+    return e;
+  };
+  auto draw_map = [&](const std::string& key, const std::string& title, const ModelSpec& spec,
+                      const std::vector<double>& cols_deg, const std::vector<double>& rows,
+                      const std::string& row_parameter, const svg::Axis& yaxis, double row_lo,
+                      double row_hi, const std::string& caption) {
+    const auto grid = validity_grid(spec, to_rad(cols_deg), rows, row_parameter);
+    const auto xe = edges(cols_deg, 0.0, 110.0);
+    const auto ye =
+        rows.empty() ? std::vector<double>{row_lo, row_hi} : edges(rows, row_lo, row_hi);
+    svg::Plot p;
+    p.id = "valid-" + key;
+    p.title = title;
+    p.x = {0,
+           110,
+           false,
+           "sun zenith angle theta_s [deg] (> 90: sun below the horizon)",
+           {0, 10, 20, 30, 40, 50, 60, 70, 80, 90, 100, 110}};
+    p.y = yaxis;
+    p.width = 760;
+    p.height = rows.empty() ? 200 : 340;
+    p.legend_outside = true;
+    std::array<int, 4> hist{};
+    for (const auto& row : grid)
+      for (auto v : row) ++hist[static_cast<int>(v)];
+    Json counts = Json::object();
+    for (int v = 0; v < 4; ++v) {
+      counts[validity_name(static_cast<Validity>(v))] = hist[v];
+      if (hist[v] > 0)
+        p.swatches.push_back(
+            {validity_name(static_cast<Validity>(v)), std::string(kValidityColours[v])});
+    }
+    // One rectangle per run of equal cells in a row.
+    for (std::size_t r = 0; r < grid.size(); ++r) {
+      std::size_t k = 0;
+      while (k < grid[r].size()) {
+        std::size_t e = k;
+        while (e + 1 < grid[r].size() && grid[r][e + 1] == grid[r][k]) ++e;
+        p.regions.push_back({xe[k], xe[e + 1], ye[r], ye[r + 1],
+                             std::string(kValidityColours[static_cast<int>(grid[r][k])])});
+        k = e + 1;
+      }
+    }
+    html_validity_ += figure("validity_" + key + ".svg", svg::draw(p), caption);
+    json_["validity"][key] = counts;
+  };
+
+  {
+    // T on a log grid 1-64 (what `preetham` accepts).
+    std::vector<double> ts;
+    const int n = cfg_.validity_preetham_rows;
+    for (int i = 0; i < n; ++i) ts.push_back(std::pow(64.0, (i + 0.5) / n));
+    draw_map("preetham", "preetham: domain() over (theta_s, T)", preetham_spec(3), zen_deg, ts,
+             "turbidity",
+             {1, 64, true, "turbidity T", {1, 1.5, 2, 3, 5, 7, 10, 15, 20, 30, 50, 64}}, 1.0, 64.0,
+             "Preetham: valid for the fitted T 2-6; extrapolated 1.9-2 and 6-10; unphysical "
+             "outside 1.9-10 (Zotti) and wherever Yz &lt; 0; undefined with the sun below the "
+             "horizon.");
+  }
+  if (has_model("hosek")) {
+    std::vector<double> ts;
+    for (double T = 1.0; T <= 10.0 + 1e-9; T += cfg_.validity_hosek_step) ts.push_back(T);
+    draw_map("hosek", "hosek: domain() over (theta_s, T)", hosek_spec(3), zen_deg, ts, "turbidity",
+             {1, 10, false, "turbidity T", {}}, 1.0 - 0.5 * cfg_.validity_hosek_step,
+             10.0 + 0.5 * cfg_.validity_hosek_step,
+             "Hosek-Wilkie (albedo 0.3): T 1-10 (larger values are rejected by the model).");
+  }
+  {
+    std::vector<double> types;
+    for (int t = 1; t <= kCieTypeCount; ++t) types.push_back(t);
+    draw_map(
+        "cie", "cie: domain() over (theta_s, type)", cie_spec(12), zen_deg, types, "cie-type",
+        {0.5, 16.5, false, "CIE type", {1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 16}},
+        0.5, 16.5,
+        "CIE general sky with the Kittler-Darula typical zenith luminance (recommended for "
+        "sun elevations 10-80 deg).");
+  }
+  if (has_model("nishita"))
+    draw_map("nishita", "nishita: domain() over theta_s (Earth defaults)", nishita_spec(),
+             cfg_.validity_nishita_deg, {}, "", one_row_axis(), 0.0, 1.0,
+             "Nishita single scattering: domain() depends on the sun zenith only; sampled at the "
+             "marked sun zenith angles (each cell spans halfway to its neighbours).");
+  {
+    ModelSpec perez;
+    perez.name = "perez";
+    perez.label = "perez";
+    perez.params.values = find_model("perez")->example;  // the main job's clear-sky coefficients
+    draw_map("perez", "perez: domain() over theta_s (coefficients -1,-0.32,10,-3,0.45)", perez,
+             zen_deg, {}, "", one_row_axis(), 0.0, 1.0,
+             "Perez with the main job's clear-sky coefficients (A..E = -1, -0.32, 10, -3, 0.45); "
+             "its domain depends on the coefficients and the sun zenith only.");
+  }
+}
+
+}  // namespace skylight::report::detail

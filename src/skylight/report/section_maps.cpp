@@ -1,0 +1,259 @@
+// The report's Fig. 1 (Preetham's zenith luminance) and hemisphere mosaics (Figs. 4-7).
+#include <algorithm>
+
+#include "skylight/core/error.h"
+#include "skylight/core/parallel.h"
+#include "skylight/models/cie_sky.h"
+#include "skylight/models/preetham.h"
+#include "skylight/report/detail/writer.h"
+
+namespace skylight::report::detail {
+
+// ---- Fig. 1 ------------------------------------------------------------------------------------
+
+void ReportWriter::section_zenith() {
+  constexpr double kTMin = 1.0, kTMax = 64.0;  // the turbidity range `preetham` accepts
+  std::vector<double> zeniths;
+  for (double d = 0.0; d <= 90.0 + 1e-9; d += cfg_.root_step_deg) zeniths.push_back(d * kDegree);
+  summary_.negative_zenith_boundary = preetham_zenith_roots(zeniths, kTMin, kTMax);
+  const auto& roots = summary_.negative_zenith_boundary;
+
+  // The map: theta_s across, T (log) up; Yz on the absolute false-colour scale, Yz < 0 red.
+  const int W = cfg_.yz_width, H = cfg_.yz_height;
+  Image8 img(W, H);
+  const FalseColourOptions fo{kAbsoluteLog10Min, kAbsoluteLog10Max, "cd/m2", false};
+  for (int y = 0; y < H; ++y) {
+    const double T = std::pow(10.0, std::log10(kTMax) * (1.0 - (y + 0.5) / H));
+    for (int x = 0; x < W; ++x) {
+      const double ts = (x + 0.5) / W * (kPi / 2);
+      const double yz = preetham_zenith_luminance(T, ts);
+      const auto c = yz < 0.0   ? kNegativeYzColour
+                     : yz > 0.0 ? false_colour_of(std::log10(yz), fo)
+                                : kInvalidColour;
+      std::copy(c.begin(), c.end(), img.pixel(x, y));
+    }
+  }
+  write_png_file("fig1_preetham_zenith_luminance.png", img);
+
+  svg::Plot p;
+  p.id = "fig1";
+  p.title = "Preetham zenith luminance Yz(theta_s, T) (Zotti et al. 2007, Fig. 1)";
+  p.x = {0, 90, false, "sun zenith angle theta_s [deg]", {0, 10, 20, 30, 40, 50, 60, 70, 80, 90}};
+  p.y = {kTMin, kTMax, true, "turbidity T", {1, 1.5, 2, 3, 5, 7, 10, 15, 20, 30, 50, 64}};
+  p.background_image = "fig1_preetham_zenith_luminance.png";
+  p.width = 900;
+  p.height = 460;
+  p.has_colour_bar = true;
+  p.colour_bar = {kAbsoluteLog10Min, kAbsoluteLog10Max, "Yz [cd/m2]", ""};
+  p.legend_outside = true;
+  svg::Series lo = svg::marker_series("Yz = 0 (T below: Yz < 0)", {}, {}, "#ffffff", 2.2);
+  lo.marker_stroke = "#000000";
+  svg::Series hi = svg::marker_series("Yz = 0 (T above: Yz < 0)", {}, {}, "#000000", 2.2);
+  for (const auto& r : roots) {
+    auto& s = r.negative_above ? hi : lo;
+    s.x.push_back(rad_to_deg(r.sun_zenith));
+    s.y.push_back(r.turbidity);
+  }
+  p.series = {lo, hi};
+  p.swatches = {{"Yz < 0 (negative)", svg::hex_colour(kNegativeYzColour)}};
+
+  // Branch summaries.
+  for (const auto& r : roots) {
+    if (!r.negative_above) {
+      low_branch_max_sun_zenith_ = std::isnan(low_branch_max_sun_zenith_)
+                                       ? r.sun_zenith
+                                       : std::max(low_branch_max_sun_zenith_, r.sun_zenith);
+      if (r.sun_zenith == 0.0) low_branch_t_at_zenith_ = r.turbidity;
+    } else {
+      if (r.sun_zenith == 0.0) high_branch_t_at_zenith_ = r.turbidity;
+      if (std::abs(r.sun_zenith - kPi / 2) < 1e-9) high_branch_t_at_horizon_ = r.turbidity;
+    }
+  }
+  // The low-T branch ends where Yz(T = 1) = 0: refine that sun zenith by bisection.
+  double end_lo = 0.0, end_hi = kPi / 2;
+  if (preetham_zenith_luminance(1.0, 0.0) < 0.0) {
+    while (end_hi - end_lo > 1e-10) {
+      const double m = 0.5 * (end_lo + end_hi);
+      (preetham_zenith_luminance(1.0, m) < 0.0 ? end_lo : end_hi) = m;
+    }
+    low_branch_max_sun_zenith_ = 0.5 * (end_lo + end_hi);
+  }
+
+  std::string table =
+      "<table><tr><th>theta_s [deg]</th><th>T where Yz = 0</th><th>Yz &lt; 0 for</th></tr>\n";
+  for (const auto& r : roots) {
+    const double d = rad_to_deg(r.sun_zenith);
+    if (std::abs(std::remainder(d, 10.0)) > 1e-6 && std::abs(d - 85.0) > 1e-6) continue;
+    table += fmt::format("<tr><td>{:g}</td><td>{:.4f}</td><td>T {} {:.4f}</td></tr>\n", d,
+                         r.turbidity, r.negative_above ? "&gt;" : "&lt;", r.turbidity);
+  }
+  table += "</table>\n";
+  html_zenith_ =
+      figure("fig1_preetham_zenith_luminance.svg", svg::draw(p),
+             "Preetham's zenith luminance Yz (Preetham 1999 A.2; Zotti eq. 1) over the sun zenith "
+             "angle and the turbidity range the model accepts (1-64, log scale; Zotti shows 1-12). "
+             "Red: Yz &lt; 0. Dots: the boundary Yz = 0 found by bisection (report.json "
+             "<code>preetham_negative_zenith</code>).") +
+      "<p>Boundary points every 10 deg (and 85 deg); all points at " +
+      fmt::format("{:g}", cfg_.root_step_deg) + " deg steps are in report.json.</p>\n" + table;
+
+  Json pts = Json::array();
+  for (const auto& r : roots)
+    pts.push_back({{"sun_zenith_deg", rad_to_deg(r.sun_zenith)},
+                   {"turbidity", r.turbidity},
+                   {"negative_for", r.negative_above ? "turbidity above" : "turbidity below"}});
+  json_["preetham_negative_zenith"] = pts;
+  json_["preetham_negative_zenith_details"] = {
+      {"formula",
+       "Yz = 1000 [(4.0453 T - 4.9710) tan chi - 0.2155 T + 2.4192] cd/m^2, chi = "
+       "(4/9 - T/120)(pi - 2 theta_s) (Preetham 1999 A.2)"},
+      {"turbidity_range", {kTMin, kTMax}},
+      {"sun_zenith_step_deg", cfg_.root_step_deg},
+      {"low_turbidity_branch",
+       {{"description", "Yz < 0 for T below the boundary, high sun"},
+        {"turbidity_at_sun_zenith_0", num(low_branch_t_at_zenith_)},
+        {"ends_at_sun_zenith_deg_for_T_1", num(rad_to_deg(low_branch_max_sun_zenith_))}}},
+      {"high_turbidity_branch",
+       {{"description", "Yz < 0 for T above the boundary"},
+        {"turbidity_at_sun_zenith_0", num(high_branch_t_at_zenith_)},
+        {"turbidity_at_sun_zenith_90", num(high_branch_t_at_horizon_)}}}};
+}
+
+// ---- Figs. 4-7 ---------------------------------------------------------------------------------
+
+void ReportWriter::mosaic(const std::string& key, const std::string& title, const std::string& what,
+                          const std::string& row_header, const std::vector<ModelSpec>& rows,
+                          const std::vector<std::string>& row_labels,
+                          const std::vector<ModelSpec>& relative_rows) {
+  SKYLIGHT_CHECK(relative_rows.empty() || relative_rows.size() == rows.size(),
+                 "one relative spec per row");
+  RenderSettings rs;
+  rs.projection = Projection::fisheye;
+  rs.width = rs.height = cfg_.tile_px;
+  rs.fisheye.lens = FisheyeLens::stereographic;
+  rs.fisheye.fov = kPi;
+  const PixelDirections dirs = pixel_directions(rs);
+  const std::size_t n = dirs.x.size();
+  const int tile = cfg_.tile_px, gap = cfg_.tile_gap;
+  const int cols = static_cast<int>(cfg_.map_sun_zeniths_deg.size());
+  const int nrows = static_cast<int>(rows.size());
+  const int W = cols * (tile + gap) - gap, H = nrows * (tile + gap) - gap;
+  Image8 rel(W, H), abs(W, H);
+  std::fill(rel.data.begin(), rel.data.end(), 255);
+  std::fill(abs.data.begin(), abs.data.end(), 255);
+  const FalseColourOptions fr{kRelativeLog10Min, kRelativeLog10Max, "%", false};
+  const FalseColourOptions fa{kAbsoluteLog10Min, kAbsoluteLog10Max, "cd/m2", false};
+  std::vector<float> X(n), Y(n), Z(n), R(n);
+  for (int r = 0; r < nrows; ++r) {
+    for (int k = 0; k < cols; ++k) {
+      // Sun in the west (azimuth 270 deg): on the right of the upward-looking image (Zotti:
+      // "with increasing theta_s, the sun sinks towards the right horizon").
+      const double ts = cfg_.map_sun_zeniths_deg[k] * kDegree;
+      const auto model = make_model(rows[r], ts, 1.5 * kPi);
+      tristimulus_parallel(*model, {dirs.x, dirs.y, dirs.z}, {X, Y, Z});
+      double yz = model->tristimulus({0, 0, 1}).Y;
+      if (!relative_rows.empty()) {
+        const auto rm = make_model(relative_rows[r], ts, 1.5 * kPi);
+        tristimulus_parallel(*rm, {dirs.x, dirs.y, dirs.z}, {X, R, Z});
+        yz = rm->tristimulus({0, 0, 1}).Y;
+      } else {
+        R = Y;
+      }
+      for (int py = 0; py < tile; ++py) {
+        for (int px = 0; px < tile; ++px) {
+          const std::size_t i = static_cast<std::size_t>(py) * tile + px;
+          const int ox = k * (tile + gap) + px, oy = r * (tile + gap) + py;
+          std::array<std::uint8_t, 3> cr = kMaskColour, ca = kMaskColour;
+          if (dirs.valid[i]) {
+            const double L = Y[i], Lr = R[i];
+            ca = L > 0.0 ? false_colour_of(snapped_log10(L), fa) : kInvalidColour;
+            cr = (Lr > 0.0 && yz > 0.0) ? false_colour_of(snapped_log10(100.0 * Lr / yz), fr)
+                                        : kInvalidColour;
+          }
+          std::copy(cr.begin(), cr.end(), rel.pixel(ox, oy));
+          std::copy(ca.begin(), ca.end(), abs.pixel(ox, oy));
+        }
+      }
+    }
+  }
+  std::vector<std::string> col_labels;
+  for (double d : cfg_.map_sun_zeniths_deg) col_labels.push_back(fmt::format("{:g}", d));
+  const std::string rel_png = "relative_" + key + ".png", abs_png = "absolute_" + key + ".png";
+  write_png_file(rel_png, rel);
+  write_png_file(abs_png, abs);
+  for (int which = 0; which < 2; ++which) {
+    svg::Mosaic m;
+    m.id = (which == 0 ? "rel-" : "abs-") + key;
+    m.title = title + (which == 0 ? ": relative luminance" : ": absolute luminance");
+    m.image = which == 0 ? rel_png : abs_png;
+    m.rows = nrows;
+    m.columns = cols;
+    m.tile_px = tile;
+    m.gap_px = gap;
+    m.scale = cfg_.tile_px < 48 ? 2.0 : 0.75;
+    m.row_header = row_header;
+    m.column_header = "sun zenith angle theta_s [deg]";
+    m.row_labels = row_labels;
+    m.column_labels = col_labels;
+    m.colour_bar = which == 0
+                       ? svg::ColourBar{kRelativeLog10Min, kRelativeLog10Max, "% of zenith", "%"}
+                       : svg::ColourBar{kAbsoluteLog10Min, kAbsoluteLog10Max, "cd/m2", ""};
+    const std::string caption =
+        which == 0 ? fmt::format(
+                         "{}: sky luminance in percent of the zenith luminance, each "
+                         "circle the upper hemisphere in stereographic projection "
+                         "(zenith at the centre, north up, east left, sun in the west, "
+                         "i.e. on the right). Dark grey: zero or negative luminance.",
+                         what)
+                   : fmt::format("{}: absolute sky luminance [cd/m2], same layout.", what);
+    (which == 0 ? html_rel_ : html_abs_) +=
+        figure((which == 0 ? "relative_" : "absolute_") + key + ".svg", svg::draw(m), caption);
+  }
+}
+
+void ReportWriter::section_maps() {
+  {
+    std::vector<ModelSpec> rows;
+    std::vector<std::string> labels;
+    for (int t = 1; t <= kCieTypeCount; ++t) {
+      rows.push_back(cie_spec(t));
+      labels.push_back(t == 16 ? "16 (trad.)" : fmt::format("{}", t));
+    }
+    // The relative map does not depend on the zenith luminance; an explicit one keeps it
+    // defined where the Kittler-Darula value is 0 (overcast types with the sun at the horizon).
+    std::vector<ModelSpec> relative = rows;
+    for (auto& r : relative) r.params.values.set("zenith-luminance", 1e4);
+    mosaic("cie", "CIE general sky, types 1-16",
+           "CIE standard general sky, types 1-15 and 16 = traditional overcast (Zotti Figs. 4, 5); "
+           "absolute: the Kittler-Darula typical zenith luminance (0 for the overcast types 1-6 "
+           "with the sun at the horizon, hence the dark tiles)",
+           "type", rows, labels, relative);
+  }
+  step("CIE luminance maps");
+  {
+    std::vector<ModelSpec> rows;
+    std::vector<std::string> labels;
+    for (double T : cfg_.map_preetham_t) {
+      rows.push_back(preetham_spec(T));
+      labels.push_back(fmt::format("{:.1f}", T));
+    }
+    mosaic("preetham", "Preetham", "Preetham (Zotti Figs. 6, 7, upper halves)", "T", rows, labels);
+  }
+  step("Preetham luminance maps");
+  if (has_model("hosek")) {
+    std::vector<ModelSpec> rows;
+    std::vector<std::string> labels;
+    for (double T : cfg_.map_hosek_t) {
+      rows.push_back(hosek_spec(T));
+      labels.push_back(fmt::format("{:.1f}", T));
+    }
+    mosaic("hosek", "Hosek-Wilkie", "Hosek-Wilkie (ground albedo 0.3)", "T", rows, labels);
+  }
+  if (has_model("nishita"))
+    mosaic("nishita", "Nishita",
+           "Nishita single scattering (Earth defaults, no ground reflection, ASTM G-173 sun)", "",
+           {nishita_spec()}, {"Earth"});
+  step("Hosek-Wilkie and Nishita luminance maps");
+}
+
+}  // namespace skylight::report::detail

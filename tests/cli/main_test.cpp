@@ -1,0 +1,101 @@
+// End-to-end tests of the command line as a whole (exit statuses, global options): real processes,
+// real files.
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "skylight/core/colorimetry.h"
+#include "skylight/core/frame.h"
+#include "skylight/io/image.h"
+#include "support/cli_run.h"
+
+namespace fs = std::filesystem;
+
+namespace skylight {
+namespace {
+
+using Cli = testing_support::CliTest;
+using testing_support::parse_csv_numbers;
+
+TEST_F(Cli, BadInputExitsTwoWithMessage) {
+  struct Case {
+    std::string args, input, must_contain;
+  };
+  const std::string ok_in = "zenith_deg,azimuth_deg\n10,10\n";
+  const Case cases[] = {
+      {"eval --model preetham --turbidity 0.5", ok_in, "--turbidity"},
+      {"eval --model preetham --turbidity nan", ok_in, "nan"},
+      {"eval --model preetham --sun-zenith 200", ok_in, "--sun-zenith"},
+      {"eval --model preetham --sun-zenith 10 --sun-elevation 10", ok_in, "excludes"},
+      {"eval --model nope", ok_in, "unknown model 'nope'"},
+      {"eval --model cie --cie-type 17", ok_in, "--cie-type"},
+      {"eval --model perez --zenith-luminance 10", ok_in, "--perez"},
+      {"eval --model preetham", "zenith,azimuth\n1,2\n", "header"},
+      {"eval --model preetham", "zenith_deg,azimuth_deg\n10,abc\n", "line 2: azimuth_deg 'abc'"},
+      {"eval --model preetham", "zenith_deg,azimuth_deg\n181,0\n", "line 2: zenith_deg = 181"},
+      {"eval --model preetham", "zenith_deg,azimuth_deg\n1,2,3\n", "line 2"},
+      {"eval --model cie --quantity spectral --wavelengths 500", ok_in, "no spectral output"},
+      {"eval --model preetham --quantity spectral", ok_in, "--wavelengths"},
+      {"eval --model cie --include-sun", ok_in, "has no sun"},
+      {"render --model cie --width 0 -o x.exr", "", "--width"},
+      {"render --model cie --width 10 --height 10 -o x.jpg", "", "x.jpg"},
+      {"render --model cie --projection cubemap --width 10 --height 10 -o x.exr", "", "cubemap"},
+      {"render --model cie --projection fisheye --lens orthographic --fov 200 -o x.exr", "", "fov"},
+      {"render --model cie", "", "--output"},
+      {"eval --model nishita --observer-altitude -5", ok_in, "--observer-altitude"},
+      {"eval --model nishita --observer-altitude 2e7", ok_in, "--observer-altitude"},
+      {"eval --model nishita --solar-irradiance 0", ok_in, "--solar-irradiance"},
+      {"eval --model nishita --mie-g 1", ok_in, "--mie-g"},
+      {"eval --model nishita --ground-radius 1e6 --top-radius 9e5", ok_in, "--top-radius"},
+  };
+  for (const auto& c : cases) {
+    const testing_support::CliResult r = run(c.args, c.input);
+    EXPECT_EQ(r.status, 2) << c.args << "\n" << r.err;
+    EXPECT_NE(r.err.find(c.must_contain), std::string::npos) << c.args << "\nstderr: " << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << "one line: " << r.err;
+    EXPECT_TRUE(r.out.empty() || r.out.find("zenith_deg") == std::string::npos)
+        << "no partial output: " << r.out;
+  }
+}
+
+TEST_F(Cli, RuntimeFailuresExitOne) {
+  testing_support::CliResult r =
+      run("eval --model cie --input '" + (dir_ / "missing.csv").string() + "'");
+  EXPECT_EQ(r.status, 1) << r.err;
+  EXPECT_NE(r.err.find("missing.csv"), std::string::npos);
+  r = run("render --model cie --width 8 --height 4 -o '" + (dir_ / "no/such/dir/x.exr").string() +
+          "'");
+  EXPECT_EQ(r.status, 1) << r.err;
+  EXPECT_FALSE(fs::exists(dir_ / "no"));
+}
+
+TEST_F(Cli, FlagsUseTheStrictNumberParser) {
+  const std::string csv = "zenith_deg,azimuth_deg\n0,0\n";
+  for (const char* bad :
+       {"--turbidity 0x3", "--turbidity 3e", "--sun-zenith 1e400", "--turbidity ''",
+        "--perez 1,2,3,4,5, --zenith-luminance 1", "--perez 1,,2,3,4,5 --zenith-luminance 1"}) {
+    const std::string model =
+        std::string(bad).find("perez") != std::string::npos ? "perez" : "preetham";
+    const auto r = run("eval --model " + model + " " + bad, csv);
+    EXPECT_EQ(r.status, 2) << bad << ": " << r.err;
+    EXPECT_EQ(r.err.rfind("skylight: error: ", 0), 0u) << r.err;
+  }
+  // Subnormal values in range are numbers.
+  const auto r = run("eval --model cie --zenith-luminance 1e-9 --sun-azimuth 1e-310", csv);
+  EXPECT_EQ(r.status, 0) << r.err;
+}
+
+TEST_F(Cli, AFlagTheModelDoesNotReadIsAWarning) {
+  const auto r = run("eval --model cie --turbidity 5", "zenith_deg,azimuth_deg\n0,0\n");
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.err.find("skylight: warning: --turbidity is not a parameter of model 'cie'"),
+            std::string::npos)
+      << r.err;
+}
+
+}  // namespace
+}  // namespace skylight

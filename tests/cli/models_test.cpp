@@ -1,0 +1,113 @@
+// End-to-end tests of `skylight models`: real processes, real files.
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "skylight/core/colorimetry.h"
+#include "skylight/core/frame.h"
+#include "skylight/io/image.h"
+#include "support/cli_run.h"
+
+namespace fs = std::filesystem;
+
+namespace skylight {
+namespace {
+
+using Cli = testing_support::CliTest;
+using testing_support::parse_csv_numbers;
+
+TEST_F(Cli, ModelsJsonAndHelp) {
+  testing_support::CliResult r = run("models --json");
+  ASSERT_EQ(r.status, 0);
+  const auto j = nlohmann::json::parse(r.out);
+  std::vector<std::string> names;
+  for (const auto& m : j) names.push_back(m["name"]);
+  EXPECT_EQ(names, (std::vector<std::string>{"perez", "preetham", "cie", "hosek", "nishita"}));
+  for (const auto& m : j) {
+    for (const auto& p : m["parameters"]) {
+      EXPECT_TRUE(p.contains("unit") && p.contains("min") && p.contains("max") &&
+                  p.contains("default"));
+    }
+  }
+  r = run("render --help");
+  EXPECT_EQ(r.status, 0);
+  EXPECT_NE(r.out.find("--turbidity"), std::string::npos);
+  EXPECT_NE(r.out.find("default 3"), std::string::npos);
+  r = run("--version");
+  EXPECT_EQ(r.status, 0);
+  EXPECT_NE(r.out.find("skylight "), std::string::npos);
+  r = run("");
+  EXPECT_EQ(r.status, 2);
+}
+
+TEST_F(Cli, ModelsJsonHasTypedDefaultsFromTheSchema) {
+  const auto r = run("models --json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  bool seen_hosek = false;
+  for (const auto& m : j) {
+    for (const auto& p : m["parameters"]) {
+      ASSERT_TRUE(p.contains("required"));
+      if (p["required"].get<bool>()) {
+        EXPECT_EQ(p["default"], "required");
+      } else if (p["default"].is_null()) {
+        EXPECT_TRUE(p["when_absent"].is_string());
+      } else {
+        EXPECT_TRUE(p["default"].is_number() || p["default"].is_array()) << p.dump();
+      }
+    }
+    if (m["name"] == "hosek") {
+      seen_hosek = true;
+      for (const auto& p : m["parameters"])
+        if (p["name"] == "turbidity") {
+          EXPECT_EQ(p["max"], 10.0);
+          EXPECT_EQ(p["default"], 3.0);
+        }
+    }
+  }
+  EXPECT_TRUE(seen_hosek);
+}
+
+TEST_F(Cli, ModelsMarkdownIsTheDocsTables) {
+  const auto r = run("models --markdown");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("<!-- parameters preetham -->"), std::string::npos);
+  EXPECT_NE(r.out.find("| `--turbidity` | 1 | 1 .. 64 | 3 |"), std::string::npos) << r.out;
+  EXPECT_EQ(run("models --json --markdown").status, 2);
+}
+
+TEST_F(Cli, MetadataRecordsOnlyWhatTheModelReads) {
+  const auto out = dir_ / "p.exr";
+  ASSERT_EQ(
+      run("render --model preetham --turbidity 4 --width 8 --height 4 -o '" + out.string() + "'")
+          .status,
+      0);
+  const auto md = io::read_exr_metadata(out);
+  auto has_key = [&](const std::string& k) {
+    for (const auto& [key, value] : md)
+      if (key == k) return true;
+    return false;
+  };
+  EXPECT_TRUE(has_key("skylight:turbidity"));
+  EXPECT_FALSE(has_key("skylight:cie_type"));
+  EXPECT_FALSE(has_key("skylight:albedo"));
+  const auto n = dir_ / "n.exr";
+  ASSERT_EQ(
+      run("render --model nishita --ozone 300 --width 8 --height 4 -o '" + n.string() + "'").status,
+      0);
+  const auto nmd = io::read_exr_metadata(n);
+  bool ozone = false, top = false;
+  for (const auto& [key, value] : nmd) {
+    if (key == "skylight:ozone_DU") ozone = value == "300";
+    if (key == "skylight:top_radius_m") top = value == "6420000";
+  }
+  EXPECT_TRUE(ozone);
+  EXPECT_TRUE(top);
+}
+
+}  // namespace
+}  // namespace skylight

@@ -1,0 +1,77 @@
+// Test helper: runs the real `skylight` executable (SKYLIGHT_CLI_PATH) in a scratch directory per
+// test, with given standard input, and captures its exit status, stdout and stderr.
+#pragma once
+
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace skylight::testing_support {
+
+struct CliResult {
+  int status = -1;
+  std::string out, err;
+};
+
+class CliTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    dir_ = std::filesystem::temp_directory_path() /
+           ("skylight_cli_" + std::to_string(::getpid()) + "_" + info->test_suite_name() + "_" +
+            info->name());
+    std::filesystem::remove_all(dir_);
+    std::filesystem::create_directories(dir_);
+  }
+  void TearDown() override { std::filesystem::remove_all(dir_); }
+
+  // Runs `skylight ARGS` (a shell word list) with `input` on stdin.
+  CliResult run(const std::string& args, const std::string& input = "") {
+    const auto in = dir_ / "stdin.txt", out = dir_ / "stdout.txt", err = dir_ / "stderr.txt";
+    std::ofstream(in, std::ios::binary) << input;
+    const std::string cmd = std::string("'") + SKYLIGHT_CLI_PATH + "' " + args + " < '" +
+                            in.string() + "' > '" + out.string() + "' 2> '" + err.string() + "'";
+    const int raw = std::system(cmd.c_str());
+    CliResult r;
+    r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+    r.out = slurp(out);
+    r.err = slurp(err);
+    std::filesystem::remove(in);
+    std::filesystem::remove(out);
+    std::filesystem::remove(err);
+    return r;
+  }
+  static std::string slurp(const std::filesystem::path& p) {
+    std::ifstream f(p, std::ios::binary);
+    std::stringstream s;
+    s << f.rdbuf();
+    return s.str();
+  }
+  std::filesystem::path dir_;
+};
+
+// CSV text -> header and rows of numbers.
+inline std::vector<std::vector<double>> parse_csv_numbers(const std::string& text,
+                                                          std::string* header) {
+  std::istringstream in(text);
+  std::string line;
+  std::getline(in, *header);
+  std::vector<std::vector<double>> rows;
+  while (std::getline(in, line)) {
+    std::vector<double> row;
+    std::istringstream ls(line);
+    std::string f;
+    while (std::getline(ls, f, ',')) row.push_back(std::stod(f));
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+}  // namespace skylight::testing_support
