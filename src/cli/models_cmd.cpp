@@ -17,26 +17,11 @@ nlohmann::ordered_json value_json(const ParameterValue& v) {
   return std::get<bool>(v);
 }
 
-const char* kind_name(ParameterKind k) {
-  switch (k) {
-    case ParameterKind::number:
-      return "number";
-    case ParameterKind::integer:
-      return "integer";
-    case ParameterKind::numbers:
-      return "numbers";
-    case ParameterKind::text:
-      return "text";
-    case ParameterKind::flag:
-      return "flag";
-  }
-  return "number";
-}
-
 // A parameter as JSON: the schema entry with a typed default ("required" when the model needs
 // it; null when absent, with `when_absent` saying what the model does then).
 nlohmann::ordered_json spec_json(const ParameterSpec& s) {
-  nlohmann::ordered_json j{{"name", s.name}, {"unit", s.unit}, {"kind", kind_name(s.kind)}};
+  nlohmann::ordered_json j{
+      {"name", s.name}, {"unit", s.unit}, {"kind", std::string(to_string(s.kind))}};
   if (s.kind != ParameterKind::text && s.kind != ParameterKind::flag) {
     j["min"] = s.min;
     j["max"] = s.max;

@@ -32,23 +32,23 @@ std::string where(std::string_view context) {
   return context.empty() ? std::string() : fmt::format(" ({})", context);
 }
 
-const char* kind_name(ParameterKind k) {
-  switch (k) {
+}  // namespace
+
+std::string_view to_string(ParameterKind kind) {
+  switch (kind) {
     case ParameterKind::number:
-      return "a number";
+      return "number";
     case ParameterKind::integer:
-      return "an integer";
+      return "integer";
     case ParameterKind::numbers:
-      return "a list of numbers";
+      return "numbers";
     case ParameterKind::text:
       return "text";
     case ParameterKind::flag:
-      return "a flag";
+      return "flag";
   }
-  return "?";
+  return "number";
 }
-
-}  // namespace
 
 std::string ParameterSpec::metadata_key() const {
   std::string key = "skylight:" + name;
@@ -113,7 +113,8 @@ std::string ParameterSpec::format(const ParameterValue& value) const {
 
 void ParameterSpec::check(const ParameterValue& value, std::string_view context) const {
   auto wrong_kind = [&] {
-    throw InvalidArgument(fmt::format("{}{} must be {}", flag(), where(context), kind_name(kind)));
+    throw InvalidArgument(
+        fmt::format("{}{} must be of kind '{}'", flag(), where(context), to_string(kind)));
   };
   auto in_range = [&](double v, std::string_view shown) {
     if (!std::isfinite(v) || v < min || v > max)

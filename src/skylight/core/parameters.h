@@ -31,6 +31,9 @@ enum class ParameterKind {
   flag,     // a boolean switch (present = true)
 };
 
+// "number", "integer", "numbers", "text", "flag".
+std::string_view to_string(ParameterKind kind);
+
 // A value: number/integer -> double, numbers -> vector<double>, text -> string, flag -> bool.
 using ParameterValue = std::variant<double, std::vector<double>, std::string, bool>;
 
@@ -144,20 +147,6 @@ class ParameterSchema {
         },
         [field](const P& p) -> std::optional<ParameterValue> {
           return static_cast<double>(p.*field);
-        });
-  }
-  template <std::size_t N>
-  ParameterSchema& numbers(std::array<double, N> P::*field, ParameterSpec spec) {
-    spec.kind = ParameterKind::numbers;
-    spec.count = N;
-    return add(
-        std::move(spec),
-        [field](P& p, const ParameterValue& v) {
-          const auto& list = std::get<std::vector<double>>(v);
-          for (std::size_t i = 0; i < N; ++i) (p.*field)[i] = list[i];
-        },
-        [field](const P& p) -> std::optional<ParameterValue> {
-          return std::vector<double>((p.*field).begin(), (p.*field).end());
         });
   }
   template <std::size_t N>
