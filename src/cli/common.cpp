@@ -16,13 +16,24 @@ namespace skylight::cli {
 
 // ---- flags from the schema ----------------------------------------------------------------------
 
+namespace {
+
+// CLI11 puts "--flag: " before a validator's message: drop the flag from ours.
+std::string without_flag(const std::string& message, const std::string& flag) {
+  for (const std::string& prefix : {flag + ": ", flag + " "})
+    if (message.rfind(prefix, 0) == 0) return message.substr(prefix.size());
+  return message;
+}
+
+}  // namespace
+
 CLI::Validator number_in(const ParameterSpec& spec) {
   return CLI::Validator(
       [spec](std::string& text) -> std::string {
         try {
           spec.check(spec.parse(text));
         } catch (const InvalidArgument& e) {
-          return e.what();
+          return without_flag(e.what(), spec.flag());
         }
         return {};
       },
@@ -86,7 +97,7 @@ CLI::Option* add_numbers(CLI::App& app, const ParameterSpec& spec, std::vector<d
             one.check(v);
           }
         } catch (const InvalidArgument& e) {
-          return e.what();
+          return without_flag(e.what(), s.flag());
         }
         return {};
       },
@@ -201,9 +212,10 @@ void warn(std::string_view message) {
   std::cerr << "skylight: warning: " << message << "\n";
 }
 
-void warn_domain(const SkyModel& model) {
+void warn_domain(const SkyModel& model, bool spectral) {
   for (const auto& issue : model.domain().issues)
-    warn(fmt::format("{} ({}): {}", model.name(), to_string(issue.validity), issue.message));
+    if (spectral || !issue.spectral_only)
+      warn(fmt::format("{} ({}): {}", model.name(), to_string(issue.validity), issue.message));
 }
 
 io::Metadata model_metadata(const SkyModel& model, std::string_view sun_mode) {

@@ -84,8 +84,9 @@ class ModelOptions {
 std::vector<std::pair<std::string, std::vector<std::pair<std::string, ParameterSpec>>>>
 model_parameter_names();
 
-// "skylight: warning: MODEL (VALIDITY): message" for each issue of model.domain().
-void warn_domain(const SkyModel& model);
+// "skylight: warning: MODEL (VALIDITY): message" for each issue of model.domain() (issues of the
+// spectral output only when `spectral`).
+void warn_domain(const SkyModel& model, bool spectral = false);
 // One warning line on stderr.
 void warn(std::string_view message);
 

@@ -2,6 +2,8 @@
 // as CSV on standard output (rgb, xyz, luminance or spectral radiance).
 #include <fmt/format.h>
 
+#include <cmath>
+
 #include "common.h"
 #include "skylight/core/error.h"
 #include "skylight/core/numbers.h"
@@ -42,7 +44,7 @@ int run_eval(const EvalFlags& f) {
   if (!spectral && !f.wavelengths.empty())
     throw InvalidArgument("--wavelengths is only used with --quantity spectral");
   const auto model = f.model.make();
-  warn_domain(*model);
+  warn_domain(*model, spectral);
   if (spectral && !f.model.info().spectral)
     throw InvalidArgument(
         fmt::format("--quantity spectral: model '{}' has no spectral output", model->name()));
@@ -78,6 +80,14 @@ int run_eval(const EvalFlags& f) {
                                    1,
                                    Required{},
                                    "view azimuth from north towards east"};
+  // No output may hold NaN or Inf: a value that overflows is an error naming the row.
+  auto value = [&](std::size_t line_no, double v) {
+    if (!std::isfinite(v))
+      throw InvalidArgument(fmt::format(
+          "{} line {}: model '{}' gives a non-finite value (overflow) in this direction", source,
+          line_no, model->name()));
+    return v;
+  };
   auto field = [&](std::size_t line_no, std::string_view s, const ParameterSpec& spec) {
     const auto v = parse_number(s);
     if (!v)
@@ -117,7 +127,7 @@ int run_eval(const EvalFlags& f) {
                             model->name()));
           L += *s;
         }
-        out += fmt::format(",{}", L);
+        out += fmt::format(",{}", value(line_no, L));
       }
     } else {
       Xyz c;
@@ -127,12 +137,14 @@ int run_eval(const EvalFlags& f) {
         c = {c.X + s.X, c.Y + s.Y, c.Z + s.Z};
       }
       if (f.quantity == "xyz") {
-        out += fmt::format(",{},{},{}", c.X, c.Y, c.Z);
+        out +=
+            fmt::format(",{},{},{}", value(line_no, c.X), value(line_no, c.Y), value(line_no, c.Z));
       } else if (f.quantity == "luminance") {
-        out += fmt::format(",{}", c.Y);
+        out += fmt::format(",{}", value(line_no, c.Y));
       } else {
         const Rgb rgb = (sky && !sun) ? model->rgb(v) : xyz_to_linear_srgb(c);
-        out += fmt::format(",{},{},{}", rgb.r, rgb.g, rgb.b);
+        out += fmt::format(",{},{},{}", value(line_no, rgb.r), value(line_no, rgb.g),
+                           value(line_no, rgb.b));
       }
     }
     out += "\n";

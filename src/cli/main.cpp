@@ -6,11 +6,13 @@
 #include <algorithm>
 #include <cstdlib>
 #include <iostream>
+#include <new>
 
 #include "common.h"
 #include "skylight/core/error.h"
 #include "skylight/core/numbers.h"
 #include "skylight/core/parallel.h"
+#include "skylight/io/file.h"
 #include "skylight/version.h"
 
 namespace cli = skylight::cli;
@@ -56,8 +58,17 @@ int main(int argc, char** argv) {
           fmt::format("SKYLIGHT_THREADS = '{}' is not an integer in [1, {}]",
                       skylight::excerpt(env), skylight::kMaxThreads));
     if (threads > 0) skylight::set_thread_count(threads);
-    for (const auto& c : commands)
-      if (c.app->parsed()) return c.run();
+    for (const auto& c : commands) {
+      if (!c.app->parsed()) continue;
+      // A command's files are all-or-nothing: written to temporaries, renamed when it succeeds.
+      skylight::io::OutputTransaction outputs;
+      const int status = c.run();
+      if (status == cli::kExitOk) outputs.commit();
+      return status;
+    }
+  } catch (const std::bad_alloc&) {
+    std::cerr << "skylight: error: out of memory\n";
+    return cli::kExitRuntime;
   } catch (const skylight::InvalidArgument& e) {
     std::cerr << "skylight: error: " << e.what() << "\n";
     return cli::kExitUsage;

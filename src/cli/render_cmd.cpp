@@ -2,6 +2,9 @@
 // optional tone-mapped preview and log-luminance false-colour map.
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <cmath>
+
 #include "common.h"
 #include "skylight/core/error.h"
 #include "skylight/io/image.h"
@@ -54,6 +57,14 @@ int run_render(const RenderFlags& f) {
   const auto model = f.model.make();
   warn_domain(*model);
   const render::SkyImage img = render::render_sky(*model, s);
+  // No output may hold NaN or Inf: a model that overflows is an error, and nothing is written.
+  const auto bad = std::count_if(img.rgb.data.begin(), img.rgb.data.end(),
+                                 [](float v) { return !std::isfinite(v); });
+  if (bad > 0)
+    throw InvalidArgument(fmt::format(
+        "model '{}' gives {} non-finite pixel values (overflow) with these parameters; nothing "
+        "was written",
+        model->name(), bad));
 
   auto md = model_metadata(*model, s.sun == render::SunMode::sun_only      ? "sun-only"
                                    : s.sun == render::SunMode::sky_and_sun ? "sky+sun"

@@ -12,6 +12,7 @@
 #include "skylight/core/data.h"
 #include "skylight/core/error.h"
 #include "skylight/core/numbers.h"
+#include "skylight/io/file.h"
 
 namespace skylight::analysis {
 namespace {
@@ -110,13 +111,7 @@ SkyScan parse_sky_scan(std::string_view text, std::string source) {
 }
 
 SkyScan read_sky_scan(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in)
-    throw IoError(fmt::format("cannot read '{}': no such file or not readable", path.string()));
-  std::ostringstream s;
-  s << in.rdbuf();
-  if (in.bad()) throw IoError(fmt::format("cannot read '{}': read error", path.string()));
-  return parse_sky_scan(s.str(), path.string());
+  return parse_sky_scan(io::read_text_file(path), path.string());
 }
 
 std::string format_sky_scan(const SkyScan& scan, const std::vector<std::string>& comments) {

@@ -68,9 +68,8 @@ std::string read_text_file(const fs::path& path) {
 AtomicFile::AtomicFile(fs::path target) : target_(std::move(target)) {
   static std::atomic<unsigned> counter{0};
   for (int attempt = 0;; ++attempt) {
-    temp_ = target_.parent_path() / fmt::format("{}.tmp-{}-{}{}", target_.stem().string(),
-                                                static_cast<long>(::getpid()), counter++,
-                                                target_.extension().string());
+    temp_ = target_.parent_path() /
+            fmt::format(".skylight-{}-{}.tmp", static_cast<long>(::getpid()), counter++);
     file_ = std::fopen(temp_.c_str(), "wbx");  // x: exclusive, never clobbers another writer
     if (file_ != nullptr) break;
     const int err = errno;
@@ -107,9 +106,59 @@ void AtomicFile::commit() {
   if (std::fflush(file_) != 0 || ::fsync(::fileno(file_)) != 0) fail(errno);
   std::FILE* f = std::exchange(file_, nullptr);
   if (std::fclose(f) != 0) fail(errno);
+  if (OutputTransaction* tx = OutputTransaction::current()) {
+    tx->adopt(temp_, target_);  // renamed (or removed) with the other outputs
+    committed_ = true;
+    return;
+  }
   std::error_code ec;
   fs::rename(temp_, target_, ec);
   if (ec) throw_write_error(target_, ec.message());
+  committed_ = true;
+}
+
+// ---- OutputTransaction --------------------------------------------------------------------------
+
+namespace {
+thread_local OutputTransaction* t_transaction = nullptr;
+}
+
+OutputTransaction::OutputTransaction() {
+  SKYLIGHT_CHECK(t_transaction == nullptr, "output transactions do not nest");
+  t_transaction = this;
+}
+
+OutputTransaction::~OutputTransaction() {
+  t_transaction = nullptr;
+  if (committed_) return;
+  for (const auto& [temp, target] : files_) {
+    std::error_code ignored;
+    fs::remove(temp, ignored);
+  }
+}
+
+OutputTransaction* OutputTransaction::current() {
+  return t_transaction;
+}
+
+void OutputTransaction::adopt(fs::path temp, fs::path target) {
+  files_.emplace_back(std::move(temp), std::move(target));
+}
+
+void OutputTransaction::commit() {
+  t_transaction = nullptr;
+  for (std::size_t i = 0; i < files_.size(); ++i) {
+    std::error_code ec;
+    fs::rename(files_[i].first, files_[i].second, ec);
+    if (ec) {
+      for (std::size_t j = i; j < files_.size(); ++j) {
+        std::error_code ignored;
+        fs::remove(files_[j].first, ignored);
+      }
+      committed_ = true;
+      throw_write_error(files_[i].second, ec.message());
+    }
+  }
   committed_ = true;
 }
 

@@ -35,10 +35,12 @@ FilePtr open_for_read(const std::filesystem::path& path);
 std::vector<char> read_file(const std::filesystem::path& path);
 std::string read_text_file(const std::filesystem::path& path);
 
-// A temporary file next to the target, `<stem>.tmp-<pid>-<counter><ext>` (the real extension
-// last), renamed onto the target by commit(). Destroyed uncommitted, it removes the temporary, so
-// the target is either untouched or complete. Every write is checked; commit() flushes and fsyncs
-// before the rename. Errors are IoErrors naming the target.
+// A temporary file next to the target, `.skylight-<pid>-<counter>.tmp` (short, so that any legal
+// target name works), renamed onto the target by commit(). Destroyed uncommitted, it removes the
+// temporary, so the target is either untouched or complete. Every write is checked; commit()
+// flushes and fsyncs before the rename. Errors are IoErrors naming the target. While an
+// OutputTransaction is open on the thread, commit() completes the file but leaves the rename to
+// the transaction.
 class AtomicFile {
  public:
   explicit AtomicFile(std::filesystem::path target);
@@ -66,6 +68,29 @@ class AtomicFile {
   bool committed_ = false;
   bool failed_ = false;
   int failed_errno_ = 0;
+};
+
+// All-or-nothing outputs of one command: while a transaction is open on a thread, every
+// AtomicFile committed on that thread is written completely to its temporary, and only commit()
+// renames them all onto their targets. Destroyed without commit() (an error on the way), it
+// removes every temporary: no target is touched. Transactions do not nest.
+class OutputTransaction {
+ public:
+  OutputTransaction();
+  OutputTransaction(const OutputTransaction&) = delete;
+  OutputTransaction& operator=(const OutputTransaction&) = delete;
+  ~OutputTransaction();
+  // Renames every completed temporary onto its target (throws IoError naming the first that fails;
+  // the ones after it are removed).
+  void commit();
+  // Called by AtomicFile::commit(): takes over a completed temporary.
+  void adopt(std::filesystem::path temp, std::filesystem::path target);
+  // The transaction open on this thread, or nullptr.
+  static OutputTransaction* current();
+
+ private:
+  std::vector<std::pair<std::filesystem::path, std::filesystem::path>> files_;  // temp, target
+  bool committed_ = false;
 };
 
 // Writes bytes (e.g. HTML, SVG, JSON, CSV text) to a file atomically.

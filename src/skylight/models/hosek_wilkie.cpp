@@ -624,7 +624,7 @@ void HosekWilkieModel::tristimulus_batch(const DirectionsSoA& dirs, const XyzSoA
 }
 
 bool HosekWilkieModel::disc_cosine(Vec3 view, double& mu) const {
-  if (!sun_up_) return false;
+  if (!sun_up_ || view.z < 0.0) return false;  // below the horizon the ground hides the disc
   const double gamma = angle_between(view, sun_);
   if (gamma > kHwSolarRadius) return false;
   mu = sample_cosine(gamma);
@@ -646,9 +646,9 @@ Xyz HosekWilkieModel::sun_tristimulus(Vec3 view) const {
 
 std::optional<double> HosekWilkieModel::sun_spectral_radiance(Vec3 view, double nm) const {
   if (!(nm >= kHwFirstBandNm && nm <= kHwLastBandNm)) return std::nullopt;
-  if (!sun_up_) return 0.0;
+  double mu = 0.0;
+  if (!disc_cosine(view, mu)) return 0.0;
   const double gamma = angle_between(view, sun_);
-  if (gamma > kHwSolarRadius) return 0.0;
   return hw_solar_direct_radiance({params_.turbidity, sun().elevation(), gamma}, nm);
 }
 

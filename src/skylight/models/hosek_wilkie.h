@@ -206,7 +206,8 @@ class HosekWilkieModel final : public SkyModel {
  private:
   // cos theta, gamma, cos gamma of a view; false below the horizon or with the sun down.
   bool view_angles(Vec3 view, double& cos_theta, double& gamma, double& cos_gamma) const;
-  // mu = sampleCosine inside the disc, or false outside it / sun down.
+  // mu = sampleCosine inside the disc, or false outside it, below the horizon or with the sun
+  // down.
   bool disc_cosine(Vec3 view, double& mu) const;
 
   HosekParameters params_;

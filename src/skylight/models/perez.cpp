@@ -2,6 +2,9 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <cmath>
+
 #include "skylight/core/error.h"
 
 namespace skylight {
@@ -34,6 +37,25 @@ PerezModel::PerezModel(const PerezParameters& p) : SkyModel(p.sun), params_(p) {
         "relative distribution cannot be normalised",
         k[0], k[1], k[2], k[3], k[4], f0, rad_to_deg(p.sun.zenith)));
   }
+  // Bounds of |F|'s two factors over the sky (with the kernel's clamps): the float batch path
+  // multiplies them, so each must stay far inside the float range, and so must Lz F / F(0, ts).
+  const double grad_bound =
+      1.0 + std::abs(c.A) * std::exp(std::clamp(std::max(c.B, c.B / kPerezMinCosTheta),
+                                                -kPerezMaxExponent, kPerezMaxExponent));
+  const double ind_bound =
+      1.0 +
+      std::abs(c.C) *
+          std::max(1.0, std::exp(std::clamp(c.D * kPi, -kPerezMaxExponent, kPerezMaxExponent))) +
+      std::abs(c.E);
+  const double max_luminance = sun_up_ ? *p.zenith_luminance / f0 * grad_bound * ind_bound : 0.0;
+  if (grad_bound > kPerezMaxFactor || ind_bound > kPerezMaxFactor ||
+      !(max_luminance <= kPerezMaxLuminance))
+    throw InvalidArgument(fmt::format(
+        "--perez {},{},{},{},{} with --zenith-luminance {} overflows: F's factors reach {:.3g} "
+        "(gradation) and {:.3g} (indicatrix), the luminance up to {:.3g} cd/m^2 (limits {:g} and "
+        "{:g})",
+        k[0], k[1], k[2], k[3], k[4], *p.zenith_luminance, grad_bound, ind_bound, max_luminance,
+        kPerezMaxFactor, kPerezMaxLuminance));
   distribution_.mode = PerezDistribution::Mode::luminance;
   distribution_.coefficients[0] = c;
   distribution_.sun = p.sun.direction();

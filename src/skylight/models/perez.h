@@ -15,6 +15,11 @@ namespace skylight {
 // Range accepted for each coefficient: wide enough for every published set (Perez 1993 and
 // Preetham's fits stay within |value| < 10), narrow enough that F stays finite.
 inline constexpr double kPerezCoefficientLimit = 50.0;
+// Coefficient sets whose F factors exceed kPerezMaxFactor anywhere on the sky, or whose luminance
+// exceeds kPerezMaxLuminance [cd/m^2], are refused: the float batch path multiplies the two factors
+// (1e18^2 = 1e36 < FLT_MAX = 3.4e38) and outputs must stay finite.
+inline constexpr double kPerezMaxFactor = 1e18;
+inline constexpr double kPerezMaxLuminance = 1e30;
 
 // Parameters of the `perez` model (both required).
 struct PerezParameters {

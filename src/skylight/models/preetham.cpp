@@ -227,18 +227,47 @@ std::optional<double> PreethamModel::spectral_radiance(Vec3 view, double nm) con
   const auto& I = daylight_basis_ybar_integrals();
   const double norm = I[0] + s.m1() * I[1] + s.m2() * I[2];
   if (!(std::abs(norm) > 0.0)) return 0.0;
-  return c.Y / (kMaxLuminousEfficacy * norm) * s(nm);
+  // Far from the daylight locus (low sun, high or low T) S0 + M1 S1 + M2 S2 goes negative at
+  // short wavelengths: returned as 0 and reported by domain() (`spectral_radiance`).
+  return std::max(c.Y / (kMaxLuminousEfficacy * norm) * s(nm), 0.0);
+}
+
+PreethamModel::NegativeSpectrum PreethamModel::most_negative_spectrum() const {
+  NegativeSpectrum worst;
+  if (!sun_up_) return worst;
+  // Probe grid: every 5 deg in zenith (0-90) and 10 deg in azimuth, every 10 nm of 300-830 nm.
+  const auto& I = daylight_basis_ybar_integrals();
+  for (int it = 0; it <= 18; ++it) {
+    for (int ip = 0; ip < 36; ++ip) {
+      const Vec3 v = direction_from_angles(it * 5.0 * kDegree, ip * 10.0 * kDegree);
+      const Xyz c = tristimulus(v);
+      if (!(c.Y > 0.0)) continue;
+      const DaylightSpectrum s(chromaticity(c));
+      const double norm = I[0] + s.m1() * I[1] + s.m2() * I[2];
+      if (!(std::abs(norm) > 0.0)) continue;
+      for (double nm = 300.0; nm <= 830.0; nm += 10.0) {
+        const double L = c.Y / (kMaxLuminousEfficacy * norm) * s(nm);
+        if (L < worst.radiance) worst = {L, nm, v};
+      }
+    }
+  }
+  return worst;
+}
+
+// The part of the disc below the horizon is hidden by the ground: 0 there (view.z < 0).
+bool PreethamModel::in_disc(Vec3 view) const {
+  return sun_up_ && view.z >= 0.0 &&
+         angle_between(view, sun().direction()) <= kPreethamSunAngularRadius;
 }
 
 Xyz PreethamModel::sun_tristimulus(Vec3 view) const {
-  if (!sun_up_ || angle_between(view, sun().direction()) > kPreethamSunAngularRadius) return {};
-  return sun_xyz_;
+  return in_disc(view) ? sun_xyz_ : Xyz{};
 }
 
 std::optional<double> PreethamModel::sun_spectral_radiance(Vec3 view, double nm) const {
   const auto e = extraterrestrial_sun_radiance(nm);
   if (!e) return std::nullopt;
-  if (!sun_up_ || angle_between(view, sun().direction()) > kPreethamSunAngularRadius) return 0.0;
+  if (!in_disc(view)) return 0.0;
   return *e * preetham_solar_transmittance(sun().zenith, params_.turbidity, nm).total();
 }
 
@@ -263,6 +292,15 @@ Domain PreethamModel::domain() const {
     d.issues.push_back({"turbidity", Validity::extrapolated,
                         fmt::format("T = {} is outside the fitted range [{}, {}]", T,
                                     kPreethamFittedTurbidityMin, kPreethamFittedTurbidityMax)});
+  }
+  if (const NegativeSpectrum n = most_negative_spectrum(); n.radiance < 0.0) {
+    d.issues.push_back(
+        {"spectral_radiance", Validity::unphysical,
+         fmt::format("the CIE daylight basis at the sky's chromaticity gives negative spectral "
+                     "radiance (down to {:.3g} W m^-2 sr^-1 nm^-1 at {:g} nm, view zenith {:.0f} "
+                     "deg); returned as 0",
+                     n.radiance, n.nm, rad_to_deg(std::acos(clamp_cosine(n.view.z)))),
+         /*spectral_only=*/true});
   }
   if (zenith_luminance_ < 0.0) {
     d.issues.push_back({"zenith_luminance", Validity::unphysical,

@@ -80,7 +80,8 @@ struct PreethamParameters {
 //    gives negative luminance (Yz < 0, Zotti Fig. 1), 0 is returned and domain() says
 //    `unphysical`. Sun below the horizon: the model is undefined; 0 everywhere.
 //  * spectral_radiance(): Y / (K_m integral S y-bar) * S(lambda), S = CIE daylight spectrum at the
-//    sky chromaticity, 300-830 nm.
+//    sky chromaticity, 300-830 nm. Where S is negative (short wavelengths, chromaticities far from
+//    the daylight locus: low sun) 0 is returned and domain() says `unphysical`.
 //  * sun: the extraterrestrial spectrum times SolarTransmittance over a uniform disc of radius
 //    kPreethamSunAngularRadius, 380-750 nm (XYZ integrated over that range).
 class PreethamModel final : public SkyModel {
@@ -102,6 +103,15 @@ class PreethamModel final : public SkyModel {
   Chromaticity zenith_chromaticity() const { return zenith_xy_; }
 
  private:
+  bool in_disc(Vec3 view) const;  // inside the solar disc and above the horizon
+  // The most negative spectral radiance the daylight basis gives on a probe grid of directions and
+  // wavelengths (0 radiance when none is negative).
+  struct NegativeSpectrum {
+    double radiance = 0.0, nm = 0.0;
+    Vec3 view{0, 0, 1};
+  };
+  NegativeSpectrum most_negative_spectrum() const;
+
   PreethamParameters params_;
   bool sun_up_ = true;
   double zenith_luminance_ = 0.0;

@@ -26,6 +26,13 @@ std::string_view to_string(Validity v) {
 
 Validity Domain::worst() const {
   Validity w = Validity::valid;
+  for (const auto& i : issues)
+    if (!i.spectral_only) w = std::max(w, i.validity);
+  return w;
+}
+
+Validity Domain::worst_spectral() const {
+  Validity w = Validity::valid;
   for (const auto& i : issues) w = std::max(w, i.validity);
   return w;
 }

@@ -63,12 +63,16 @@ std::string_view to_string(Validity v);
 struct DomainIssue {
   std::string parameter;  // e.g. "turbidity", "sun_zenith"
   Validity validity = Validity::valid;
-  std::string message;  // one sentence: what and why
+  std::string message;         // one sentence: what and why
+  bool spectral_only = false;  // concerns spectral_radiance() only, not XYZ/RGB
 };
 
 struct Domain {
   std::vector<DomainIssue> issues;
+  // The worst validity of the XYZ/RGB outputs (issues that concern spectral output only are left
+  // out); worst_spectral() includes them.
   Validity worst() const;
+  Validity worst_spectral() const;
   bool valid() const { return worst() == Validity::valid; }
 };
 

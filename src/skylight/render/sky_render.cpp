@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "skylight/core/error.h"
+#include "skylight/core/system.h"
 #include "skylight/core/parallel.h"
 
 namespace skylight::render {
@@ -67,8 +68,9 @@ void validate(const RenderSettings& s) {
     const double max_deg = s.fisheye.lens == FisheyeLens::orthographic ? 180.0 : 360.0;
     if (!(fov_deg > 0.0 && fov_deg <= max_deg) ||
         (s.fisheye.lens == FisheyeLens::stereographic && fov_deg >= 360.0))
-      throw InvalidArgument(fmt::format("fov = {} deg is outside (0, {}] for the {} lens", fov_deg,
-                                        max_deg, to_string(s.fisheye.lens)));
+      throw InvalidArgument(fmt::format(
+          "fov = {} deg is outside (0, {}{} for the {} lens", fov_deg, max_deg,
+          s.fisheye.lens == FisheyeLens::stereographic ? ")" : "]", to_string(s.fisheye.lens)));
     if (!std::isfinite(s.fisheye.north_angle))
       throw InvalidArgument(fmt::format("north-angle = {} is not finite", s.fisheye.north_angle));
   }
@@ -166,7 +168,15 @@ Xyz average_sun_over_pixel(const SkyModel& model, const RenderSettings& s, int c
   return {sum.X * w, sum.Y * w, sum.Z * w};
 }
 
+std::size_t render_memory_bytes(const RenderSettings& s) {
+  return static_cast<std::size_t>(std::max(s.width, 0)) *
+         static_cast<std::size_t>(std::max(s.height, 0)) * kRenderBytesPerPixel;
+}
+
 SkyImage render_sky(const SkyModel& model, const RenderSettings& s) {
+  validate(s);
+  require_memory(render_memory_bytes(s),
+                 fmt::format("rendering a {}x{} image", s.width, s.height));
   const PixelDirections d = pixel_directions(s);
   const std::size_t n = d.x.size();
   std::vector<float> X(n), Y(n), Z(n);

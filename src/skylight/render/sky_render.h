@@ -71,6 +71,13 @@ std::optional<Vec3> pixel_direction(const RenderSettings& settings, double u, do
 // smaller than a pixel is spread over that pixel instead of being hit or missed by its centre).
 Xyz average_sun_over_pixel(const SkyModel& model, const RenderSettings& settings, int col, int row);
 
+// Memory render_sky needs [bytes]: kRenderBytesPerPixel per pixel (directions 13, batch XYZ 12,
+// the XYZ and RGB images 24, mask 1, and the CLI's false-colour luminance and 8-bit previews).
+inline constexpr std::size_t kRenderBytesPerPixel = 54;
+std::size_t render_memory_bytes(const RenderSettings& settings);
+
+// Renders the sky. Throws IoError up front when the image needs more memory than is available
+// (render_memory_bytes), instead of failing part-way.
 SkyImage render_sky(const SkyModel& model, const RenderSettings& settings);
 
 }  // namespace skylight::render

@@ -3,6 +3,7 @@
 #include "skylight/report/report.h"
 
 #include <algorithm>
+#include <optional>
 #include <system_error>
 
 #include "skylight/core/error.h"
@@ -266,11 +267,24 @@ ReportSummary ReportWriter::run() {
   if (opt_.measurement_sun_azimuth.has_value() != opt_.measurement_sun_elevation.has_value())
     throw InvalidArgument(
         "report: give both the sun azimuth and elevation of the scan, or neither");
+  // All or nothing: every file goes to a temporary and is renamed into place only when the whole
+  // report has been written; a directory this call created is removed again on failure.
   std::error_code ec;
+  const bool existed = fs::exists(opt_.output_dir, ec);
   fs::create_directories(opt_.output_dir, ec);
   if (ec || !fs::is_directory(opt_.output_dir))
     throw IoError(fmt::format("cannot create directory '{}': {}", opt_.output_dir.string(),
                               ec ? ec.message() : "not a directory"));
+  struct RemoveIfFailed {
+    const fs::path& dir;
+    bool armed;
+    ~RemoveIfFailed() {
+      std::error_code ignored;
+      if (armed) fs::remove(dir, ignored);  // only if empty: never deletes the user's files
+    }
+  } cleanup{opt_.output_dir, !existed};
+  std::optional<OutputTransaction> own;
+  if (!OutputTransaction::current()) own.emplace();
   // The measurements first: a bad file fails fast, before any work.
   section_measurements();
   step("measurements");
@@ -287,6 +301,8 @@ ReportSummary ReportWriter::run() {
   step("validity maps");
   write_html_and_json();
   step("index.html and report.json");
+  if (own) own->commit();
+  cleanup.armed = false;
   return summary_;
 }
 

@@ -161,9 +161,20 @@ void ReportWriter::section_measurements() {
     }
     return best;
   };
+  // With the sun at the horizon the Kittler-Darula typical zenith luminance is 0 for most types:
+  // those types are then scaled to the scan's highest sample (their absolute errors are labelled).
+  const LuminanceSample* top = &scan.samples.front();
+  for (const auto& smp : scan.samples)
+    if (smp.elevation > top->elevation) top = &smp;
   for (int t = 1; t <= kCieTypeCount; ++t) {
-    auto m = make_model(cie_spec(t), ts, az);
-    entries.push_back({cie_spec(t).label, std::string(kCieColour), compare_to_scan(*m, scan, excl),
+    ModelSpec spec = cie_spec(t);
+    auto m = make_model(spec, ts, az);
+    if (!(m->tristimulus({0.0, 0.0, 1.0}).Y > 0.0)) {
+      spec.params.values.set("zenith-luminance", top->luminance);
+      spec.label += " (Lz from the scan: Kittler-Darula gives 0)";
+      m = make_model(spec, ts, az);
+    }
+    entries.push_back({spec.label, std::string(kCieColour), compare_to_scan(*m, scan, excl),
                        std::move(m)});
   }
   {
