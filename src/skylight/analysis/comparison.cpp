@@ -21,6 +21,8 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kRootTolerance = 1e-10;
 // Golden-section search for the best turbidity stops at this bracket width (in T).
 constexpr double kTurbidityTolerance = 1e-4;
+// Bisection of 1 + A e^B = 0 stops at this bracket width (in T).
+constexpr double kNegativeSkyTolerance = 1e-12;
 
 }  // namespace
 
@@ -273,6 +275,91 @@ std::vector<AntisolarRow> antisolar_horizon_ratios(double turbidity,
   }
   return out;
 }
+// ---- Zotti's findings over regions of the sky -------------------------------------------------
+
+NegativeSkyRange preetham_negative_sky_range() {
+  const PerezCoefficients c0 = preetham_perez_coefficients(0.0).Y;
+  const PerezCoefficients c1 = preetham_perez_coefficients(1.0).Y;
+  // B(T) = b1 T + b0 is linear in T (Preetham A.2).
+  const double b1 = c1.B - c0.B, b0 = c0.B;
+  NegativeSkyRange r;
+  r.t_low = -b0 / b1;
+  auto zenith_term = [](double T) {
+    const PerezCoefficients c = preetham_perez_coefficients(T).Y;
+    return 1.0 + c.A * std::exp(c.B);
+  };
+  // Just above t_low the term is negative (A(t_low) < -1); it is positive by T = 6.
+  double lo = r.t_low + 1e-9, hi = 6.0;
+  SKYLIGHT_CHECK(zenith_term(lo) < 0.0 && zenith_term(hi) > 0.0, "no sign change of 1 + A e^B");
+  while (hi - lo > kNegativeSkyTolerance) {
+    const double mid = 0.5 * (lo + hi);
+    (zenith_term(mid) < 0.0 ? lo : hi) = mid;
+  }
+  r.t_high = 0.5 * (lo + hi);
+  return r;
+}
+
+bool in_antisolar_half(Vec3 view, Vec3 sun) {
+  // Horizontal components: the azimuth difference is >= 90 deg where their dot product is <= 0.
+  return view.x * sun.x + view.y * sun.y <= 0.0;
+}
+
+RegionRatio region_ratio(const ModelSpec& a, const ModelSpec& b, double sun_zenith,
+                         const HemisphereGrid& grid, const SkyRegion& in_region) {
+  const auto ma = make_model(a, sun_zenith, kPi), mb = make_model(b, sun_zenith, kPi);
+  const Vec3 sun = ma->sun().direction();
+  std::vector<Vec3> dirs;
+  for (const Vec3& d : grid.directions)
+    if (in_region(d, sun)) dirs.push_back(d);
+  const std::vector<double> la = sky_luminance(*ma, dirs), lb = sky_luminance(*mb, dirs);
+  const double za = ma->tristimulus({0, 0, 1}).Y, zb = mb->tristimulus({0, 0, 1}).Y;
+  RegionRatio r{sun_zenith, kInf, -kInf, kInf, -kInf, kNaN, kNaN, 0};
+  for (std::size_t i = 0; i < dirs.size(); ++i) {
+    if (!(la[i] > 0.0) || !(lb[i] > 0.0)) continue;
+    const double elevation = kPi / 2 - std::acos(std::clamp(dirs[i].z, -1.0, 1.0));
+    const double q = la[i] / lb[i];
+    ++r.directions;
+    if (q < r.absolute_min) {
+      r.absolute_min = q;
+      r.absolute_min_elevation = elevation;
+    }
+    r.absolute_max = std::max(r.absolute_max, q);
+    if (za > 0.0 && zb > 0.0) {
+      const double rel = q * zb / za;
+      if (rel < r.relative_min) {
+        r.relative_min = rel;
+        r.relative_min_elevation = elevation;
+      }
+      r.relative_max = std::max(r.relative_max, rel);
+    }
+  }
+  if (r.directions == 0) return {sun_zenith, kNaN, kNaN, kNaN, kNaN, kNaN, kNaN, 0};
+  if (!std::isfinite(r.relative_min)) r.relative_min = r.relative_max = kNaN;
+  return r;
+}
+
+RatioBand preetham_cie_ratio_band(double turbidity, int cie_type, const ComparisonSettings& s) {
+  const HemisphereGrid grid = hemisphere_grid(s.n_theta, s.n_phi);
+  double sum[3] = {0.0, 0.0, 0.0};
+  int n = 0;
+  for (double ts : s.sun_zeniths) {
+    ComparisonSettings one = s;
+    one.sun_zeniths = {ts};
+    const LuminanceRatio r =
+        absolute_luminance_ratio(relative_samples(preetham_spec(turbidity), one, grid),
+                                 relative_samples(cie_spec(cie_type), one, grid), grid);
+    const ZenithLuminanceBand band = kittler_darula_zenith_luminance_band(cie_type, kPi / 2 - ts);
+    if (!std::isfinite(r.mean) || !(band.low > 0.0)) continue;
+    // The CIE luminance is proportional to its zenith luminance: rescale the ratio.
+    sum[0] += std::log10(r.mean);
+    sum[1] += std::log10(r.mean * band.typical / band.low);
+    sum[2] += std::log10(r.mean * band.typical / band.high);
+    ++n;
+  }
+  if (n == 0) return {kNaN, kNaN, kNaN};
+  return {std::pow(10.0, sum[0] / n), std::pow(10.0, sum[1] / n), std::pow(10.0, sum[2] / n)};
+}
+
 // ---- validity ----------------------------------------------------------------------------------
 
 std::vector<std::vector<Validity>> validity_grid(const ModelSpec& spec,

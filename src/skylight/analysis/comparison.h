@@ -106,6 +106,47 @@ struct AntisolarRow {
 std::vector<AntisolarRow> antisolar_horizon_ratios(double turbidity,
                                                    const std::vector<double>& sun_zeniths,
                                                    const std::vector<double>& view_elevations);
+// ---- Zotti's findings, measured over regions of the sky --------------------------------------
+
+// Turbidities between which Preetham's luminance is negative somewhere in the sky at every sun
+// position: the gradation term of the Perez function (Preetham A.2 Y coefficients, Zotti eq. 4),
+// 1 + A e^{B / cos theta}, is 1 at the horizon and 1 + A e^B at the zenith; for
+// t_low < T < t_high its zenith value is negative (A < 0, B < 0), so Y = Yz F / F(0, theta_s)
+// changes sign between zenith and horizon. t_low: B(T) = 0 (closed form); t_high: 1 + A e^B = 0
+// (bisection to 1e-12).
+struct NegativeSkyRange {
+  double t_low = 0.0, t_high = 0.0;
+};
+NegativeSkyRange preetham_negative_sky_range();
+
+// Ratio of model a over model b in one region of the hemisphere at one sun zenith: absolute
+// luminances and zenith-normalised ones (a / a(zenith)) / (b / b(zenith)); min and max over the
+// directions of `grid` in the region, and the view elevation where each minimum lies.
+struct RegionRatio {
+  double sun_zenith = 0.0;  // [rad]
+  double absolute_min = 0.0, absolute_max = 0.0, relative_min = 0.0, relative_max = 0.0;
+  double absolute_min_elevation = 0.0, relative_min_elevation = 0.0;  // [rad]
+  int directions = 0;                                                 // in the region
+};
+// The region: directions d with in_region(d, sun direction); sun azimuth pi. Directions where
+// either model is not positive are left out; no direction: NaN everywhere.
+using SkyRegion = std::function<bool(Vec3 view, Vec3 sun)>;
+RegionRatio region_ratio(const ModelSpec& a, const ModelSpec& b, double sun_zenith,
+                         const HemisphereGrid& grid, const SkyRegion& in_region);
+// The antisolar half: azimuth at least 90 deg from the sun's.
+bool in_antisolar_half(Vec3 view, Vec3 sun);
+
+// Preetham (T) over CIE `cie_type` per sun position of `settings` (absolute_luminance_ratio), with
+// the CIE zenith luminance at the typical Kittler-Darula value and at the ends of the band
+// kittler_darula_zenith_luminance_band: geometric means over the sun positions.
+struct RatioBand {
+  double typical = 0.0;
+  double against_cie_low = 0.0;   // CIE at the band's low end: the larger ratio
+  double against_cie_high = 0.0;  // CIE at the band's high end: the smaller ratio
+};
+RatioBand preetham_cie_ratio_band(double turbidity, int cie_type,
+                                  const ComparisonSettings& settings);
+
 // ---- validity ----------------------------------------------------------------------------------
 
 // domain().worst() of `spec` with the sun at each zenith [rad] (azimuth pi) and, per row, the

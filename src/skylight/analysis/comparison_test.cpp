@@ -2,8 +2,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
+#include <utility>
 
 #include "skylight/core/error.h"
 #include "skylight/models/cie_sky.h"
@@ -26,6 +28,98 @@ constexpr double kZottiBestTurbidityLow = 2.3, kZottiBestTurbidityHigh = 2.5;
 // Zotti give no method or resolution for that range (and read it off their figures); ours is an
 // RMS over a sampled hemisphere, so allow 0.1-0.2 in T on either side.
 constexpr double kZottiBandMargin = 0.2;
+
+// The whole-sky boundary: bisection to 1e-12 against a Lambert-W closed form solved by Newton to
+// round-off; both are limited by double round-off in 1 + A e^B (|d/dT| ~ 0.5), so 1e-10.
+constexpr double kWholeSkyBoundaryTol = 1e-10;
+// docs/REPORT.md quotes the boundary to three decimals (T = 1.643).
+constexpr double kThreeDecimals = 5e-4;
+// region_ratio against the same model evaluations done here: identical arithmetic up to the
+// order of the batch path's double evaluation.
+constexpr double kRegionRatioTol = 1e-12;
+// preetham_cie_ratio_band's typical ratio against absolute_luminance_ratio: the same logs summed
+// in a different order (per sun position, then over them).
+constexpr double kRatioBandTol = 1e-9;
+
+// Preetham 1999 A.2, the Y row of the Perez coefficients: A = 0.1787 T - 1.4630,
+// B = -0.3554 T + 0.4275.
+constexpr double kPaperA1 = 0.1787, kPaperA0 = -1.4630, kPaperB1 = -0.3554, kPaperB0 = 0.4275;
+
+// Principal branch of Lambert's W (w e^w = x, x > 0) by Newton's method.
+double lambert_w0(double x) {
+  double w = std::log1p(x);
+  for (int i = 0; i < 100; ++i) {
+    const double f = w * std::exp(w) - x, step = f / (std::exp(w) * (w + 1.0));
+    w -= step;
+    if (std::abs(step) < 1e-16 * (1.0 + std::abs(w))) break;
+  }
+  return w;
+}
+
+TEST(PreethamNegativeSky, BoundaryIsTheRootOfOnePlusAExpB) {
+  // 1 + (a1 T + a0) e^(b1 T + b0) = 0. With u = a1 T + a0, k = b1 / a1, m = b0 - b1 a0 / a1:
+  // u e^(k u) = -e^(-m), so k u = W(-k e^(-m)) (k < 0: the argument is positive, one real root).
+  const double k = kPaperB1 / kPaperA1, m = kPaperB0 - kPaperB1 * kPaperA0 / kPaperA1;
+  const double u = lambert_w0(-k * std::exp(-m)) / k;
+  const double t_closed = (u - kPaperA0) / kPaperA1;
+  const NegativeSkyRange r = preetham_negative_sky_range();
+  EXPECT_NEAR(r.t_high, t_closed, kWholeSkyBoundaryTol);
+  EXPECT_NEAR(r.t_high, 1.643, kThreeDecimals);
+  EXPECT_NEAR(r.t_low, -kPaperB0 / kPaperB1, kWholeSkyBoundaryTol);
+  // Between the two the zenith term is negative, outside positive (or B > 0 below t_low).
+  for (double T : {r.t_low + 0.01, 0.5 * (r.t_low + r.t_high), r.t_high - 0.01}) {
+    const auto c = preetham_perez_coefficients(T).Y;
+    EXPECT_LT(1.0 + c.A * std::exp(c.B), 0.0) << "T = " << T;
+    EXPECT_LT(c.B, 0.0);
+  }
+  const auto c = preetham_perez_coefficients(r.t_high + 0.01).Y;
+  EXPECT_GT(1.0 + c.A * std::exp(c.B), 0.0);
+}
+
+TEST(RegionRatio, AntisolarHalfMatchesADirectRecomputation) {
+  const HemisphereGrid grid = hemisphere_grid(6, 24);
+  const double ts = deg_to_rad(70.0), T = 2.4;
+  const RegionRatio r = region_ratio(preetham_spec(T), cie_spec(12), ts, grid, in_antisolar_half);
+  const auto pr = make_model(preetham_spec(T), ts, kPi);
+  const auto ci = make_model(cie_spec(12), ts, kPi);
+  const double pz = pr->tristimulus({0, 0, 1}).Y, cz = ci->tristimulus({0, 0, 1}).Y;
+  double amin = 1e300, amax = 0.0, rmin = 1e300, rmax = 0.0;
+  int n = 0;
+  for (const Vec3& d : grid.directions) {
+    // Sun at azimuth pi: the antisolar half is where the view's horizontal part points away.
+    const Vec3 sun = direction_from_angles(ts, kPi);
+    if (d.x * sun.x + d.y * sun.y > 0.0) continue;
+    const double q = pr->tristimulus(d).Y / ci->tristimulus(d).Y;
+    amin = std::min(amin, q);
+    amax = std::max(amax, q);
+    rmin = std::min(rmin, q * cz / pz);
+    rmax = std::max(rmax, q * cz / pz);
+    ++n;
+  }
+  EXPECT_EQ(r.directions, n);
+  EXPECT_EQ(n, 6 * 24 / 2);  // sector centres never lie on the 90 deg boundary
+  EXPECT_NEAR(r.absolute_min, amin, kRegionRatioTol * amin);
+  EXPECT_NEAR(r.absolute_max, amax, kRegionRatioTol * amax);
+  EXPECT_NEAR(r.relative_min, rmin, kRegionRatioTol * rmin);
+  EXPECT_NEAR(r.relative_max, rmax, kRegionRatioTol * rmax);
+}
+
+TEST(RatioBand, TypicalMatchesTheLuminanceRatioAndTheBandBracketsIt) {
+  ComparisonSettings s;
+  s.sun_zeniths = {deg_to_rad(30.0), deg_to_rad(60.0)};
+  s.n_theta = 8;
+  s.n_phi = 32;
+  const HemisphereGrid grid = hemisphere_grid(s.n_theta, s.n_phi);
+  for (const auto& [T, type] : {std::pair{2.9, 10}, std::pair{10.0, 6}}) {
+    const RatioBand b = preetham_cie_ratio_band(T, type, s);
+    const LuminanceRatio r =
+        absolute_luminance_ratio(relative_samples(preetham_spec(T), s, grid),
+                                 relative_samples(cie_spec(type), s, grid), grid);
+    EXPECT_NEAR(b.typical, r.mean, kRatioBandTol * r.mean);
+    EXPECT_LE(b.against_cie_high, b.typical);
+    EXPECT_GE(b.against_cie_low, b.typical);
+  }
+}
 
 TEST(PreethamZenithRoots, BoundaryPointsAreRootsOfTheClosedForm) {
   std::vector<double> zeniths;
@@ -88,10 +182,8 @@ TEST(Comparison, EachCieTypeBestMatchesItself) {
 TEST(Comparison, RmsIsSymmetricAndScaleFree) {
   const auto s = small_settings();
   const auto g = hemisphere_grid(s.n_theta, s.n_phi);
-  ModelSpec a{"cie", {}, "a"}, b{"cie", {}, "b"}, b10{"cie", {}, "b x 10"};
-  a.params.values.set("cie-type", 12);
-  b.params.values.set("cie-type", 13);
-  b10.params.values.set("cie-type", 13);
+  const ModelSpec a = cie_spec(12), b = cie_spec(13);
+  ModelSpec b10 = cie_spec(13);
   b10.params.values.set("zenith-luminance",
                         10.0 * kittler_darula_zenith_luminance(13, deg_to_rad(60.0)));
   const auto sa = relative_samples(a, s, g), sb = relative_samples(b, s, g);
@@ -146,7 +238,7 @@ TEST(Comparison, AntisolarHorizonRatioIsTheModelsRatio) {
 }
 
 TEST(ValidityGrid, GridReportsTheModelsDomain) {
-  ModelSpec spec{"preetham", {}, "p"};
+  const ModelSpec spec = preetham_spec(3.0);  // the rows set the turbidity
   const auto g =
       validity_grid(spec, {deg_to_rad(45.0), deg_to_rad(100.0)}, {3.0, 8.0, 20.0}, "turbidity");
   ASSERT_EQ(g.size(), 3u);
@@ -155,7 +247,7 @@ TEST(ValidityGrid, GridReportsTheModelsDomain) {
   EXPECT_EQ(g[2][0], Validity::unphysical);
   EXPECT_EQ(g[0][1], Validity::undefined);  // sun below the horizon
   // Parameters the model rejects are drawn as undefined.
-  ModelSpec hosek{"hosek", {}, "h"};
+  const ModelSpec hosek = hosek_spec(5.0);
   const auto h = validity_grid(hosek, {deg_to_rad(45.0)}, {5.0, 20.0}, "turbidity");
   EXPECT_EQ(h[0][0], Validity::valid);
   EXPECT_EQ(h[1][0], Validity::undefined);

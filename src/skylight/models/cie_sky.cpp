@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <vector>
 
 #include "skylight/core/data.h"
@@ -126,6 +127,38 @@ double kittler_darula_zenith_luminance(int type, double sun_elevation) {
     kcd = k.A * s + 0.7 * (k.Tv + 1.0) * std::pow(s, k.C) / std::pow(c, k.D) + 0.04 * k.Tv;
   }
   return 1000.0 * std::max(kcd, 0.0);
+}
+
+ZenithLuminanceBand kittler_darula_zenith_luminance_band(int type, double sun_elevation) {
+  require_type(type, kCieTypeCount);
+  ZenithLuminanceBand band;
+  band.typical = kittler_darula_zenith_luminance(type, sun_elevation);
+  const int own = type == 16 ? 1 : type;
+  const KittlerDarulaParameters& k = kittler_darula_parameters(own);
+  if (own <= 6 || k.Tv > 12.0) {
+    // The overcast formula is proportional to Dv/Ev: scale by the range of the typical Dv/Ev.
+    double lo = std::numeric_limits<double>::infinity(), hi = 0.0;
+    for (int t = 1; t <= 15; ++t) {
+      lo = std::min(lo, kittler_darula_parameters(t).Dv_over_Ev);
+      hi = std::max(hi, kittler_darula_parameters(t).Dv_over_Ev);
+    }
+    band.low = band.typical * lo / k.Dv_over_Ev;
+    band.high = band.typical * hi / k.Dv_over_Ev;
+  } else {
+    const double gs = std::clamp(sun_elevation, 0.0, kKittlerDarulaClampElevation);
+    const double s = std::sin(gs), c = std::cos(gs);
+    auto lvz = [&](double tv) {
+      const double a = k.A1 * tv + k.A2;
+      return 1000.0 *
+             std::max(a * s + 0.7 * (tv + 1.0) * std::pow(s, k.C) / std::pow(c, k.D) + 0.04 * tv,
+                      0.0);
+    };
+    band.low = lvz(kKittlerDarulaBandTvMin);
+    band.high = lvz(kKittlerDarulaBandTvMax);
+  }
+  band.low = std::min(band.low, band.typical);
+  band.high = std::max(band.high, band.typical);
+  return band;
 }
 
 const ParameterSchema<CieParameters>& CieParameters::schema() {

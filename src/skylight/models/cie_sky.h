@@ -50,6 +50,19 @@ inline constexpr double kKittlerDarulaMinElevation = 10.0 * kDegree;
 inline constexpr double kKittlerDarulaMaxElevation = 80.0 * kDegree;
 // Where the formula is evaluated at most (beyond it the cos^-D term explodes): 85 deg.
 inline constexpr double kKittlerDarulaClampElevation = 85.0 * kDegree;
+// A band around the typical zenith luminance, derived by us (docs/REPORT.md, "Kittler-Darula
+// band"): Kittler & Darula publish only the typical parameters per type and the relation
+// A = A1 Tv + A2 for a measured Linke turbidity Tv, not the minimum/maximum values that Zotti
+// 2007 draws in his Fig. 5. Types 7-15: the formula above with A = A1 Tv + A2 for Tv over
+// [kKittlerDarulaBandTvMin, kKittlerDarulaBandTvMax]; types 1-6 and 16: Dv/Ev over the range of the
+// typical Dv/Ev of types 1-15 (0.10-0.42). low <= typical <= high.
+struct ZenithLuminanceBand {
+  double low = 0.0, typical = 0.0, high = 0.0;  // [cd/m^2]
+};
+ZenithLuminanceBand kittler_darula_zenith_luminance_band(int type, double sun_elevation);
+// Linke turbidity range of the band: a very clean sky (Tv = 2) to the value above which the
+// overcast formula is used (Tv = 12).
+inline constexpr double kKittlerDarulaBandTvMin = 2.0, kKittlerDarulaBandTvMax = 12.0;
 // Extraterrestrial horizontal illuminance at the sun's zenith: 133.8 klx (Kittler & Darula).
 inline constexpr double kExtraterrestrialIlluminanceKlx = 133.8;
 

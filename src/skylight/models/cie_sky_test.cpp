@@ -112,6 +112,28 @@ TEST(CieSky, KittlerDarulaTypicalZenithLuminance) {
   EXPECT_EQ(CieSkyModel(params(12, 85.0)).domain().worst(), Validity::extrapolated);
 }
 
+TEST(CieSky, KittlerDarulaBand) {
+  // The published A of types 7-15 is A1 Tv + A2 at the typical Tv (Kittler & Darula's table,
+  // data/cie_standard_sky/kittler_darula_zenith_luminance.csv), to the table's two decimals.
+  constexpr double kTableRounding = 0.005;
+  for (int type = 7; type <= 15; ++type) {
+    const KittlerDarulaParameters& k = kittler_darula_parameters(type);
+    EXPECT_NEAR(k.A1 * k.Tv + k.A2, k.A, kTableRounding) << "type " << type;
+  }
+  for (int type = 1; type <= kCieTypeCount; ++type)
+    for (double e : {10.0, 30.0, 60.0, 80.0}) {
+      const ZenithLuminanceBand b = kittler_darula_zenith_luminance_band(type, deg_to_rad(e));
+      EXPECT_DOUBLE_EQ(b.typical, kittler_darula_zenith_luminance(type, deg_to_rad(e)));
+      EXPECT_LE(b.low, b.typical) << "type " << type;
+      EXPECT_GE(b.high, b.typical) << "type " << type;
+      EXPECT_GT(b.low, 0.0);
+    }
+  // Overcast types scale with Dv/Ev: type 1 (typical 0.10, the smallest) is its own low end.
+  const ZenithLuminanceBand o = kittler_darula_zenith_luminance_band(1, deg_to_rad(40.0));
+  EXPECT_DOUBLE_EQ(o.low, o.typical);
+  EXPECT_NEAR(o.high / o.typical, 0.42 / 0.10, 1e-12);
+}
+
 TEST(CieSky, SunBelowHorizonAndGroundAreZero) {
   const CieSkyModel night(params(12, 95.0));
   EXPECT_EQ(night.domain().worst(), Validity::undefined);

@@ -20,6 +20,7 @@ Config make_config(bool quick) {
   c.fit_t_max = 10.0;
   c.antisolar_headline_sun_zenith_deg = 80.0;
   c.antisolar_headline_elevation_deg = 3.0;
+  c.fig1_linear_t = {1.0, 12.0};  // Zotti's Fig. 1
   if (!quick) {
     c.yz_width = 540;
     c.yz_height = 320;
@@ -44,7 +45,19 @@ Config make_config(bool quick) {
     c.validity_preetham_rows = 100;
     c.validity_hosek_step = 0.1;
     c.validity_nishita_deg = {0, 10, 20, 30, 40, 50, 60, 70, 80, 89, 89.9, 90.1, 91, 100, 110};
+    c.fit_per_sun_zeniths_deg = {10, 20, 30, 40, 50, 60, 70, 80, 85};
+    c.zone_sun_zeniths_deg = {60, 65, 70, 75, 80, 85};
+    c.pair_sun_zeniths_deg = {20, 30, 40, 50, 60, 65};
+    c.low_sun_zeniths_deg = {60, 70, 80};
+    c.zone_n_theta = 36;
+    c.zone_n_phi = 144;
   } else {
+    c.fit_per_sun_zeniths_deg = {30, 80};
+    c.zone_sun_zeniths_deg = {60, 85};
+    c.pair_sun_zeniths_deg = {30, 60};
+    c.low_sun_zeniths_deg = {70};
+    c.zone_n_theta = 12;
+    c.zone_n_phi = 48;
     c.yz_width = 180;
     c.yz_height = 100;
     c.root_step_deg = 10.0;
@@ -160,63 +173,6 @@ window.addEventListener('load', function () {
 )js";
 
 void ReportWriter::write_html_and_json() {
-  const auto& fit = summary_.best_turbidity_for_cie12;
-  // Closing note: Zotti's findings as numbers.
-  std::string type_list;
-  for (const auto& m : summary_.cie_matches)
-    type_list += (type_list.empty() ? "" : "; ") + fmt::format("T {:g} → CIE {} (Y_Pr/Y_CIE {})",
-                                                               m.turbidity, m.best_type,
-                                                               g3(m.ratio_best.mean));
-  double amin = kInf, amax = 0.0;
-  for (const auto& r : antisolar_)
-    if (std::isfinite(r.ratio)) {
-      amin = std::min(amin, r.ratio);
-      amax = std::max(amax, r.ratio);
-    }
-  html_notes_ = fmt::format(
-      "<div class=\"note\">\n<ul>\n"
-      "<li><b>Negative zenith luminance (Zotti Fig. 1).</b> Preetham's Yz is negative for T below "
-      "{:.3f} with the sun at the zenith, a region that closes at theta_s = {:.2f} deg for T = 1 "
-      "(Zotti: 'exceptionally clear air'); and for T above {:.2f} with the sun at the horizon "
-      "(theta_s = 90 deg), rising to T = {:.1f} at theta_s = 0 (Zotti: 'fails for T &gt;~ 10' at "
-      "sunrise/sunset). The boundary is listed in report.json.</li>\n"
-      "<li><b>Antisolar horizon at low sun.</b> At theta_s = {:g} deg, {:g} deg above the "
-      "horizon opposite the sun, Preetham (T = {:.2f}) is <b>{:.2f}</b> times CIE 12 "
-      "(Kittler-Darula typical); over theta_s {} deg and elevations {} deg the factor is "
-      "{:.2f}-{:.2f}. Zotti: 'about 2-5 times too high'. The excess is in the absolute level: "
-      "Preetham's zenith luminance is {:.2f} times the Kittler-Darula value there, and relative "
-      "to its own zenith Preetham's antisolar horizon is {:.2f} times CIE 12's.</li>\n"
-      "<li><b>Best Preetham turbidity for CIE 12.</b> T = <b>{:.2f}</b> (RMS log10 {:.3f}, "
-      "zenith-normalised, theta_s {} deg). Zotti: T ≈ 2.3-2.5.</li>\n"
-      "<li><b>Best CIE type per Preetham turbidity.</b> {}. Zotti's pairs (T 10 / 5 / 2.9 ↔ "
-      "CIE 6 / 7 / 10) here: {}.</li>\n"
-      "<li><b>Measurements.</b> Best model for the scan (zenith-normalised RMS): {}.</li>\n"
-      "</ul>\n</div>\n",
-      low_branch_t_at_zenith_, rad_to_deg(low_branch_max_sun_zenith_), high_branch_t_at_horizon_,
-      high_branch_t_at_zenith_, cfg_.antisolar_headline_sun_zenith_deg,
-      cfg_.antisolar_headline_elevation_deg, summary_.antisolar_turbidity, summary_.antisolar_ratio,
-      [&] {
-        std::string s;
-        for (double d : cfg_.antisolar_sun_zeniths_deg)
-          s += (s.empty() ? "" : ", ") + fmt::format("{:g}", d);
-        return s;
-      }(),
-      [&] {
-        std::string s;
-        for (double d : cfg_.antisolar_elevations_deg)
-          s += (s.empty() ? "" : ", ") + fmt::format("{:g}", d);
-        return s;
-      }(),
-      finite_or(amin, kNaN), finite_or(amax, kNaN), antisolar_zenith_ratio_, antisolar_relative_,
-      fit.turbidity, fit.rms,
-      [&] {
-        std::string s;
-        for (double z : cfg_.comparison.sun_zeniths)
-          s += (s.empty() ? "" : ", ") + fmt::format("{:g}", rad_to_deg(z));
-        return s;
-      }(),
-      type_list, pairs_note_, scan_best_);
-
   std::string models;
   for (const auto& m : model_registry()) models += (models.empty() ? "" : ", ") + m.name;
   std::string html = fmt::format(
@@ -241,11 +197,13 @@ void ReportWriter::write_html_and_json() {
       "<h2>8. Where each model is valid</h2>\n<p>Each model's <code>domain().worst()</code> "
       "(valid &lt; extrapolated &lt; unphysical &lt; undefined) over the sun zenith angle and "
       "its main parameter; sun azimuth 180 deg.</p>\n{}"
-      "<h2>Closing note: Zotti et al.'s findings, as numbers</h2>\n{}"
+      "<h2>Closing note: Zotti et al.'s findings, paper against ours</h2>\n<p>One row per "
+      "finding (report.json <code>zotti_findings</code>; the summary above is generated from "
+      "the same records).</p>\n{}"
       "{}</body>\n</html>\n",
-      kStyle, kVersion, models, opt_.quick ? "quick (reduced-resolution)" : "full", html_notes_,
-      html_zenith_, html_rel_, html_abs_, html_match_, html_vertical_, html_illum_, html_scan_,
-      html_validity_, html_notes_, kImageCheck);
+      kStyle, kVersion, models, opt_.quick ? "quick (reduced-resolution)" : "full",
+      findings_summary_html(), html_zenith_, html_rel_, html_abs_, html_match_, html_vertical_,
+      html_illum_, html_scan_, html_validity_, html_findings_, kImageCheck);
   write_text("index.html", html);
 
   Json j;
@@ -254,7 +212,7 @@ void ReportWriter::write_html_and_json() {
   j["angles"] = "degrees";
   // The headline numbers first, then the details in the order they were computed.
   for (const char* key :
-       {"preetham_negative_zenith", "antisolar_horizon_ratio_preetham_vs_cie12",
+       {"zotti_findings", "preetham_negative_zenith", "antisolar_horizon_ratio_preetham_vs_cie12",
         "best_preetham_turbidity_for_cie12", "best_cie_type_per_preetham_turbidity"})
     if (json_.contains(key)) j[key] = json_[key];
   for (auto it = json_.begin(); it != json_.end(); ++it)
@@ -299,6 +257,7 @@ ReportSummary ReportWriter::run() {
   step("illuminance and irradiance");
   section_validity();
   step("validity maps");
+  section_findings();
   write_html_and_json();
   step("index.html and report.json");
   if (own) own->commit();

@@ -38,8 +38,27 @@ struct ReportOptions {
   std::function<void(int done, int total, std::string_view step)> progress;
 };
 
+// One finding of Zotti et al. 2007 set against our numbers (report.json `zotti_findings`; the
+// summary of index.html is generated from these records).
+struct FindingValue {
+  std::string name;  // what the number is, with its conditions
+  double value = 0.0;
+};
+struct Finding {
+  std::string id;                // stable key, e.g. "negative_luminance_clear"
+  std::string title;             // short heading
+  std::string paper_statement;   // what Zotti et al. say (quoted or paraphrased, with the place)
+  std::string paper_value_text;  // the paper's number(s) as text, e.g. "T < 1.6"
+  std::vector<FindingValue> our_values;
+  bool agrees = false;  // whether our numbers reproduce the paper's statement
+  std::string cause;    // why (dis)agreement, generated from our_values where it cites numbers
+};
+// How a finding's number is written in index.html (3 significant digits; "n/a" if not finite).
+std::string format_finding_value(double v);
+
 // The headline numbers (also in report.json).
 struct ReportSummary {
+  std::vector<Finding> findings;  // Zotti's findings, paper against ours
   std::vector<ZenithRoot> negative_zenith_boundary;
   double antisolar_ratio = 0.0;  // Preetham / CIE 12 at the conditions below
   double antisolar_sun_zenith = 0.0, antisolar_view_elevation = 0.0, antisolar_turbidity = 0.0;

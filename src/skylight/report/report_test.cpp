@@ -8,6 +8,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <set>
 #include <sstream>
 #include <string>
 
@@ -107,6 +108,52 @@ TEST_F(ReportFiles, JsonHasTheHeadlineNumbers) {
     EXPECT_TRUE(std::isfinite(m["rms_log10"].get<double>()));
   }
   EXPECT_TRUE(j["measurements"]["synthetic"].get<bool>());
+}
+
+TEST_F(ReportFiles, ZottiFindingsInJsonMatchTheSummaryAndTheHtml) {
+  const auto j = nlohmann::json::parse(slurp(*dir_ / "report.json"));
+  const std::string html = slurp(*dir_ / "index.html");
+  ASSERT_TRUE(j.contains("zotti_findings"));
+  const auto& arr = j["zotti_findings"];
+  ASSERT_TRUE(arr.is_array());
+  ASSERT_EQ(arr.size(), summary_->findings.size());
+  std::set<std::string> ids;
+  for (std::size_t i = 0; i < arr.size(); ++i) {
+    const auto& f = arr[i];
+    const Finding& s = summary_->findings[i];
+    SCOPED_TRACE(s.id);
+    ids.insert(f["id"].get<std::string>());
+    EXPECT_EQ(f["id"], s.id);
+    ASSERT_TRUE(f["agrees"].is_boolean());
+    EXPECT_EQ(f["agrees"].get<bool>(), s.agrees);
+    EXPECT_FALSE(f["paper_statement"].get<std::string>().empty());
+    EXPECT_FALSE(f["paper_value"].get<std::string>().empty());
+    EXPECT_FALSE(f["cause"].get<std::string>().empty());
+    ASSERT_FALSE(f["our_values"].empty());
+    ASSERT_EQ(f["our_values"].size(), s.our_values.size());
+    for (std::size_t k = 0; k < s.our_values.size(); ++k) {
+      const auto& v = f["our_values"][k];
+      ASSERT_TRUE(v["value"].is_number()) << v["name"];  // finite: null would fail
+      EXPECT_DOUBLE_EQ(v["value"].get<double>(), s.our_values[k].value);
+      // The summary prints the same number.
+      EXPECT_NE(html.find("<b>" + format_finding_value(s.our_values[k].value) + "</b>"),
+                std::string::npos)
+          << s.our_values[k].name;
+    }
+    EXPECT_NE(html.find(s.agrees ? "<i>agrees</i>" : "<i>does not agree</i>"), std::string::npos);
+  }
+  for (const char* id :
+       {"negative_luminance_clear", "negative_luminance_turbid", "best_turbidity_cie12",
+        "antisolar_factor", "antisolar_shape", "pair_T10_cie6", "pair_T5_cie7", "pair_T2.9_cie10",
+        "circumsolar_brightening", "horizon_bright_t_above_2_4", "measurements"})
+    EXPECT_EQ(ids.count(id), 1u) << id;
+  EXPECT_NE(html.find("partly reproduces"), std::string::npos);
+  // The synthetic scan is never read as evidence.
+  for (const Finding& f : summary_->findings)
+    if (f.id == "measurements") {
+      EXPECT_FALSE(f.agrees);
+      EXPECT_NE(f.cause.find("synthetic"), std::string::npos);
+    }
 }
 
 TEST_F(ReportFiles, SvgFilesAreWellFormedAndTheirImagesExist) {

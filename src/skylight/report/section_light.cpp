@@ -202,6 +202,8 @@ void ReportWriter::section_measurements() {
   for (std::size_t i = 1; i < entries.size(); ++i)
     if (entries[i].e.rms_log10_relative < entries[best_all].e.rms_log10_relative) best_all = i;
   scan_best_ = entries[best_all].label;
+  scan_best_cie_type_ = static_cast<int>(best_cie) + 1;
+  scan_synthetic_ = !opt_.measurements.has_value();
 
   svg::Plot p;
   p.id = "scan";

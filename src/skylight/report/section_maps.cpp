@@ -1,5 +1,6 @@
 // The report's Fig. 1 (Preetham's zenith luminance) and hemisphere mosaics (Figs. 4-7).
 #include <algorithm>
+#include <functional>
 
 #include "skylight/core/error.h"
 #include "skylight/core/parallel.h"
@@ -20,20 +21,28 @@ void ReportWriter::section_zenith() {
 
   // The map: theta_s across, T (log) up; Yz on the absolute false-colour scale, Yz < 0 red.
   const int W = cfg_.yz_width, H = cfg_.yz_height;
-  Image8 img(W, H);
   const FalseColourOptions fo{kAbsoluteLog10Min, kAbsoluteLog10Max, "cd/m2", false};
-  for (int y = 0; y < H; ++y) {
-    const double T = std::pow(10.0, std::log10(kTMax) * (1.0 - (y + 0.5) / H));
-    for (int x = 0; x < W; ++x) {
-      const double ts = (x + 0.5) / W * (kPi / 2);
-      const double yz = preetham_zenith_luminance(T, ts);
-      const auto c = yz < 0.0   ? kNegativeYzColour
-                     : yz > 0.0 ? false_colour_of(std::log10(yz), fo)
-                                : kInvalidColour;
-      std::copy(c.begin(), c.end(), img.pixel(x, y));
+  // Row y (0 at the top) shows turbidity t_of_row(y).
+  const auto yz_map = [&](const std::string& name, const std::function<double(int)>& t_of_row) {
+    Image8 img(W, H);
+    for (int y = 0; y < H; ++y) {
+      const double T = t_of_row(y);
+      for (int x = 0; x < W; ++x) {
+        const double ts = (x + 0.5) / W * (kPi / 2);
+        const double yz = preetham_zenith_luminance(T, ts);
+        const auto c = yz < 0.0   ? kNegativeYzColour
+                       : yz > 0.0 ? false_colour_of(std::log10(yz), fo)
+                                  : kInvalidColour;
+        std::copy(c.begin(), c.end(), img.pixel(x, y));
+      }
     }
-  }
-  write_png_file("fig1_preetham_zenith_luminance.png", img);
+    write_png_file(name, img);
+  };
+  yz_map("fig1_preetham_zenith_luminance.png",
+         [&](int y) { return std::pow(10.0, std::log10(kTMax) * (1.0 - (y + 0.5) / H)); });
+  const double lt0 = cfg_.fig1_linear_t.front(), lt1 = cfg_.fig1_linear_t.back();
+  yz_map("fig1_preetham_zenith_luminance_linear.png",
+         [&](int y) { return lt1 - (y + 0.5) / H * (lt1 - lt0); });
 
   svg::Plot p;
   p.id = "fig1";
@@ -79,6 +88,25 @@ void ReportWriter::section_zenith() {
     low_branch_max_sun_zenith_ = 0.5 * (end_lo + end_hi);
   }
 
+  // Zotti's view: T 1-12 on a linear axis.
+  svg::Plot q = p;
+  q.id = "fig1lin";
+  q.title =
+      fmt::format("Preetham zenith luminance, T {:g}-{:g} linear (as Zotti's Fig. 1)", lt0, lt1);
+  q.y = {lt0, lt1, false, "turbidity T", {1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12}};
+  q.background_image = "fig1_preetham_zenith_luminance_linear.png";
+  for (auto& series : q.series) {
+    svg::Series kept = series;
+    kept.x.clear();
+    kept.y.clear();
+    for (std::size_t i = 0; i < series.x.size(); ++i)
+      if (series.y[i] >= lt0 && series.y[i] <= lt1) {
+        kept.x.push_back(series.x[i]);
+        kept.y.push_back(series.y[i]);
+      }
+    series = kept;
+  }
+
   std::string table =
       "<table><tr><th>theta_s [deg]</th><th>T where Yz = 0</th><th>Yz &lt; 0 for</th></tr>\n";
   for (const auto& r : roots) {
@@ -94,6 +122,14 @@ void ReportWriter::section_zenith() {
              "angle and the turbidity range the model accepts (1-64, log scale; Zotti shows 1-12). "
              "Red: Yz &lt; 0. Dots: the boundary Yz = 0 found by bisection (report.json "
              "<code>preetham_negative_zenith</code>).") +
+      figure(
+          "fig1_preetham_zenith_luminance_linear.svg", svg::draw(q),
+          fmt::format("The same on Zotti's axes: T {:g}-{:g}, linear. Yz alone is negative "
+                      "only in the corners (T &lt; {:.3g} with a high sun, T &gt; {:.3g} with "
+                      "the sun at the horizon); the whole sky is negative somewhere for {:.3g} "
+                      "&lt; T &lt; {:.4g} at every sun position (summary, first finding).",
+                      lt0, lt1, low_branch_t_at_zenith_, high_branch_t_at_horizon_,
+                      preetham_negative_sky_range().t_low, preetham_negative_sky_range().t_high)) +
       "<p>Boundary points every 10 deg (and 85 deg); all points at " +
       fmt::format("{:g}", cfg_.root_step_deg) + " deg steps are in report.json.</p>\n" + table;
 
@@ -228,6 +264,40 @@ void ReportWriter::section_maps() {
            "absolute: the Kittler-Darula typical zenith luminance (0 for the overcast types 1-6 "
            "with the sun at the horizon, hence the dark tiles)",
            "type", rows, labels, relative);
+  }
+  {
+    // The Kittler-Darula zenith luminance band (cie_sky.h) at the maps' sun positions.
+    std::string t = "<table><tr><th>type</th>";
+    for (double d : cfg_.map_sun_zeniths_deg) t += fmt::format("<th>theta_s {:g}</th>", d);
+    t += "</tr>\n";
+    Json band = Json::array();
+    for (int type = 1; type <= kCieTypeCount; ++type) {
+      t += fmt::format("<tr><td>{}</td>", type);
+      Json row = Json::array();
+      for (double d : cfg_.map_sun_zeniths_deg) {
+        const ZenithLuminanceBand b =
+            kittler_darula_zenith_luminance_band(type, (90.0 - d) * kDegree);
+        t += fmt::format("<td>{} [{}, {}]</td>", g3(b.typical), g3(b.low), g3(b.high));
+        row.push_back({{"sun_zenith_deg", d},
+                       {"typical", num(b.typical)},
+                       {"low", num(b.low)},
+                       {"high", num(b.high)}});
+      }
+      t += "</tr>\n";
+      band.push_back({{"cie_type", type}, {"zenith_luminance_cd_m2", row}});
+    }
+    t += "</table>\n";
+    json_["kittler_darula_zenith_luminance_band"] = band;
+    html_abs_ += fmt::format(
+        "<p>CIE zenith luminance Lz [cd/m2] used above (Kittler-Darula typical) and, in brackets, "
+        "the band [low, high] against which Zotti's pairs are also compared: types 7-15 the "
+        "Kittler-Darula formula with A = A1 Tv + A2 over Linke turbidity Tv {:g}-{:g}; types 1-6 "
+        "and 16 Dv/Ev over the range of the typical values of types 1-15. This band is our "
+        "derivation from the published typical parameters (Kittler &amp; Darula's minimum and "
+        "maximum values, drawn in Zotti's Fig. 5, are not available to us; docs/REPORT.md). "
+        "Kittler &amp; Darula recommend the formula for sun elevations 10-80 deg (theta_s "
+        "10-80 deg); other columns are extrapolated.</p>\n{}",
+        kKittlerDarulaBandTvMin, kKittlerDarulaBandTvMax, t);
   }
   step("CIE luminance maps");
   {

@@ -8,6 +8,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -77,6 +78,13 @@ struct Config {
   int validity_preetham_rows;
   double validity_hosek_step;
   std::vector<double> validity_nishita_deg;
+  // Zotti's findings (section_findings.cpp).
+  std::vector<double> fit_per_sun_zeniths_deg;  // best T for CIE 12 at each sun position
+  std::vector<double> zone_sun_zeniths_deg;     // antisolar half, low sun
+  std::vector<double> pair_sun_zeniths_deg;     // Zotti's pairs: 15 < theta_s < 70
+  std::vector<double> low_sun_zeniths_deg;      // circumsolar ring and horizon band
+  int zone_n_theta, zone_n_phi;                 // hemisphere_grid for the regions
+  std::vector<double> fig1_linear_t;            // T range of the linear Fig. 1 view
 };
 Config make_config(bool quick);
 
@@ -127,6 +135,10 @@ class ReportWriter {
   void section_illumination();
   void section_measurements();
   void section_validity();
+  void section_findings();
+  // The summary (generated from summary_.findings) and the findings table.
+  std::string findings_summary_html() const;
+  std::string findings_table_html() const;
   void write_html_and_json();
 
   // Renders one family of tiles into a relative and an absolute mosaic.
@@ -136,7 +148,7 @@ class ReportWriter {
               const std::vector<std::string>& row_labels,
               const std::vector<ModelSpec>& relative_rows = {});
 
-  static constexpr int kSteps = 12;
+  static constexpr int kSteps = 17;
   const ReportOptions& opt_;
   Config cfg_;
   int done_ = 0;
@@ -144,13 +156,15 @@ class ReportWriter {
   Json json_;
   // HTML fragments by section.
   std::string html_zenith_, html_rel_, html_abs_, html_match_, html_vertical_, html_illum_,
-      html_scan_, html_validity_, html_notes_;
+      html_scan_, html_validity_, html_findings_;
   // Numbers for the closing note.
   double low_branch_max_sun_zenith_ = kNaN, low_branch_t_at_zenith_ = kNaN;
   double high_branch_t_at_horizon_ = kNaN, high_branch_t_at_zenith_ = kNaN;
   std::vector<AntisolarRow> antisolar_;
   std::string scan_best_;
-  std::string pairs_note_;                // Zotti's pairs, our numbers
+  std::map<double, RatioBand> pair_bands_;  // Zotti's pairs by Preetham T (section_matching)
+  int scan_best_cie_type_ = 0;              // best CIE type for the scan (0: none)
+  bool scan_synthetic_ = true;
   double antisolar_relative_ = kNaN;      // the headline ratio of zenith-normalised values
   double antisolar_zenith_ratio_ = kNaN;  // Preetham Yz / CIE 12 Lz at the headline theta_s
 };
