@@ -7,12 +7,12 @@
 #include <string>
 
 #include "skylight/core/error.h"
-#include "skylight/sun/spa_tables.h"
+#include "skylight/sun/detail/spa_tables.h"
 
 namespace skylight::sun {
 namespace {
 
-namespace tables = spa_tables;
+namespace tables = skylight::sun::detail;
 
 // Every row of the transcribed tables is filled (a short initializer list would leave zero rows).
 template <std::size_t N>

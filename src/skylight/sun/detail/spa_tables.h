@@ -1,4 +1,4 @@
-// Periodic-term tables of the NREL Solar Position Algorithm (internal to spa.cpp).
+// Periodic-term tables of the NREL Solar Position Algorithm (internal to spa.cpp; not installed).
 //
 // Source: I. Reda & A. Andreas, "Solar position algorithm for solar radiation applications",
 // Solar Energy 76(5), 577-589 (2004); NREL/TP-560-34302 (revised January 2008):
@@ -10,7 +10,7 @@
 
 #include <array>
 
-namespace skylight::sun::spa_tables {
+namespace skylight::sun::detail {
 
 // One row of Table A4.2: the term A cos(B + C JME), eq. (9). A in 1e-8 rad (1e-8 AU for R),
 // B in rad, C in rad per Julian millennium.
@@ -190,4 +190,4 @@ inline constexpr std::array<NutationTerm, 63> kNutation{{
     {{ 2, -1,  0,  2,  2},      -3,    0,       0,  0}}};
 // clang-format on
 
-}  // namespace skylight::sun::spa_tables
+}  // namespace skylight::sun::detail
