@@ -104,6 +104,33 @@ CLI::Option* add_numbers(CLI::App& app, const ParameterSpec& spec, std::vector<d
       fmt::format("{} in [{}, {}], comma-separated", s.unit, s.min, s.max)));
 }
 
+// ---- solar position flags ----------------------------------------------------------------------
+
+CLI::Option* SpaOptions::add(CLI::App& app, bool required, const std::vector<std::string>& names) {
+  auto* time = app.add_option("--time", time_,
+                              "date and time, ISO 8601 with seconds and UTC offset, e.g. "
+                              "2003-10-17T12:30:30-07:00 or 2003-10-17T19:30:30Z");
+  if (required) time->required();
+  for (const auto& spec : sun::spa_parameter_specs()) {
+    if (!names.empty() && std::find(names.begin(), names.end(), spec.name) == names.end()) continue;
+    auto* opt = add_number(app, spec, values_[spec.name]);
+    if (required && spec.required()) opt->required();
+    if (!required) opt->needs(time);
+  }
+  return time;
+}
+
+sun::SpaInput SpaOptions::input() const {
+  sun::SpaInput in;
+  in.time = sun::parse_iso8601(time_);
+  ParameterValues values;
+  for (const auto& [name, value] : values_)
+    if (value) values.set(name, *value);
+  sun::spa_input_schema().bind(values, in, "--time");
+  sun::validate(in);
+  return in;
+}
+
 // ---- model flags --------------------------------------------------------------------------------
 
 std::vector<std::pair<std::string, std::vector<std::pair<std::string, ParameterSpec>>>>
@@ -162,7 +189,9 @@ void ModelOptions::add(CLI::App& app) {
   auto* z = add_number(app, sun[0], sun_zenith_deg_);
   auto* e = add_number(app, sun_elevation_spec(), sun_elevation_deg_);
   z->excludes(e);
-  add_number(app, sun[1], sun_azimuth_deg_);
+  auto* a = add_number(app, sun[1], sun_azimuth_deg_);
+  auto* t = spa_.add(app, false, {"lat", "lon", "elevation", "pressure", "temperature", "delta-t"});
+  t->excludes(z)->excludes(e)->excludes(a);
   for (const auto& [name, specs] : model_parameter_names())
     app.add_option("--" + name, raw_[name], model_flag_help(specs));
   auto* inc = app.add_flag("--include-sun", include_sun_, "add the solar disc (models with a sun)");
@@ -183,10 +212,17 @@ const ModelInfo& ModelOptions::info() const {
 SkyParameters ModelOptions::parameters() const {
   const ModelInfo& m = info();
   SkyParameters p;
-  const double zenith_deg = sun_zenith_deg_      ? *sun_zenith_deg_
-                            : sun_elevation_deg_ ? 90.0 - *sun_elevation_deg_
-                                                 : kDefaultSunZenithDeg;
-  p.sun = sun_from_degrees(zenith_deg, sun_azimuth_deg_);
+  if (spa_.given()) {
+    // Through the same degrees as --sun-zenith/--sun-azimuth, so that `skylight sun --json`'s
+    // zenith_deg and azimuth_deg given as flags build the identical sky.
+    const sun::SpaResult r = sun::solar_position(spa_.input());
+    p.sun = sun_from_degrees(rad_to_deg(r.zenith), rad_to_deg(r.azimuth));
+  } else {
+    const double zenith_deg = sun_zenith_deg_      ? *sun_zenith_deg_
+                              : sun_elevation_deg_ ? 90.0 - *sun_elevation_deg_
+                                                   : kDefaultSunZenithDeg;
+    p.sun = sun_from_degrees(zenith_deg, sun_azimuth_deg_);
+  }
   for (const auto& [name, text] : raw_) {
     if (!text) continue;
     const auto spec = std::find_if(m.parameters.begin(), m.parameters.end(),
@@ -206,6 +242,20 @@ std::unique_ptr<SkyModel> ModelOptions::make() const {
     throw InvalidArgument(
         fmt::format("--include-sun/--sun-only: model '{}' has no sun", model->name()));
   return model;
+}
+
+io::Metadata ModelOptions::solar_position_metadata() const {
+  if (!spa_.given()) return {};
+  const sun::SpaInput in = spa_.input();
+  return {
+      {"skylight:time", sun::format_iso8601(in.time, 3)},
+      {"skylight:latitude_deg", fmt::format("{}", rad_to_deg(in.latitude))},
+      {"skylight:longitude_deg", fmt::format("{}", rad_to_deg(in.longitude))},
+      {"skylight:elevation_m", fmt::format("{}", in.elevation)},
+      {"skylight:pressure_mbar", fmt::format("{}", in.pressure)},
+      {"skylight:temperature_degC", fmt::format("{}", in.temperature)},
+      {"skylight:delta_t_s", fmt::format("{}", in.delta_t)},
+  };
 }
 
 void warn(std::string_view message) {

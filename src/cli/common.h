@@ -1,8 +1,8 @@
 // Shared machinery of the command-line tool: the subcommand table, exit statuses, flags built from
 // the parameter schema (core/parameters.h), the model flags of `render` and `eval`, output
 // metadata, checked writes to standard output and progress lines. Each subcommand family lives in
-// its own file (models_cmd.cpp, render_cmd.cpp, eval_cmd.cpp, bench_cmd.cpp, report_cmd.cpp) and
-// only parses, validates through the schema, calls the library and writes outputs.
+// its own file (models_cmd.cpp, render_cmd.cpp, eval_cmd.cpp, bench_cmd.cpp, report_cmd.cpp,
+// sun_cmd.cpp) and only parses, validates through the schema, calls the library and writes outputs.
 #pragma once
 
 #include <CLI/CLI.hpp>
@@ -19,6 +19,7 @@
 #include "skylight/core/parameters.h"
 #include "skylight/io/image.h"
 #include "skylight/models/sky_model.h"
+#include "skylight/sun/spa.h"
 
 namespace skylight::cli {
 
@@ -40,6 +41,7 @@ void add_render_command(CLI::App& app, Commands& commands);
 void add_eval_command(CLI::App& app, Commands& commands);
 void add_bench_command(CLI::App& app, Commands& commands);
 void add_report_command(CLI::App& app, Commands& commands);
+void add_sun_command(CLI::App& app, Commands& commands);
 
 // ---- flags from the schema ----------------------------------------------------------------------
 
@@ -53,11 +55,36 @@ CLI::Option* add_integer(CLI::App& app, const ParameterSpec& spec, int& target);
 // A comma-separated list of `spec.count` numbers (spec.count 0: any length >= 1).
 CLI::Option* add_numbers(CLI::App& app, const ParameterSpec& spec, std::vector<double>& target);
 
+// ---- solar position flags (sun, render, eval)
+// ----------------------------------------------------
+
+// --time (ISO 8601 with UTC offset, sun/time.h) and the SPA's numeric flags, declared by
+// sun::spa_parameter_specs() (--lat, --lon, --elevation, --pressure, --temperature, --delta-t,
+// ...).
+class SpaOptions {
+ public:
+  // Adds --time and the flags of the specs named in `names` (all specs if empty). With
+  // `required`, --time, --lat and --lon must be given; otherwise every flag needs --time. Returns
+  // the --time option.
+  CLI::Option* add(CLI::App& app, bool required, const std::vector<std::string>& names = {});
+  bool given() const { return !time_.empty(); }
+  const std::string& time_text() const { return time_; }
+  // The SPA input: the parsed time and the given values over the specs' defaults (InvalidArgument
+  // for a malformed time or a missing --lat/--lon).
+  sun::SpaInput input() const;
+
+ private:
+  std::string time_;
+  std::map<std::string, std::optional<double>> values_;  // spec name -> value as given
+};
+
 // ---- model flags (render, eval) -----------------------------------------------------------------
 
-// --model, the sun (--sun-zenith | --sun-elevation, --sun-azimuth), one flag per parameter name of
-// every registered model (its help lists each model's unit, range and default), and the solar
-// disc switches. The values are kept as text and parsed by the chosen model's schema.
+// --model, the sun (--sun-zenith | --sun-elevation, --sun-azimuth, or the solar position from
+// --time --lat --lon [--elevation --pressure --temperature --delta-t], exclusive with the angles),
+// one flag per parameter name of every registered model (its help lists each model's unit, range
+// and default), and the solar disc switches. The values are kept as text and parsed by the chosen
+// model's schema.
 class ModelOptions {
  public:
   void add(CLI::App& app);
@@ -68,6 +95,9 @@ class ModelOptions {
   SkyParameters parameters() const;
   // The model (InvalidArgument for bad values, or for --include-sun/--sun-only without a sun).
   std::unique_ptr<SkyModel> make() const;
+  // The solar-position inputs as metadata (skylight:time, skylight:latitude_deg, ...) when the sun
+  // came from --time; empty otherwise.
+  io::Metadata solar_position_metadata() const;
   bool include_sun() const { return include_sun_; }
   bool sun_only() const { return sun_only_; }
   const std::string& model_name() const { return model_; }
@@ -76,6 +106,7 @@ class ModelOptions {
   std::string model_;
   std::optional<double> sun_zenith_deg_, sun_elevation_deg_;
   double sun_azimuth_deg_ = kDefaultSunAzimuthDeg;
+  SpaOptions spa_;
   std::map<std::string, std::optional<std::string>> raw_;  // parameter name -> text as given
   bool include_sun_ = false, sun_only_ = false;
 };

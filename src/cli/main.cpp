@@ -35,6 +35,7 @@ int main(int argc, char** argv) {
   cli::add_eval_command(app, commands);
   cli::add_bench_command(app, commands);
   cli::add_report_command(app, commands);
+  cli::add_sun_command(app, commands);
 
   try {
     app.parse(argc, argv);

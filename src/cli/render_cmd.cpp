@@ -69,6 +69,7 @@ int run_render(const RenderFlags& f) {
   auto md = model_metadata(*model, s.sun == render::SunMode::sun_only      ? "sun-only"
                                    : s.sun == render::SunMode::sky_and_sun ? "sky+sun"
                                                                            : "sky");
+  for (auto& entry : f.model.solar_position_metadata()) md.push_back(std::move(entry));
   md.emplace_back("skylight:projection", f.projection);
   if (s.projection == render::Projection::camera) {
     md.emplace_back("skylight:fov_deg", fmt::format("{}", f.fov_deg.value_or(kCameraFovDeg)));
