@@ -1,0 +1,70 @@
+// Habel, Mustata & Wimmer 2008 §3.1, eq. 1: each SH coefficient of a sky as a polynomial in the
+// sun's zenith angle theta and a second model parameter tau (Preetham: turbidity),
+//   c_lm(theta, tau) = sum_ij (p_lm)_ij theta^i tau^j,  i = 0..d_i, j = 0..d_j,
+// fitted by least squares to converged projections on a dense (theta, tau) grid.
+//
+// The raw monomial basis is ill-conditioned (condition ~1e19 for (13, 7) on theta in [0, pi/2],
+// tau in [2.5, 6]); the fit and the stored table use the same polynomial space in the orthogonal,
+// scaled basis T_i(u) T_j(v): Chebyshev polynomials of u, v in [-1, 1], the parameters mapped
+// linearly from their ranges. The sun is at azimuth 0 in the fitting frame, where the sky is even
+// in phi: only the m >= 0 (cos m phi) coefficients are stored; eq. 4 rotates to any azimuth.
+// docs/SH.md describes the table and its JSON form.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "skylight/sh/projection.h"
+
+namespace skylight::sh {
+
+struct PolynomialFitSettings {
+  std::string model = "preetham";
+  // tau: the model's second varying parameter; the model's other parameters keep their defaults.
+  std::string parameter = "turbidity";
+  Channels channels = Channels::xyz;
+  int bands = 7;                                // N
+  int degree_theta = 13;                        // d_i
+  int degree_tau = 7;                           // d_j
+  double theta_min = 0.0, theta_max = kPi / 2;  // sun zenith [rad]
+  double tau_min = 2.5, tau_max = 6.0;          // Habel 2008 §2.2
+  int grid_theta = 0;                           // grid points; 0 = 2 (d_i + 1) + 1
+  int grid_tau = 0;                             // 0 = 2 (d_j + 1) + 1
+  ProjectionOptions projection{};
+};
+
+// The fitted table: for each stored (l, m >= 0) and channel, (d_i + 1)(d_j + 1) coefficients of
+// T_i(u) T_j(v), in float (the fit is in double).
+struct PolynomialTable {
+  std::string model, parameter;
+  Channels channels = Channels::xyz;
+  int bands = 0, degree_theta = 0, degree_tau = 0;
+  double theta_min = 0.0, theta_max = 0.0, tau_min = 0.0, tau_max = 0.0;
+  // [((l (l + 1) / 2 + m) * 3 + channel) * terms + i * (d_j + 1) + j], m = 0..l
+  std::vector<float> coefficients;
+
+  int terms() const { return (degree_theta + 1) * (degree_tau + 1); }
+  // Memory of `coefficients` [bytes].
+  std::size_t bytes() const { return coefficients.size() * sizeof(float); }
+};
+
+// Projects the model at each grid point (sun at azimuth 0) and fits (Eigen, column-pivoting QR).
+// Throws InvalidArgument for bad settings (unknown model or parameter, degrees < 0, empty range).
+PolynomialTable fit_polynomial(const PolynomialFitSettings& settings);
+
+// Eq. 1 at (theta, tau), then eq. 4 (rotation to azimuth phi) and, if asked, eq. 5 (ringing
+// filter for `bands` bands): the first `bands` <= table.bands bands. theta and tau outside the
+// fitted ranges throw InvalidArgument.
+Coefficients evaluate_table(const PolynomialTable& table, double theta, double tau, double phi,
+                            int bands, bool ringing_filter);
+
+// The converged projection of the table's model at (theta, tau), sun at azimuth phi: the
+// reference that evaluate_table approximates.
+Projection project_reference(const PolynomialTable& table, double theta, double tau, double phi,
+                             int bands, const ProjectionOptions& options = {});
+
+// JSON form (docs/SH.md); load validates every field and throws InvalidArgument naming it.
+std::string table_to_json(const PolynomialTable& table);
+PolynomialTable table_from_json(const std::string& text, const std::string& where);
+
+}  // namespace skylight::sh

@@ -1,0 +1,104 @@
+#include "skylight/sh/polynomial.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+
+#include "skylight/core/error.h"
+#include "skylight/core/math.h"
+#include "skylight/models/preetham.h"
+#include "skylight/sh/basis.h"
+#include "skylight/sh/error.h"
+#include "skylight/sh/rotation.h"
+
+namespace skylight::sh {
+namespace {
+
+// A reduced fit (3 bands, degrees (8, 6) on a 13 x 10 grid, Preetham over theta in [0, 60 deg],
+// T in [2.5, 6], projections to 1e-5) that the test suite can afford; docs/SH.md has the full
+// study.
+PolynomialFitSettings small_settings() {
+  PolynomialFitSettings s;
+  s.bands = 3;
+  s.degree_theta = 8;
+  s.degree_tau = 6;
+  s.grid_theta = 13;
+  s.grid_tau = 10;
+  s.theta_max = deg_to_rad(60.0);
+  s.projection.tolerance = 1e-5;
+  return s;
+}
+
+const PolynomialTable& small_table() {
+  static const PolynomialTable t = fit_polynomial(small_settings());
+  return t;
+}
+
+// Eq. 3 of the reduced fit: measured worst 2.7e-3 over 10 x 7 off-grid points (its turbidity
+// degree 6 limits it); the bound leaves a factor ~2 and still catches any fitting or indexing
+// error (errors of order 1).
+constexpr double kSmallFitMeanError = 6e-3;
+
+TEST(ShPolynomial, ReducedPreethamFitReproducesProjectionsOffTheGrid) {
+  const auto& t = small_table();
+  EXPECT_EQ(t.coefficients.size(), 6u * 3u * 63u);  // m >= 0 only: 6 (l, m) pairs
+  double worst = 0.0;
+  for (double theta_deg : {7.0, 33.0, 58.0}) {
+    for (double tau : {2.7, 4.1, 5.9}) {
+      const double theta = deg_to_rad(theta_deg), phi = 1.3;
+      const auto rec = evaluate_table(t, theta, tau, phi, 3, false);
+      const auto ref = project_reference(t, theta, tau, phi, 3);
+      const PreethamModel model(PreethamParameters{{theta, phi}, tau});
+      const auto e = error_measures(ref.coefficients, rec, 3, minimum_over_sky(model, t.channels));
+      for (int ch = 0; ch < 3; ++ch) {
+        worst = std::max(worst, e.e_mean[ch]);
+        EXPECT_LT(e.e_mean[ch], kSmallFitMeanError) << theta_deg << " deg, T " << tau;
+        EXPECT_LE(e.e_mean[ch], e.e_max[ch]);
+      }
+    }
+  }
+  std::printf("reduced fit: worst E_mean %.3g\n", worst);
+}
+
+TEST(ShPolynomial, FilterAndRotationApplyAfterEvaluation) {
+  const auto& t = small_table();
+  const auto base = evaluate_table(t, 0.5, 3.0, 0.0, 3, false);
+  const auto rot = evaluate_table(t, 0.5, 3.0, 2.0, 3, true);
+  const auto expect = ringing_filter(rotate_about_zenith(base, 2.0));
+  for (std::size_t i = 0; i < expect.c.size(); ++i) {
+    for (int ch = 0; ch < 3; ++ch) EXPECT_DOUBLE_EQ(rot.c[i][ch], expect.c[i][ch]);
+  }
+  // Fewer bands: the leading coefficients of the same evaluation.
+  const auto two = evaluate_table(t, 0.5, 3.0, 0.0, 2, false);
+  for (std::size_t i = 0; i < two.c.size(); ++i) EXPECT_EQ(two.c[i], base.c[i]);
+  EXPECT_THROW(evaluate_table(t, 1.2, 3.0, 0.0, 3, false), InvalidArgument);  // > 60 deg
+  EXPECT_THROW(evaluate_table(t, 0.5, 7.0, 0.0, 3, false), InvalidArgument);
+  EXPECT_THROW(evaluate_table(t, 0.5, 3.0, 0.0, 4, false), InvalidArgument);
+}
+
+TEST(ShPolynomial, JsonRoundTripIsExactAndLoadingNamesBadFields) {
+  const auto& t = small_table();
+  const auto back = table_from_json(table_to_json(t), "t.json");
+  EXPECT_EQ(back.model, t.model);
+  EXPECT_EQ(back.bands, t.bands);
+  EXPECT_EQ(back.degree_theta, t.degree_theta);
+  EXPECT_EQ(back.coefficients, t.coefficients);
+  EXPECT_EQ(back.theta_max, t.theta_max);
+  auto expect_error = [](const std::string& text, const std::string& needle) {
+    try {
+      table_from_json(text, "t.json");
+      ADD_FAILURE() << "no error for " << text;
+    } catch (const InvalidArgument& e) {
+      EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what();
+    }
+  };
+  std::string j = table_to_json(t);
+  expect_error("{", "not valid JSON");
+  expect_error(std::string(j).replace(j.find("\"bands\": 3"), 10, "\"bands\": 99"), "'bands'");
+  expect_error(std::string(j).replace(j.find("\"channels\": \"xyz\""), 17, "\"channels\": \"q\""),
+               "'channels'");
+}
+
+}  // namespace
+}  // namespace skylight::sh

@@ -1,0 +1,118 @@
+// JSON form of a PolynomialTable (docs/SH.md).
+#include <cmath>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "skylight/core/error.h"
+#include "skylight/core/numbers.h"
+#include "skylight/sh/basis.h"
+#include "skylight/sh/polynomial.h"
+
+namespace skylight::sh {
+namespace {
+
+constexpr const char* kFormat = "skylight-sh-polynomial-table";
+constexpr int kVersion = 1;
+
+[[noreturn]] void bad(const std::string& where, const std::string& field, const std::string& why) {
+  throw InvalidArgument(where + ": field '" + field + "' " + why);
+}
+
+const nlohmann::json& field(const nlohmann::json& j, const std::string& where, const char* name) {
+  if (!j.contains(name)) bad(where, name, "is missing");
+  return j.at(name);
+}
+
+double number(const nlohmann::json& j, const std::string& where, const char* name) {
+  const auto& v = field(j, where, name);
+  if (!v.is_number() || !std::isfinite(v.get<double>())) bad(where, name, "is not a finite number");
+  return v.get<double>();
+}
+
+int integer(const nlohmann::json& j, const std::string& where, const char* name, int lo, int hi) {
+  const auto& v = field(j, where, name);
+  if (!v.is_number_integer() || v.get<long long>() < lo || v.get<long long>() > hi) {
+    bad(where, name,
+        "is not an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
+  }
+  return v.get<int>();
+}
+
+std::string text(const nlohmann::json& j, const std::string& where, const char* name) {
+  const auto& v = field(j, where, name);
+  if (!v.is_string()) bad(where, name, "is not a string");
+  return v.get<std::string>();
+}
+
+}  // namespace
+
+std::string table_to_json(const PolynomialTable& t) {
+  nlohmann::json j;
+  j["format"] = kFormat;
+  j["version"] = kVersion;
+  j["model"] = t.model;
+  j["parameter"] = t.parameter;
+  j["channels"] = t.channels == Channels::xyz ? "xyz" : "linear_srgb";
+  j["bands"] = t.bands;
+  j["degree_theta"] = t.degree_theta;
+  j["degree_tau"] = t.degree_tau;
+  j["theta_min_rad"] = t.theta_min;
+  j["theta_max_rad"] = t.theta_max;
+  j["tau_min"] = t.tau_min;
+  j["tau_max"] = t.tau_max;
+  j["basis"] = "chebyshev T_i(u) T_j(v), u, v = the ranges mapped onto [-1, 1]";
+  j["layout"] = "[((l (l + 1) / 2 + m) * 3 + channel) * terms + i * (degree_tau + 1) + j], m >= 0";
+  j["coefficients"] = t.coefficients;
+  return j.dump(1);
+}
+
+PolynomialTable table_from_json(const std::string& s, const std::string& where) {
+  nlohmann::json j;
+  try {
+    j = nlohmann::json::parse(s);
+  } catch (const nlohmann::json::parse_error& e) {
+    throw InvalidArgument(where + ": not valid JSON (" + excerpt(e.what()) + ")");
+  }
+  if (!j.is_object()) throw InvalidArgument(where + ": not a JSON object");
+  if (text(j, where, "format") != kFormat)
+    bad(where, "format", "is not '" + std::string(kFormat) + "'");
+  if (integer(j, where, "version", 0, 1000) != kVersion) bad(where, "version", "is not 1");
+  PolynomialTable t;
+  t.model = text(j, where, "model");
+  t.parameter = text(j, where, "parameter");
+  const std::string ch = text(j, where, "channels");
+  if (ch == "xyz") {
+    t.channels = Channels::xyz;
+  } else if (ch == "linear_srgb") {
+    t.channels = Channels::linear_srgb;
+  } else {
+    bad(where, "channels", "is " + excerpt(ch) + ", not 'xyz' or 'linear_srgb'");
+  }
+  t.bands = integer(j, where, "bands", 1, kMaxBands);
+  t.degree_theta = integer(j, where, "degree_theta", 0, 40);
+  t.degree_tau = integer(j, where, "degree_tau", 0, 40);
+  t.theta_min = number(j, where, "theta_min_rad");
+  t.theta_max = number(j, where, "theta_max_rad");
+  t.tau_min = number(j, where, "tau_min");
+  t.tau_max = number(j, where, "tau_max");
+  if (!(t.theta_min >= 0.0 && t.theta_max >= t.theta_min && t.theta_max <= kPi)) {
+    bad(where, "theta_max_rad", "must give 0 <= theta_min_rad <= theta_max_rad <= pi");
+  }
+  if (!(t.tau_max >= t.tau_min)) bad(where, "tau_max", "is below tau_min");
+  const auto& c = field(j, where, "coefficients");
+  const std::size_t expect = static_cast<std::size_t>(t.bands * (t.bands + 1) / 2) * 3 *
+                             static_cast<std::size_t>(t.terms());
+  if (!c.is_array() || c.size() != expect) {
+    bad(where, "coefficients", "is not an array of " + std::to_string(expect) + " numbers");
+  }
+  t.coefficients.reserve(expect);
+  for (const auto& v : c) {
+    if (!v.is_number() || !std::isfinite(v.get<double>())) {
+      bad(where, "coefficients", "holds a value that is not a finite number");
+    }
+    t.coefficients.push_back(v.get<float>());
+  }
+  return t;
+}
+
+}  // namespace skylight::sh
