@@ -23,9 +23,11 @@ struct PolynomialFitSettings {
   // tau: the model's second varying parameter; the model's other parameters keep their defaults.
   std::string parameter = "turbidity";
   Channels channels = Channels::xyz;
-  int bands = 7;                                // N
-  int degree_theta = 13;                        // d_i
-  int degree_tau = 7;                           // d_j
+  int bands = 7;  // N
+  // (d_i, d_j): Habel's (13, 7) reaches a worst E_mean of ~0.16 % at 5 bands, limited by the
+  // turbidity degree; (17, 12) reaches ~0.002 % (docs/SH.md, "Measured so far").
+  int degree_theta = 17;                        // d_i
+  int degree_tau = 12;                          // d_j
   double theta_min = 0.0, theta_max = kPi / 2;  // sun zenith [rad]
   double tau_min = 2.5, tau_max = 6.0;          // Habel 2008 §2.2
   int grid_theta = 0;                           // grid points; 0 = 2 (d_i + 1) + 1
