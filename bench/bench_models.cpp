@@ -34,12 +34,13 @@ Grid& grid() {
   return g;
 }
 
+// Each model at its defaults (T = 3, albedo 0.3, CIE type 12) plus the registry's example values
+// for required parameters, the sun at zenith 45 deg, azimuth 180 deg: as `skylight bench`. Only
+// the model's own parameters: the registry refuses names a model does not read.
 std::unique_ptr<SkyModel> model(const char* name) {
   SkyParameters p;
-  p.values.set("turbidity", 3.0);
+  p.values = find_model(name)->example;
   p.sun = {deg_to_rad(45.0), deg_to_rad(180.0)};
-  p.values.set("perez", std::vector<double>{-1.0, -0.32, 10.0, -3.0, 0.45});
-  p.values.set("zenith-luminance", 5000.0);
   return make_sky_model(name, p);
 }
 

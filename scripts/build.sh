@@ -4,7 +4,7 @@
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 dir="$1"; shift
-cmake -S "$root" -B "$dir" -G Ninja -DPython3_EXECUTABLE=/usr/bin/python3 "$@" >/dev/null
+cmake -S "$root" -B "$dir" -G Ninja "$@" >/dev/null
 if [ -n "${SKYLIGHT_TARGET:-}" ]; then
   cmake --build "$dir" -j "$(nproc)" --target "$SKYLIGHT_TARGET"
 else

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # The test command (README): installs what is missing, builds, runs the whole GoogleTest suite
-# (unit + CLI end-to-end) in the Release build and again under ASan + UBSan.
+# (unit + CLI end-to-end, the docs' shell blocks) in the Release build, builds the README's library
+# example against the installed package, and runs the suite again under ASan + UBSan.
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "$root"
@@ -14,6 +15,12 @@ cmake --install build --prefix build/install >/dev/null
 cmake -S tests/consumer -B build/consumer -G Ninja -DCMAKE_PREFIX_PATH="$root/build/install" >/dev/null
 cmake --build build/consumer >/dev/null
 build/consumer/consumer
+# The README's library example (built from README.md by tests/consumer) prints what its comments
+# say.
+example="$(build/consumer/readme_example)"
+echo "$example"
+grep -qx 'zenith luminance 7320.4 cd/m^2' <<<"$example"
+grep -qF -- '--turbidity = 100 is outside [1, 64] (model '"'preetham'"')' <<<"$example"
 if [ "${SKYLIGHT_SKIP_SANITIZERS:-0}" != "1" ]; then
   echo "== ASan + UBSan build + tests"
   bash scripts/build.sh build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSKYLIGHT_SANITIZE=ON -DSKYLIGHT_BUILD_TESTS=ON -DSKYLIGHT_BUILD_BENCH=OFF

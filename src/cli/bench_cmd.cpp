@@ -16,6 +16,9 @@ namespace {
 struct BenchFlags {
   int width = 1024, height = 512, repeats = 7;
   std::vector<std::string> models{"preetham", "cie", "hosek"};
+  // The model flags of render/eval, accepted here only to be refused with a clear message.
+  std::vector<std::string> model_flags;
+  std::string model_flag_text;
 };
 
 double median(std::vector<double> v) {
@@ -35,7 +38,15 @@ double median_seconds(int repeats, F&& f) {
   return median(std::move(t));
 }
 
-int run_bench(const BenchFlags& f) {
+int run_bench(const BenchFlags& f, const CLI::App& cmd) {
+  std::string given;
+  for (const auto& name : f.model_flags)
+    if (cmd.count(name) > 0) given += (given.empty() ? "" : ", ") + name;
+  if (!given.empty())
+    throw InvalidArgument(fmt::format(
+        "bench takes no model flags ({}): every model runs at its defaults (sun zenith 45 deg, "
+        "azimuth 180 deg, T = 3, albedo 0.3, CIE type 12); choose the models with --models",
+        given));
   std::vector<const ModelInfo*> models;
   for (const auto& name : f.models) {
     const ModelInfo* m = find_model(name);
@@ -110,7 +121,23 @@ void add_bench_command(CLI::App& app, Commands& commands) {
               f->repeats);
   cmd->add_option("--models", f->models, "models to time; default preetham,cie,hosek")
       ->delimiter(',');
-  commands.push_back({cmd, [f] { return run_bench(*f); }});
+  // Hidden: the model flags of render/eval, so that giving one names the problem.
+  const auto hidden = [&](const std::string& name, bool is_flag) {
+    f->model_flags.push_back("--" + name);
+    if (is_flag)
+      cmd->add_flag("--" + name)->group("");
+    else
+      cmd->add_option("--" + name, f->model_flag_text)->group("");
+  };
+  for (const char* name : {"model", "sun-zenith", "sun-elevation", "sun-azimuth", "time", "lat",
+                           "lon", "elevation", "pressure", "temperature", "delta-t"})
+    hidden(name, false);
+  for (const char* name : {"include-sun", "sun-only"}) hidden(name, true);
+  for (const auto& [name, specs] : model_parameter_names())
+    if (std::find(f->model_flags.begin(), f->model_flags.end(), "--" + name) ==
+        f->model_flags.end())
+      hidden(name, false);
+  commands.push_back({cmd, [f, cmd] { return run_bench(*f, *cmd); }});
 }
 
 }  // namespace skylight::cli

@@ -22,10 +22,9 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", std::string("skylight ") + skylight::kVersion);
   app.require_subcommand(1);
   int threads = 0;
-  app.add_option("--threads", threads,
-                 fmt::format("worker threads, 1-{}; default: SKYLIGHT_THREADS or all cores",
-                             skylight::kMaxThreads))
-      ->check(CLI::Range(1, skylight::kMaxThreads));
+  const std::string threads_help = fmt::format(
+      "worker threads, 1-{}; default: SKYLIGHT_THREADS or all cores", skylight::kMaxThreads);
+  app.add_option("--threads", threads, threads_help)->check(CLI::Range(1, skylight::kMaxThreads));
   // Global options (--threads) are accepted after the subcommand too.
   app.fallthrough();
 
@@ -36,6 +35,12 @@ int main(int argc, char** argv) {
   cli::add_bench_command(app, commands);
   cli::add_report_command(app, commands);
   cli::add_sun_command(app, commands);
+  // Each subcommand's --help also lists the global option (CLI11 shows only its own options).
+  for (const auto& c : commands)
+    c.app->footer(
+        fmt::format("Global option (before or after the subcommand):\n  --threads "
+                    "INT in [1 - {}]  {}\n",
+                    skylight::kMaxThreads, threads_help));
 
   try {
     app.parse(argc, argv);

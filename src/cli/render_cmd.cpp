@@ -23,6 +23,7 @@ struct RenderFlags {
   double north_angle_deg = 0.0;
   double look_elevation_deg = 0.0, look_azimuth_deg = 0.0;
   int width = 1024, height = 512;
+  bool width_given = false;  // cubemap: without --width the width is 6 x height
   std::string output, preview, false_colour;
   std::vector<double> fc_range{0.0, 6.0};
 };
@@ -31,11 +32,42 @@ struct RenderFlags {
 constexpr double kFisheyeFovDeg = 180.0;
 constexpr double kCameraFovDeg = 60.0;
 
-int run_render(const RenderFlags& f) {
+// Flags that only some projections read: given with another projection they are ignored with a
+// warning.
+void warn_unused_projection_flags(const CLI::App& cmd, render::Projection projection,
+                                  std::string_view projection_name) {
+  const bool fisheye = projection == render::Projection::fisheye;
+  const bool camera = projection == render::Projection::camera;
+  const std::pair<const char*, bool> flags[] = {{"--lens", fisheye},
+                                                {"--north-angle", fisheye},
+                                                {"--fov", fisheye || camera},
+                                                {"--look-elevation", camera},
+                                                {"--look-azimuth", camera}};
+  std::string unused;
+  for (const auto& [name, used] : flags)
+    if (!used && cmd.count(name) > 0) unused += (unused.empty() ? "" : ", ") + std::string(name);
+  if (!unused.empty())
+    warn(fmt::format("{} not used by --projection {}; ignored", unused, projection_name));
+}
+
+// A copy of `md` whose skylight:pixel_unit is `unit`.
+io::Metadata with_pixel_unit(io::Metadata md, std::string unit) {
+  for (auto& [key, value] : md)
+    if (key == "skylight:pixel_unit") value = unit;
+  return md;
+}
+
+// What the pixels of each output are (skylight:pixel_unit).
+constexpr const char* kFloatPixelUnit = "linear sRGB (D65), Y = luminance [cd/m^2]";
+constexpr const char* kPreviewPixelUnit =
+    "tone-mapped display values (8-bit sRGB: 99th percentile of luminance -> 1, Reinhard, sRGB "
+    "curve), not luminance";
+
+int run_render(const RenderFlags& f, const CLI::App& cmd) {
   render::RenderSettings s;
   s.projection = *render::parse_projection(f.projection);
-  s.width = f.width;
   s.height = f.height;
+  s.width = s.projection == render::Projection::cubemap && !f.width_given ? 6 * f.height : f.width;
   s.fisheye.lens = *parse_fisheye_lens(f.lens);
   s.fisheye.fov = deg_to_rad(f.fov_deg.value_or(kFisheyeFovDeg));
   s.fisheye.north_angle = deg_to_rad(f.north_angle_deg);
@@ -45,6 +77,7 @@ int run_render(const RenderFlags& f) {
   s.sun = f.model.sun_only()      ? render::SunMode::sun_only
           : f.model.include_sun() ? render::SunMode::sky_and_sun
                                   : render::SunMode::sky;
+  warn_unused_projection_flags(cmd, s.projection, f.projection);
   render::validate(s);
   (void)io::format_from_path(f.output);
   if (!f.preview.empty() && io::format_from_path(f.preview) != io::ImageFormat::png)
@@ -81,20 +114,26 @@ int run_render(const RenderFlags& f) {
     md.emplace_back("skylight:fov_deg", fmt::format("{}", f.fov_deg.value_or(kFisheyeFovDeg)));
     md.emplace_back("skylight:north_angle_deg", fmt::format("{}", f.north_angle_deg));
   }
-  md.emplace_back("skylight:pixel_unit", "linear sRGB (D65), Y = luminance [cd/m^2]");
+  md.emplace_back("skylight:pixel_unit", kFloatPixelUnit);
   // What the model actually used: its zenith luminance and where it stands in its domain.
   md.emplace_back("skylight:zenith_luminance_evaluated_cd_m2",
                   fmt::format("{}", model->tristimulus({0.0, 0.0, 1.0}).Y));
   md.emplace_back("skylight:domain", std::string(to_string(model->domain().worst())));
-  render::write_image_or_preview(f.output, img.rgb, md);
-  if (!f.preview.empty()) render::write_image_or_preview(f.preview, img.rgb, md);
+  const bool output_is_png = io::format_from_path(f.output) == io::ImageFormat::png;
+  render::write_image_or_preview(f.output, img.rgb,
+                                 output_is_png ? with_pixel_unit(md, kPreviewPixelUnit) : md);
+  if (!f.preview.empty())
+    render::write_image_or_preview(f.preview, img.rgb, with_pixel_unit(md, kPreviewPixelUnit));
   if (!f.false_colour.empty()) {
     io::ImageF lum(img.xyz.width, img.xyz.height, 1);
     for (std::size_t i = 0; i < lum.data.size(); ++i) lum.data[i] = img.xyz.data[3 * i + 1];
     render::FalseColourOptions fo;
     fo.log10_min = f.fc_range[0];
     fo.log10_max = f.fc_range[1];
-    io::write_png(f.false_colour, render::false_colour(lum, fo, &img.mask), md);
+    io::write_png(f.false_colour, render::false_colour(lum, fo, &img.mask),
+                  with_pixel_unit(md, fmt::format("false colour of log10 luminance, {} to {} "
+                                                  "log10 cd/m^2 (legend in the image)",
+                                                  fo.log10_min, fo.log10_max)));
   }
   return kExitOk;
 }
@@ -117,8 +156,8 @@ void add_render_command(CLI::App& app, Commands& commands) {
   add_number(
       *cmd,
       {"fov", "deg", ParameterKind::number, 1e-6, 360.0, 1, Absent{"180 (fisheye), 60 (camera)"},
-       "fisheye: field of view across the image circle ((0, 360], orthographic <= 180, "
-       "stereographic < 360); camera: vertical field of view (< 180)"},
+       "fisheye: field of view across the image circle: (0, 360], orthographic (0, 180], "
+       "stereographic (0, 360); camera: vertical field of view, (0, 180)"},
       f->fov_deg);
   add_number(*cmd,
              {"look-elevation", "deg", ParameterKind::number, -90.0, 90.0, 1, ParameterValue(0.0),
@@ -134,8 +173,10 @@ void add_render_command(CLI::App& app, Commands& commands) {
              f->north_angle_deg);
   add_integer(*cmd,
               {"width", "px", ParameterKind::integer, 1, render::kMaxImageSide, 1,
-               ParameterValue(static_cast<double>(f->width)), "image width (cubemap: 6 x height)"},
-              f->width);
+               ParameterValue(static_cast<double>(f->width)),
+               "image width (cubemap: must be 6 x height, which is its default)"},
+              f->width)
+      ->each([f](const std::string&) { f->width_given = true; });
   add_integer(*cmd,
               {"height", "px", ParameterKind::integer, 1, render::kMaxImageSide, 1,
                ParameterValue(static_cast<double>(f->height)), "image height"},
@@ -151,7 +192,7 @@ void add_render_command(CLI::App& app, Commands& commands) {
       {"false-colour-range", "log10 cd/m^2", ParameterKind::numbers, -20.0, 20.0, 2,
        ParameterValue(f->fc_range), "log10 luminance range LO,HI of the false-colour scale"},
       f->fc_range);
-  commands.push_back({cmd, [f] { return run_render(*f); }});
+  commands.push_back({cmd, [f, cmd] { return run_render(*f, *cmd); }});
 }
 
 }  // namespace skylight::cli

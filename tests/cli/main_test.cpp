@@ -21,6 +21,14 @@ namespace {
 using Cli = testing_support::CliTest;
 using testing_support::parse_csv_numbers;
 
+TEST_F(Cli, EverySubcommandHelpListsTheGlobalThreadsOption) {
+  for (const char* sub : {"models", "render", "eval", "bench", "report", "sun"}) {
+    const testing_support::CliResult r = run(std::string(sub) + " --help");
+    EXPECT_EQ(r.status, 0) << sub;
+    EXPECT_NE(r.out.find("--threads INT in [1 - 1024]"), std::string::npos) << sub << ": " << r.out;
+  }
+}
+
 TEST_F(Cli, BadInputExitsTwoWithMessage) {
   struct Case {
     std::string args, input, must_contain;

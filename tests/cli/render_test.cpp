@@ -110,5 +110,103 @@ TEST_F(Cli, RenderNishitaFromOrbitWithCamera) {
   EXPECT_GT(img.pixel(16, 15)[1], 0.0f) << "bottom centre: the lit atmosphere over the planet";
 }
 
+TEST_F(Cli, CubemapWidthDefaultsToSixTimesTheHeight) {
+  // Without --width the cube map is 6 x height (the --help text); with only --height too.
+  testing_support::CliResult r = run("render --model cie --projection cubemap --height 16 -o '" +
+                                     (dir_ / "a.pfm").string() + "'");
+  ASSERT_EQ(r.status, 0) << r.err;
+  io::ImageF img = io::read_image(dir_ / "a.pfm");
+  EXPECT_EQ(img.width, 96);
+  EXPECT_EQ(img.height, 16);
+  r = run("render --model cie --projection cubemap --threads 2 -o '" + (dir_ / "b.pfm").string() +
+          "'");
+  ASSERT_EQ(r.status, 0) << r.err;
+  img = io::read_image(dir_ / "b.pfm");
+  EXPECT_EQ(img.width, 6 * 512);
+  EXPECT_EQ(img.height, 512);
+  // A given width must still be 6 x height.
+  r = run("render --model cie --projection cubemap --width 100 --height 16 -o '" +
+          (dir_ / "c.pfm").string() + "'");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("got 100 x 16"), std::string::npos) << r.err;
+}
+
+TEST_F(Cli, FlagsOfAnotherProjectionAreIgnoredWithOneWarning) {
+  const std::string out = " --width 8 --height 4 -o '" + (dir_ / "a.pfm").string() + "'";
+  testing_support::CliResult r =
+      run("render --model cie --lens equisolid --fov 100 --look-azimuth 3" + out);
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(r.err,
+            "skylight: warning: --lens, --fov, --look-azimuth not used by --projection equirect; "
+            "ignored\n");
+  r = run("render --model cie --projection camera --north-angle 10 --look-elevation 5 --fov 50" +
+          out);
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(r.err, "skylight: warning: --north-angle not used by --projection camera; ignored\n");
+  r = run("render --model cie --projection fisheye --lens equisolid --fov 100 --north-angle 5" +
+          out);
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(r.err, "");
+}
+
+TEST_F(Cli, PixelUnitSaysWhatEachOutputHolds) {
+  const fs::path exr = dir_ / "a.exr", png = dir_ / "a.png", preview = dir_ / "p.png",
+                 fc = dir_ / "fc.png";
+  testing_support::CliResult r =
+      run("render --model cie --width 8 --height 4 -o '" + exr.string() + "' --preview '" +
+          preview.string() + "' --false-colour '" + fc.string() + "' --false-colour-range 1,5");
+  ASSERT_EQ(r.status, 0) << r.err;
+  r = run("render --model cie --width 8 --height 4 -o '" + png.string() + "'");
+  ASSERT_EQ(r.status, 0) << r.err;
+  std::string unit;
+  for (const auto& [key, value] : io::read_exr_metadata(exr))
+    if (key == "skylight:pixel_unit") unit = value;
+  EXPECT_EQ(unit, "linear sRGB (D65), Y = luminance [cd/m^2]");
+  const auto bytes = [](const fs::path& p) {
+    std::ifstream in(p, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  };
+  const std::string tone = std::string("tEXtskylight:pixel_unit\0tone-mapped display values", 50);
+  EXPECT_NE(bytes(preview).find(tone), std::string::npos);
+  EXPECT_NE(bytes(png).find(tone), std::string::npos);
+  EXPECT_EQ(bytes(preview).find("Y = luminance"), std::string::npos);
+  EXPECT_NE(bytes(fc).find(std::string("skylight:pixel_unit\0false colour of log10 luminance, 1 "
+                                       "to 5 log10 cd/m^2",
+                                       72)),
+            std::string::npos);
+}
+
+TEST_F(Cli, EveryMetadataKeyIsDocumentedInTheReadme) {
+  // Renders that write every kind of key (each model's parameters, fisheye, camera, --time): each
+  // key must appear in README.md in backticks, with or without its `skylight:` prefix.
+  std::ifstream in(fs::path(SKYLIGHT_SOURCE_DIR) / "README.md");
+  const std::string readme(std::istreambuf_iterator<char>(in), {});
+  const std::string renders[] = {
+      "--model nishita --albedo 0.3 --ozone 300 --solar-irradiance 1 --projection camera",
+      "--model preetham --projection fisheye --time 2003-10-17T12:30:30-07:00 --lat 39 --lon -105",
+      "--model hosek --include-sun", "--model cie --zenith-luminance 5000",
+      "--model perez --perez -1,-0.32,10,-3,0.45 --zenith-luminance 5000"};
+  // (Appended piecewise: GCC 12 warns falsely (-Wrestrict) on "`" + std::string.)
+  const auto in_backticks = [&](const std::string& name) {
+    std::string quoted(1, '`');
+    quoted.append(name).push_back('`');
+    return readme.find(quoted) != std::string::npos;
+  };
+  int keys = 0;
+  for (const auto& flags : renders) {
+    const fs::path exr = dir_ / "a.exr";
+    const testing_support::CliResult r =
+        run("render " + flags + " --width 8 --height 8 -o '" + exr.string() + "'");
+    ASSERT_EQ(r.status, 0) << flags << ": " << r.err;
+    for (const auto& [key, value] : io::read_exr_metadata(exr)) {
+      if (key.rfind("skylight:", 0) != 0) continue;
+      ++keys;
+      const bool documented = in_backticks(key.substr(9)) || in_backticks(key);
+      EXPECT_TRUE(documented) << key << " (" << flags << ") is not documented in README.md";
+    }
+  }
+  EXPECT_GT(keys, 50);
+}
+
 }  // namespace
 }  // namespace skylight

@@ -445,7 +445,10 @@ void Atmosphere::single_scattering(Vec3 p, Vec3 view, Vec3 sun, const Spectral& 
   const double R0 = params_.ground_radius_m;
   const ViewRay ray =
       split_view_ray(p, view, sun, R0, params_.top_radius_m, max_distance, kink_radii_);
-  if (ray.count == 0) return;
+  // An observer on the ground looking down has an empty ray (no in-scattering) that still ends
+  // on the ground: its reflection is the limit of the observer's altitude -> 0+ (transmittance
+  // 1), so the sky stays continuous in altitude (docs/MODELS.md, nishita).
+  if (ray.count == 0 && !ray.hits_ground) return;
 
   // Optical lengths at the start of the ray (the observer, or where the ray enters from space).
   const Vec3 p0 = p + ray.begin * view;

@@ -436,6 +436,46 @@ TEST(Atmosphere, GroundReflectionMatchesReference) {
       }
 }
 
+TEST(Atmosphere, GroundReflectionIsContinuousInAltitude) {
+  // An observer on the ground looking down sees the ground at distance 0: the reflected sunlight
+  // with a view transmittance of 1, the limit of an observer 1 mm above it (in-scattering over a
+  // path of <= 12 mm and the view transmittance differ from it by ~1e-8 relative). Fast path and
+  // reference, with and without an albedo (without: 0 on the ground).
+  constexpr double kAltitudeLimitRelTol = 1e-6;
+  for (const bool with_albedo : {true, false}) {
+    AtmosphereParameters p;
+    if (with_albedo) p.ground_albedo = 0.3;
+    Atmosphere atm(p);
+    const std::vector<double> nm{440, 550, 680}, one(3, 1.0);
+    const Spectral spec = make_spectral(p, nm, one);
+    for (double sun_el : {5.0, 40.0})
+      for (double el : {-5.0, -30.0, -90.0}) {
+        const Vec3 view = dir_el_az(el, 20), sun = dir_el_az(sun_el, 180);
+        std::vector<double> f0(3), f1(3), r0(3), r1(3);
+        atm.single_scattering({0, 0, p.ground_radius_m}, view, sun, spec, f0);
+        atm.single_scattering({0, 0, p.ground_radius_m + 1e-3}, view, sun, spec, f1);
+        atm.single_scattering_reference({0, 0, p.ground_radius_m}, view, sun, spec, r0, {200, 32});
+        atm.single_scattering_reference({0, 0, p.ground_radius_m + 1e-3}, view, sun, spec, r1,
+                                        {200, 32});
+        for (int l = 0; l < 3; ++l) {
+          const std::string where =
+              fmt::format("albedo {} sun {} el {} nm {}", with_albedo, sun_el, el, nm[l]);
+          if (with_albedo) {
+            EXPECT_GT(f0[l], 0.0) << where;
+          } else {
+            EXPECT_EQ(f0[l], 0.0) << where;
+            EXPECT_EQ(r0[l], 0.0) << where;
+          }
+          // Absolute floor: 1e-6 of the reflected radiance of the albedo case's scale (I0 = 1).
+          const double floor = kAltitudeLimitRelTol * 0.3 / kPi;
+          EXPECT_NEAR(f0[l], f1[l], kAltitudeLimitRelTol * f1[l] + floor) << where;
+          EXPECT_NEAR(r0[l], r1[l], kAltitudeLimitRelTol * r1[l] + floor) << where;
+          EXPECT_NEAR(f0[l], r0[l], kFastVsReferenceRelTol * r0[l] + floor) << where;
+        }
+      }
+  }
+}
+
 TEST(Atmosphere, BadParametersAreRejected) {
   const auto bad = [](auto change) {
     AtmosphereParameters p;

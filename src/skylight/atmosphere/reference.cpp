@@ -26,7 +26,8 @@ void Atmosphere::single_scattering_reference(Vec3 p, Vec3 view, Vec3 sun, const 
   std::fill(out.begin(), out.end(), 0.0);
   const double R0 = params_.ground_radius_m, Rt = params_.top_radius_m;
   const ViewRay ray = split_view_ray(p, view, sun, R0, Rt, max_distance, kink_radii_);
-  if (ray.count == 0) return;
+  // An empty ray that ends on the ground (observer on it, looking down) still reflects.
+  if (ray.count == 0 && !ray.hits_ground) return;
 
   std::vector<double> t_view(nc, 0.0);  // running optical length from the ray start
   std::vector<double> acc(nc * nl, 0.0);

@@ -133,5 +133,42 @@ TEST(SkyRender, CameraLooksWhereAsked) {
   EXPECT_THROW(validate(s), InvalidArgument);
 }
 
+TEST(SkyRender, CameraLayoutIsTheOneInConventions) {
+  // docs/CONVENTIONS.md, "Camera": d = normalize(f + x r + y u) at pixel centres, r = f x z
+  // (f x north when f is vertical), u = r x f.
+  constexpr double kDirTol = 1e-12;  // a few vector operations in double
+  RenderSettings s;
+  s.projection = Projection::camera;
+  s.width = 12;
+  s.height = 8;
+  s.camera = {deg_to_rad(65), deg_to_rad(60), deg_to_rad(50)};
+  const Vec3 f = direction_from_angles(s.camera.look_zenith, s.camera.look_azimuth);
+  const Vec3 r = normalize(cross(f, Vec3{0, 0, 1}));
+  const Vec3 u = cross(r, f);
+  const double t = std::tan(0.5 * s.camera.vertical_fov);
+  const auto dirs = pixel_directions(s);
+  for (int row = 0; row < s.height; ++row)
+    for (int col = 0; col < s.width; ++col) {
+      const double x = (2.0 * (col + 0.5) / s.height - 1.0 * s.width / s.height) * t;
+      const double y = (1.0 - 2.0 * (row + 0.5) / s.height) * t;
+      const Vec3 want = normalize(f + x * r + y * u);
+      const Vec3 got = *pixel_direction(s, col + 0.5, row + 0.5);
+      EXPECT_NEAR(got.x, want.x, kDirTol);
+      EXPECT_NEAR(got.y, want.y, kDirTol);
+      EXPECT_NEAR(got.z, want.z, kDirTol);
+      EXPECT_TRUE(dirs.valid[static_cast<std::size_t>(row * s.width + col)]);  // no mask
+    }
+  // Looking north at the horizon, east is on the right.
+  s.camera = {kPi / 2, 0.0, deg_to_rad(60)};
+  EXPECT_GT(pixel_direction(s, 12, 4)->x, 0.0);
+  // Looking up: west on the right, north at the top; looking down: east on the right, north up.
+  s.camera.look_zenith = 0.0;
+  EXPECT_LT(pixel_direction(s, 12, 4)->x, 0.0);
+  EXPECT_GT(pixel_direction(s, 6, 0)->y, 0.0);
+  s.camera.look_zenith = kPi;
+  EXPECT_GT(pixel_direction(s, 12, 4)->x, 0.0);
+  EXPECT_GT(pixel_direction(s, 6, 0)->y, 0.0);
+}
+
 }  // namespace
 }  // namespace skylight::render

@@ -1,0 +1,175 @@
+#!/usr/bin/env bash
+# The docs are executable: runs every ```sh / ```bash block of README.md and docs/*.md in a scratch
+# directory, as a new user would, and checks what the docs say about the results.
+#
+# * Each command (continuation lines joined) runs with `bash -c` in the scratch directory, where
+#   build/skylight and build/skylight_bench are the built programs (and build/ is on PATH);
+#   every `/tmp/` in a command is replaced by the scratch directory's tmp/, so runs never collide.
+# * A command must exit 0, or with N where it ends in the comment `# exit N`.
+# * A comment line right after a command that quotes output (`# "key": 1.23..., "other": "x", ...`)
+#   is checked fragment by fragment (split at ", "; a trailing "..." means "starts with"): each
+#   fragment must occur in that command's stdout.
+# * A ```text block preceded by `<!-- doc-test: stdout of `COMMAND PART` -->` must equal, line for
+#   line, the stdout of the first command run that contains COMMAND PART.
+# * A block preceded by `<!-- doc-test: skip REASON -->` is not run (it installs, or it is the
+#   main job or the test command itself); skipped blocks are counted and listed.
+# Blocks with another language (```cpp, ```cmake: the library example, built by tests/consumer;
+# ```text: outputs and synopses) are not commands.
+#
+# Usage: tests/docs/run_doc_blocks.sh SOURCE_DIR PATH/TO/skylight [PATH/TO/skylight_bench]
+# Without skylight_bench (a build with SKYLIGHT_BUILD_BENCH=OFF) its commands are skipped and
+# counted as such.
+set -euo pipefail
+src="${1:?usage: run_doc_blocks.sh SOURCE_DIR PATH/TO/skylight [PATH/TO/skylight_bench]}"
+cli="${2:?usage: run_doc_blocks.sh SOURCE_DIR PATH/TO/skylight [PATH/TO/skylight_bench]}"
+bench="${3:-}"
+scratch="$(mktemp -d "${TMPDIR:-/tmp}/skylight_docs.XXXXXX")"
+trap 'rm -rf "$scratch"' EXIT
+mkdir -p "$scratch/build" "$scratch/tmp" "$scratch/parsed"
+ln -s "$cli" "$scratch/build/skylight"
+[ -n "$bench" ] && [ -x "$bench" ] && ln -s "$bench" "$scratch/build/skylight_bench"
+
+# Split each Markdown file into numbered records under parsed/:
+#   NNNN.sh (a command block; first line "#file:line"), NNNN.skip (its reason),
+#   NNNN.expect (an expected stdout) with NNNN.expect_cmd (the command part it belongs to).
+n=0
+shopt -s nullglob
+for md in "$src/README.md" "$src"/docs/*.md; do
+  n=$(awk -v out="$scratch/parsed" -v start="$n" -v file="${md#"$src"/}" '
+    function flush_marker() { marker = "" }
+    BEGIN { n = start; inb = 0; marker = "" }
+    {
+      if (!inb) {
+        if ($0 ~ /^<!-- doc-test: /) { marker = $0; next }
+        if ($0 ~ /^```/) {
+          lang = substr($0, 4)
+          inb = 1; n++
+          base = sprintf("%s/%04d", out, n)
+          if (lang == "sh" || lang == "bash") {
+            kind = "sh"; print "#" file ":" NR > (base ".sh")
+            if (marker ~ /doc-test: skip /) {
+              reason = marker; sub(/^<!-- doc-test: skip /, "", reason); sub(/ -->$/, "", reason)
+              print reason > (base ".skip")
+            }
+          } else if (marker ~ /doc-test: stdout of `/) {
+            kind = "expect"
+            cmd = marker; sub(/^<!-- doc-test: stdout of `/, "", cmd); sub(/` -->$/, "", cmd)
+            print cmd > (base ".expect_cmd")
+            printf "" > (base ".expect")
+          } else kind = "other"
+          marker = ""
+          next
+        }
+        if ($0 !~ /^[[:space:]]*$/) marker = ""
+        next
+      }
+      if ($0 ~ /^```/) { inb = 0; next }
+      if (kind == "sh") print > (base ".sh")
+      else if (kind == "expect") print > (base ".expect")
+    }
+    END { print n }' "$md")
+done
+
+ran_blocks=0 skipped_blocks=0 ran_cmds=0 skipped_cmds=0 failures=0
+declare -a cmd_texts=()
+fail() {
+  echo "FAIL: $*" >&2
+  failures=$((failures + 1))
+}
+# Runs one logical command; its stdout goes to cmd_K.out.
+last_out=""
+run_command() {
+  local where="$1" text="$2" want=0
+  if [[ "$text" =~ \#[[:space:]]*exit[[:space:]]+([0-9]+)[[:space:]]*$ ]]; then
+    want="${BASH_REMATCH[1]}"
+  fi
+  if [[ "$text" == *skylight_bench* ]] && [ ! -e "$scratch/build/skylight_bench" ]; then
+    echo "skip (skylight_bench not built): $text"
+    skipped_cmds=$((skipped_cmds + 1))
+    last_out=""
+    return
+  fi
+  local k=${#cmd_texts[@]}
+  cmd_texts+=("$text")
+  local run="${text//\/tmp\//$scratch/tmp/}"
+  local status=0
+  (cd "$scratch" && PATH="$scratch/build:$PATH" bash -c "$run") \
+    >"$scratch/cmd_$k.out" 2>"$scratch/cmd_$k.err" || status=$?
+  ran_cmds=$((ran_cmds + 1))
+  last_out="$scratch/cmd_$k.out"
+  if [ "$status" != "$want" ]; then
+    fail "$where: exit $status, the docs say $want: $text"
+    sed 's/^/    stderr: /' "$scratch/cmd_$k.err" | head -5 >&2
+  fi
+}
+# A comment after a command quoting its output: every fragment must be in that stdout.
+check_quoted() {
+  local where="$1" line="$2" body frag
+  body="${line#\# }"
+  [ -n "$last_out" ] || return 0
+  local IFS=$'\x1f'
+  # shellcheck disable=SC2086
+  for frag in $(sed 's/, /\x1f/g' <<<"$body"); do
+    frag="${frag%...}"
+    [ -z "$frag" ] && continue
+    if ! grep -qF -- "$frag" "$last_out"; then fail "$where: output lacks $frag (quoted in the docs)"; fi
+  done
+}
+
+for f in "$scratch"/parsed/*.sh; do
+  [ -e "$f" ] || continue
+  base="${f%.sh}"
+  where="$(head -1 "$f")"
+  where="${where#\#}"
+  if [ -e "$base.skip" ]; then
+    echo "skip block $where: $(cat "$base.skip")"
+    skipped_blocks=$((skipped_blocks + 1))
+    continue
+  fi
+  ran_blocks=$((ran_blocks + 1))
+  echo "run block $where"
+  cmd=""
+  last_out=""
+  while IFS= read -r line || [ -n "$line" ]; do
+    if [ -n "$cmd" ]; then
+      cmd+=$'\n'"$line"
+    elif [[ "$line" =~ ^#[[:space:]]\" ]]; then
+      check_quoted "$where" "$line"
+      continue
+    elif [[ "$line" =~ ^[[:space:]]*(#.*)?$ ]]; then
+      continue
+    else
+      cmd="$line"
+    fi
+    [[ "$line" == *\\ ]] && continue
+    run_command "$where" "$cmd"
+    cmd=""
+  done < <(tail -n +2 "$f")
+  [ -z "$cmd" ] || run_command "$where" "$cmd"
+done
+
+checked_outputs=0
+for e in "$scratch"/parsed/*.expect; do
+  [ -e "$e" ] || continue
+  part="$(cat "${e%.expect}.expect_cmd")"
+  found=""
+  for k in "${!cmd_texts[@]}"; do
+    if [[ "${cmd_texts[$k]}" == *"$part"* ]]; then
+      found="$k"
+      break
+    fi
+  done
+  if [ -z "$found" ]; then
+    fail "quoted output of '$part': no command of the docs contains it"
+    continue
+  fi
+  checked_outputs=$((checked_outputs + 1))
+  if ! diff -u "$e" "$scratch/cmd_$found.out" >"$scratch/diff.txt"; then
+    fail "the output quoted for '$part' differs from what it prints:"
+    cat "$scratch/diff.txt" >&2
+  fi
+done
+
+echo "doc blocks: $ran_blocks run ($ran_cmds commands), $skipped_blocks skipped;" \
+  "$skipped_cmds commands skipped; $checked_outputs quoted outputs compared; $failures failures"
+[ "$failures" -eq 0 ] && [ "$ran_blocks" -gt 0 ]
