@@ -56,7 +56,11 @@ NeuralSkyModel::NeuralSkyModel(const NeuralSkyParameters& p, nn::SkyNetwork netw
       network_.net.layout().inputs() != static_cast<int>(network_.inputs.size())) {
     throw InvalidArgument("model 'nn': the network needs one input per input name and 3 outputs");
   }
-  state_.turbidity = p.turbidity;
+  // A network trained on a source without turbidity saw the input 0 (Satilmis et al. 2016: unused
+  // inputs are zero); --turbidity then does not apply.
+  const auto& t = network_.provenance.turbidities;
+  turbidity_unused_ = t.size() == 1 && t.front() == 0.0;
+  state_.turbidity = turbidity_unused_ ? 0.0 : p.turbidity;
   state_.sun_zenith = p.sun.zenith;
   state_.sun_azimuth = p.sun.azimuth;
   state_.ground_albedo = network_.provenance.ground_albedo;
@@ -108,7 +112,7 @@ Domain NeuralSkyModel::domain() const {
                         "0-90 deg zenith; sky returned as 0"});
   }
   const auto& t = network_.provenance.turbidities;
-  if (!t.empty()) {
+  if (!t.empty() && !turbidity_unused_) {
     const auto [lo, hi] = std::minmax_element(t.begin(), t.end());
     if (params_.turbidity < *lo || params_.turbidity > *hi) {
       d.issues.push_back({"turbidity", Validity::extrapolated,

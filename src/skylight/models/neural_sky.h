@@ -36,9 +36,11 @@ nn::SkyNetwork load_sky_network_file(const std::filesystem::path& path);
 // The embedded network (parsed once).
 const nn::SkyNetwork& embedded_sky_network();
 
-// The `nn` model. Views below the horizon and a sun below the horizon return 0 (the network was
-// trained for suns in [0, pi/2]: below, domain() says undefined). Batch path: SkyNetworkBatch
-// (float SIMD; error against the scalar double path: kNeuralBatchRelativeTolerance in the tests).
+// The `nn` model. A network trained on a source without turbidity (provenance turbidities {0})
+// gets the input 0 whatever --turbidity says. Views below the horizon and a sun below the horizon
+// return 0 (the network was trained for suns in [0, pi/2]: below, domain() says undefined). Batch
+// path: SkyNetworkBatch (float SIMD; error against the scalar double path:
+// kNeuralBatchRelativeTolerance in the tests).
 class NeuralSkyModel final : public SkyModel {
  public:
   explicit NeuralSkyModel(const NeuralSkyParameters& p);
@@ -60,6 +62,7 @@ class NeuralSkyModel final : public SkyModel {
   nn::SkyNetwork network_;
   nn::SkyState state_;
   bool sun_up_ = true;
+  bool turbidity_unused_ = false;  // trained on a source without turbidity: the input is 0
   std::unique_ptr<nn::SkyNetworkBatch> batch_;
 };
 

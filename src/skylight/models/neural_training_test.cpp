@@ -77,6 +77,24 @@ TEST(NeuralTraining, TinyNetworkLearnsPreethamDeterministically) {
     ASSERT_EQ(a.network.net.parameters()[i], b.network.net.parameters()[i]) << i;
 }
 
+// A source without turbidity (cie): trained with the input 0, and the model feeds it 0.
+TEST(NeuralTraining, SourceWithoutTurbidityGetsInputZero) {
+  NeuralTraining t = tiny_preetham();
+  t.source = "cie";
+  t.options.max_iterations = 5;
+  t.validate = false;
+  const NeuralTrainingResult r = train_neural_sky(t);
+  EXPECT_EQ(r.network.provenance.turbidities, std::vector<double>{0.0});
+  NeuralSkyParameters p;
+  p.sun = {0.6, 2.0};
+  p.turbidity = 5.0;
+  const NeuralSkyModel m(p, r.network);
+  EXPECT_EQ(m.state().turbidity, 0.0);
+  EXPECT_TRUE(m.domain().valid());
+  const Vec3 v = direction_from_angles(0.4, 1.0);
+  EXPECT_EQ(m.rgb(v).g, r.network.rgb(m.state(), v).g);
+}
+
 TEST(NeuralTraining, EmbeddedNetworkMeetsHalfOfTable1) {
   const NeuralValidation v = validate_neural_sky(embedded_sky_network(), 3, 5, 10);
   EXPECT_LT(v.errors.rmse, kEmbeddedPreethamRmseBound);
