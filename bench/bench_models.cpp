@@ -118,6 +118,10 @@ BENCHMARK_CAPTURE(Threads, cie, "cie")->Unit(benchmark::kMillisecond)->UseRealTi
 BENCHMARK_CAPTURE(Scalar, hosek, "hosek")->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(Batch, hosek, "hosek")->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(Threads, hosek, "hosek")->Unit(benchmark::kMillisecond)->UseRealTime();
+// nn: the embedded 6-12-3 network (Satilmis et al. 2016) trained on preetham (docs/NN.md).
+BENCHMARK_CAPTURE(Scalar, nn, "nn")->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(Batch, nn, "nn")->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(Threads, nn, "nn")->Unit(benchmark::kMillisecond)->UseRealTime();
 // nishita: the batch is the scalar loop over the table-driven fast path (no SIMD batch).
 BENCHMARK_CAPTURE(Scalar, nishita, "nishita")->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(Batch, nishita, "nishita")->Unit(benchmark::kMillisecond);
@@ -128,6 +132,7 @@ BENCHMARK_CAPTURE(SetUp, cie, "cie")->Unit(benchmark::kMicrosecond);
 // hosek: the whole model set-up (XYZ, RGB and 11 spectral band states, plus the solar disc's XYZ
 // polynomial); the embedded tables are parsed once, on first use (outside the steady state).
 BENCHMARK_CAPTURE(SetUp, hosek, "hosek")->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(SetUp, nn, "nn")->Unit(benchmark::kMicrosecond);
 // nishita: the optical-length tables (2 components x 256 x 256 quadratures).
 BENCHMARK_CAPTURE(SetUp, nishita, "nishita")->Unit(benchmark::kMillisecond);
 

@@ -1,9 +1,11 @@
 // `skylight bench`: the batch path of each model timed against an in-run baseline (the plain
-// scalar loop of the same model), medians of repeated runs, printed as ratios.
+// scalar loop of the same model), medians of repeated runs, printed as ratios; the neural sky
+// (`nn`, the embedded 6-12-3 network) also against the Hosek-Wilkie batch path (docs/NN.md).
 #include <fmt/format.h>
 
 #include <algorithm>
 #include <chrono>
+#include <map>
 
 #include "common.h"
 #include "skylight/core/error.h"
@@ -15,7 +17,7 @@ namespace {
 
 struct BenchFlags {
   int width = 1024, height = 512, repeats = 7;
-  std::vector<std::string> models{"preetham", "cie", "hosek"};
+  std::vector<std::string> models{"preetham", "cie", "hosek", "nn"};
   // The model flags of render/eval, accepted here only to be refused with a clear message.
   std::vector<std::string> model_flags;
   std::string model_flag_text;
@@ -68,6 +70,7 @@ int run_bench(const BenchFlags& f, const CLI::App& cmd) {
                   "{:<10} {:>12} {:>12} {:>12} {:>10} {:>10}\n",
                   f.width, f.height, f.repeats, thread_count(), "model", "scalar ms", "batch1 ms",
                   "batchN ms", "SIMD x", "threads x"));
+  std::map<std::string, std::pair<double, double>> timed;  // name -> (scalar, batch1)
   for (const ModelInfo* info : models) {
     // Each model at its defaults (plus the registry's example values for required parameters).
     SkyParameters p;
@@ -90,6 +93,7 @@ int run_bench(const BenchFlags& f, const CLI::App& cmd) {
       sink = Y[n / 2];
     });
     (void)sink;
+    timed[info->name] = {scalar, batch1};
     write_stdout(fmt::format("{:<10} {:>12.2f} {:>12.2f} {:>12.2f} {:>10.2f} {:>10.2f}\n",
                              info->name, 1e3 * scalar, 1e3 * batch1, 1e3 * batchN, scalar / batch1,
                              batch1 / batchN));
@@ -97,6 +101,12 @@ int run_bench(const BenchFlags& f, const CLI::App& cmd) {
   write_stdout(
       "SIMD x = scalar loop / batch on one thread; threads x = batch one thread / batch all "
       "threads\n");
+  if (timed.count("nn") && timed.count("hosek")) {
+    write_stdout(fmt::format(
+        "nn (6-12-3) batch on one thread: {:.2f}x faster than the hosek batch, {:.1f}x faster "
+        "than its own scalar loop\n",
+        timed["hosek"].second / timed["nn"].second, timed["nn"].first / timed["nn"].second));
+  }
   return kExitOk;
 }
 
@@ -119,7 +129,7 @@ void add_bench_command(CLI::App& app, Commands& commands) {
                ParameterValue(static_cast<double>(f->repeats)),
                "runs per measurement (the median is reported)"},
               f->repeats);
-  cmd->add_option("--models", f->models, "models to time; default preetham,cie,hosek")
+  cmd->add_option("--models", f->models, "models to time; default preetham,cie,hosek,nn")
       ->delimiter(',');
   // Hidden: the model flags of render/eval, so that giving one names the problem.
   const auto hidden = [&](const std::string& name, bool is_flag) {

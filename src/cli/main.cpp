@@ -35,6 +35,7 @@ int main(int argc, char** argv) {
   cli::add_bench_command(app, commands);
   cli::add_report_command(app, commands);
   cli::add_sun_command(app, commands);
+  cli::add_nn_command(app, commands);
   // Each subcommand's --help also lists the global option (CLI11 shows only its own options).
   for (const auto& c : commands)
     c.app->footer(

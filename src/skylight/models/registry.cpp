@@ -3,6 +3,7 @@
 
 #include "skylight/models/cie_sky.h"
 #include "skylight/models/hosek_wilkie.h"
+#include "skylight/models/neural_sky.h"
 #include "skylight/models/nishita.h"
 #include "skylight/models/perez.h"
 #include "skylight/models/preetham.h"
@@ -83,6 +84,17 @@ const std::vector<ModelInfo>& model_registry() {
         "horizon: single scattering with the planet's shadow, flagged extrapolated); fast path "
         "within 0.5 % of the brute-force reference (tested)",
         true, false, factory<NishitaModel, NishitaParameters>("nishita")});
+    r.push_back(ModelInfo{
+        "nn",
+        "Neural sky model (Satilmis et al. 2016): a small MLP trained on another sky model "
+        "(skylight nn train), e.g. the paper's 6-12-3 network; fixed cost per direction",
+        "rgb = the network's linear sRGB in the units of its source model's rgb() (the weights "
+        "file's target_scale); XYZ = rgb converted (D65)",
+        NeuralSkyParameters::schema().specs(),
+        "the source model's validity within the network's training range (weights file "
+        "provenance: turbidities, suns 0-90 deg); outside it extrapolated (flagged); sun below "
+        "the horizon: 0 (undefined); no spectral output, no solar disc",
+        false, false, factory<NeuralSkyModel, NeuralSkyParameters>("nn")});
     return r;
   }();
   return registry;

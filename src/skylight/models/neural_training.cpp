@@ -1,0 +1,139 @@
+#include "skylight/models/neural_training.h"
+
+#include <algorithm>
+#include <memory>
+
+#include "skylight/core/error.h"
+#include "skylight/core/numbers.h"
+#include "skylight/models/sky_model.h"
+
+namespace skylight {
+namespace {
+
+const ModelInfo& source_info(std::string_view source) {
+  const ModelInfo* info = find_model(source);
+  if (!info) throw InvalidArgument("--source: unknown sky model '" + excerpt(source) + "'");
+  return *info;
+}
+
+const ParameterSpec* find_spec(const ModelInfo& info, std::string_view name) {
+  const auto it = std::find_if(info.parameters.begin(), info.parameters.end(),
+                               [&](const ParameterSpec& s) { return s.name == name; });
+  return it == info.parameters.end() ? nullptr : &*it;
+}
+
+// Turbidities first, first + 1, ... up to last, within the spec's range.
+std::vector<double> turbidity_list(const ParameterSpec* spec, double first, double last) {
+  std::vector<double> t;
+  if (!spec) return {0.0};
+  for (double v = first; v <= last + 1e-9; v += 1.0)
+    if (v >= spec->min && v <= spec->max) t.push_back(v);
+  return t;
+}
+
+void apply_overrides(nn::SamplingSpec& spec, const NeuralTraining& t) {
+  if (t.sun_count > 0) spec.sun_count = t.sun_count;
+  if (t.view_zeniths > 0) spec.view_zeniths = t.view_zeniths;
+  if (t.view_azimuths > 0) spec.view_azimuths = t.view_azimuths;
+}
+
+}  // namespace
+
+double default_target_scale(std::string_view source) {
+  if (source == "hosek") return 683.0;
+  return 1000.0;
+}
+
+nn::SkySource sky_model_source(std::string_view model) {
+  const ModelInfo& info = source_info(model);
+  const bool has_turbidity = find_spec(info, "turbidity") != nullptr;
+  const bool has_albedo = find_spec(info, "albedo") != nullptr;
+  return [&info, has_turbidity, has_albedo](const nn::SkyState& s) -> nn::SkyFunction {
+    SkyParameters p;
+    p.sun = {s.sun_zenith, s.sun_azimuth};
+    p.values = info.example;
+    if (has_turbidity) p.values.set("turbidity", s.turbidity);
+    if (has_albedo) p.values.set("albedo", s.ground_albedo);
+    std::shared_ptr<const SkyModel> m = info.make(p);
+    return [m](Vec3 view) { return m->rgb(view); };
+  };
+}
+
+nn::SamplingSpec neural_training_spec(std::string_view source) {
+  const ModelInfo& info = source_info(source);
+  nn::SamplingSpec s = nn::paper_training_spec(source, default_target_scale(source));
+  const ParameterSpec* t = find_spec(info, "turbidity");
+  s.turbidities = source == "preetham" ? turbidity_list(t, 2.0, 6.0) : turbidity_list(t, 1.0, 10.0);
+  return s;
+}
+
+nn::SamplingSpec neural_validation_spec(std::string_view source) {
+  const ModelInfo& info = source_info(source);
+  nn::SamplingSpec s = nn::paper_validation_spec(source, default_target_scale(source));
+  const ParameterSpec* t = find_spec(info, "turbidity");
+  s.turbidities = source == "preetham" ? turbidity_list(t, 2.5, 5.5) : turbidity_list(t, 1.5, 9.5);
+  return s;
+}
+
+NeuralTrainingResult train_neural_sky(const NeuralTraining& t) {
+  nn::SamplingSpec spec = neural_training_spec(t.source);
+  if (t.target_scale) spec.target_scale = *t.target_scale;
+  apply_overrides(spec, t);
+  if (!(spec.target_scale > 0.0)) throw InvalidArgument("--target-scale must be positive");
+  const nn::SkySource source = sky_model_source(t.source);
+  const nn::Dataset data = nn::build_dataset(spec, t.inputs, source);
+  const std::vector<double> targets = data.targets(t.encoding);
+  const nn::Examples ex{data.inputs, targets, data.size()};
+
+  const nn::Activation hidden_f = nn::Activation::satilmis;
+  const nn::Activation out_f = t.encoding == nn::OutputEncoding::satilmis
+                                   ? nn::Activation::satilmis
+                                   : nn::Activation::identity;
+  const nn::MlpLayout layout = nn::MlpLayout::make(data.n_inputs(), t.hidden, 3, hidden_f, out_f);
+
+  NeuralTrainingResult r;
+  r.train = nn::train(layout, ex, t.options);
+  nn::SkyNetwork& sky = r.network;
+  sky.net = r.train.net;
+  sky.inputs = t.inputs;
+  sky.encoding = t.encoding;
+  sky.target_scale = spec.target_scale;
+  nn::SkyNetworkProvenance& pv = sky.provenance;
+  pv.source = t.source;
+  pv.turbidities = spec.turbidities;
+  pv.ground_albedo = spec.ground_albedo;
+  pv.sun_count = spec.sun_count;
+  pv.view_zeniths = spec.view_zeniths;
+  pv.view_azimuths = spec.view_azimuths;
+  pv.seed = t.options.seed;
+  pv.trainer = std::string(nn::to_string(t.options.trainer));
+  pv.iterations = r.train.iterations;
+  pv.stop = r.train.stop;
+  pv.training_seconds = r.train.seconds;
+  pv.training_mse = r.train.mse;
+  if (t.validate) {
+    r.validation = validate_neural_sky(sky, t.sun_count, t.view_zeniths, t.view_azimuths);
+    pv.validation_rmse = r.validation->errors.rmse;
+    pv.validation_relative_median = r.validation->errors.relative_median;
+    pv.validation_relative_p95 = r.validation->errors.relative_p95;
+  }
+  return r;
+}
+
+NeuralValidation validate_neural_sky(const nn::SkyNetwork& sky, int sun_count, int view_zeniths,
+                                     int view_azimuths) {
+  nn::SamplingSpec spec = neural_validation_spec(sky.provenance.source);
+  spec.target_scale = sky.target_scale;
+  spec.ground_albedo = sky.provenance.ground_albedo;
+  if (sun_count > 0) spec.sun_count = sun_count;
+  if (view_zeniths > 0) spec.view_zeniths = view_zeniths;
+  if (view_azimuths > 0) spec.view_azimuths = view_azimuths;
+  const nn::SkySource source = sky_model_source(sky.provenance.source);
+  NeuralValidation v;
+  v.dataset = nn::build_dataset(spec, sky.inputs, source);
+  v.errors = nn::evaluate_errors(sky, v.dataset);
+  v.irradiance = nn::evaluate_irradiance(sky, v.dataset, source);
+  return v;
+}
+
+}  // namespace skylight

@@ -1,0 +1,400 @@
+#include "skylight/nn/sky_network.h"
+
+#include <algorithm>
+#include <cmath>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "skylight/core/error.h"
+#include "skylight/core/numbers.h"
+
+namespace skylight::nn {
+
+std::vector<double> SkyNetwork::output(const SkyState& state, Vec3 view) const {
+  std::vector<double> in(inputs.size());
+  compute_inputs(inputs, state, view, in);
+  return net(in);
+}
+
+Rgb SkyNetwork::rgb(const SkyState& state, Vec3 view) const {
+  if (view.z < 0.0) return {};
+  const auto y = output(state, view);
+  return {target_scale * radiance(y[0]), target_scale * radiance(y[1]),
+          target_scale * radiance(y[2])};
+}
+
+// ---- weights file
+// --------------------------------------------------------------------------------
+
+namespace {
+
+[[noreturn]] void bad(const std::string& where, const std::string& field, const std::string& why) {
+  throw InvalidArgument(where + ": field '" + field + "' " + why);
+}
+
+// j[name]; `prefix` names the enclosing object in the message ("provenance.").
+const nlohmann::json& field(const nlohmann::json& j, const std::string& where,
+                            const std::string& name, const std::string& prefix = {}) {
+  if (!j.is_object() || !j.contains(name)) bad(where, prefix + name, "is missing");
+  return j.at(name);
+}
+
+double number(const nlohmann::json& v, const std::string& where, const std::string& name) {
+  if (!v.is_number() || !std::isfinite(v.get<double>())) bad(where, name, "is not a finite number");
+  return v.get<double>();
+}
+
+long long integer(const nlohmann::json& v, const std::string& where, const std::string& name,
+                  long long lo, long long hi) {
+  if (!v.is_number_integer() || v.get<long long>() < lo || v.get<long long>() > hi) {
+    bad(where, name,
+        "is not an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
+  }
+  return v.get<long long>();
+}
+
+std::string text(const nlohmann::json& v, const std::string& where, const std::string& name) {
+  if (!v.is_string()) bad(where, name, "is not a string");
+  return v.get<std::string>();
+}
+
+const nlohmann::json& array(const nlohmann::json& v, const std::string& where,
+                            const std::string& name) {
+  if (!v.is_array()) bad(where, name, "is not an array");
+  return v;
+}
+
+std::vector<double> numbers(const nlohmann::json& v, const std::string& where,
+                            const std::string& name) {
+  std::vector<double> out;
+  for (const auto& e : array(v, where, name)) out.push_back(number(e, where, name));
+  return out;
+}
+
+// The widest layer a weights file may describe: what the batch kernels accept (this also guards
+// the allocation of a corrupt file).
+constexpr long long kMaxFileWidth = detail::kMaxBatchWidth;
+constexpr long long kMaxFileLayers = 16;
+
+constexpr const char* kInputTransform =
+    "views rotated about the zenith by phi_sun - pi (Satilmis et al. 2016 eq. 10) before v_x, "
+    "v_y; chord d = |omega_sun - omega_view|; angles in radians";
+constexpr const char* kParameterOrder =
+    "for each layer k = 1..L: weights W^k row-major (n_k rows of n_(k-1)), then biases (n_k)";
+
+}  // namespace
+
+std::string to_json(const SkyNetwork& sky) {
+  const MlpLayout& l = sky.net.layout();
+  nlohmann::json j;
+  j["format"] = kSkyNetworkFormat;
+  j["version"] = kSkyNetworkVersion;
+  nlohmann::json arch;
+  arch["widths"] = l.widths;
+  std::vector<std::string> acts;
+  for (Activation a : l.activations) acts.emplace_back(to_string(a));
+  arch["activations"] = acts;
+  arch["parameter_order"] = kParameterOrder;
+  j["architecture"] = arch;
+  std::vector<std::string> ins;
+  for (Input in : sky.inputs) ins.emplace_back(to_string(in));
+  j["inputs"] = ins;
+  j["input_transform"] = kInputTransform;
+  j["output_encoding"] = to_string(sky.encoding);
+  j["target_scale"] = sky.target_scale;
+  const auto p = sky.net.parameters();
+  j["parameters"] = std::vector<double>(p.begin(), p.end());
+  const SkyNetworkProvenance& pv = sky.provenance;
+  nlohmann::json prov;
+  prov["source"] = pv.source;
+  prov["turbidities"] = pv.turbidities;
+  prov["ground_albedo"] = pv.ground_albedo;
+  prov["sun_count"] = pv.sun_count;
+  prov["view_zeniths"] = pv.view_zeniths;
+  prov["view_azimuths"] = pv.view_azimuths;
+  prov["seed"] = pv.seed;
+  prov["trainer"] = pv.trainer;
+  prov["iterations"] = pv.iterations;
+  prov["stop"] = pv.stop;
+  prov["training_seconds"] = pv.training_seconds;
+  prov["training_mse"] = pv.training_mse;
+  nlohmann::json metrics = nlohmann::json::object();
+  if (pv.validation_rmse) metrics["rmse"] = *pv.validation_rmse;
+  if (pv.validation_relative_median) metrics["relative_median"] = *pv.validation_relative_median;
+  if (pv.validation_relative_p95) metrics["relative_p95"] = *pv.validation_relative_p95;
+  prov["validation"] = metrics;
+  prov["date"] = pv.date;
+  prov["software"] = pv.software;
+  j["provenance"] = prov;
+  return j.dump(1) + "\n";
+}
+
+SkyNetwork sky_network_from_json(std::string_view s, const std::string& where) {
+  nlohmann::json j;
+  try {
+    j = nlohmann::json::parse(s);
+  } catch (const nlohmann::json::parse_error& e) {
+    throw InvalidArgument(where + ": not valid JSON (" + excerpt(e.what()) + ")");
+  }
+  if (!j.is_object()) throw InvalidArgument(where + ": not a JSON object");
+  if (text(field(j, where, "format"), where, "format") != kSkyNetworkFormat)
+    bad(where, "format", "is not '" + std::string(kSkyNetworkFormat) + "'");
+  if (integer(field(j, where, "version"), where, "version", 0, 1000000) != kSkyNetworkVersion)
+    bad(where, "version", "is not " + std::to_string(kSkyNetworkVersion));
+
+  const auto& arch = field(j, where, "architecture");
+  if (!arch.is_object()) bad(where, "architecture", "is not an object");
+  MlpLayout layout;
+  for (const auto& w :
+       array(field(arch, where, "widths", "architecture."), where, "architecture.widths"))
+    layout.widths.push_back(
+        static_cast<int>(integer(w, where, "architecture.widths", 1, kMaxFileWidth)));
+  if (layout.widths.size() < 2 || static_cast<long long>(layout.widths.size()) > kMaxFileLayers + 1)
+    bad(where, "architecture.widths",
+        "needs 2 to " + std::to_string(kMaxFileLayers + 1) + " layers");
+  if (layout.widths.back() != 3)
+    bad(where, "architecture.widths", "must end in 3 outputs (r, g, b)");
+  for (const auto& a : array(field(arch, where, "activations", "architecture."), where,
+                             "architecture.activations")) {
+    const std::string name = text(a, where, "architecture.activations");
+    const auto act = parse_activation(name);
+    if (!act)
+      bad(where, "architecture.activations", "has an unknown activation '" + excerpt(name) + "'");
+    layout.activations.push_back(*act);
+  }
+  if (static_cast<int>(layout.activations.size()) != layout.layers())
+    bad(where, "architecture.activations", "needs one activation per layer");
+
+  SkyNetwork sky;
+  sky.inputs.clear();
+  for (const auto& in : array(field(j, where, "inputs"), where, "inputs")) {
+    const std::string name = text(in, where, "inputs");
+    const auto parsed = parse_input(name);
+    if (!parsed) bad(where, "inputs", "has an unknown input '" + excerpt(name) + "'");
+    sky.inputs.push_back(*parsed);
+  }
+  if (static_cast<int>(sky.inputs.size()) != layout.inputs())
+    bad(where, "inputs",
+        "has " + std::to_string(sky.inputs.size()) + " entries but the first layer has " +
+            std::to_string(layout.inputs()));
+  text(field(j, where, "input_transform"), where, "input_transform");
+  const std::string enc = text(field(j, where, "output_encoding"), where, "output_encoding");
+  const auto encoding = parse_output_encoding(enc);
+  if (!encoding) bad(where, "output_encoding", "is not a known encoding: '" + excerpt(enc) + "'");
+  sky.encoding = *encoding;
+  sky.target_scale = number(field(j, where, "target_scale"), where, "target_scale");
+  if (!(sky.target_scale > 0.0)) bad(where, "target_scale", "is not positive");
+  std::vector<double> params = numbers(field(j, where, "parameters"), where, "parameters");
+  if (params.size() != layout.parameter_count())
+    bad(where, "parameters",
+        "has " + std::to_string(params.size()) + " values, the architecture " +
+            std::to_string(layout.parameter_count()));
+
+  const auto& pj = field(j, where, "provenance");
+  if (!pj.is_object()) bad(where, "provenance", "is not an object");
+  SkyNetworkProvenance& pv = sky.provenance;
+  pv.source = text(field(pj, where, "source", "provenance."), where, "provenance.source");
+  pv.turbidities =
+      numbers(field(pj, where, "turbidities", "provenance."), where, "provenance.turbidities");
+  pv.ground_albedo =
+      number(field(pj, where, "ground_albedo", "provenance."), where, "provenance.ground_albedo");
+  pv.sun_count = static_cast<int>(integer(field(pj, where, "sun_count", "provenance."), where,
+                                          "provenance.sun_count", 0, 1 << 30));
+  pv.view_zeniths = static_cast<int>(integer(field(pj, where, "view_zeniths", "provenance."), where,
+                                             "provenance.view_zeniths", 0, 1 << 30));
+  pv.view_azimuths = static_cast<int>(integer(field(pj, where, "view_azimuths", "provenance."),
+                                              where, "provenance.view_azimuths", 0, 1 << 30));
+  const auto& seed = field(pj, where, "seed", "provenance.");
+  if (!seed.is_number_unsigned()) bad(where, "provenance.seed", "is not an unsigned integer");
+  pv.seed = seed.get<std::uint64_t>();
+  pv.trainer = text(field(pj, where, "trainer", "provenance."), where, "provenance.trainer");
+  pv.iterations = static_cast<int>(integer(field(pj, where, "iterations", "provenance."), where,
+                                           "provenance.iterations", 0, 1 << 30));
+  pv.stop = text(field(pj, where, "stop", "provenance."), where, "provenance.stop");
+  pv.training_seconds = number(field(pj, where, "training_seconds", "provenance."), where,
+                               "provenance.training_seconds");
+  pv.training_mse =
+      number(field(pj, where, "training_mse", "provenance."), where, "provenance.training_mse");
+  const auto& vj = field(pj, where, "validation", "provenance.");
+  if (!vj.is_object()) bad(where, "provenance.validation", "is not an object");
+  auto optional_number = [&](const char* name, std::optional<double>& out) {
+    if (vj.contains(name))
+      out = number(vj.at(name), where, std::string("provenance.validation.") + name);
+  };
+  optional_number("rmse", pv.validation_rmse);
+  optional_number("relative_median", pv.validation_relative_median);
+  optional_number("relative_p95", pv.validation_relative_p95);
+  pv.date = text(field(pj, where, "date", "provenance."), where, "provenance.date");
+  pv.software = text(field(pj, where, "software", "provenance."), where, "provenance.software");
+
+  sky.net = Mlp(std::move(layout), std::move(params));
+  return sky;
+}
+
+// ---- batch
+// ---------------------------------------------------------------------------------------
+
+SkyNetworkBatch::SkyNetworkBatch(const SkyNetwork& sky, const SkyState& state,
+                                 bool allow_unrolled) {
+  using detail::DirectionInput;
+  const MlpLayout& l = sky.net.layout();
+  SKYLIGHT_CHECK(l.outputs() == 3, "SkyNetworkBatch: the network needs 3 outputs");
+  const auto p = sky.net.parameters();
+  const int L = l.layers(), n0 = l.inputs(), n1 = l.widths[1];
+
+  // Kernel inputs: the view's linear inputs in the world frame (x and y when v_x is used, the
+  // rotated v_y alone when only v_y is: one input instead of two), z, then the non-linear
+  // direction inputs in spec order.
+  const double r = state.sun_azimuth - kPi;  // eq. 10
+  const double c = std::cos(r), s = std::sin(r);
+  auto has = [&](Input in) {
+    return std::find(sky.inputs.begin(), sky.inputs.end(), in) != sky.inputs.end();
+  };
+  int col_x = -1, col_y = -1, col_ry = -1, col_z = -1;
+  if (has(Input::view_x)) {
+    col_x = static_cast<int>(inputs_.size());
+    inputs_.push_back(DirectionInput::x);
+    col_y = static_cast<int>(inputs_.size());
+    inputs_.push_back(DirectionInput::y);
+  } else if (has(Input::view_y)) {
+    col_ry = static_cast<int>(inputs_.size());
+    inputs_.push_back(DirectionInput::reference_y);
+    p_.ry_x = static_cast<float>(s);  // v_y = y' c + x' s
+    p_.ry_y = static_cast<float>(c);
+  }
+  if (has(Input::view_z)) {
+    col_z = static_cast<int>(inputs_.size());
+    inputs_.push_back(DirectionInput::z);
+  }
+  std::vector<int> column(n0, -1);  // kernel input fed by a non-linear spec input
+  for (int i = 0; i < n0; ++i) {
+    DirectionInput k;
+    switch (sky.inputs[i]) {
+      case Input::chord:
+        k = DirectionInput::chord;
+        break;
+      case Input::log_chord:
+        k = DirectionInput::log_chord;
+        break;
+      case Input::sqrt_view_z:
+        k = DirectionInput::sqrt_z;
+        break;
+      case Input::aureole:
+        k = DirectionInput::aureole;
+        break;
+      default:
+        continue;
+    }
+    column[i] = static_cast<int>(inputs_.size());
+    inputs_.push_back(k);
+  }
+  const int nk = static_cast<int>(inputs_.size());
+
+  // Layer 1 folded (double, then rounded): W'(n1 x nk), b'.
+  std::vector<double> W1(static_cast<std::size_t>(n1) * nk, 0.0), b1(n1);
+  const double* W = p.data() + l.weight_offset(1);
+  const double* b = p.data() + l.bias_offset(1);
+  // State inputs do not depend on the view: evaluate them once with any view.
+  std::vector<double> state_value(n0);
+  compute_inputs(sky.inputs, state, Vec3{0.0, 0.0, 1.0}, state_value);
+  for (int j = 0; j < n1; ++j) {
+    b1[j] = b[j];
+    double* w = W1.data() + static_cast<std::size_t>(j) * nk;
+    for (int i = 0; i < n0; ++i) {
+      const double wi = W[static_cast<std::size_t>(j) * n0 + i];
+      switch (sky.inputs[i]) {
+        case Input::view_x:  // v_x = x' c - y' s
+          w[col_x] += wi * c;
+          w[col_y] -= wi * s;
+          break;
+        case Input::view_y:  // v_y = y' c + x' s
+          if (col_ry >= 0) {
+            w[col_ry] += wi;
+          } else {
+            w[col_y] += wi * c;
+            w[col_x] += wi * s;
+          }
+          break;
+        case Input::view_z:
+          w[col_z] += wi;
+          break;
+        default:
+          if (column[i] >= 0) {
+            w[column[i]] += wi;
+          } else {
+            SKYLIGHT_CHECK(is_state_input(sky.inputs[i]), "SkyNetworkBatch: unhandled input");
+            b1[j] += wi * state_value[i];
+          }
+      }
+    }
+  }
+
+  // Output mapping. satilmis encoding + satilmis output activation: rgb = (sqrt(scale/2) o)^2;
+  // root4 / root8 with an identity output: rgb = (scale^(1/4) o)^4 / (scale^(1/8) o)^8.
+  const Activation f_out = l.activations.back();
+  const bool fold_square =
+      sky.encoding == OutputEncoding::satilmis && f_out == Activation::satilmis;
+  const bool fold_root4 = sky.encoding == OutputEncoding::root4 && f_out == Activation::identity;
+  const bool fold_root8 = sky.encoding == OutputEncoding::root8 && f_out == Activation::identity;
+  const double out_gain = fold_square  ? std::sqrt(0.5 * sky.target_scale)
+                          : fold_root4 ? std::pow(sky.target_scale, 0.25)
+                          : fold_root8 ? std::pow(sky.target_scale, 0.125)
+                                       : 1.0;
+  if (fold_square) {
+    p_.output = detail::SkyBatchOutput::squared;
+  } else if (fold_root4) {
+    p_.output = detail::SkyBatchOutput::power4;
+  } else if (fold_root8) {
+    p_.output = detail::SkyBatchOutput::power8;
+  } else if (sky.encoding == OutputEncoding::log && f_out == Activation::identity) {
+    p_.output = detail::SkyBatchOutput::exp;
+  } else if (sky.encoding == OutputEncoding::satilmis) {
+    p_.output = detail::SkyBatchOutput::inverse_ls;
+  } else {
+    throw InvalidArgument("SkyNetworkBatch: the " + std::string(to_string(sky.encoding)) +
+                          " encoding needs an identity output activation");
+  }
+  p_.scale = static_cast<float>(sky.target_scale);
+
+  // Float parameters: layer 1 folded, layers 2..L as trained (the last one scaled).
+  std::vector<std::size_t> w_off(L + 1), b_off(L + 1);
+  for (int k = 1; k <= L; ++k) {
+    const int n_in = k == 1 ? nk : l.widths[k - 1], n_out = l.widths[k];
+    w_off[k] = params_.size();
+    const double gain = k == L ? out_gain : 1.0;
+    for (int j = 0; j < n_out; ++j) {
+      for (int i = 0; i < n_in; ++i) {
+        const double v = k == 1 ? W1[static_cast<std::size_t>(j) * nk + i]
+                                : p[l.weight_offset(k) + static_cast<std::size_t>(j) * n_in + i];
+        params_.push_back(static_cast<float>(gain * v));
+      }
+    }
+    b_off[k] = params_.size();
+    for (int j = 0; j < n_out; ++j) {
+      params_.push_back(static_cast<float>(gain * (k == 1 ? b1[j] : p[l.bias_offset(k) + j])));
+    }
+  }
+  layers_.resize(L);
+  for (int k = 1; k <= L; ++k) {
+    Activation f = l.activations[k - 1];
+    if (k == L && fold_square) f = Activation::identity;
+    layers_[k - 1] = {k == 1 ? nk : l.widths[k - 1], l.widths[k], f, params_.data() + w_off[k],
+                      params_.data() + b_off[k]};
+  }
+  p_.layers = layers_.data();
+  p_.n_layers = L;
+  p_.inputs = inputs_.data();
+  p_.n_inputs = nk;
+  p_.allow_unrolled = allow_unrolled;
+  const Vec3 sun = direction_from_angles(state.sun_zenith, state.sun_azimuth);
+  p_.sx = static_cast<float>(sun.x);
+  p_.sy = static_cast<float>(sun.y);
+  p_.sz = static_cast<float>(sun.z);
+}
+
+void SkyNetworkBatch::rgb(const float* x, const float* y, const float* z, float* r, float* g,
+                          float* b, std::size_t n) const {
+  detail::sky_batch(p_, x, y, z, r, g, b, n);
+}
+
+}  // namespace skylight::nn

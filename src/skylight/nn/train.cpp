@@ -1,0 +1,729 @@
+#include "skylight/nn/train.h"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <memory>
+#include <mutex>
+#include <numeric>
+#include <ostream>
+
+#include "skylight/core/error.h"
+#include "skylight/core/math.h"
+#include "skylight/core/parallel.h"
+#include "skylight/nn/random.h"
+#include "skylight/nn/train_kernel.h"
+
+namespace skylight::nn {
+
+namespace {
+
+// Examples are split into this many contiguous slices; per-slice partial sums (loss, gradient,
+// J^T J) are added in slice order. The split does not depend on the thread count, so neither do
+// the results.
+constexpr std::size_t kSlices = 16;
+// Examples per Jacobian block in Levenberg-Marquardt: the products of J^T J run over blocks of
+// this many examples (3 residual rows each).
+constexpr std::size_t kJacobianBlock = 2048;
+
+using Clock = std::chrono::steady_clock;
+using Eigen::MatrixXd;
+using Eigen::VectorXd;
+
+std::size_t slice_begin(std::size_t s, std::size_t n, std::size_t slices) {
+  return s * n / slices;
+}
+
+// Training state shared by the trainers: standardised inputs, targets, the clock, the log.
+struct Context {
+  const MlpLayout& layout;
+  std::vector<double> x;  // standardised inputs
+  std::span<const double> t;
+  std::size_t n = 0;
+  std::vector<double> vx;  // standardised validation inputs
+  std::span<const double> vt;
+  std::size_t vn = 0;
+  const TrainOptions& opt;
+  Clock::time_point start;
+  std::vector<TrainLogEntry>* log = nullptr;
+  int iteration = 0;  // global count, across restarts
+  int restart = 0;
+  std::string stop;
+
+  Context(const MlpLayout& l, const TrainOptions& o) : layout(l), opt(o) {}
+  double seconds() const { return std::chrono::duration<double>(Clock::now() - start).count(); }
+  std::span<const double> input(std::size_t i) const {
+    return std::span<const double>(x).subspan(i * layout.inputs(), layout.inputs());
+  }
+  std::span<const double> target(std::size_t i) const {
+    return t.subspan(i * layout.outputs(), layout.outputs());
+  }
+};
+
+// Sum of squared errors over examples [begin, end) of (x, t).
+double sse_range(const Mlp& net, MlpWorkspace& ws, std::span<const double> x,
+                 std::span<const double> t, std::size_t begin, std::size_t end) {
+  const int n_in = net.layout().inputs(), n_out = net.layout().outputs();
+  double e = 0.0;
+  for (std::size_t i = begin; i < end; ++i) {
+    forward(net, x.subspan(i * n_in, n_in), ws);
+    const auto y = ws.output();
+    for (int c = 0; c < n_out; ++c) {
+      const double r = y[c] - t[i * n_out + c];
+      e += r * r;
+    }
+  }
+  return e;
+}
+
+// Sum of squared errors over all n examples, parallel over fixed slices, ordered reduction.
+double sse(const Mlp& net, std::span<const double> x, std::span<const double> t, std::size_t n) {
+  std::vector<double> part(kSlices, 0.0);
+  parallel_for(kSlices, 1, [&](std::size_t b, std::size_t e) {
+    MlpWorkspace ws(net.layout());
+    for (std::size_t s = b; s < e; ++s) {
+      part[s] =
+          sse_range(net, ws, x, t, slice_begin(s, n, kSlices), slice_begin(s + 1, n, kSlices));
+    }
+  });
+  return std::accumulate(part.begin(), part.end(), 0.0);
+}
+
+// Gradient of E = sum (Psi - t)^2 over examples idx[begin..end) (all when idx is empty), summed
+// into grad (overwritten); returns E.
+double gradient(const Mlp& net, std::span<const double> x, std::span<const double> t,
+                std::span<const std::size_t> idx, std::size_t n, std::span<double> grad) {
+  const std::size_t P = net.layout().parameter_count();
+  const int n_in = net.layout().inputs(), n_out = net.layout().outputs();
+  const std::size_t slices = std::min<std::size_t>(kSlices, std::max<std::size_t>(1, n / 64));
+  std::vector<std::vector<double>> part(slices, std::vector<double>(P, 0.0));
+  std::vector<double> loss(slices, 0.0);
+  parallel_for(slices, 1, [&](std::size_t b, std::size_t e) {
+    MlpWorkspace ws(net.layout());
+    std::vector<double> g(n_out);
+    for (std::size_t s = b; s < e; ++s) {
+      for (std::size_t k = slice_begin(s, n, slices); k < slice_begin(s + 1, n, slices); ++k) {
+        const std::size_t i = idx.empty() ? k : idx[k];
+        forward(net, x.subspan(i * n_in, n_in), ws);
+        const auto y = ws.output();
+        for (int c = 0; c < n_out; ++c) {
+          const double r = y[c] - t[i * n_out + c];
+          loss[s] += r * r;
+          g[c] = 2.0 * r;  // dE/dPsi_c
+        }
+        backward(net, ws, g, part[s]);
+      }
+    }
+  });
+  std::fill(grad.begin(), grad.end(), 0.0);
+  double e = 0.0;
+  for (std::size_t s = 0; s < slices; ++s) {
+    for (std::size_t p = 0; p < P; ++p) grad[p] += part[s][p];
+    e += loss[s];
+  }
+  return e;
+}
+
+// Logs one iteration; returns false when training must stop (time limit, callback, iterations).
+bool log_iteration(Context& ctx, const Mlp& net, double train_sse, double step,
+                   int last_iteration) {
+  ++ctx.iteration;
+  TrainLogEntry e;
+  e.iteration = ctx.iteration;
+  e.seconds = ctx.seconds();
+  e.mse = train_sse / (static_cast<double>(ctx.n) * ctx.layout.outputs());
+  e.step = step;
+  e.restart = ctx.restart;
+  if (ctx.vn > 0 && (ctx.iteration % std::max(1, ctx.opt.validation_every) == 0 ||
+                     ctx.iteration == last_iteration)) {
+    e.validation_mse =
+        sse(net, ctx.vx, ctx.vt, ctx.vn) / (static_cast<double>(ctx.vn) * ctx.layout.outputs());
+  }
+  ctx.log->push_back(e);
+  if (ctx.opt.progress && !ctx.opt.progress(e)) {
+    ctx.stop = "callback";
+    return false;
+  }
+  if (e.seconds >= ctx.opt.time_limit_s) {
+    ctx.stop = "time_limit";
+    return false;
+  }
+  if (ctx.iteration >= last_iteration) {
+    ctx.stop = "iterations";
+    return false;
+  }
+  const int pat = ctx.opt.patience >= 0                             ? ctx.opt.patience
+                  : ctx.opt.trainer == Trainer::levenberg_marquardt ? 50
+                                                                    : 0;
+  if (pat > 0 && ctx.log->size() > static_cast<std::size_t>(pat)) {
+    const double before = (*ctx.log)[ctx.log->size() - 1 - pat].mse;
+    if (e.mse > before * (1.0 - ctx.opt.min_improvement)) {
+      ctx.stop = "converged";
+      return false;
+    }
+  }
+  return true;
+}
+
+// ---- trainers: each runs until log_iteration says stop (at iteration `last`)
+// ----------------------
+
+void run_backprop(Context& ctx, Mlp& net, int last, Rng& rng) {
+  const std::size_t P = net.layout().parameter_count();
+  const int n_out = net.layout().outputs();
+  std::vector<double> grad(P), velocity(P, 0.0), g(n_out);
+  std::vector<std::size_t> order(ctx.n);
+  std::iota(order.begin(), order.end(), 0);
+  MlpWorkspace ws(net.layout());
+  auto params = net.parameters();
+  for (;;) {
+    rng.shuffle(std::span<std::size_t>(order));
+    for (std::size_t i : order) {
+      forward(net, ctx.input(i), ws);
+      const auto y = ws.output();
+      const auto t = ctx.target(i);
+      for (int c = 0; c < n_out; ++c) g[c] = y[c] - t[c];  // d/dPsi of 1/2 sum (Psi - y)^2
+      std::fill(grad.begin(), grad.end(), 0.0);
+      backward(net, ws, g, grad);
+      // Delta w(t) = -beta dE_i/dw + mu Delta w(t-1)
+      for (std::size_t p = 0; p < P; ++p) {
+        velocity[p] = ctx.opt.momentum * velocity[p] - ctx.opt.learning_rate * grad[p];
+        params[p] += velocity[p];
+      }
+    }
+    if (!log_iteration(ctx, net, sse(net, ctx.x, ctx.t, ctx.n), ctx.opt.learning_rate, last)) {
+      return;
+    }
+  }
+}
+
+void run_adam(Context& ctx, Mlp& net, int last, Rng& rng) {
+  const std::size_t P = net.layout().parameter_count();
+  const double beta1 = 0.9, beta2 = 0.999, eps = 1e-8;
+  std::vector<double> grad(P), m(P, 0.0), v(P, 0.0);
+  std::vector<std::size_t> order(ctx.n);
+  std::iota(order.begin(), order.end(), 0);
+  auto params = net.parameters();
+  const std::size_t B = std::max(1, ctx.opt.batch_size);
+  long step = 0;
+  const int first = ctx.iteration;
+  for (;;) {
+    // Cosine decay from adam_learning_rate to adam_final_learning_rate over [first, last].
+    const double progress = std::clamp(
+        static_cast<double>(ctx.iteration - first) / std::max(1, last - first), 0.0, 1.0);
+    const double lr = ctx.opt.adam_final_learning_rate +
+                      0.5 * (ctx.opt.adam_learning_rate - ctx.opt.adam_final_learning_rate) *
+                          (1.0 + std::cos(kPi * progress));
+    rng.shuffle(std::span<std::size_t>(order));
+    for (std::size_t b = 0; b < ctx.n; b += B) {
+      const std::size_t nb = std::min(B, ctx.n - b);
+      gradient(net, ctx.x, ctx.t, std::span<const std::size_t>(order).subspan(b, nb), nb, grad);
+      ++step;
+      const double c1 = 1.0 - std::pow(beta1, static_cast<double>(step));
+      const double c2 = 1.0 - std::pow(beta2, static_cast<double>(step));
+      for (std::size_t p = 0; p < P; ++p) {
+        const double gp = grad[p] / static_cast<double>(nb);
+        m[p] = beta1 * m[p] + (1.0 - beta1) * gp;
+        v[p] = beta2 * v[p] + (1.0 - beta2) * gp * gp;
+        params[p] -= lr * (m[p] / c1) / (std::sqrt(v[p] / c2) + eps);
+      }
+    }
+    if (!log_iteration(ctx, net, sse(net, ctx.x, ctx.t, ctx.n), lr, last)) return;
+  }
+}
+
+void run_lbfgs(Context& ctx, Mlp& net, int last) {
+  const std::size_t P = net.layout().parameter_count();
+  constexpr int kHistory = 10;
+  auto params = net.parameters();
+  std::vector<double> g(P), g_new(P), d(P), x_old(P);
+  std::vector<std::vector<double>> S, Y;
+  std::vector<double> rho;
+  double f = gradient(net, ctx.x, ctx.t, {}, ctx.n, g);
+  for (;;) {
+    // Two-loop recursion: d = -H g.
+    std::vector<double> q(g.begin(), g.end()), alpha(S.size());
+    for (int k = static_cast<int>(S.size()) - 1; k >= 0; --k) {
+      alpha[k] = rho[k] * std::inner_product(S[k].begin(), S[k].end(), q.begin(), 0.0);
+      for (std::size_t p = 0; p < P; ++p) q[p] -= alpha[k] * Y[k][p];
+    }
+    double gamma = 1.0 / std::sqrt(std::inner_product(g.begin(), g.end(), g.begin(), 1e-300));
+    if (!S.empty()) {
+      gamma = std::inner_product(S.back().begin(), S.back().end(), Y.back().begin(), 0.0) /
+              std::inner_product(Y.back().begin(), Y.back().end(), Y.back().begin(), 1e-300);
+    }
+    for (std::size_t p = 0; p < P; ++p) q[p] *= gamma;
+    for (std::size_t k = 0; k < S.size(); ++k) {
+      const double beta = rho[k] * std::inner_product(Y[k].begin(), Y[k].end(), q.begin(), 0.0);
+      for (std::size_t p = 0; p < P; ++p) q[p] += S[k][p] * (alpha[k] - beta);
+    }
+    for (std::size_t p = 0; p < P; ++p) d[p] = -q[p];
+    double slope = std::inner_product(g.begin(), g.end(), d.begin(), 0.0);
+    if (!(slope < 0.0)) {  // not a descent direction: reset to steepest descent
+      S.clear();
+      Y.clear();
+      rho.clear();
+      for (std::size_t p = 0; p < P; ++p) d[p] = -g[p] * gamma;
+      slope = std::inner_product(g.begin(), g.end(), d.begin(), 0.0);
+    }
+    // Backtracking Armijo line search.
+    std::copy(params.begin(), params.end(), x_old.begin());
+    double step = 1.0, f_new = f;
+    bool ok = false;
+    for (int k = 0; k < 30; ++k) {
+      for (std::size_t p = 0; p < P; ++p) params[p] = x_old[p] + step * d[p];
+      f_new = gradient(net, ctx.x, ctx.t, {}, ctx.n, g_new);
+      if (f_new <= f + 1e-4 * step * slope) {
+        ok = true;
+        break;
+      }
+      step *= 0.5;
+    }
+    if (!ok) {
+      std::copy(x_old.begin(), x_old.end(), params.begin());
+      S.clear();
+      Y.clear();
+      rho.clear();
+      if (!log_iteration(ctx, net, f, 0.0, last)) return;
+      continue;
+    }
+    std::vector<double> s(P), y(P);
+    for (std::size_t p = 0; p < P; ++p) {
+      s[p] = params[p] - x_old[p];
+      y[p] = g_new[p] - g[p];
+    }
+    const double sy = std::inner_product(s.begin(), s.end(), y.begin(), 0.0);
+    if (sy > 1e-12 * std::sqrt(std::inner_product(y.begin(), y.end(), y.begin(), 0.0) *
+                               std::inner_product(s.begin(), s.end(), s.begin(), 0.0))) {
+      if (S.size() == kHistory) {
+        S.erase(S.begin());
+        Y.erase(Y.begin());
+        rho.erase(rho.begin());
+      }
+      S.push_back(std::move(s));
+      Y.push_back(std::move(y));
+      rho.push_back(1.0 / sy);
+    }
+    g.swap(g_new);
+    f = f_new;
+    if (!log_iteration(ctx, net, f, step, last)) return;
+  }
+}
+
+// J^T J (lower triangle), J^T r and E = r^T r at the current parameters.
+struct NormalEquations {
+  MatrixXd A;
+  VectorXd g;
+  double e = 0.0;
+};
+
+// Scratch of one normal_equations worker. Column c B + k of j (leading dimension ldj, rows >= P
+// are padding) holds the Jacobian row of output c of example k; jo the output block of one
+// channel; a_* the per-slice blocks of J^T J.
+struct LmScratch {
+  std::vector<double> j, r, row, jo;
+  MatrixXd a_ss, a_so, a_oo;
+};
+
+// Scratch handed to the parallel workers for the duration of one training run (a worker takes
+// one, fills it completely before reading it, and gives it back), so the megabytes of Jacobian
+// blocks are allocated once per run instead of once per slice and iteration.
+class ScratchPool {
+ public:
+  std::unique_ptr<LmScratch> take() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (free_.empty()) return std::make_unique<LmScratch>();
+    auto s = std::move(free_.back());
+    free_.pop_back();
+    return s;
+  }
+  void give(std::unique_ptr<LmScratch> s) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    free_.push_back(std::move(s));
+  }
+
+ private:
+  std::mutex mutex_;
+  std::vector<std::unique_ptr<LmScratch>> free_;
+};
+
+// J^T J exploits that the last layer's parameters of output c (row c of W^L and bias w^L_{c 0})
+// move output c only: with S shared parameters (all layers but the last) and O = n_(L-1) + 1 per
+// output, a residual row of output c has S + O non-zeros, not P = S + n_L O. The blocks are
+//   A_SS += sum_c J_S,c J_S,c^T,  A_{S O_c} += J_S,c J_O,c^T,  A_{O_c O_c} += J_O,c J_O,c^T
+// (6-12-3: 1.6x fewer multiply-adds than the dense rank-k update), computed by gemm_abt
+// (train_kernel.h).
+void normal_equations(const Context& ctx, const Mlp& net, ScratchPool& pool,
+                      std::vector<NormalEquations>& part, NormalEquations& total) {
+  const MlpLayout& l = net.layout();
+  const auto P = static_cast<Eigen::Index>(l.parameter_count());
+  const int n_in = l.inputs(), n_out = l.outputs(), L = l.layers();
+  const auto S = static_cast<Eigen::Index>(l.weight_offset(L));
+  const auto Hl = static_cast<Eigen::Index>(l.widths[L - 1]);  // n_(L-1)
+  const Eigen::Index O = Hl + 1;
+  const auto B = static_cast<Eigen::Index>(kJacobianBlock);
+  const auto pad = static_cast<Eigen::Index>(detail::gemm_abt_row_padding());
+  const Eigen::Index ldj = (P + pad - 1) / pad * pad, ldo = (O + pad - 1) / pad * pad;
+  // Parameter index of output c's a-th parameter (a < Hl: weights, a = Hl: bias).
+  auto out_index = [&](int c, Eigen::Index a) {
+    return a < Hl ? S + c * Hl + a : static_cast<Eigen::Index>(l.bias_offset(L)) + c;
+  };
+  parallel_for(kSlices, 1, [&](std::size_t b, std::size_t e) {
+    MlpWorkspace ws(l);
+    std::unique_ptr<LmScratch> scratch = pool.take();
+    auto& jo_buf = scratch->jo;
+    auto& row_buf = scratch->row;
+    scratch->j.resize(static_cast<std::size_t>(ldj * B * n_out));
+    scratch->r.resize(static_cast<std::size_t>(B * n_out));
+    row_buf.resize(static_cast<std::size_t>(P * n_out));
+    jo_buf.resize(static_cast<std::size_t>(ldo * B));
+    Eigen::Map<MatrixXd, 0, Eigen::OuterStride<>> J(scratch->j.data(), P, B * n_out,
+                                                    Eigen::OuterStride<>(ldj));
+    Eigen::Map<VectorXd> r(scratch->r.data(), B * n_out);
+    MatrixXd& a_ss = scratch->a_ss;
+    MatrixXd& a_so = scratch->a_so;
+    MatrixXd& a_oo = scratch->a_oo;
+    a_ss.resize(S, S);
+    a_so.resize(S, O * n_out);
+    a_oo.resize(O, O * n_out);
+    for (std::size_t s = b; s < e; ++s) {
+      NormalEquations& ne = part[s];
+      ne.A.setZero(P, P);
+      ne.g.setZero(P);
+      ne.e = 0.0;
+      a_ss.setZero();
+      a_so.setZero();
+      a_oo.setZero();
+      const std::size_t end = slice_begin(s + 1, ctx.n, kSlices);
+      for (std::size_t i0 = slice_begin(s, ctx.n, kSlices); i0 < end; i0 += kJacobianBlock) {
+        const auto m = static_cast<Eigen::Index>(std::min(kJacobianBlock, end - i0));
+        for (Eigen::Index k = 0; k < m; ++k) {
+          const std::size_t i = i0 + static_cast<std::size_t>(k);
+          forward(net, std::span<const double>(ctx.x).subspan(i * n_in, n_in), ws);
+          jacobian(net, ws, row_buf);
+          for (int c = 0; c < n_out; ++c) {
+            const double res = ws.output()[c] - ctx.t[i * n_out + c];
+            r[c * B + k] = res;
+            ne.e += res * res;
+            std::copy_n(row_buf.data() + c * P, P, J.col(c * B + k).data());
+          }
+        }
+        for (int c = 0; c < n_out; ++c) {
+          const double* Js = J.col(c * B).data();
+          for (Eigen::Index k = 0; k < m; ++k) {
+            for (Eigen::Index a = 0; a < O; ++a)
+              jo_buf[k * ldo + a] = Js[k * ldj + out_index(c, a)];
+          }
+          const auto um = static_cast<std::size_t>(m);
+          detail::gemm_abt(Js, ldj, Js, ldj, S, S, um, a_ss.data(), S, true);
+          detail::gemm_abt(Js, ldj, jo_buf.data(), ldo, S, O, um, a_so.col(c * O).data(), S, false);
+          detail::gemm_abt(jo_buf.data(), ldo, jo_buf.data(), ldo, O, O, um, a_oo.col(c * O).data(),
+                           O, true);
+          const auto rc = r.segment(c * B, m);
+          ne.g.head(S).noalias() += J.block(0, c * B, S, m) * rc;
+          for (Eigen::Index a = 0; a < O; ++a) {
+            double dot = 0.0;
+            for (Eigen::Index k = 0; k < m; ++k) dot += jo_buf[k * ldo + a] * rc[k];
+            ne.g[out_index(c, a)] += dot;
+          }
+        }
+      }
+      // Assemble the lower triangle (output indices are all >= S, increasing in a).
+      ne.A.topLeftCorner(S, S).triangularView<Eigen::Lower>() = a_ss;
+      for (int c = 0; c < n_out; ++c) {
+        for (Eigen::Index a = 0; a < O; ++a) {
+          const Eigen::Index ia = out_index(c, a);
+          ne.A.row(ia).head(S) += a_so.col(c * O + a).transpose();
+          for (Eigen::Index q = 0; q <= a; ++q) ne.A(ia, out_index(c, q)) += a_oo(a, c * O + q);
+        }
+      }
+    }
+    pool.give(std::move(scratch));
+  });
+  total.A.setZero(P, P);
+  total.g.setZero(P);
+  total.e = 0.0;
+  for (const auto& ne : part) {
+    total.A += ne.A;
+    total.g += ne.g;
+    total.e += ne.e;
+  }
+}
+
+void run_levenberg_marquardt(Context& ctx, Mlp& net, int last) {
+  const auto P = static_cast<Eigen::Index>(net.layout().parameter_count());
+  std::vector<NormalEquations> part(kSlices);
+  NormalEquations ne;
+  ScratchPool pool;
+  normal_equations(ctx, net, pool, part, ne);
+  double lambda = ctx.opt.lambda_initial;
+  auto params = net.parameters();
+  Eigen::Map<VectorXd> theta(params.data(), P);
+  VectorXd theta_old(P), delta(P);
+  MatrixXd M(P, P);
+  for (;;) {
+    // Marquardt scaling: damp with lambda diag(J^T J) (floored so that a dead unit is damped).
+    const double diag_floor = 1e-9 * std::max(ne.A.diagonal().mean(), 1e-300);
+    bool accepted = false;
+    while (!accepted) {
+      M = ne.A;
+      for (Eigen::Index p = 0; p < P; ++p) M(p, p) += lambda * std::max(ne.A(p, p), diag_floor);
+      Eigen::LLT<MatrixXd, Eigen::Lower> llt(M);
+      if (llt.info() == Eigen::Success) {
+        delta = llt.solve(-ne.g);
+        theta_old = theta;
+        theta += delta;
+        const double e_new = sse(net, ctx.x, ctx.t, ctx.n);
+        if (std::isfinite(e_new) && e_new < ne.e) {
+          accepted = true;
+          lambda = std::max(lambda * ctx.opt.lambda_down, 1e-12);
+          break;
+        }
+        theta = theta_old;
+      }
+      lambda *= ctx.opt.lambda_up;
+      if (lambda > ctx.opt.lambda_max) {
+        ctx.stop = "lambda_max";
+        return;
+      }
+    }
+    normal_equations(ctx, net, pool, part, ne);
+    if (!log_iteration(ctx, net, ne.e, lambda, last)) return;
+  }
+}
+
+void run_trainer(Context& ctx, Mlp& net, int last, Rng& rng) {
+  switch (ctx.opt.trainer) {
+    case Trainer::backprop:
+      return run_backprop(ctx, net, last, rng);
+    case Trainer::adam:
+      return run_adam(ctx, net, last, rng);
+    case Trainer::lbfgs:
+      return run_lbfgs(ctx, net, last);
+    case Trainer::levenberg_marquardt:
+      return run_levenberg_marquardt(ctx, net, last);
+  }
+}
+
+}  // namespace
+
+std::string_view to_string(Trainer t) {
+  switch (t) {
+    case Trainer::backprop:
+      return "backprop";
+    case Trainer::levenberg_marquardt:
+      return "lm";
+    case Trainer::adam:
+      return "adam";
+    case Trainer::lbfgs:
+      return "lbfgs";
+  }
+  return "?";
+}
+
+std::optional<Trainer> parse_trainer(std::string_view name) {
+  if (name == "backprop" || name == "bp") return Trainer::backprop;
+  if (name == "lm" || name == "levenberg_marquardt") return Trainer::levenberg_marquardt;
+  if (name == "adam") return Trainer::adam;
+  if (name == "lbfgs") return Trainer::lbfgs;
+  return std::nullopt;
+}
+
+Mlp initial_network(const MlpLayout& layout, Rng& rng, double gain) {
+  Mlp net(layout);
+  auto p = net.parameters();
+  for (int k = 1; k <= layout.layers(); ++k) {
+    const double a = gain * std::sqrt(3.0 / layout.widths[k - 1]);
+    const std::size_t begin = layout.weight_offset(k);
+    const std::size_t end = layout.bias_offset(k) + layout.widths[k];
+    for (std::size_t i = begin; i < end; ++i) p[i] = rng.uniform(-a, a);
+  }
+  return net;
+}
+
+double inverse_activation(Activation a, double y) {
+  constexpr double kEps = 1e-6;
+  switch (a) {
+    case Activation::identity:
+      return y;
+    case Activation::satilmis:  // 1/(1 + x^2) = y, x >= 0
+      y = std::clamp(y, kEps, 1.0 - kEps);
+      return std::sqrt(1.0 / y - 1.0);
+    case Activation::pietras:  // 1/(1 + 2^(2x)) = y
+      y = std::clamp(y, kEps, 1.0 - kEps);
+      return std::log2(1.0 / y - 1.0) / 2.0;
+    case Activation::tanh:
+      return std::atanh(std::clamp(y, -1.0 + kEps, 1.0 - kEps));
+    case Activation::sigmoid:
+      y = std::clamp(y, kEps, 1.0 - kEps);
+      return std::log(y / (1.0 - y));
+    case Activation::relu:
+      return std::max(y, 0.0);
+    case Activation::softplus:
+      y = std::max(y, kEps);
+      return y > 30.0 ? y : std::log(std::expm1(y));
+  }
+  return y;
+}
+
+double mean_squared_error(const Mlp& net, const Examples& ex) {
+  return sse(net, ex.inputs, ex.targets, ex.count) /
+         (static_cast<double>(ex.count) * net.layout().outputs());
+}
+
+TrainResult train(const MlpLayout& layout, const Examples& ex, const TrainOptions& opt) {
+  layout.validate();
+  const int n_in = layout.inputs(), n_out = layout.outputs();
+  if (ex.count == 0 || ex.inputs.size() != ex.count * n_in ||
+      ex.targets.size() != ex.count * n_out) {
+    throw InvalidArgument("train: examples do not match the layout " + layout.describe());
+  }
+  TrainResult result;
+  Context ctx(layout, opt);
+  ctx.start = Clock::now();
+  ctx.log = &result.log;
+  ctx.n = ex.count;
+  ctx.t = ex.targets;
+
+  // Standardisation x~ = (x - mean) / std (std of a constant input: 1).
+  std::vector<double> mean(n_in, 0.0), stdev(n_in, 1.0);
+  if (opt.standardise_inputs) {
+    for (int k = 0; k < n_in; ++k) {
+      double s = 0.0, s2 = 0.0;
+      for (std::size_t i = 0; i < ex.count; ++i) s += ex.inputs[i * n_in + k];
+      mean[k] = s / static_cast<double>(ex.count);
+      for (std::size_t i = 0; i < ex.count; ++i) {
+        const double dv = ex.inputs[i * n_in + k] - mean[k];
+        s2 += dv * dv;
+      }
+      const double sd = std::sqrt(s2 / static_cast<double>(ex.count));
+      stdev[k] = sd > 1e-12 ? sd : 1.0;
+    }
+  }
+  auto standardise = [&](std::span<const double> in, std::vector<double>& out) {
+    out.resize(in.size());
+    for (std::size_t i = 0; i < in.size(); ++i) {
+      const int k = static_cast<int>(i % n_in);
+      out[i] = (in[i] - mean[k]) / stdev[k];
+    }
+  };
+  standardise(ex.inputs, ctx.x);
+  if (opt.validation && opt.validation->count > 0) {
+    standardise(opt.validation->inputs, ctx.vx);
+    ctx.vt = opt.validation->targets;
+    ctx.vn = opt.validation->count;
+  }
+
+  // Start of the output layer (see TrainOptions::init_output_from_targets).
+  std::vector<double> target_mean(n_out, 0.0);
+  for (std::size_t i = 0; i < ex.count; ++i) {
+    for (int c = 0; c < n_out; ++c) target_mean[c] += ex.targets[i * n_out + c];
+  }
+  for (double& m : target_mean) m /= static_cast<double>(ex.count);
+  auto initial = [&](Rng& rng) {
+    Mlp net = initial_network(layout, rng, opt.init_gain);
+    if (opt.init_output_from_targets) {
+      const int L = layout.layers();
+      auto p = net.parameters();
+      for (std::size_t i = layout.weight_offset(L); i < layout.bias_offset(L); ++i) {
+        p[i] *= opt.output_weight_gain;
+      }
+      for (int c = 0; c < n_out; ++c) {
+        p[layout.bias_offset(L) + c] =
+            inverse_activation(layout.activations[L - 1], target_mean[c]);
+      }
+    }
+    return net;
+  };
+
+  Mlp net;
+  const int last = std::max(1, opt.max_iterations);
+  if (opt.restarts > 1) {
+    double best = std::numeric_limits<double>::infinity();
+    std::vector<TrainLogEntry> kept;
+    for (int r = 0; r < opt.restarts; ++r) {
+      Rng rng = Rng::stream(opt.seed, static_cast<std::uint64_t>(r));
+      Mlp candidate = initial(rng);
+      ctx.restart = r + 1;
+      ctx.iteration = 0;
+      std::vector<TrainLogEntry> log;
+      ctx.log = &log;
+      run_trainer(ctx, candidate, std::min(opt.restart_iterations, last), rng);
+      const double e = sse(candidate, ctx.x, ctx.t, ctx.n);
+      result.log.insert(result.log.end(), log.begin(), log.end());
+      if (e < best) {
+        best = e;
+        net = candidate;
+        kept = log;
+      }
+      if (ctx.stop == "time_limit" || ctx.stop == "callback") break;
+    }
+    ctx.log = &result.log;
+    ctx.restart = 0;
+    ctx.iteration = static_cast<int>(kept.size());
+  } else {
+    Rng rng = Rng::stream(opt.seed, 0);
+    net = initial(rng);
+  }
+  if (ctx.stop != "time_limit" && ctx.stop != "callback" && ctx.iteration < last) {
+    ctx.stop.clear();
+    Rng rng = Rng::stream(opt.seed, 1000);
+    run_trainer(ctx, net, last, rng);
+  }
+
+  // Fold the standardisation into layer 1: w_ji <- w~_ji / std_i,
+  // w_j0 <- w~_j0 - sum_i w~_ji mean_i / std_i.
+  auto p = net.parameters();
+  double* W = p.data() + layout.weight_offset(1);
+  double* b = p.data() + layout.bias_offset(1);
+  for (int j = 0; j < layout.widths[1]; ++j) {
+    for (int i = 0; i < n_in; ++i) {
+      double& w = W[static_cast<std::size_t>(j) * n_in + i];
+      w /= stdev[i];
+      b[j] -= w * mean[i];
+    }
+  }
+  result.net = std::move(net);
+  result.seconds = ctx.seconds();
+  result.mse = mean_squared_error(result.net, ex);
+  result.iterations = ctx.iteration;
+  result.stop = ctx.stop.empty() ? "iterations" : ctx.stop;
+  return result;
+}
+
+namespace detail {
+void gauss_newton_system(const Mlp& net, const Examples& ex, std::vector<double>& A,
+                         std::vector<double>& g, double& e) {
+  TrainOptions opt;
+  Context ctx(net.layout(), opt);
+  ctx.x.assign(ex.inputs.begin(), ex.inputs.end());
+  ctx.t = ex.targets;
+  ctx.n = ex.count;
+  std::vector<NormalEquations> part(kSlices);
+  NormalEquations ne;
+  ScratchPool pool;
+  normal_equations(ctx, net, pool, part, ne);
+  const auto P = ne.A.rows();
+  A.assign(static_cast<std::size_t>(P * P), 0.0);
+  for (Eigen::Index j = 0; j < P; ++j) {
+    for (Eigen::Index i = j; i < P; ++i) {
+      A[i + j * P] = A[j + i * P] = ne.A(i, j);
+    }
+  }
+  g.assign(ne.g.data(), ne.g.data() + P);
+  e = ne.e;
+}
+}  // namespace detail
+
+void write_log_csv(std::ostream& os, const std::vector<TrainLogEntry>& log) {
+  os << "restart,iteration,seconds,mse,validation_mse,step\n";
+  os.precision(9);
+  for (const auto& e : log) {
+    os << e.restart << ',' << e.iteration << ',' << e.seconds << ',' << e.mse << ',';
+    if (!std::isnan(e.validation_mse)) os << e.validation_mse;
+    os << ',' << e.step << '\n';
+  }
+}
+
+}  // namespace skylight::nn
