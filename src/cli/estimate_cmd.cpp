@@ -1,5 +1,7 @@
 // `skylight estimate`: the turbidity of a clear sky from an HDR photograph (fisheye or equirect),
-// by fitting the Preetham model to luminance samples (estimate/turbidity.h, docs/ESTIMATE.md).
+// by fitting the Preetham model (estimate/turbidity.h) or the Hosek-Wilkie model
+// (estimate/hosek_fit.h) to luminance samples, or the best CIE standard sky type
+// (estimate/sky_type.h); docs/ESTIMATE.md.
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
@@ -11,11 +13,13 @@
 #include "skylight/core/error.h"
 #include "skylight/core/numbers.h"
 #include "skylight/estimate/camera.h"
+#include "skylight/estimate/hosek_fit.h"
 #include "skylight/estimate/photo.h"
 #include "skylight/estimate/sky_type.h"
 #include "skylight/estimate/turbidity.h"
 #include "skylight/io/image.h"
 #include "skylight/models/cie_sky.h"
+#include "skylight/models/hosek_wilkie.h"
 #include "skylight/render/false_colour.h"
 #include "skylight/sun/spa.h"
 
@@ -133,6 +137,29 @@ int run_estimate(const EstimateFlags& f) {
             return std::exp(e.log_scale +
                             estimate::preetham_log_relative_luminance(e.turbidity, v, ps.sun));
           }));
+  } else if (f.model == "hosek") {
+    const estimate::HosekFit h = estimate::fit_hosek(ps.samples, ps.sun, es);
+    j["turbidity"] = h.turbidity;
+    j["turbidity_sigma"] = h.turbidity_sigma;
+    j["albedo"] = h.albedo;
+    j["albedo_sigma"] = h.albedo_sigma;
+    j["inlier_fraction"] = h.inlier_fraction;
+    j["residual"] = h.residual;
+    j["inliers"] = h.inliers;
+    j["method"] = "levenberg-marquardt";
+    j["luminance_scale"] = std::exp(h.log_scale);
+    text += fmt::format("turbidity        {:.4f} +- {:.4f}\n", h.turbidity, h.turbidity_sigma);
+    text += fmt::format("albedo           {:.4f} +- {:.4f}\n", h.albedo, h.albedo_sigma);
+    text += fmt::format("inliers          {} of {} samples ({:.3f}){}\n", h.inliers, h.samples,
+                        h.inlier_fraction, es.ransac ? "" : ", RANSAC off");
+    text += fmt::format("residual         {:.5f} (RMS of ln luminance)\n", h.residual);
+    if (!f.compare.empty()) {
+      const HosekWilkieModel model(HosekParameters{ps.sun, h.turbidity, h.albedo});
+      write_comparison(f.compare, image, ps.mask,
+                       estimate::model_luminance_image(camera, [&](Vec3 v) {
+                         return std::exp(h.log_scale) * model.tristimulus(v).Y;
+                       }));
+    }
   } else {
     // cie: the standard sky types ranked; no turbidity.
     const auto ranking = estimate::rank_cie_types(ps.samples, ps.sun, f.inlier_threshold);
@@ -174,6 +201,10 @@ int run_estimate(const EstimateFlags& f) {
   text += fmt::format("sun              zenith {:.3f} deg, azimuth {:.3f} deg ({})\n", zenith_deg,
                       azimuth_deg, sun_text);
   text += fmt::format("sky pixels       {}\n", ps.sky_pixels);
+  // No output may hold NaN or Inf (a photo with absurd values could overflow the scale).
+  for (const auto& [key, value] : j.items())
+    if (value.is_number_float() && !std::isfinite(value.get<double>()))
+      throw InvalidArgument(fmt::format("the fit gave a non-finite {}; nothing was written", key));
   write_stdout(f.json ? j.dump(2) + "\n" : text);
   return kExitOk;
 }
@@ -183,7 +214,9 @@ int run_estimate(const EstimateFlags& f) {
 void add_estimate_command(CLI::App& app, Commands& commands) {
   auto f = std::make_shared<EstimateFlags>();
   auto* cmd = app.add_subcommand(
-      "estimate", "turbidity of a clear sky from an HDR photo (fisheye or equirect; Preetham fit)");
+      "estimate",
+      "turbidity of a clear sky from an HDR photo (fisheye or equirect; Preetham, Hosek-Wilkie or "
+      "CIE sky-type fit)");
   cmd->add_option("--image", f->image, "the sky photo: linear .exr, .hdr or .pfm")->required();
   cmd->add_option("--mask", f->mask,
                   "sky mask (.png, .pfm, .exr, .hdr) of the image's size: nonzero = sky");
@@ -199,9 +232,9 @@ void add_estimate_command(CLI::App& app, Commands& commands) {
       f->spa.add(*cmd, false, {"lat", "lon", "elevation", "pressure", "temperature", "delta-t"});
   t->excludes(z)->excludes(a);
   cmd->add_option("--model", f->model,
-                  "preetham (turbidity) or cie (best CIE S 011 standard sky type); default "
-                  "preetham")
-      ->check(CLI::IsMember({"preetham", "cie"}));
+                  "preetham (turbidity), hosek (turbidity and ground albedo) or cie (best CIE "
+                  "S 011 standard sky type); default preetham")
+      ->check(CLI::IsMember({"preetham", "hosek", "cie"}));
   add_integer(*cmd,
               {"samples", "1", ParameterKind::integer, 2, 1000000, 1,
                ParameterValue(static_cast<double>(f->samples)),

@@ -125,6 +125,27 @@ TEST_F(Cli, EstimateUsesAUserMaskAndRefusesBadInputs) {
   EXPECT_EQ(r.status, 2) << "--compare writes PNG only";
 }
 
+// render's float batch path (1e-5 relative for hosek) and the EXR's float: T and albedo move by
+// well under these.
+constexpr double kHosekRoundTripTurbidityTol = 1e-2;
+constexpr double kHosekRoundTripAlbedoTol = 0.05;
+
+TEST_F(Cli, EstimateFitsHosekTurbidityAndAlbedo) {
+  const fs::path exr = dir_ / "hosek.exr", png = dir_ / "compare.png";
+  auto r = run("render --model hosek --turbidity 5 --albedo 0.4 " + kSun +
+               " --projection fisheye --width 200 --height 200 -o '" + exr.string() + "'");
+  ASSERT_EQ(r.status, 0) << r.err;
+  r = run("estimate --model hosek --image '" + exr.string() + "' " + kSun + " --compare '" +
+          png.string() + "' --json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["model"], "hosek");
+  EXPECT_NEAR(j["turbidity"].get<double>(), 5.0, kHosekRoundTripTurbidityTol);
+  EXPECT_NEAR(j["albedo"].get<double>(), 0.4, kHosekRoundTripAlbedoTol);
+  EXPECT_DOUBLE_EQ(j["inlier_fraction"].get<double>(), 1.0);
+  EXPECT_TRUE(fs::exists(png));
+}
+
 TEST_F(Cli, EstimateRecognisesTheCieTypeOfARenderedSky) {
   const fs::path exr = dir_ / "cie.exr";
   const std::string sun = "--sun-zenith 40 --sun-azimuth 100";
