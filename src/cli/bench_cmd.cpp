@@ -2,6 +2,7 @@
 // scalar loop of the same model), medians of repeated runs, printed as ratios; the neural sky
 // (`nn`, the embedded 6-12-3 network) also against the Hosek-Wilkie batch path (docs/NN.md).
 #include <fmt/format.h>
+#include <time.h>
 
 #include <algorithm>
 #include <chrono>
@@ -10,6 +11,7 @@
 #include "common.h"
 #include "skylight/core/error.h"
 #include "skylight/core/parallel.h"
+#include "skylight/estimate/turbidity.h"
 #include "skylight/render/sky_render.h"
 
 namespace skylight::cli {
@@ -21,6 +23,7 @@ struct BenchFlags {
   // The model flags of render/eval, accepted here only to be refused with a clear message.
   std::vector<std::string> model_flags;
   std::string model_flag_text;
+  bool estimate = false;
 };
 
 double median(std::vector<double> v) {
@@ -38,6 +41,40 @@ double median_seconds(int repeats, F&& f) {
     t.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - a).count());
   }
   return median(std::move(t));
+}
+
+// One `skylight estimate` (estimate_from_photo: sun detection, automatic mask, 100 samples, RANSAC,
+// bootstrap) on a 1024 x 1024 fisheye Preetham sky with the solar disc, on the calling thread.
+void bench_estimate(int repeats) {
+  render::RenderSettings s;
+  s.projection = render::Projection::fisheye;
+  s.width = s.height = 1024;
+  s.sun = render::SunMode::sky_and_sun;
+  SkyParameters p;
+  p.sun = {deg_to_rad(40.0), deg_to_rad(150.0)};
+  p.values.set("turbidity", 4.0);
+  const auto img = render::render_sky(*make_sky_model("preetham", p), s).rgb;
+  const estimate::SkyCamera cam{estimate::PhotoProjection::fisheye, 1024, 1024, {}};
+  estimate::PhotoEstimate e;
+  // Wall time and this thread's CPU time (the estimate runs on the calling thread only; on a busy
+  // machine the CPU time is the cost, the wall time includes waiting for a core).
+  auto thread_cpu_s = [] {
+    timespec ts{};
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+    return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+  };
+  std::vector<double> cpu;
+  const double wall = median_seconds(repeats, [&] {
+    const double c0 = thread_cpu_s();
+    e = estimate::estimate_from_photo(img, cam, std::nullopt, {}, {});
+    cpu.push_back(thread_cpu_s() - c0);
+  });
+  write_stdout(fmt::format(
+      "estimate: 1024x1024 fisheye (preetham T = 4, sun 40 deg / 150 deg), sun detection + mask + "
+      "fit on one thread: {:.2f} ms CPU, {:.2f} ms wall (T = {:.4f}, sun found at {:.2f} deg / "
+      "{:.2f} deg)\n",
+      1e3 * median(cpu), 1e3 * wall, e.estimate.turbidity, rad_to_deg(e.estimate.sun.zenith),
+      rad_to_deg(e.estimate.sun.azimuth)));
 }
 
 int run_bench(const BenchFlags& f, const CLI::App& cmd) {
@@ -107,6 +144,7 @@ int run_bench(const BenchFlags& f, const CLI::App& cmd) {
         "than its own scalar loop\n",
         timed["hosek"].second / timed["nn"].second, timed["nn"].first / timed["nn"].second));
   }
+  if (f.estimate) bench_estimate(f.repeats);
   return kExitOk;
 }
 
@@ -147,6 +185,8 @@ void add_bench_command(CLI::App& app, Commands& commands) {
     if (std::find(f->model_flags.begin(), f->model_flags.end(), "--" + name) ==
         f->model_flags.end())
       hidden(name, false);
+  cmd->add_flag("--estimate", f->estimate,
+                "also time one turbidity estimate on a 1-megapixel fisheye (skylight estimate)");
   commands.push_back({cmd, [f, cmd] { return run_bench(*f, *cmd); }});
 }
 

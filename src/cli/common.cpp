@@ -69,6 +69,25 @@ CLI::Option* add_number(CLI::App& app, const ParameterSpec& spec, std::optional<
                     });
 }
 
+void FisheyeFlags::add(CLI::App& app, const std::string& fov_default, const std::string& fov_help) {
+  app.add_option(
+         "--lens", lens,
+         "fisheye lens equidistant|equisolid|orthographic|stereographic; default equidistant")
+      ->check(CLI::IsMember({"equidistant", "equisolid", "orthographic", "stereographic"}));
+  add_number(app,
+             {"fov", "deg", ParameterKind::number, 1e-6, 360.0, 1, Absent{fov_default}, fov_help},
+             fov_deg);
+  add_number(app,
+             {"north-angle", "deg", ParameterKind::number, -360.0, 360.0, 1, ParameterValue(0.0),
+              "fisheye: north drawn this many deg counter-clockwise from image up"},
+             north_angle_deg);
+}
+
+FisheyeLayout FisheyeFlags::layout(double default_fov_deg) const {
+  return {*parse_fisheye_lens(lens), deg_to_rad(fov_deg.value_or(default_fov_deg)),
+          deg_to_rad(north_angle_deg)};
+}
+
 CLI::Option* add_integer(CLI::App& app, const ParameterSpec& spec, int& target) {
   ParameterSpec s = spec;
   s.kind = ParameterKind::integer;

@@ -2,8 +2,8 @@
 // the parameter schema (core/parameters.h), the model flags of `render` and `eval`, output
 // metadata, checked writes to standard output and progress lines. Each subcommand family lives in
 // its own file (models_cmd.cpp, render_cmd.cpp, eval_cmd.cpp, bench_cmd.cpp, report_cmd.cpp,
-// sun_cmd.cpp, nn_cmd.cpp) and only parses, validates through the schema, calls the library and
-// writes outputs.
+// sun_cmd.cpp, nn_cmd.cpp, estimate_cmd.cpp) and only parses, validates through the schema, calls
+// the library and writes outputs.
 #pragma once
 
 #include <CLI/CLI.hpp>
@@ -44,6 +44,7 @@ void add_bench_command(CLI::App& app, Commands& commands);
 void add_report_command(CLI::App& app, Commands& commands);
 void add_sun_command(CLI::App& app, Commands& commands);
 void add_nn_command(CLI::App& app, Commands& commands);
+void add_estimate_command(CLI::App& app, Commands& commands);
 
 // ---- flags from the schema ----------------------------------------------------------------------
 
@@ -56,6 +57,24 @@ CLI::Option* add_number(CLI::App& app, const ParameterSpec& spec, std::optional<
 CLI::Option* add_integer(CLI::App& app, const ParameterSpec& spec, int& target);
 // A comma-separated list of `spec.count` numbers (spec.count 0: any length >= 1).
 CLI::Option* add_numbers(CLI::App& app, const ParameterSpec& spec, std::vector<double>& target);
+
+// ---- fisheye flags (render, estimate) ---------------------------------------------------------
+
+// Default field of view of a fisheye image [deg]: the upper hemisphere on the image circle.
+inline constexpr double kFisheyeFovDeg = 180.0;
+
+// --lens, --fov and --north-angle of a fisheye image (core/frame.h, docs/CONVENTIONS.md), declared
+// once for the command that draws fisheyes (render) and the one that reads them (estimate), so
+// that a rendered fisheye is read back with the same flags.
+struct FisheyeFlags {
+  std::string lens = "equidistant";
+  std::optional<double> fov_deg;  // absent: the command's default
+  double north_angle_deg = 0.0;
+  // Adds the three flags; `fov_default` and `fov_help` say what --fov means for this command.
+  void add(CLI::App& app, const std::string& fov_default, const std::string& fov_help);
+  // The layout in radians, --fov defaulting to `default_fov_deg`.
+  FisheyeLayout layout(double default_fov_deg = kFisheyeFovDeg) const;
+};
 
 // ---- solar position flags (sun, render, eval)
 // ----------------------------------------------------

@@ -18,9 +18,7 @@ namespace {
 struct RenderFlags {
   ModelOptions model;
   std::string projection = "equirect";
-  std::string lens = "equidistant";
-  std::optional<double> fov_deg;  // fisheye default 180, camera default 60
-  double north_angle_deg = 0.0;
+  FisheyeFlags fisheye;  // --lens, --fov (fisheye default 180, camera default 60), --north-angle
   double look_elevation_deg = 0.0, look_azimuth_deg = 0.0;
   int width = 1024, height = 512;
   bool width_given = false;  // cubemap: without --width the width is 6 x height
@@ -28,8 +26,7 @@ struct RenderFlags {
   std::vector<double> fc_range{0.0, 6.0};
 };
 
-// Defaults of the field of view [deg] per projection.
-constexpr double kFisheyeFovDeg = 180.0;
+// Default vertical field of view of the camera projection [deg] (fisheye: kFisheyeFovDeg).
 constexpr double kCameraFovDeg = 60.0;
 
 // Flags that only some projections read: given with another projection they are ignored with a
@@ -68,12 +65,10 @@ int run_render(const RenderFlags& f, const CLI::App& cmd) {
   s.projection = *render::parse_projection(f.projection);
   s.height = f.height;
   s.width = s.projection == render::Projection::cubemap && !f.width_given ? 6 * f.height : f.width;
-  s.fisheye.lens = *parse_fisheye_lens(f.lens);
-  s.fisheye.fov = deg_to_rad(f.fov_deg.value_or(kFisheyeFovDeg));
-  s.fisheye.north_angle = deg_to_rad(f.north_angle_deg);
+  s.fisheye = f.fisheye.layout(kFisheyeFovDeg);
   s.camera.look_zenith = deg_to_rad(90.0 - f.look_elevation_deg);
   s.camera.look_azimuth = wrap_azimuth(deg_to_rad(f.look_azimuth_deg));
-  s.camera.vertical_fov = deg_to_rad(f.fov_deg.value_or(kCameraFovDeg));
+  s.camera.vertical_fov = deg_to_rad(f.fisheye.fov_deg.value_or(kCameraFovDeg));
   s.sun = f.model.sun_only()      ? render::SunMode::sun_only
           : f.model.include_sun() ? render::SunMode::sky_and_sun
                                   : render::SunMode::sky;
@@ -105,14 +100,16 @@ int run_render(const RenderFlags& f, const CLI::App& cmd) {
   for (auto& entry : f.model.solar_position_metadata()) md.push_back(std::move(entry));
   md.emplace_back("skylight:projection", f.projection);
   if (s.projection == render::Projection::camera) {
-    md.emplace_back("skylight:fov_deg", fmt::format("{}", f.fov_deg.value_or(kCameraFovDeg)));
+    md.emplace_back("skylight:fov_deg",
+                    fmt::format("{}", f.fisheye.fov_deg.value_or(kCameraFovDeg)));
     md.emplace_back("skylight:look_elevation_deg", fmt::format("{}", f.look_elevation_deg));
     md.emplace_back("skylight:look_azimuth_deg", fmt::format("{}", f.look_azimuth_deg));
   }
   if (s.projection == render::Projection::fisheye) {
-    md.emplace_back("skylight:lens", f.lens);
-    md.emplace_back("skylight:fov_deg", fmt::format("{}", f.fov_deg.value_or(kFisheyeFovDeg)));
-    md.emplace_back("skylight:north_angle_deg", fmt::format("{}", f.north_angle_deg));
+    md.emplace_back("skylight:lens", f.fisheye.lens);
+    md.emplace_back("skylight:fov_deg",
+                    fmt::format("{}", f.fisheye.fov_deg.value_or(kFisheyeFovDeg)));
+    md.emplace_back("skylight:north_angle_deg", fmt::format("{}", f.fisheye.north_angle_deg));
   }
   md.emplace_back("skylight:pixel_unit", kFloatPixelUnit);
   // What the model actually used: its zenith luminance and where it stands in its domain.
@@ -149,16 +146,9 @@ void add_render_command(CLI::App& app, Commands& commands) {
                   "equirect|hemisphere|fisheye|cubemap|camera (perspective, e.g. of the planet "
                   "from orbit with --observer-altitude); default equirect")
       ->check(CLI::IsMember({"equirect", "hemisphere", "fisheye", "cubemap", "camera"}));
-  cmd->add_option(
-         "--lens", f->lens,
-         "fisheye lens equidistant|equisolid|orthographic|stereographic; default equidistant")
-      ->check(CLI::IsMember({"equidistant", "equisolid", "orthographic", "stereographic"}));
-  add_number(
-      *cmd,
-      {"fov", "deg", ParameterKind::number, 1e-6, 360.0, 1, Absent{"180 (fisheye), 60 (camera)"},
-       "fisheye: field of view across the image circle: (0, 360], orthographic (0, 180], "
-       "stereographic (0, 360); camera: vertical field of view, (0, 180)"},
-      f->fov_deg);
+  f->fisheye.add(*cmd, "180 (fisheye), 60 (camera)",
+                 "fisheye: field of view across the image circle: (0, 360], orthographic (0, 180], "
+                 "stereographic (0, 360); camera: vertical field of view, (0, 180)");
   add_number(*cmd,
              {"look-elevation", "deg", ParameterKind::number, -90.0, 90.0, 1, ParameterValue(0.0),
               "camera: elevation of the view centre"},
@@ -167,10 +157,6 @@ void add_render_command(CLI::App& app, Commands& commands) {
              {"look-azimuth", "deg", ParameterKind::number, -360.0, 360.0, 1, ParameterValue(0.0),
               "camera: azimuth of the view centre from north towards east"},
              f->look_azimuth_deg);
-  add_number(*cmd,
-             {"north-angle", "deg", ParameterKind::number, -360.0, 360.0, 1, ParameterValue(0.0),
-              "fisheye: north drawn this many deg counter-clockwise from image up"},
-             f->north_angle_deg);
   add_integer(*cmd,
               {"width", "px", ParameterKind::integer, 1, render::kMaxImageSide, 1,
                ParameterValue(static_cast<double>(f->width)),

@@ -45,5 +45,18 @@ TEST_F(Cli, BenchRefusesModelFlagsSayingSo) {
   EXPECT_EQ(r.out.find("--turbidity"), std::string::npos) << r.out;
 }
 
+TEST_F(Cli, BenchTimesOneEstimateOnAMegapixelFisheye) {
+  const testing_support::CliResult r =
+      run("bench --width 8 --height 4 --repeats 1 --models preetham --estimate");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("estimate: 1024x1024 fisheye"), std::string::npos) << r.out;
+  // The sky was rendered with T = 4; the auto-detected sun (centroid of the disc's pixel) moves the
+  // fitted T by a few hundredths at most.
+  constexpr double kAutoSunTurbidityTol = 0.05;
+  const auto at = r.out.find("(T = ");
+  ASSERT_NE(at, std::string::npos) << r.out;
+  EXPECT_NEAR(std::stod(r.out.substr(at + 5)), 4.0, kAutoSunTurbidityTol) << r.out;
+}
+
 }  // namespace
 }  // namespace skylight

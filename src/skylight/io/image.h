@@ -70,6 +70,9 @@ void write_png(const std::filesystem::path& path, const Image8& image, const Met
 // Reads an EXR (R,G,B or Y channels, any pixel type converted to float), PFM or HDR file.
 // Throws skylight::IoError naming the path on a missing or corrupt file.
 ImageF read_image(const std::filesystem::path& path);
+// Reads an 8-bit PNG (grey, grey + alpha, RGB or RGBA; alpha dropped, grey copied to R, G, B) as
+// stored, without any conversion (e.g. masks). Throws skylight::IoError naming the path.
+Image8 read_png(const std::filesystem::path& path);
 // Reads the string attributes of an EXR header.
 Metadata read_exr_metadata(const std::filesystem::path& path);
 

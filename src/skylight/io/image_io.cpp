@@ -442,6 +442,19 @@ void write_png(const std::filesystem::path& path, const Image8& image, const Met
   file.commit();
 }
 
+Image8 read_png(const std::filesystem::path& path) {
+  FilePtr f = open_for_read(path);
+  stbi_set_flip_vertically_on_load_thread(0);  // row 0 at the top, whatever others set globally
+  int w = 0, h = 0, n = 0;
+  // 8-bit samples as stored (no gamma applied); grey and grey+alpha expand to RGB.
+  stbi_uc* pixels = stbi_load_from_file(f.get(), &w, &h, &n, 3);
+  if (pixels == nullptr) throw_read_error(path, stbi_failure_reason());
+  Image8 image(w, h);
+  std::copy(pixels, pixels + image.data.size(), image.data.begin());
+  stbi_image_free(pixels);
+  return image;
+}
+
 ImageF read_image(const std::filesystem::path& path) {
   switch (format_from_path(path)) {
     case ImageFormat::exr:

@@ -255,6 +255,19 @@ TEST(ImageIo, PngIsWrittenWithTextChunks) {
   stbi_image_free(pixels);
 }
 
+TEST(ImageIo, PngRoundTripIsExactAndMissingPngIsAnIoError) {
+  ScratchDir dir;
+  Image8 img(7, 3);
+  for (std::size_t i = 0; i < img.data.size(); ++i)
+    img.data[i] = static_cast<std::uint8_t>(i * 37 % 256);
+  write_png(dir / "m.png", img);
+  const Image8 back = read_png(dir / "m.png");
+  EXPECT_EQ(back.width, 7);
+  EXPECT_EQ(back.height, 3);
+  EXPECT_EQ(back.data, img.data);
+  EXPECT_THROW(read_png(dir / "missing.png"), IoError);
+}
+
 TEST(ImageIo, FloatImageToPngIsRefused) {
   ScratchDir dir;
   EXPECT_THROW(write_image(dir / "p.png", ramp_grey(2, 2)), InvalidArgument);

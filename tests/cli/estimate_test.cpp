@@ -1,0 +1,190 @@
+// End-to-end tests of `skylight estimate`: skies rendered by `skylight render` read back.
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <filesystem>
+#include <string>
+
+#include "skylight/io/image.h"
+#include "support/cli_run.h"
+
+namespace fs = std::filesystem;
+
+namespace skylight {
+namespace {
+
+using Cli = testing_support::CliTest;
+
+// render's float batch path is within 2e-5 relative of the model (batch_test.cpp) and the EXR
+// stores float: the fitted T moves by well under 1e-3.
+constexpr double kRoundTripTurbidityTol = 1e-3;
+// The sun found in the image (centroid of the peak region, 0.9 deg pixels at 200 px): its error
+// moves T by a few hundredths.
+constexpr double kAutoSunTurbidityTol = 0.05;
+constexpr double kAutoSunDegTol = 1.0;
+
+const std::string kSun = "--sun-zenith 58.4 --sun-azimuth -179.4";
+
+TEST_F(Cli, EstimateReadsBackARenderedFisheye) {
+  for (const std::string lens : {"--lens equidistant", "--lens equisolid --north-angle 30"}) {
+    const fs::path exr = dir_ / "sky.exr";
+    auto r = run("render --model preetham --turbidity 4 " + kSun + " --projection fisheye " + lens +
+                 " --width 200 --height 200 -o '" + exr.string() + "'");
+    ASSERT_EQ(r.status, 0) << r.err;
+    r = run("estimate --image '" + exr.string() + "' " + lens + " " + kSun + " --json");
+    ASSERT_EQ(r.status, 0) << r.err;
+    const auto j = nlohmann::json::parse(r.out);
+    EXPECT_EQ(j["model"], "preetham");
+    EXPECT_NEAR(j["turbidity"].get<double>(), 4.0, kRoundTripTurbidityTol) << lens;
+    EXPECT_LT(j["turbidity_sigma"].get<double>(), kRoundTripTurbidityTol);
+    EXPECT_DOUBLE_EQ(j["inlier_fraction"].get<double>(), 1.0);
+    EXPECT_LT(j["residual"].get<double>(), 1e-4);
+    EXPECT_DOUBLE_EQ(j["sun_zenith_deg"].get<double>(), 58.4);
+    EXPECT_NEAR(j["sun_azimuth_deg"].get<double>(), 180.6, 1e-9);
+    EXPECT_EQ(j["sun_source"], "given");
+    EXPECT_EQ(j["samples"], 100);
+  }
+}
+
+TEST_F(Cli, EstimateFindsTheSunOrTakesItFromTheTime) {
+  const fs::path exr = dir_ / "sky.exr";
+  // The SPA's worked example (Reda & Andreas 2004, Table A5.1 inputs).
+  const std::string when =
+      "--time 2003-10-17T12:30:30-07:00 --lat 39.742476 --lon -105.1786 --elevation 1830.14 "
+      "--pressure 820 --temperature 11 --delta-t 67";
+  auto r =
+      run("render --model preetham --turbidity 3 " + when +
+          " --projection fisheye --include-sun --width 200 --height 200 -o '" + exr.string() + "'");
+  ASSERT_EQ(r.status, 0) << r.err;
+  r = run("estimate --image '" + exr.string() + "' " + when + " --json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["sun_source"], "time");
+  EXPECT_NEAR(j["turbidity"].get<double>(), 3.0, kRoundTripTurbidityTol);
+  const double zenith = j["sun_zenith_deg"], azimuth = j["sun_azimuth_deg"];
+  // Its published topocentric zenith and azimuth: 50.111622 deg, 194.340241 deg.
+  EXPECT_NEAR(zenith, 50.111622, 1e-5);
+  EXPECT_NEAR(azimuth, 194.340241, 1e-5);
+  r = run("estimate --image '" + exr.string() + "' --json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["sun_source"], "image");
+  EXPECT_NEAR(j["sun_zenith_deg"].get<double>(), zenith, kAutoSunDegTol);
+  EXPECT_NEAR(j["sun_azimuth_deg"].get<double>(), azimuth, kAutoSunDegTol);
+  EXPECT_NEAR(j["turbidity"].get<double>(), 3.0, kAutoSunTurbidityTol);
+  // Labelled lines without --json.
+  r = run("estimate --image '" + exr.string() + "' " + when);
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("turbidity        3.00"), std::string::npos) << r.out;
+}
+
+TEST_F(Cli, EstimateUsesAUserMaskAndRefusesBadInputs) {
+  const fs::path exr = dir_ / "sky.exr", png = dir_ / "mask.png", bad = dir_ / "bad.png";
+  auto r = run("render --model preetham --turbidity 5 " + kSun +
+               " --projection equirect --width 120 --height 60 -o '" + exr.string() + "'");
+  ASSERT_EQ(r.status, 0) << r.err;
+  io::Image8 mask(120, 60), wrong(100, 60);
+  for (int row = 0; row < 30; ++row)
+    for (int col = 0; col < 60; ++col) mask.pixel(col, row)[0] = 255;
+  io::write_png(png, mask);
+  io::write_png(bad, wrong);
+  r = run("estimate --image '" + exr.string() + "' --projection equirect --mask '" + png.string() +
+          "' " + kSun + " --json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_NEAR(j["turbidity"].get<double>(), 5.0, kRoundTripTurbidityTol);
+  EXPECT_LE(j["sky_pixels"].get<int>(), 60 * 30);
+
+  r = run("estimate --image '" + exr.string() + "' --projection equirect --mask '" + bad.string() +
+          "' " + kSun);
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("100 x 60"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("120 x 60"), std::string::npos) << r.err;
+
+  r = run("estimate --image '" + (dir_ / "missing.exr").string() + "' " + kSun);
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.err.find("missing.exr"), std::string::npos) << r.err;
+  r = run("estimate --image '" + exr.string() + "' --mask '" + (dir_ / "nomask.png").string() +
+          "' " + kSun);
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.err.find("nomask.png"), std::string::npos) << r.err;
+  r = run("estimate --image '" + exr.string() + "' --sun-zenith 40");
+  EXPECT_EQ(r.status, 2) << "zenith without azimuth";
+  r = run("estimate --image '" + exr.string() + "' --sun-zenith 95 --sun-azimuth 10");
+  EXPECT_EQ(r.status, 2) << "sun below the horizon";
+  EXPECT_NE(r.err.find("above the horizon"), std::string::npos) << r.err;
+  r = run("estimate --image '" + exr.string() + "' --projection cubemap " + kSun);
+  EXPECT_EQ(r.status, 2);
+  r = run("estimate --image '" + exr.string() + "' --samples 1000000 " + kSun);
+  EXPECT_EQ(r.status, 2) << "more samples than sky pixels";
+  r = run("estimate --image '" + png.string() + "' " + kSun);
+  EXPECT_EQ(r.status, 2) << "an 8-bit PNG is not an HDR photo";
+  r = run("estimate --image '" + exr.string() + "' --compare '" + (dir_ / "c.jpg").string() + "' " +
+          kSun);
+  EXPECT_EQ(r.status, 2) << "--compare writes PNG only";
+}
+
+// render's float batch path (1e-5 relative for hosek) and the EXR's float: T and albedo move by
+// well under these.
+constexpr double kHosekRoundTripTurbidityTol = 1e-2;
+constexpr double kHosekRoundTripAlbedoTol = 0.05;
+
+TEST_F(Cli, EstimateFitsHosekTurbidityAndAlbedo) {
+  const fs::path exr = dir_ / "hosek.exr", png = dir_ / "compare.png";
+  auto r = run("render --model hosek --turbidity 5 --albedo 0.4 " + kSun +
+               " --projection fisheye --width 200 --height 200 -o '" + exr.string() + "'");
+  ASSERT_EQ(r.status, 0) << r.err;
+  r = run("estimate --model hosek --image '" + exr.string() + "' " + kSun + " --compare '" +
+          png.string() + "' --json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["model"], "hosek");
+  EXPECT_NEAR(j["turbidity"].get<double>(), 5.0, kHosekRoundTripTurbidityTol);
+  EXPECT_NEAR(j["albedo"].get<double>(), 0.4, kHosekRoundTripAlbedoTol);
+  EXPECT_DOUBLE_EQ(j["inlier_fraction"].get<double>(), 1.0);
+  EXPECT_TRUE(fs::exists(png));
+}
+
+TEST_F(Cli, EstimateRecognisesTheCieTypeOfARenderedSky) {
+  const fs::path exr = dir_ / "cie.exr";
+  const std::string sun = "--sun-zenith 40 --sun-azimuth 100";
+  for (const int type : {3, 7, 13}) {
+    auto r = run("render --model cie --cie-type " + std::to_string(type) + " " + sun +
+                 " --projection fisheye --width 160 --height 160 -o '" + exr.string() + "'");
+    ASSERT_EQ(r.status, 0) << r.err;
+    r = run("estimate --model cie --image '" + exr.string() + "' " + sun + " --json");
+    ASSERT_EQ(r.status, 0) << r.err;
+    const auto j = nlohmann::json::parse(r.out);
+    EXPECT_EQ(j["cie_type"], type);
+    EXPECT_TRUE(j["turbidity"].is_null());
+    EXPECT_DOUBLE_EQ(j["inlier_fraction"].get<double>(), 1.0);
+    EXPECT_EQ(j["cie_ranking"].size(), 15u);
+  }
+}
+
+// A real photograph (data/hdr_sky/sunrise.exr, CC0): equirect, scenery, a clipped sun just above
+// the horizon. Plausibility only: the sun is found low in the sky (a sunrise), T lies in the fit
+// range, RANSAC rejects part of the samples (trees, power lines, the photo's departure from the
+// model), and --compare writes the false-colour comparison.
+TEST_F(Cli, EstimateRunsOnARealPanorama) {
+  const fs::path png = dir_ / "compare.png";
+  const auto r =
+      run(std::string("estimate --image '") + SKYLIGHT_TEST_DATA_DIR +
+          "/hdr_sky/sunrise.exr' --projection equirect --compare '" + png.string() + "' --json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["sun_source"], "image");
+  EXPECT_GT(j["sun_zenith_deg"].get<double>(), 75.0);
+  EXPECT_LT(j["sun_zenith_deg"].get<double>(), 90.0);
+  EXPECT_GE(j["turbidity"].get<double>(), 1.7);
+  EXPECT_LE(j["turbidity"].get<double>(), 20.0);
+  EXPECT_LT(j["inlier_fraction"].get<double>(), 1.0);
+  EXPECT_LT(j["residual"].get<double>(), 0.1) << "inliers are within the 0.1 threshold";
+  const io::Image8 img = io::read_png(png);
+  EXPECT_GT(img.width, 2 * 1024);
+  EXPECT_EQ(img.height, 512);
+}
+
+}  // namespace
+}  // namespace skylight
