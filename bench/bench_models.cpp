@@ -13,8 +13,10 @@
 #include "skylight/core/parallel.h"
 #include "skylight/estimate/turbidity.h"
 #include "skylight/models/nishita.h"
+#include "skylight/models/sh.h"
 #include "skylight/models/sky_model.h"
 #include "skylight/render/sky_render.h"
+#include "skylight/sh/polynomial.h"
 
 namespace {
 
@@ -154,6 +156,28 @@ BENCHMARK_CAPTURE(SetUp, hosek, "hosek")->Unit(benchmark::kMicrosecond);
 BENCHMARK_CAPTURE(SetUp, nn, "nn")->Unit(benchmark::kMicrosecond);
 // nishita: the optical-length tables (2 components x 256 x 256 quadratures).
 BENCHMARK_CAPTURE(SetUp, nishita, "nishita")->Unit(benchmark::kMillisecond);
+
+// Habel 2008 §4: one sky's 7 bands x 3 channels from the embedded (17, 12) table, eq. 1 + rotation
+// (eq. 4) + ringing filter (eq. 5); against the direct projection of the model (ShProjectPreetham).
+void ShEvaluateTable(benchmark::State& state) {
+  const sh::PolynomialTable table = load_sh_table({});
+  double theta = 0.1;
+  for (auto _ : state) {
+    theta = theta > 1.4 ? 0.1 : theta + 1e-3;
+    benchmark::DoNotOptimize(sh::evaluate_table(table, theta, 3.0, 0.5, 7, true));
+  }
+}
+
+void ShProjectPreetham(benchmark::State& state) {
+  SkyParameters p;
+  p.sun = {deg_to_rad(45.0), 0.5};
+  p.values.set("turbidity", 3.0);
+  const auto m = make_sky_model("preetham", p);
+  for (auto _ : state) benchmark::DoNotOptimize(sh::project_model(*m, sh::Channels::xyz, 7));
+}
+
+BENCHMARK(ShEvaluateTable)->Unit(benchmark::kMicrosecond);
+BENCHMARK(ShProjectPreetham)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 BENCHMARK_MAIN();
 BENCHMARK(EstimateFisheye1Mpx)->Unit(benchmark::kMillisecond);

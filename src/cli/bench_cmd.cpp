@@ -12,7 +12,9 @@
 #include "skylight/core/error.h"
 #include "skylight/core/parallel.h"
 #include "skylight/estimate/turbidity.h"
+#include "skylight/models/sh.h"
 #include "skylight/render/sky_render.h"
+#include "skylight/sh/polynomial.h"
 
 namespace skylight::cli {
 namespace {
@@ -24,6 +26,7 @@ struct BenchFlags {
   std::vector<std::string> model_flags;
   std::string model_flag_text;
   bool estimate = false;
+  std::string sh_table;  // empty: the embedded default
 };
 
 double median(std::vector<double> v) {
@@ -75,6 +78,41 @@ void bench_estimate(int repeats) {
       "{:.2f} deg)\n",
       1e3 * median(cpu), 1e3 * wall, e.estimate.turbidity, rad_to_deg(e.estimate.sun.zenith),
       rad_to_deg(e.estimate.sun.azimuth)));
+}
+
+// Habel 2008 §4: the SH coefficients of one sky (7 bands x 3 channels) from the embedded table,
+// eq. 1 + rotation (eq. 4) + ringing filter (eq. 5), against projecting the model it was fitted
+// to (Preetham, converged quadrature, all threads).
+void bench_sh(int repeats, const std::string& table_path) {
+  const sh::PolynomialTable table = load_sh_table(table_path);
+  if (table.bands < 7) throw InvalidArgument("--sh-table: the table has fewer than 7 bands");
+  constexpr int kCalls = 2000;
+  volatile double sink = 0.0;
+  const double per_eval =
+      median_seconds(repeats,
+                     [&] {
+                       double acc = 0.0;
+                       for (int i = 0; i < kCalls; ++i) {
+                         const double theta = 0.1 + 1.3 * i / kCalls;
+                         acc += sh::evaluate_table(table, theta, 3.0, 0.5 + theta, 7, true).c[4][1];
+                       }
+                       sink = acc;
+                     }) /
+      kCalls;
+  SkyParameters p;
+  p.sun = {0.8, 0.5};
+  p.values.set("turbidity", 3.0);
+  const auto preetham = make_sky_model("preetham", p);
+  const double project = median_seconds(std::min(repeats, 3), [&] {
+    sink = sh::project_model(*preetham, sh::Channels::xyz, 7).coefficients.c[4][1];
+  });
+  (void)sink;
+  write_stdout(
+      fmt::format("sh: 7 bands x 3 channels from the '{}' ({}, {}) table incl. rotation and "
+                  "filter {:.2f} us; "
+                  "direct projection of preetham {:.1f} ms ({} threads); ratio {:.0f}x\n",
+                  table.model, table.degree_theta, table.degree_tau, 1e6 * per_eval, 1e3 * project,
+                  thread_count(), project / per_eval));
 }
 
 int run_bench(const BenchFlags& f, const CLI::App& cmd) {
@@ -145,6 +183,8 @@ int run_bench(const BenchFlags& f, const CLI::App& cmd) {
         timed["hosek"].second / timed["nn"].second, timed["nn"].first / timed["nn"].second));
   }
   if (f.estimate) bench_estimate(f.repeats);
+  if (std::find(f.models.begin(), f.models.end(), "sh") != f.models.end())
+    bench_sh(f.repeats, f.sh_table);
   return kExitOk;
 }
 
@@ -167,8 +207,12 @@ void add_bench_command(CLI::App& app, Commands& commands) {
                ParameterValue(static_cast<double>(f->repeats)),
                "runs per measurement (the median is reported)"},
               f->repeats);
-  cmd->add_option("--models", f->models, "models to time; default preetham,cie,hosek,nn")
+  cmd->add_option("--models", f->models,
+                  "models to time; default preetham,cie,hosek,nn; with sh also the SH table's "
+                  "evaluation against direct projection")
       ->delimiter(',');
+  cmd->add_option("--sh-table", f->sh_table,
+                  "with sh in --models: the SH table timed (default: the embedded one)");
   // Hidden: the model flags of render/eval, so that giving one names the problem.
   const auto hidden = [&](const std::string& name, bool is_flag) {
     f->model_flags.push_back("--" + name);
@@ -184,7 +228,8 @@ void add_bench_command(CLI::App& app, Commands& commands) {
   for (const auto& [name, specs] : model_parameter_names())
     if (std::find(f->model_flags.begin(), f->model_flags.end(), "--" + name) ==
         f->model_flags.end())
-      hidden(name, false);
+      hidden(name, std::all_of(specs.begin(), specs.end(),
+                               [](const auto& s) { return s.second.kind == ParameterKind::flag; }));
   cmd->add_flag("--estimate", f->estimate,
                 "also time one turbidity estimate on a 1-megapixel fisheye (skylight estimate)");
   commands.push_back({cmd, [f, cmd] { return run_bench(*f, *cmd); }});

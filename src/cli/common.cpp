@@ -211,8 +211,19 @@ void ModelOptions::add(CLI::App& app) {
   auto* a = add_number(app, sun[1], sun_azimuth_deg_);
   auto* t = spa_.add(app, false, {"lat", "lon", "elevation", "pressure", "temperature", "delta-t"});
   t->excludes(z)->excludes(e)->excludes(a);
-  for (const auto& [name, specs] : model_parameter_names())
-    app.add_option("--" + name, raw_[name], model_flag_help(specs));
+  for (const auto& [name, specs] : model_parameter_names()) {
+    const bool flag = std::all_of(specs.begin(), specs.end(), [](const auto& s) {
+      return s.second.kind == ParameterKind::flag;
+    });
+    if (flag) {
+      // A switch (no value): present = true.
+      raw_[name];
+      app.add_flag_callback(
+          "--" + name, [this, n = name] { raw_[n] = "true"; }, model_flag_help(specs));
+    } else {
+      app.add_option("--" + name, raw_[name], model_flag_help(specs));
+    }
+  }
   auto* inc = app.add_flag("--include-sun", include_sun_, "add the solar disc (models with a sun)");
   auto* only = app.add_flag("--sun-only", sun_only_, "the solar disc alone, without the sky");
   inc->excludes(only);

@@ -2,8 +2,8 @@
 // the parameter schema (core/parameters.h), the model flags of `render` and `eval`, output
 // metadata, checked writes to standard output and progress lines. Each subcommand family lives in
 // its own file (models_cmd.cpp, render_cmd.cpp, eval_cmd.cpp, bench_cmd.cpp, report_cmd.cpp,
-// sun_cmd.cpp, nn_cmd.cpp, estimate_cmd.cpp) and only parses, validates through the schema, calls
-// the library and writes outputs.
+// sun_cmd.cpp, nn_cmd.cpp, estimate_cmd.cpp, sh_cmd.cpp) and only parses, validates through the
+// schema, calls the library and writes outputs.
 #pragma once
 
 #include <CLI/CLI.hpp>
@@ -45,6 +45,7 @@ void add_report_command(CLI::App& app, Commands& commands);
 void add_sun_command(CLI::App& app, Commands& commands);
 void add_nn_command(CLI::App& app, Commands& commands);
 void add_estimate_command(CLI::App& app, Commands& commands);
+void add_sh_command(CLI::App& app, Commands& commands);
 
 // ---- flags from the schema ----------------------------------------------------------------------
 

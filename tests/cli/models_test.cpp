@@ -27,10 +27,11 @@ TEST_F(Cli, ModelsJsonAndHelp) {
   std::vector<std::string> names;
   for (const auto& m : j) names.push_back(m["name"]);
   EXPECT_EQ(names,
-            (std::vector<std::string>{"perez", "preetham", "cie", "hosek", "nishita", "nn"}));
+            (std::vector<std::string>{"perez", "preetham", "cie", "hosek", "nishita", "nn", "sh"}));
   for (const auto& m : j) {
     for (const auto& p : m["parameters"]) {
-      // Text parameters (nn's weights file) have no numeric range.
+      // Text and flag parameters (nn's weights file, sh's --table and --no-ringing-filter) have no
+      // numeric range.
       const bool numeric = p["kind"] != "text" && p["kind"] != "flag";
       EXPECT_TRUE(p.contains("unit") && p.contains("default") &&
                   (!numeric || (p.contains("min") && p.contains("max"))))
@@ -61,7 +62,10 @@ TEST_F(Cli, ModelsJsonHasTypedDefaultsFromTheSchema) {
       } else if (p["default"].is_null()) {
         EXPECT_TRUE(p["when_absent"].is_string());
       } else {
-        EXPECT_TRUE(p["default"].is_number() || p["default"].is_array()) << p.dump();
+        // A flag's default is a boolean (sh's --no-ringing-filter: false).
+        EXPECT_TRUE(p["default"].is_number() || p["default"].is_array() ||
+                    (p["kind"] == "flag" && p["default"].is_boolean()))
+            << p.dump();
       }
     }
     if (m["name"] == "hosek") {

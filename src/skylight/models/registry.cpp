@@ -7,6 +7,7 @@
 #include "skylight/models/nishita.h"
 #include "skylight/models/perez.h"
 #include "skylight/models/preetham.h"
+#include "skylight/models/sh.h"
 #include "skylight/models/sky_model.h"
 
 namespace skylight {
@@ -95,6 +96,18 @@ const std::vector<ModelInfo>& model_registry() {
         "provenance: turbidities, suns 0-90 deg); outside it extrapolated (flagged); sun below "
         "the horizon: 0 (undefined); no spectral output, no solar disc",
         false, false, factory<NeuralSkyModel, NeuralSkyParameters>("nn")});
+    r.push_back(ModelInfo{
+        "sh",
+        "a sky reconstructed from an SH polynomial table (Habel, Mustata & Wimmer 2008: "
+        "coefficients as polynomials in the sun zenith and turbidity, eq. 1; rotation to the "
+        "sun's azimuth, eq. 4; ringing filter, eq. 5) fitted to any model by `skylight sh fit`",
+        "the table's channels (XYZ with Y [cd/m^2], or linear sRGB on the same scale) of the "
+        "reconstruction sum c_lm Y_lm in every direction, below the horizon too, UNCLAMPED (it "
+        "rings and may be negative); no solar disc",
+        ShParameters::schema().specs(),
+        "the sun zenith and turbidity within the table's fitted ranges (refused outside); the "
+        "error against the fitted model is in docs/SH.md",
+        false, false, factory<ShSkyModel, ShParameters>("sh"), ParameterValues{}, true});
     return r;
   }();
   return registry;

@@ -164,6 +164,9 @@ struct ModelInfo {
   // Values that make a typical sky where the defaults do not (the required parameters): used by
   // benchmarks, the report and the docs' examples.
   ParameterValues example{};
+  // The output may be negative (and is non-zero below the horizon): `sh`, whose reconstruction is
+  // returned unclamped; every other model is non-negative.
+  bool unclamped = false;
 };
 
 const std::vector<ModelInfo>& model_registry();

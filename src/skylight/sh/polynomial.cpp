@@ -1,6 +1,7 @@
 #include "skylight/sh/polynomial.h"
 
 #include <Eigen/Dense>
+#include <array>
 #include <cmath>
 #include <string>
 
@@ -10,6 +11,9 @@
 
 namespace skylight::sh {
 namespace {
+
+// Largest polynomial degree of a table (fit_polynomial and table_from_json refuse more).
+constexpr int kMaxDegree = 40;
 
 // Number of stored (l, m >= 0) pairs of N bands: N (N + 1) / 2; (l, m) is at l (l + 1) / 2 + m.
 int stored_count(int bands) {
@@ -29,11 +33,31 @@ double scaled(double x, double lo, double hi) {
 }
 
 std::unique_ptr<SkyModel> make_model(const std::string& model, const std::string& parameter,
-                                     double theta, double tau, double phi) {
+                                     const ParameterValues& fixed, double theta, double tau,
+                                     double phi) {
   SkyParameters sp;
   sp.sun = SunPosition{theta, phi};
-  sp.values.set(parameter, tau);
+  sp.values = fixed;
+  if (!parameter.empty()) sp.values.set(parameter, tau);
   return make_sky_model(model, sp);
+}
+
+// sum_t p[t] x[t] with 8 independent partial sums, so that the compiler vectorises it without
+// reassociating a single sum (no -ffast-math); an AVX2 clone is chosen at load time where the CPU
+// has it (GCC function multiversioning). The eq. 1 evaluation's only hot loop.
+#if defined(__GNUC__) && defined(__x86_64__) && !defined(__clang__)
+__attribute__((target_clones("avx2", "default")))
+#endif
+double
+dot(const float* p, const double* x, int n) {
+  double acc[8] = {};
+  int t = 0;
+  for (; t + 8 <= n; t += 8) {
+    for (int k = 0; k < 8; ++k) acc[k] += static_cast<double>(p[t + k]) * x[t + k];
+  }
+  double tail = 0.0;
+  for (; t < n; ++t) tail += static_cast<double>(p[t]) * x[t];
+  return tail + (((acc[0] + acc[4]) + (acc[1] + acc[5])) + ((acc[2] + acc[6]) + (acc[3] + acc[7])));
 }
 
 void check_range(const char* name, double x, double lo, double hi) {
@@ -52,17 +76,34 @@ PolynomialTable fit_polynomial(const PolynomialFitSettings& s) {
     throw InvalidArgument("polynomial degrees (" + std::to_string(s.degree_theta) + ", " +
                           std::to_string(s.degree_tau) + ") are outside [0, 40]");
   }
-  if (!(s.theta_max >= s.theta_min) || !(s.tau_max >= s.tau_min)) {
+  const bool theta_only = s.parameter.empty();
+  if (theta_only && s.degree_tau != 0) {
+    throw InvalidArgument("a fit in theta only (no second parameter) needs degree_tau = 0, not " +
+                          std::to_string(s.degree_tau));
+  }
+  if (!(s.theta_max >= s.theta_min) || (!theta_only && !(s.tau_max >= s.tau_min))) {
     throw InvalidArgument("the fitted parameter ranges must not be empty");
   }
+  if (s.fixed.has(s.parameter)) {
+    throw InvalidArgument("parameter '" + s.parameter + "' is both varied and fixed");
+  }
   const int gt = s.grid_theta > 0 ? s.grid_theta : 2 * (s.degree_theta + 1) + 1;
-  const int gv = s.grid_tau > 0 ? s.grid_tau : 2 * (s.degree_tau + 1) + 1;
+  const int gv = theta_only ? 1 : s.grid_tau > 0 ? s.grid_tau : 2 * (s.degree_tau + 1) + 1;
   if (gt < s.degree_theta + 1 || gv < s.degree_tau + 1) {
     throw InvalidArgument("the fitting grid needs at least degree + 1 points per parameter");
   }
-  PolynomialTable table{s.model,        s.parameter,  s.channels,  s.bands,
-                        s.degree_theta, s.degree_tau, s.theta_min, s.theta_max,
-                        s.tau_min,      s.tau_max,    {}};
+  PolynomialTable table;
+  table.model = s.model;
+  table.parameter = s.parameter;
+  table.fixed = s.fixed;
+  table.channels = s.channels;
+  table.bands = s.bands;
+  table.degree_theta = s.degree_theta;
+  table.degree_tau = s.degree_tau;
+  table.theta_min = s.theta_min;
+  table.theta_max = s.theta_max;
+  table.tau_min = theta_only ? 0.0 : s.tau_min;
+  table.tau_max = theta_only ? 0.0 : s.tau_max;
   const int terms = table.terms();
   const int stored = stored_count(s.bands);
   const int points = gt * gv;
@@ -83,8 +124,9 @@ PolynomialTable fit_polynomial(const PolynomialFitSettings& s) {
             ti[static_cast<std::size_t>(i)] * tj[static_cast<std::size_t>(j)];
       }
     }
-    const auto model = make_model(s.model, s.parameter, theta, tau, 0.0);
+    const auto model = make_model(s.model, s.parameter, s.fixed, theta, tau, 0.0);
     const auto proj = project_model(*model, s.channels, s.bands, s.projection);
+    if (s.progress) s.progress(p + 1, points);
     for (int l = 0; l < s.bands; ++l) {
       for (int m = 0; m <= l; ++m) {
         for (int ch = 0; ch < 3; ++ch) {
@@ -113,14 +155,21 @@ Coefficients evaluate_table(const PolynomialTable& table, double theta, double t
                           std::to_string(table.bands));
   }
   check_range("sun zenith [rad]", theta, table.theta_min, table.theta_max);
-  check_range(table.parameter.c_str(), tau, table.tau_min, table.tau_max);
+  if (!table.parameter.empty())
+    check_range(table.parameter.c_str(), tau, table.tau_min, table.tau_max);
+  SKYLIGHT_CHECK(
+      table.degree_theta >= 0 && table.degree_theta <= kMaxDegree && table.degree_tau >= 0 &&
+          table.degree_tau <= kMaxDegree &&
+          table.coefficients.size() ==
+              static_cast<std::size_t>(table.bands * (table.bands + 1) / 2 * 3 * table.terms()),
+      "evaluate_table: degrees or coefficient count out of range");
   const int terms = table.terms();
   // The product matrix (T_i(u) T_j(v))_ij, shared by every coefficient (Habel 2008 §3.1).
-  std::vector<double> ti(static_cast<std::size_t>(table.degree_theta + 1));
-  std::vector<double> tj(static_cast<std::size_t>(table.degree_tau + 1));
+  // On the stack: degrees are at most kMaxDegree (checked on fit and load).
+  std::array<double, kMaxDegree + 1> ti{}, tj{};
   chebyshev(table.degree_theta, scaled(theta, table.theta_min, table.theta_max), ti.data());
   chebyshev(table.degree_tau, scaled(tau, table.tau_min, table.tau_max), tj.data());
-  std::vector<double> prod(static_cast<std::size_t>(terms));
+  std::array<double, (kMaxDegree + 1) * (kMaxDegree + 1)> prod{};
   for (int i = 0; i <= table.degree_theta; ++i) {
     for (int j = 0; j <= table.degree_tau; ++j) {
       prod[static_cast<std::size_t>(i * (table.degree_tau + 1) + j)] =
@@ -134,10 +183,7 @@ Coefficients evaluate_table(const PolynomialTable& table, double theta, double t
         const float* p =
             table.coefficients.data() + static_cast<std::size_t>((l * (l + 1) / 2 + m) * 3 + ch) *
                                             static_cast<std::size_t>(terms);
-        double sum = 0.0;
-        for (int t = 0; t < terms; ++t)
-          sum += static_cast<double>(p[t]) * prod[static_cast<std::size_t>(t)];
-        c.c[static_cast<std::size_t>(index(l, m))][ch] = sum;
+        c.c[static_cast<std::size_t>(index(l, m))][ch] = dot(p, prod.data(), terms);
       }
     }
   }
@@ -147,7 +193,7 @@ Coefficients evaluate_table(const PolynomialTable& table, double theta, double t
 
 Projection project_reference(const PolynomialTable& table, double theta, double tau, double phi,
                              int bands, const ProjectionOptions& options) {
-  const auto model = make_model(table.model, table.parameter, theta, tau, phi);
+  const auto model = make_model(table.model, table.parameter, table.fixed, theta, tau, phi);
   return project_model(*model, table.channels, bands, options);
 }
 

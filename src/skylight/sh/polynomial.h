@@ -11,8 +11,11 @@
 // docs/SH.md describes the table and its JSON form.
 #pragma once
 
+#include <functional>
 #include <string>
 #include <vector>
+
+#include "skylight/core/parameters.h"
 
 #include "skylight/sh/projection.h"
 
@@ -20,8 +23,12 @@ namespace skylight::sh {
 
 struct PolynomialFitSettings {
   std::string model = "preetham";
-  // tau: the model's second varying parameter; the model's other parameters keep their defaults.
+  // tau: the model's second varying parameter, a number of its schema; empty: theta only (then
+  // degree_tau must be 0 and the tau range is ignored, e.g. a CIE type).
   std::string parameter = "turbidity";
+  // The model's other parameters: held at these values (e.g. hosek's albedo, cie's type), the
+  // rest at their defaults.
+  ParameterValues fixed;
   Channels channels = Channels::xyz;
   int bands = 7;  // N
   // (d_i, d_j): Habel's (13, 7) reaches a worst E_mean of ~0.16 % at 5 bands, limited by the
@@ -33,12 +40,15 @@ struct PolynomialFitSettings {
   int grid_theta = 0;                           // grid points; 0 = 2 (d_i + 1) + 1
   int grid_tau = 0;                             // 0 = 2 (d_j + 1) + 1
   ProjectionOptions projection{};
+  // Called after each grid point's projection with (done, total); may be empty.
+  std::function<void(int, int)> progress;
 };
 
 // The fitted table: for each stored (l, m >= 0) and channel, (d_i + 1)(d_j + 1) coefficients of
 // T_i(u) T_j(v), in float (the fit is in double).
 struct PolynomialTable {
-  std::string model, parameter;
+  std::string model, parameter;  // parameter empty: theta only
+  ParameterValues fixed;         // the model's parameters held fixed in the fit
   Channels channels = Channels::xyz;
   int bands = 0, degree_theta = 0, degree_tau = 0;
   double theta_min = 0.0, theta_max = 0.0, tau_min = 0.0, tau_max = 0.0;
@@ -59,6 +69,17 @@ PolynomialTable fit_polynomial(const PolynomialFitSettings& settings);
 // fitted ranges throw InvalidArgument.
 Coefficients evaluate_table(const PolynomialTable& table, double theta, double tau, double phi,
                             int bands, bool ringing_filter);
+
+// The published monomial form of eq. 1, in double (export only; docs/SH.md): for each stored
+// coefficient in the table's layout, (d_i + 1)(d_j + 1) values p_ij of theta^i tau^j, theta in
+// radians. The Chebyshev series is expanded exactly in long double; evaluating the monomials loses
+// digits to cancellation (condition ~1e19 for (13, 7)), so this form is never evaluated here.
+std::vector<double> monomial_coefficients(const PolynomialTable& table);
+
+// The table as a C header: its description as comments and macros, the Chebyshev coefficients as
+// a float array `<name>_chebyshev` in the table's layout and, with `monomial`, the published form
+// as a double array `<name>_monomial`. `name` must be a C identifier.
+std::string table_to_c_header(const PolynomialTable& table, const std::string& name, bool monomial);
 
 // The converged projection of the table's model at (theta, tau), sun at azimuth phi: the
 // reference that evaluate_table approximates.

@@ -2,6 +2,7 @@
 #include <cmath>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <variant>
 
 #include "skylight/core/error.h"
 #include "skylight/core/numbers.h"
@@ -52,6 +53,11 @@ std::string table_to_json(const PolynomialTable& t) {
   j["version"] = kVersion;
   j["model"] = t.model;
   j["parameter"] = t.parameter;
+  nlohmann::json fixed = nlohmann::json::object();
+  for (const auto& [name, value] : t.fixed.all()) {
+    std::visit([&, n = name](const auto& v) { fixed[n] = v; }, value);
+  }
+  j["fixed"] = fixed;
   j["channels"] = t.channels == Channels::xyz ? "xyz" : "linear_srgb";
   j["bands"] = t.bands;
   j["degree_theta"] = t.degree_theta;
@@ -80,6 +86,29 @@ PolynomialTable table_from_json(const std::string& s, const std::string& where) 
   PolynomialTable t;
   t.model = text(j, where, "model");
   t.parameter = text(j, where, "parameter");
+  if (j.contains("fixed")) {
+    const auto& fixed = j.at("fixed");
+    if (!fixed.is_object()) bad(where, "fixed", "is not an object");
+    for (const auto& [name, v] : fixed.items()) {
+      if (v.is_number() && std::isfinite(v.get<double>())) {
+        t.fixed.set(name, v.get<double>());
+      } else if (v.is_boolean()) {
+        t.fixed.set(name, v.get<bool>());
+      } else if (v.is_string()) {
+        t.fixed.set(name, ParameterValue(v.get<std::string>()));
+      } else if (v.is_array()) {
+        std::vector<double> list;
+        for (const auto& x : v) {
+          if (!x.is_number() || !std::isfinite(x.get<double>()))
+            bad(where, "fixed", "entry " + excerpt(name) + " holds a value that is not a number");
+          list.push_back(x.get<double>());
+        }
+        t.fixed.set(name, ParameterValue(list));
+      } else {
+        bad(where, "fixed", "entry " + excerpt(name) + " is not a number, flag, text or list");
+      }
+    }
+  }
   const std::string ch = text(j, where, "channels");
   if (ch == "xyz") {
     t.channels = Channels::xyz;

@@ -1,0 +1,102 @@
+#include "skylight/models/sh.h"
+
+#include <string>
+#include <vector>
+
+#include "skylight/core/data.h"
+#include "skylight/io/file.h"
+#include "skylight/sh/basis.h"
+#include "skylight/sh/rotation.h"
+
+namespace skylight {
+namespace {
+
+std::shared_ptr<const sh::PolynomialTable> shared_table(const std::string& path) {
+  if (path.empty()) {
+    // Parsed once: every `sh` model without --table shares it.
+    static const auto embedded =
+        std::make_shared<const sh::PolynomialTable>(load_sh_table(std::string()));
+    return embedded;
+  }
+  return std::make_shared<const sh::PolynomialTable>(load_sh_table(path));
+}
+
+}  // namespace
+
+sh::PolynomialTable load_sh_table(const std::string& path) {
+  if (path.empty()) {
+    return sh::table_from_json(std::string(data::embedded_file(kDefaultShTable)),
+                               std::string("data/") + kDefaultShTable);
+  }
+  const std::vector<char> bytes = io::read_file(path);
+  return sh::table_from_json(std::string(bytes.begin(), bytes.end()), path);
+}
+
+const ParameterSchema<ShParameters>& ShParameters::schema() {
+  static const auto s = [] {
+    ParameterSchema<ShParameters> s;
+    s.text(&ShParameters::table,
+           {"table", "", ParameterKind::text, 0, 0, 1,
+            Absent{std::string("the embedded Preetham table data/") + kDefaultShTable},
+            "SH polynomial table file (JSON from `skylight sh fit`)"});
+    s.integer(&ShParameters::bands,
+              {"bands", "1", ParameterKind::integer, 0, sh::kMaxBands, 1, ParameterValue(0.0),
+               "SH bands N reconstructed (degrees 0..N-1); 0: all of the table's"});
+    s.flag(&ShParameters::no_ringing_filter,
+           {"no-ringing-filter", "", ParameterKind::flag, 0, 0, 1, ParameterValue(false),
+            "reconstruct without the ringing filter (Habel 2008 eq. 5)"});
+    s.optional_number(&ShParameters::turbidity,
+                      {"turbidity", "1", ParameterKind::number, 0.0, 1000.0, 1,
+                       Absent{"the middle of the table's range"},
+                       "the table's second parameter (turbidity for preetham and hosek tables), "
+                       "within the table's fitted range"});
+    return s;
+  }();
+  return s;
+}
+
+ShSkyModel::ShSkyModel(const ShParameters& p) : ShSkyModel(p, shared_table(p.table)) {}
+
+ShSkyModel::ShSkyModel(const ShParameters& p, std::shared_ptr<const sh::PolynomialTable> table)
+    : SkyModel(p.sun), params_(p), table_(std::move(table)) {
+  ShParameters::schema().validate(p, model_context("sh"));
+  SKYLIGHT_CHECK(table_ != nullptr, "ShSkyModel: no table");
+  const sh::PolynomialTable& t = *table_;
+  if (params_.bands == 0) params_.bands = t.bands;
+  if (params_.bands > t.bands) {
+    throw InvalidArgument(model_context("sh") + ": --bands " + std::to_string(params_.bands) +
+                          " exceeds the table's " + std::to_string(t.bands));
+  }
+  if (t.parameter.empty()) {
+    if (params_.turbidity) {
+      throw InvalidArgument(model_context("sh") +
+                            ": --turbidity given, but the table varies the sun zenith only");
+    }
+  } else if (!params_.turbidity) {
+    params_.turbidity = 0.5 * (t.tau_min + t.tau_max);
+  }
+  coefficients_ = sh::evaluate_table(t, p.sun.zenith, params_.turbidity.value_or(0.0),
+                                     p.sun.azimuth, params_.bands, !params_.no_ringing_filter);
+}
+
+ParameterValues ShSkyModel::parameter_values() const {
+  return ShParameters::schema().values_of(params_);
+}
+
+Xyz ShSkyModel::tristimulus(Vec3 view) const {
+  const sh::Triple v = sh::reconstruct(coefficients_, view);
+  if (table_->channels == sh::Channels::xyz) return {v[0], v[1], v[2]};
+  return linear_srgb_to_xyz({v[0], v[1], v[2]});
+}
+
+Rgb ShSkyModel::rgb(Vec3 view) const {
+  const sh::Triple v = sh::reconstruct(coefficients_, view);
+  if (table_->channels == sh::Channels::linear_srgb) return {v[0], v[1], v[2]};
+  return xyz_to_linear_srgb({v[0], v[1], v[2]});
+}
+
+Domain ShSkyModel::domain() const {
+  return {};
+}
+
+}  // namespace skylight
