@@ -3,10 +3,11 @@
 # not root and sudo exists). Safe to run repeatedly: does nothing when all are present.
 set -euo pipefail
 # chromium: the headless browser test of the report (tests/report_browser_test.sh).
+# clang + libclang-rt-14-dev: the libFuzzer targets (scripts/fuzz.sh, docs/TESTING.md).
 PACKAGES=(build-essential cmake ninja-build pkg-config git
   libeigen3-dev libopenexr-dev libimath-dev libstb-dev libcli11-dev libfmt-dev
   nlohmann-json3-dev libhwy-dev libgtest-dev libgmock-dev libbenchmark-dev
-  chromium)
+  chromium clang libclang-rt-14-dev)
 missing=()
 for p in "${PACKAGES[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

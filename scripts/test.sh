@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The test command (README): installs what is missing, builds, runs the whole GoogleTest suite
 # (unit + CLI end-to-end, the docs' shell blocks) in the Release build, builds the README's library
-# example against the installed package, and runs the suite again under ASan + UBSan.
+# example against the installed package, runs every libFuzzer target for a few seconds
+# (scripts/fuzz.sh, docs/TESTING.md) and runs the suite again under ASan + UBSan.
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "$root"
@@ -21,6 +22,8 @@ example="$(build/consumer/readme_example)"
 echo "$example"
 grep -qx 'zenith luminance 7320.4 cd/m^2' <<<"$example"
 grep -qF -- '--turbidity = 100 is outside [1, 64] (model '"'preetham'"')' <<<"$example"
+echo "== libFuzzer targets, 5 s each on a copy of the seed corpus (docs/TESTING.md)"
+bash scripts/fuzz.sh 5
 if [ "${SKYLIGHT_SKIP_SANITIZERS:-0}" != "1" ]; then
   echo "== ASan + UBSan build + tests"
   bash scripts/build.sh build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSKYLIGHT_SANITIZE=ON -DSKYLIGHT_BUILD_TESTS=ON -DSKYLIGHT_BUILD_BENCH=OFF

@@ -7,6 +7,7 @@
 #include "common.h"
 #include "skylight/core/error.h"
 #include "skylight/core/numbers.h"
+#include "skylight/io/directions.h"
 #include "skylight/io/file.h"
 
 namespace skylight::cli {
@@ -18,24 +19,6 @@ struct EvalFlags {
   std::string quantity = "rgb";
   std::vector<double> wavelengths;
 };
-
-constexpr std::string_view kHeader = "zenith_deg,azimuth_deg";
-
-// The CSV text split into non-empty lines (CRLF accepted), each with its 1-based line number.
-std::vector<std::pair<std::size_t, std::string_view>> lines_of(std::string_view text) {
-  std::vector<std::pair<std::size_t, std::string_view>> out;
-  std::size_t line_no = 0, start = 0;
-  while (start < text.size()) {
-    std::size_t end = text.find('\n', start);
-    if (end == std::string_view::npos) end = text.size();
-    std::string_view line = text.substr(start, end - start);
-    if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
-    ++line_no;
-    if (!line.empty()) out.emplace_back(line_no, line);
-    start = end + 1;
-  }
-  return out;
-}
 
 int run_eval(const EvalFlags& f) {
   const bool spectral = f.quantity == "spectral";
@@ -52,13 +35,8 @@ int run_eval(const EvalFlags& f) {
   const bool from_stdin = f.input.empty() || f.input == "-";
   const std::string source = from_stdin ? "<stdin>" : f.input;
   const std::string text = from_stdin ? read_stdin() : io::read_text_file(f.input);
-  const auto lines = lines_of(text);
-  if (lines.empty())
-    throw InvalidArgument(fmt::format("{}: empty input, expected header '{}'", source, kHeader));
-  if (lines.front().second != kHeader)
-    throw InvalidArgument(fmt::format("{} line {}: header must be '{}', got '{}'", source,
-                                      lines.front().first, kHeader, excerpt(lines.front().second)));
-  std::string out(kHeader);
+  const auto rows = io::parse_directions_csv(text, source);
+  std::string out(io::kDirectionsHeader);
   if (f.quantity == "rgb")
     out += ",r,g,b";
   else if (f.quantity == "xyz")
@@ -69,17 +47,6 @@ int run_eval(const EvalFlags& f) {
     for (double nm : f.wavelengths) out += fmt::format(",L{}", nm);
   out += "\n";
 
-  // The eval columns are angles in degrees, declared like the sun's.
-  const ParameterSpec zenith_spec{
-      "zenith_deg", "deg", ParameterKind::number, 0.0, 180.0, 1, Required{}, "view zenith angle"};
-  const ParameterSpec azimuth_spec{"azimuth_deg",
-                                   "deg",
-                                   ParameterKind::number,
-                                   -360.0,
-                                   360.0,
-                                   1,
-                                   Required{},
-                                   "view azimuth from north towards east"};
   // No output may hold NaN or Inf: a value that overflows is an error naming the row.
   auto value = [&](std::size_t line_no, double v) {
     if (!std::isfinite(v))
@@ -88,27 +55,11 @@ int run_eval(const EvalFlags& f) {
           line_no, model->name()));
     return v;
   };
-  auto field = [&](std::size_t line_no, std::string_view s, const ParameterSpec& spec) {
-    const auto v = parse_number(s);
-    if (!v)
-      throw InvalidArgument(fmt::format("{} line {}: {} '{}' is not a finite number", source,
-                                        line_no, spec.name, excerpt(s)));
-    if (*v < spec.min || *v > spec.max)
-      throw InvalidArgument(fmt::format("{} line {}: {} = {} is outside [{}, {}]", source, line_no,
-                                        spec.name, excerpt(s), spec.min, spec.max));
-    return *v;
-  };
   const bool sky = !f.model.sun_only(), sun = f.model.include_sun() || f.model.sun_only();
-  for (std::size_t k = 1; k < lines.size(); ++k) {
-    const auto [line_no, line] = lines[k];
-    const auto comma = line.find(',');
-    if (comma == std::string_view::npos || line.find(',', comma + 1) != std::string_view::npos)
-      throw InvalidArgument(fmt::format("{} line {}: expected 2 fields '{}', got '{}'", source,
-                                        line_no, kHeader, excerpt(line)));
-    const double zen = field(line_no, line.substr(0, comma), zenith_spec);
-    const double az = field(line_no, line.substr(comma + 1), azimuth_spec);
-    const Vec3 v = direction_from_angles(deg_to_rad(zen), wrap_azimuth(deg_to_rad(az)));
-    out += line;
+  for (const auto& row : rows) {
+    const std::size_t line_no = row.line;
+    const Vec3 v = direction_from_angles(row.zenith, row.azimuth);
+    out += row.text;
     if (spectral) {
       for (double nm : f.wavelengths) {
         double L = 0.0;

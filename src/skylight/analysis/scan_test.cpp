@@ -73,6 +73,16 @@ TEST(Scan, BadInputNamesFileLineAndColumn) {
   EXPECT_THROW(read_sky_scan("/nonexistent/scan.csv"), IoError);
 }
 
+// Found by the fuzz target sky_scan (docs/TESTING.md): a bad sun comment was quoted whole, with
+// its control characters, into the message.
+TEST(Scan, BadSunCommentIsQuotedAsABoundedEscapedExcerpt) {
+  const std::string message = error_of("# sun_azimuth_deg = \x01" + std::string(100000, '7') +
+                                       "\nazimuth_deg,elevation_deg,luminance_cd_m2\n0,6,1\n");
+  EXPECT_NE(message.find("scan.csv line 1: sun_azimuth_deg '\\x01777"), std::string::npos)
+      << message;
+  EXPECT_LT(message.size(), 200u);
+}
+
 TEST(Scan, TregenzaPatches) {
   const auto p = tregenza_patch_centres();
   ASSERT_EQ(p.size(), 145u);

@@ -24,10 +24,23 @@ std::string errno_message(int err) {
 }
 
 std::string one_line(std::string s) {
-  std::replace_if(
-      s.begin(), s.end(), [](char c) { return c == '\n' || c == '\r'; }, ' ');
-  while (!s.empty() && s.back() == ' ') s.pop_back();
-  return s;
+  std::string out;
+  out.reserve(std::min(s.size(), kMaxOneLineChars) + 3);
+  for (const char c : s) {
+    if (out.size() >= kMaxOneLineChars) {
+      out += "...";
+      break;
+    }
+    const auto u = static_cast<unsigned char>(c);
+    if (c == '\n' || c == '\r')
+      out += ' ';
+    else if (u < 0x20 || u == 0x7f)
+      out += fmt::format("\\x{:02x}", u);
+    else
+      out += c;
+  }
+  while (!out.empty() && out.back() == ' ') out.pop_back();
+  return out;
 }
 
 void throw_write_error(const fs::path& path, const std::string& why) {

@@ -15,8 +15,11 @@ namespace skylight::io {
 
 // The system's message for errno value `err`.
 std::string errno_message(int err);
-// A message on one line: newlines and carriage returns become spaces, trailing spaces removed
-// (library messages, OpenEXR's in particular, may span lines; ours are one line).
+// A message on one line: newlines and carriage returns become spaces, other control characters
+// are escaped as \xHH, text beyond kMaxOneLineChars is cut with "...", trailing spaces removed
+// (library messages, OpenEXR's in particular, may span lines and quote bytes of the file; ours
+// are one printable line).
+inline constexpr std::size_t kMaxOneLineChars = 512;
 std::string one_line(std::string s);
 // IoError("cannot write '<path>': <why>") / IoError("cannot read '<path>': <why>").
 [[noreturn]] void throw_write_error(const std::filesystem::path& path, const std::string& why);

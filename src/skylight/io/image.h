@@ -67,9 +67,20 @@ void write_image(const std::filesystem::path& path, const ImageF& image, const M
 // Writes an 8-bit image as PNG, atomically.
 void write_png(const std::filesystem::path& path, const Image8& image, const Metadata& meta = {});
 
+// What read_image accepts.
+struct ReadImageOptions {
+  // The largest image [pixels]: a header that asks for more is refused before any pixel memory
+  // is allocated. Default: the largest image `skylight render` writes (32768 x 32768).
+  std::int64_t max_pixels = std::int64_t{32768} * 32768;
+  // NaN and infinite pixels are refused (no output of the project holds them); true reads the
+  // values as stored (bit-exact round trips of any float).
+  bool allow_non_finite = false;
+};
+
 // Reads an EXR (R,G,B or Y channels, any pixel type converted to float), PFM or HDR file.
-// Throws skylight::IoError naming the path on a missing or corrupt file.
-ImageF read_image(const std::filesystem::path& path);
+// Throws skylight::IoError naming the path on a missing or corrupt file, InvalidArgument naming
+// it for an image over options.max_pixels or (unless allowed) a non-finite pixel.
+ImageF read_image(const std::filesystem::path& path, const ReadImageOptions& options = {});
 // Reads an 8-bit PNG (grey, grey + alpha, RGB or RGBA; alpha dropped, grey copied to R, G, B) as
 // stored, without any conversion (e.g. masks). Throws skylight::IoError naming the path.
 Image8 read_png(const std::filesystem::path& path);

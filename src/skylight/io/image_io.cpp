@@ -24,6 +24,7 @@
 #include <limits>
 #include <memory>
 #include <new>
+#include <optional>
 #include <set>
 #include <system_error>
 
@@ -104,6 +105,29 @@ void check_metadata(const fs::path& path, const Metadata& meta) {
   }
 }
 
+// A file's image size against the reader's limit, before its pixels are allocated.
+void check_read_size(const fs::path& path, std::int64_t width, std::int64_t height,
+                     const ReadImageOptions& options) {
+  if (width > 0 && height > 0 && width <= options.max_pixels / height) return;
+  if (width <= 0 || height <= 0)
+    throw_read_error(path, fmt::format("empty image ({}x{})", width, height));
+  throw InvalidArgument(fmt::format("cannot read '{}': {}x{} pixels exceed the limit of {}",
+                                    path.string(), width, height, options.max_pixels));
+}
+
+// No image the project reads may carry NaN or infinity into its computations.
+void check_finite(const fs::path& path, const ImageF& image) {
+  const auto bad =
+      std::find_if(image.data.begin(), image.data.end(), [](float v) { return !std::isfinite(v); });
+  if (bad == image.data.end()) return;
+  const auto index = static_cast<std::size_t>(bad - image.data.begin());
+  const std::size_t pixel = index / static_cast<std::size_t>(image.channels);
+  const std::size_t width = static_cast<std::size_t>(image.width);
+  throw InvalidArgument(fmt::format(
+      "cannot read '{}': pixel ({}, {}) channel {} is {} (images must be finite)", path.string(),
+      pixel % width, pixel / width, index % static_cast<std::size_t>(image.channels), *bad));
+}
+
 // ---- EXR -------------------------------------------------------------------------------------
 
 void write_exr(const fs::path& path, const ImageF& image, const Metadata& meta) {
@@ -141,9 +165,71 @@ void write_exr(const fs::path& path, const ImageF& image, const Metadata& meta) 
   file.commit();
 }
 
-ImageF read_exr(const fs::path& path) {
+// The first part's data window, read from the header bytes without OpenEXR: Imf::InputFile sizes
+// its line buffers from the data window, and Imf::Header allocates each attribute at the size the
+// file states before reading it (2 GB for a 100-byte file), so both are checked before OpenEXR
+// sees the file. Header layout (OpenEXR file layout): magic 76 2f 31 01, a 4-byte version field,
+// then per part a list of attributes `name\0 type\0 size:int32 value[size]` ended by an empty
+// name; multi-part files (version flag 0x1000) end the list of headers with an empty header.
+// Returns the data window's width and height; throws read errors naming the path.
+std::pair<std::int64_t, std::int64_t> exr_data_window(const fs::path& path) {
+  FilePtr f = open_for_read(path);
+  std::error_code ec;
+  const auto file_size = static_cast<std::int64_t>(fs::file_size(path, ec));
+  if (ec) throw_read_error(path, ec.message());
+  auto corrupt = [&](const std::string& why) {
+    throw_read_error(path, "not a valid OpenEXR file: " + why);
+  };
+  auto read_u32 = [&]() {
+    unsigned char b[4];
+    if (std::fread(b, 1, 4, f.get()) != 4) corrupt("truncated header");
+    return std::uint32_t{b[0]} | std::uint32_t{b[1]} << 8 | std::uint32_t{b[2]} << 16 |
+           std::uint32_t{b[3]} << 24;
+  };
+  // A NUL-terminated attribute name or type (at most 255 characters with long names).
+  auto read_name = [&]() {
+    std::string name;
+    for (int c = std::fgetc(f.get()); c != 0; c = std::fgetc(f.get())) {
+      if (c == EOF) corrupt("truncated header");
+      if (name.size() == 255) corrupt("attribute name longer than 255 characters");
+      name += static_cast<char>(c);
+    }
+    return name;
+  };
+  if (read_u32() != 20000630u) corrupt("missing magic number");  // 76 2f 31 01
+  const bool multi_part = (read_u32() & 0x1000u) != 0;
+  std::optional<std::pair<std::int64_t, std::int64_t>> window;
+  for (int part = 0;; ++part) {
+    bool empty_header = true;
+    for (std::string name = read_name(); !name.empty(); name = read_name()) {
+      empty_header = false;
+      const std::string type = read_name();
+      const auto size = static_cast<std::int32_t>(read_u32());
+      const std::int64_t pos = std::ftell(f.get());
+      if (size < 0 || pos < 0 || size > file_size - pos)
+        corrupt(fmt::format("attribute '{}' of {} bytes beyond the end of the file", excerpt(name),
+                            size));
+      if (part == 0 && name == "dataWindow" && type == "box2i" && size == 16) {
+        const auto x0 = static_cast<std::int32_t>(read_u32()),
+                   y0 = static_cast<std::int32_t>(read_u32()),
+                   x1 = static_cast<std::int32_t>(read_u32()),
+                   y1 = static_cast<std::int32_t>(read_u32());
+        window = {std::int64_t{x1} - x0 + 1, std::int64_t{y1} - y0 + 1};
+      } else if (std::fseek(f.get(), size, SEEK_CUR) != 0) {
+        corrupt("truncated header");
+      }
+    }
+    if (!multi_part || empty_header) break;
+  }
+  if (!window) corrupt("no dataWindow attribute");
+  return *window;
+}
+
+ImageF read_exr(const fs::path& path, const ReadImageOptions& options) {
   open_for_read(path);  // a clear system message for missing or unreadable files
   return converting_errors(path, true, [&] {
+    const auto [first_width, first_height] = exr_data_window(path);
+    check_read_size(path, first_width, first_height, options);
     Imf::InputFile in(path.c_str());
     const Imf::Header& header = in.header();
     const Imath::Box2i window = header.dataWindow();
@@ -152,6 +238,7 @@ ImageF read_exr(const fs::path& path) {
     if (w <= 0 || h <= 0 || w > std::numeric_limits<int>::max() ||
         h > std::numeric_limits<int>::max())
       throw_read_error(path, fmt::format("bad data window {}x{}", w, h));
+    check_read_size(path, w, h, options);
 
     const Imf::ChannelList& channels = header.channels();
     std::vector<const char*> names;
@@ -202,7 +289,7 @@ void write_pfm(const fs::path& path, const ImageF& image) {
   file.commit();
 }
 
-ImageF read_pfm(const fs::path& path) {
+ImageF read_pfm(const fs::path& path, const ReadImageOptions& options) {
   const std::vector<char> bytes = read_file(path);
   size_t pos = 0;
   auto is_space = [](char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\n'; };
@@ -229,6 +316,7 @@ ImageF read_pfm(const fs::path& path) {
   };
   const int width = dimension("width");
   const int height = dimension("height");
+  check_read_size(path, width, height, options);
   const std::string scale_text = token();
   const auto scale = parse_number(scale_text);
   if (!scale || *scale == 0.0) corrupt(fmt::format("bad scale '{}'", excerpt(scale_text)));
@@ -324,13 +412,77 @@ void write_hdr(const fs::path& path, const ImageF& image, const Metadata& meta) 
   file.commit();
 }
 
-ImageF read_hdr(const fs::path& path) {
-  FilePtr f = open_for_read(path);
+// Walks the pixel data of a Radiance file the way stb_image's reader does (header lines up to an
+// empty one, then the resolution line; run-length scanlines when 8 <= width < 32768 and the
+// scanline starts with 2, 2, else flat RGBE for the rest of the image) and returns why stb must
+// not decode it, or nullptr: stb (Debian's 2022 version) loops forever on a zero-length run or
+// dump, which a truncated file also produces (it reads 0 past the end), and reads missing pixels
+// of a flat file as black.
+const char* hdr_pixel_data_problem(std::string_view bytes, int width, int height) {
+  // Header lines after the magic one, up to one that is empty or starts with NUL (stb compares C
+  // strings); each line runs to its '\n'. Without one, stb refuses the file before any pixel.
+  std::size_t pos = bytes.find('\n');
+  for (bool last = false; !last;) {
+    if (pos == std::string_view::npos || pos + 1 >= bytes.size()) return nullptr;
+    last = bytes[pos + 1] == '\n' || bytes[pos + 1] == '\0';
+    pos = bytes.find('\n', pos + 1);
+  }
+  // Then the resolution line.
+  if (pos == std::string_view::npos) return nullptr;
+  const std::size_t resolution_end = bytes.find('\n', pos + 1);
+  if (resolution_end == std::string_view::npos) return "truncated before the pixel data";
+  pos = resolution_end + 1;
+  const std::size_t w = static_cast<std::size_t>(width), h = static_cast<std::size_t>(height);
+  auto flat_needs = [&](std::size_t pixels) {
+    return bytes.size() - pos >= pixels * 4 ? nullptr : "truncated pixel data";
+  };
+  if (width < 8 || width >= 32768) return flat_needs(w * h);
+  for (std::size_t j = 0; j < h; ++j) {
+    if (bytes.size() - pos < 4) return "truncated pixel data";
+    const auto c1 = static_cast<unsigned char>(bytes[pos]),
+               c2 = static_cast<unsigned char>(bytes[pos + 1]),
+               hi = static_cast<unsigned char>(bytes[pos + 2]),
+               lo = static_cast<unsigned char>(bytes[pos + 3]);
+    pos += 4;
+    // Not run-length encoded: stb decodes the whole image as flat pixels from here, these 4 bytes
+    // being the first one.
+    if (c1 != 2 || c2 != 2 || (hi & 0x80u) != 0) return flat_needs(w * h - 1);
+    if ((std::size_t{hi} << 8 | lo) != w) return nullptr;  // stb refuses the scanline length
+    for (int channel = 0; channel < 4; ++channel) {
+      for (std::size_t i = 0; i < w;) {
+        if (pos >= bytes.size()) return "truncated run-length data";
+        std::size_t count = static_cast<unsigned char>(bytes[pos++]);
+        const bool run = count > 128;
+        if (run) count -= 128;
+        if (count == 0) return "zero-length run in the run-length data";
+        if (count > w - i) return nullptr;  // stb refuses an overlong run
+        const std::size_t payload = run ? 1 : count;
+        if (bytes.size() - pos < payload) return "truncated run-length data";
+        pos += payload;
+        i += count;
+      }
+    }
+  }
+  return nullptr;
+}
+
+ImageF read_hdr(const fs::path& path, const ReadImageOptions& options) {
+  const std::vector<char> file = read_file(path);
+  const auto* data = reinterpret_cast<const stbi_uc*>(file.data());
+  const int size = file.size() > static_cast<std::size_t>(std::numeric_limits<int>::max())
+                       ? std::numeric_limits<int>::max()
+                       : static_cast<int>(file.size());
   // stbi_loadf would also accept an 8-bit image and apply a gamma to it: insist on Radiance.
-  if (!stbi_is_hdr_from_file(f.get())) throw_read_error(path, "not a Radiance HDR file");
-  stbi_set_flip_vertically_on_load_thread(0);  // row 0 at the top, whatever others set globally
+  if (!stbi_is_hdr_from_memory(data, size)) throw_read_error(path, "not a Radiance HDR file");
   int w = 0, h = 0, n = 0;
-  float* pixels = stbi_loadf_from_file(f.get(), &w, &h, &n, 3);  // .hdr: linear, no gamma
+  // The size from the header first: stb allocates the whole image before reading a pixel.
+  if (!stbi_info_from_memory(data, size, &w, &h, &n)) throw_read_error(path, stbi_failure_reason());
+  check_read_size(path, w, h, options);
+  if (const char* problem = hdr_pixel_data_problem(
+          std::string_view(file.data(), static_cast<std::size_t>(size)), w, h))
+    throw_read_error(path, std::string("not a valid Radiance HDR file: ") + problem);
+  stbi_set_flip_vertically_on_load_thread(0);  // row 0 at the top, whatever others set globally
+  float* pixels = stbi_loadf_from_memory(data, size, &w, &h, &n, 3);  // .hdr: linear, no gamma
   if (pixels == nullptr) throw_read_error(path, stbi_failure_reason());
   ImageF image(w, h, 3);
   std::copy(pixels, pixels + image.data.size(), image.data.begin());
@@ -455,19 +607,25 @@ Image8 read_png(const std::filesystem::path& path) {
   return image;
 }
 
-ImageF read_image(const std::filesystem::path& path) {
+ImageF read_image(const std::filesystem::path& path, const ReadImageOptions& options) {
+  ImageF image;
   switch (format_from_path(path)) {
     case ImageFormat::exr:
-      return read_exr(path);
-    case ImageFormat::pfm:
-      return read_pfm(path);
-    case ImageFormat::hdr:
-      return read_hdr(path);
-    case ImageFormat::png:
+      image = read_exr(path, options);
       break;
+    case ImageFormat::pfm:
+      image = read_pfm(path, options);
+      break;
+    case ImageFormat::hdr:
+      image = read_hdr(path, options);
+      break;
+    case ImageFormat::png:
+      throw InvalidArgument(
+          fmt::format("cannot read '{}': PNG files are 8-bit previews; read .exr, .hdr or .pfm",
+                      path.string()));
   }
-  throw InvalidArgument(fmt::format(
-      "cannot read '{}': PNG files are 8-bit previews; read .exr, .hdr or .pfm", path.string()));
+  if (!options.allow_non_finite) check_finite(path, image);
+  return image;
 }
 
 Metadata read_exr_metadata(const std::filesystem::path& path) {

@@ -98,7 +98,7 @@ TEST(ImageIo, ExrRgbRoundTripIsBitIdenticalWithMetadata) {
   const ImageF image = distinctive_rgb();
   const Metadata meta = {{"skylight:model", "Perez 1993"}, {"comment", "sky \xc2\xb0 line"}};
   write_image(dir / "sky.exr", image, meta);
-  expect_bit_identical(read_image(dir / "sky.exr"), image);
+  expect_bit_identical(read_image(dir / "sky.exr", {.allow_non_finite = true}), image);
   const Metadata back = read_exr_metadata(dir / "sky.exr");
   EXPECT_TRUE(has(back, "skylight:model", "Perez 1993"));
   EXPECT_TRUE(has(back, "comment", "sky \xc2\xb0 line"));
@@ -143,7 +143,7 @@ TEST(ImageIo, PfmRoundTripIsBitIdenticalAndKeepsRowOrder) {
   ScratchDir dir;
   const ImageF image = distinctive_rgb();
   write_image(dir / "a.pfm", image, {{"ignored", "PFM has no metadata"}});
-  expect_bit_identical(read_image(dir / "a.pfm"), image);
+  expect_bit_identical(read_image(dir / "a.pfm", {.allow_non_finite = true}), image);
 
   // On disk: little-endian header, then the BOTTOM row first.
   const std::string bytes = slurp(dir / "a.pfm");
@@ -382,6 +382,110 @@ TEST(ImageIo, ReadingMissingOrCorruptFilesThrowsIoErrorNamingThePath) {
   const std::string whole = slurp(dir / "cut.exr");
   spit(dir / "cut.exr", whole.substr(0, whole.size() / 2));
   expect_read_error(dir / "cut.exr");
+}
+
+// Found by the fuzz targets image_pfm and image_exr (docs/TESTING.md): NaN and infinite pixels
+// were read into the image; by default they are refused, naming the first.
+TEST(ImageIo, NonFinitePixelsAreRefusedUnlessAllowed) {
+  ScratchDir dir;
+  for (const char* name : {"nan.pfm", "nan.exr"}) {
+    ImageF image(3, 2, 3);
+    image.pixel(2, 1)[1] = std::numeric_limits<float>::quiet_NaN();
+    write_image(dir / name, image);
+    try {
+      read_image(dir / name);
+      ADD_FAILURE() << name << " accepted";
+    } catch (const InvalidArgument& e) {
+      EXPECT_NE(std::string(e.what()).find("pixel (2, 1) channel 1 is nan"), std::string::npos)
+          << e.what();
+    }
+    EXPECT_TRUE(std::isnan(read_image(dir / name, {.allow_non_finite = true}).pixel(2, 1)[1]));
+  }
+}
+
+// Found by the fuzz targets image_hdr and image_exr (docs/TESTING.md): a header alone made the
+// reader allocate the whole declared image (up to 2 GB from a 60-byte .hdr, more for EXR), and an
+// HDR header of height 0 gave an empty image. The size is checked before any pixel memory.
+TEST(ImageIo, HeadersAskingForTooManyPixelsAreRefusedBeforeReading) {
+  ScratchDir dir;
+  auto expect_refused = [](const fs::path& path, const ReadImageOptions& options) {
+    try {
+      read_image(path, options);
+      ADD_FAILURE() << path << " accepted";
+    } catch (const InvalidArgument& e) {
+      EXPECT_NE(std::string(e.what()).find("pixels exceed the limit of"), std::string::npos)
+          << e.what();
+    }
+  };
+  spit(dir / "huge.hdr", "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 16000000 +X 16000000\n");
+  expect_refused(dir / "huge.hdr", {});
+  spit(dir / "huge.pfm", "PF\n2000000000 2000000000\n-1.0\n");
+  expect_refused(dir / "huge.pfm", {});
+  // A valid 3 x 2 image against a limit of 5 pixels: the EXR header's data window is enough.
+  write_image(dir / "six.exr", ImageF(3, 2, 1));
+  write_image(dir / "six.hdr", ImageF(3, 2, 3));
+  write_image(dir / "six.pfm", ImageF(3, 2, 3));
+  for (const char* name : {"six.exr", "six.hdr", "six.pfm"}) {
+    expect_refused(dir / name, {.max_pixels = 5});
+    EXPECT_EQ(read_image(dir / name, {.max_pixels = 6}).data.size() % 6, 0u) << name;
+  }
+  spit(dir / "empty.hdr", "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 0 +X 8\n");
+  expect_read_error(dir / "empty.hdr");
+}
+
+// Found by the fuzz target image_hdr (docs/TESTING.md): stb_image loops forever on a zero-length
+// run-length dump or run (count 0 or 128), which a truncated run-length file also gives (stb reads
+// 0 past the end); a truncated flat file was read with black pixels. All are read errors now.
+TEST(ImageIo, HdrZeroLengthRunsAndTruncatedPixelDataAreReadErrors) {
+  ScratchDir dir;
+  const std::string header = "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 1 +X 8\n";
+  const std::string marker("\x02\x02\x00\x08", 4);
+  // R: a run of 8, G: a dump of 8, B and E: runs of 8 -- a valid scanline, then its corruptions.
+  const std::string dump8 = std::string("\x08", 1) + "\x01\x02\x03\x04\x05\x06\x07\x08";
+  const std::string valid = header + marker + "\x88\x64" + dump8 + "\x88\x32\x88\x82";
+  spit(dir / "valid.hdr", valid);
+  const ImageF image = read_image(dir / "valid.hdr");
+  ASSERT_EQ(image.width, 8);
+  EXPECT_EQ(image.pixel(0, 0)[0], 100.0f * 4.0f / 256.0f);  // m 2^(e - 136), e = 130
+  // stb ends the header at a line that starts with NUL as at an empty one.
+  const std::string nul_header =
+      "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n" + std::string(1, '\0') + "`0\n-Y 1 +X 8\n";
+  spit(dir / "nul.hdr", nul_header + marker + "\x88\x64" + dump8 + "\x88\x32\x88\x82");
+  EXPECT_EQ(read_image(dir / "nul.hdr").data, image.data);
+  for (const std::string& bad :
+       {header + marker + std::string("\x00", 1) + dump8,          // a dump of 0
+        nul_header + marker + "\x88\x64" + dump8 + "\x88",         // ends in the third channel
+        header + marker + "\x80\x01" + dump8,                      // a run of 0
+        header + marker + "\x88\x64" + dump8,                      // ends after two channels
+        header + "\x80\x40\x20\x81" + std::string(20, '\x40')}) {  // flat, 6 of 8 pixels
+    spit(dir / "bad.hdr", bad);
+    expect_read_error(dir / "bad.hdr");
+  }
+}
+
+// Found by the fuzz target image_exr (docs/TESTING.md): OpenEXR's message quoted a channel name
+// with control characters into ours.
+TEST(ImageIo, ExrErrorsQuotingFileBytesStayPrintable) {
+  ScratchDir dir;
+  write_image(dir / "y.exr", ImageF(1, 1, 1));
+  std::string bytes = slurp(dir / "y.exr");
+  const std::size_t list = bytes.find(std::string("chlist\0", 7));
+  ASSERT_NE(list, std::string::npos);
+  const std::size_t name = list + 7 + 4;  // after the type and the attribute size
+  ASSERT_EQ(bytes.substr(name, 2), std::string("Y\0", 2));
+  bytes[name] = '\x01';      // channel name "\x01"
+  bytes[name + 2] = '\x09';  // pixel type 9: invalid
+  spit(dir / "bad.exr", bytes);
+  try {
+    read_image(dir / "bad.exr");
+    ADD_FAILURE() << "accepted";
+  } catch (const IoError& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find("\\x01"), std::string::npos) << message;
+    EXPECT_TRUE(std::none_of(message.begin(), message.end(), [](char c) {
+      return static_cast<unsigned char>(c) < 0x20;
+    })) << message;
+  }
 }
 
 TEST(ImageIo, FormatFromPath) {

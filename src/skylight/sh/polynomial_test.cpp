@@ -143,5 +143,28 @@ TEST(ShPolynomial, ThetaOnlyFitWithFixedParametersRoundTrips) {
   EXPECT_THROW(fit_polynomial(s), InvalidArgument);  // no second parameter to fit in
 }
 
+// Found by the fuzz target sh_table_json (docs/TESTING.md): coefficients are stored in float, so
+// a finite double beyond FLT_MAX (~3.4e38) became +inf in an accepted table.
+TEST(ShPolynomial, JsonLoadRefusesCoefficientsBeyondTheFloatRange) {
+  auto table_with = [](const std::string& coefficients) {
+    return R"({"format": "skylight-sh-polynomial-table", "version": 1, "model": "preetham",
+      "parameter": "turbidity", "channels": "xyz", "bands": 1, "degree_theta": 0,
+      "degree_tau": 0, "theta_min_rad": 0, "theta_max_rad": 1, "tau_min": 2, "tau_max": 6,
+      "coefficients": [)" +
+           coefficients + "]}";
+  };
+  const auto t = table_from_json(table_with("3e38, -3e38, 1"), "t.json");
+  EXPECT_EQ(t.coefficients, (std::vector<float>{3e38f, -3e38f, 1.0f}));
+  // "1e400" overflows the JSON parser's double: it threw nlohmann's out_of_range, not ours.
+  for (const std::string bad : {"1e39, 0, 0", "0, -1e39, 0", "1e400, 0, 0"}) {
+    try {
+      table_from_json(table_with(bad), "t.json");
+      ADD_FAILURE() << "no error for " << bad;
+    } catch (const InvalidArgument& e) {
+      EXPECT_EQ(std::string(e.what()).rfind("t.json: ", 0), 0u) << e.what();
+    }
+  }
+}
+
 }  // namespace
 }  // namespace skylight::sh

@@ -76,7 +76,7 @@ PolynomialTable table_from_json(const std::string& s, const std::string& where) 
   nlohmann::json j;
   try {
     j = nlohmann::json::parse(s);
-  } catch (const nlohmann::json::parse_error& e) {
+  } catch (const nlohmann::json::exception& e) {  // parse_error, and out_of_range for 1e400
     throw InvalidArgument(where + ": not valid JSON (" + excerpt(e.what()) + ")");
   }
   if (!j.is_object()) throw InvalidArgument(where + ": not a JSON object");
@@ -136,10 +136,12 @@ PolynomialTable table_from_json(const std::string& s, const std::string& where) 
   }
   t.coefficients.reserve(expect);
   for (const auto& v : c) {
-    if (!v.is_number() || !std::isfinite(v.get<double>())) {
-      bad(where, "coefficients", "holds a value that is not a finite number");
+    // Stored in float: a finite double beyond FLT_MAX would become infinite.
+    if (!v.is_number() || !std::isfinite(v.get<double>()) ||
+        !std::isfinite(static_cast<float>(v.get<double>()))) {
+      bad(where, "coefficients", "holds a value that is not a finite float number");
     }
-    t.coefficients.push_back(v.get<float>());
+    t.coefficients.push_back(static_cast<float>(v.get<double>()));
   }
   return t;
 }

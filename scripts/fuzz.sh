@@ -1,0 +1,65 @@
+#!/usr/bin/env bash
+# Builds the libFuzzer targets (tests/fuzz/, clang) in build-fuzz/ and runs each for SECONDS
+# (-max_total_time), one after the other, on a copy of its committed seed corpus; prints the
+# executions per target and fails on any crash, sanitizer report or other finding
+# (docs/TESTING.md).
+# Usage: scripts/fuzz.sh [SECONDS] [TARGET...]   (default 10 s, all targets)
+# Environment: SKYLIGHT_FUZZ_BUILD  build directory (default build-fuzz)
+#              SKYLIGHT_FUZZ_CORPUS a directory that keeps the grown corpus between runs
+#                                   (<dir>/<target>/); default: a temporary copy, removed
+#              SKYLIGHT_FUZZ_FLAGS  extra libFuzzer flags, e.g. "-max_len=65536"
+set -euo pipefail
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+seconds="${1:-10}"
+[ $# -gt 0 ] && shift
+all=(directions_csv sky_scan image_pfm image_exr image_hdr sh_table_json)
+targets=("${@:-${all[@]}}")
+build="${SKYLIGHT_FUZZ_BUILD:-$root/build-fuzz}"
+
+command -v clang++ >/dev/null || { echo "fuzz: clang++ not found (scripts/setup.sh installs it)" >&2; exit 1; }
+cmake -S "$root" -B "$build" -G Ninja -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+  -DSKYLIGHT_FUZZ=ON -DSKYLIGHT_BUILD_TESTS=OFF -DSKYLIGHT_BUILD_BENCH=OFF >/dev/null
+cmake --build "$build" --target skylight_fuzz -j "$(nproc)"
+
+artifacts="$build/artifacts"
+mkdir -p "$artifacts"
+scratch="$(mktemp -d)"
+trap 'rm -rf "$scratch"' EXIT
+failed=()
+summary=()
+for t in "${targets[@]}"; do
+  exe="$build/tests/fuzz/fuzz_$t"
+  [ -x "$exe" ] || { echo "fuzz: unknown target '$t' (known: ${all[*]})" >&2; exit 1; }
+  # The committed corpus stays read-only: the run grows a copy.
+  if [ -n "${SKYLIGHT_FUZZ_CORPUS:-}" ]; then
+    corpus="$SKYLIGHT_FUZZ_CORPUS/$t"
+  else
+    corpus="$scratch/$t"
+  fi
+  mkdir -p "$corpus"
+  cp -n "$root/tests/fuzz/corpus/$t/"* "$corpus/"
+  flags=(-max_total_time="$seconds" -timeout=25 -rss_limit_mb=2048 -print_final_stats=1
+         -artifact_prefix="$artifacts/$t-")
+  dict="$root/tests/fuzz/dict/$t.dict"
+  [ -f "$dict" ] && flags+=(-dict="$dict")
+  # shellcheck disable=SC2206
+  flags+=(${SKYLIGHT_FUZZ_FLAGS:-})
+  log="$scratch/$t.log"
+  echo "== fuzz_$t (${seconds} s)"
+  status=0
+  UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 "$exe" "${flags[@]}" "$corpus" >"$log" 2>&1 || status=$?
+  runs="$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -1)"
+  if [ "$status" -ne 0 ]; then
+    tail -n 60 "$log"
+    failed+=("$t")
+    summary+=("$(printf '%-16s %12s  FAILED (exit %d; reproducer in %s)' "$t" "${runs:-?}" "$status" "$artifacts")")
+  else
+    summary+=("$(printf '%-16s %12s  ok, corpus %d files' "$t" "${runs:-?}" "$(ls "$corpus" | wc -l)")")
+  fi
+done
+echo "== fuzz summary: target, executions (${seconds} s each)"
+printf '%s\n' "${summary[@]}"
+if [ ${#failed[@]} -gt 0 ]; then
+  echo "fuzz: findings in ${failed[*]}" >&2
+  exit 1
+fi
