@@ -82,8 +82,10 @@ struct ReadImageOptions {
 // it for an image over options.max_pixels or (unless allowed) a non-finite pixel.
 ImageF read_image(const std::filesystem::path& path, const ReadImageOptions& options = {});
 // Reads an 8-bit PNG (grey, grey + alpha, RGB or RGBA; alpha dropped, grey copied to R, G, B) as
-// stored, without any conversion (e.g. masks). Throws skylight::IoError naming the path.
-Image8 read_png(const std::filesystem::path& path);
+// stored, without any conversion (e.g. masks). Throws skylight::IoError naming the path on a
+// missing or corrupt file, InvalidArgument for an image over options.max_pixels (checked from the
+// header before any pixel memory is allocated; allow_non_finite does not apply to 8-bit data).
+Image8 read_png(const std::filesystem::path& path, const ReadImageOptions& options = {});
 // Reads the string attributes of an EXR header.
 Metadata read_exr_metadata(const std::filesystem::path& path);
 

@@ -268,6 +268,33 @@ TEST(ImageIo, PngRoundTripIsExactAndMissingPngIsAnIoError) {
   EXPECT_THROW(read_png(dir / "missing.png"), IoError);
 }
 
+// A PNG header declaring more pixels than the limit is refused before stb allocates the decoded
+// image (a 45-byte file asking for 40000 x 40000 RGB would otherwise cost 4.8 GB); stb does not
+// check chunk CRCs, so zero CRCs are enough here.
+TEST(ImageIo, PngOverThePixelLimitIsRefusedFromItsHeader) {
+  ScratchDir dir;
+  const auto be32 = [](std::uint32_t v) {
+    return std::string{static_cast<char>(v >> 24), static_cast<char>(v >> 16),
+                       static_cast<char>(v >> 8), static_cast<char>(v)};
+  };
+  std::string png = "\x89PNG\r\n\x1a\n";
+  png += be32(13) + "IHDR" + be32(40000) + be32(40000);
+  png += std::string{'\x08', '\x02', '\0', '\0', '\0'} + be32(0);  // 8-bit RGB, CRC
+  spit(dir / "huge.png", png);
+  try {
+    read_png(dir / "huge.png");
+    ADD_FAILURE() << "a 40000 x 40000 PNG header was accepted";
+  } catch (const InvalidArgument& e) {
+    EXPECT_NE(std::string(e.what()).find("40000x40000 pixels exceed the limit of"),
+              std::string::npos)
+        << e.what();
+  }
+  Image8 six(3, 2);
+  write_png(dir / "six.png", six);
+  EXPECT_THROW(read_png(dir / "six.png", {.max_pixels = 5}), InvalidArgument);
+  EXPECT_EQ(read_png(dir / "six.png", {.max_pixels = 6}).data.size(), 18u);
+}
+
 TEST(ImageIo, FloatImageToPngIsRefused) {
   ScratchDir dir;
   EXPECT_THROW(write_image(dir / "p.png", ramp_grey(2, 2)), InvalidArgument);

@@ -133,7 +133,7 @@ SkyNetwork sky_network_from_json(std::string_view s, const std::string& where) {
   nlohmann::json j;
   try {
     j = nlohmann::json::parse(s);
-  } catch (const nlohmann::json::parse_error& e) {
+  } catch (const nlohmann::json::exception& e) {  // parse_error, and out_of_range for 1e400
     throw InvalidArgument(where + ": not valid JSON (" + excerpt(e.what()) + ")");
   }
   if (!j.is_object()) throw InvalidArgument(where + ": not a JSON object");

@@ -195,6 +195,9 @@ TEST(SkyNetwork, CorruptWeightsFilesNameTheField) {
   expect_error(replaced("\"source\"", "\"origin\""), "'provenance.source'");
   expect_error(replaced("\"provenance\"", "\"p\""), "'provenance'");
   expect_error(replaced("\"satilmis\"", "\"swish\""), "'architecture.activations'");
+  // Found by the nn_weights_json fuzz target (docs/TESTING.md): a number beyond the double range
+  // escaped as nlohmann::json::out_of_range instead of our error.
+  expect_error(replaced("\"parameters\": [", "\"parameters\": [1e400,"), "not valid JSON");
 }
 
 }  // namespace
