@@ -598,8 +598,8 @@ Image8 read_png(const std::filesystem::path& path, const ReadImageOptions& optio
   FilePtr f = open_for_read(path);
   stbi_set_flip_vertically_on_load_thread(0);  // row 0 at the top, whatever others set globally
   int w = 0, h = 0, n = 0;
-  // The header's size first: stb allocates the whole decoded image before inflating the data, so
-  // a few bytes declaring 30000 x 30000 would otherwise cost gigabytes (stbi_info_from_file
+  // The header's size first: stb allocates the whole decoded image (up to 2^30 bytes) before
+  // inflating the data, so a few bytes would otherwise cost up to a gigabyte (stbi_info_from_file
   // leaves the file position where it was).
   if (stbi_info_from_file(f.get(), &w, &h, &n) == 0) throw_read_error(path, stbi_failure_reason());
   check_read_size(path, w, h, options);
