@@ -594,17 +594,56 @@ void write_png(const std::filesystem::path& path, const Image8& image, const Met
   file.commit();
 }
 
+namespace {
+
+// The PNG's bytes without empty IDAT chunks. stb copies each IDAT's data into a buffer that is
+// still null before the first non-empty one, and memcpy(nullptr, src, 0) is undefined behaviour
+// (found by the image_png fuzz target, docs/TESTING.md). An empty IDAT carries no image data, so
+// dropping it changes nothing; everything else is copied as it is (stb reports what is corrupt).
+std::vector<char> without_empty_idat_chunks(const std::vector<char>& png) {
+  constexpr std::size_t kSignature = 8, kChunkOverhead = 12;  // length, type, CRC
+  std::vector<char> out;
+  out.reserve(png.size());
+  std::size_t pos = std::min(kSignature, png.size());
+  out.insert(out.end(), png.begin(), png.begin() + static_cast<std::ptrdiff_t>(pos));
+  while (pos + kChunkOverhead <= png.size()) {
+    const auto* p = reinterpret_cast<const unsigned char*>(png.data() + pos);
+    const std::uint32_t length = (std::uint32_t{p[0]} << 24) | (std::uint32_t{p[1]} << 16) |
+                                 (std::uint32_t{p[2]} << 8) | std::uint32_t{p[3]};
+    if (length > png.size() - pos - kChunkOverhead) break;  // truncated: stb says so
+    const std::size_t end = pos + kChunkOverhead + length;
+    if (length != 0 || std::memcmp(p + 4, "IDAT", 4) != 0)
+      out.insert(out.end(), png.begin() + static_cast<std::ptrdiff_t>(pos),
+                 png.begin() + static_cast<std::ptrdiff_t>(end));
+    pos = end;
+  }
+  out.insert(out.end(), png.begin() + static_cast<std::ptrdiff_t>(pos), png.end());
+  return out;
+}
+
+}  // namespace
+
 Image8 read_png(const std::filesystem::path& path, const ReadImageOptions& options) {
-  FilePtr f = open_for_read(path);
+  const std::vector<char> bytes = without_empty_idat_chunks(read_file(path));
+  // Only PNG: stb would try its other decoders (PNM, TGA, ...) on anything else, and those have
+  // their own undefined behaviour on corrupt input (found by the image_png fuzz target).
+  constexpr std::string_view kPngSignature{"\x89PNG\r\n\x1a\n", 8};
+  if (bytes.size() < kPngSignature.size() ||
+      std::string_view(bytes.data(), kPngSignature.size()) != kPngSignature)
+    throw_read_error(path, "not a PNG file (no PNG signature)");
+  if (bytes.size() > static_cast<std::size_t>(std::numeric_limits<int>::max()))
+    throw_read_error(path, "larger than 2 GB");
+  const auto* data = reinterpret_cast<const stbi_uc*>(bytes.data());
+  const int size = static_cast<int>(bytes.size());
   stbi_set_flip_vertically_on_load_thread(0);  // row 0 at the top, whatever others set globally
   int w = 0, h = 0, n = 0;
   // The header's size first: stb allocates the whole decoded image (up to 2^30 bytes) before
-  // inflating the data, so a few bytes would otherwise cost up to a gigabyte (stbi_info_from_file
-  // leaves the file position where it was).
-  if (stbi_info_from_file(f.get(), &w, &h, &n) == 0) throw_read_error(path, stbi_failure_reason());
+  // inflating the data, so a few bytes would otherwise cost up to a gigabyte.
+  if (stbi_info_from_memory(data, size, &w, &h, &n) == 0)
+    throw_read_error(path, stbi_failure_reason());
   check_read_size(path, w, h, options);
   // 8-bit samples as stored (no gamma applied); grey and grey+alpha expand to RGB.
-  stbi_uc* pixels = stbi_load_from_file(f.get(), &w, &h, &n, 3);
+  stbi_uc* pixels = stbi_load_from_memory(data, size, &w, &h, &n, 3);
   if (pixels == nullptr) throw_read_error(path, stbi_failure_reason());
   Image8 image(w, h);
   std::copy(pixels, pixels + image.data.size(), image.data.begin());
