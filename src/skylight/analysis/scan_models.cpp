@@ -8,29 +8,9 @@
 #include <cstdint>
 
 #include "skylight/core/error.h"
+#include "skylight/core/random.h"
 
 namespace skylight::analysis {
-namespace {
-
-// SplitMix64 (Steele, Lea & Flood 2014): a tiny generator whose sequence is fixed by its seed on
-// every platform (std::uniform_real_distribution is not).
-class SplitMix64 {
- public:
-  explicit SplitMix64(std::uint64_t seed) : state_(seed) {}
-  std::uint64_t next() {
-    std::uint64_t z = (state_ += 0x9E3779B97F4A7C15ull);
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-    return z ^ (z >> 31);
-  }
-  // Uniform in [-1, 1): the top 53 bits as a double in [0, 1), mapped.
-  double symmetric() { return 2.0 * static_cast<double>(next() >> 11) * 0x1.0p-53 - 1.0; }
-
- private:
-  std::uint64_t state_;
-};
-
-}  // namespace
 
 std::vector<std::string> synthetic_scan_comments(const SyntheticScanSettings& s) {
   return {

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "skylight/core/error.h"
+#include "skylight/core/random.h"
 #include "skylight/models/hosek_wilkie.h"
 
 namespace skylight::estimate {
@@ -159,22 +160,14 @@ HosekFit fit_hosek(std::span<const LuminanceSample> samples, const SunPosition& 
   // Step 2: RANSAC on the grid (the grid's ln Y are reused for the consensus of each trial).
   std::vector<std::size_t> inliers = all;
   if (s.ransac) {
-    std::uint64_t state = s.seed ^ 0x2545f4914f6cdd1dULL;
-    auto below = [&](std::size_t k) {  // SplitMix64 step, uniform in [0, k)
-      std::uint64_t z = (state += 0x9e3779b97f4a7c15ULL);
-      z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
-      z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
-      z ^= z >> 31;
-      return std::min(k - 1, static_cast<std::size_t>(static_cast<double>(z >> 11) * 0x1.0p-53 *
-                                                      static_cast<double>(k)));
-    };
+    SplitMix64 rng(s.seed ^ 0x2545f4914f6cdd1dULL);
     const std::size_t m =
         std::min<std::size_t>(n, static_cast<std::size_t>(std::max(3, s.ransac_minimal_set)));
     std::vector<std::size_t> best, minimal(m);
     for (int it = 0; it < s.ransac_iterations; ++it) {
       for (std::size_t k = 0; k < m; ++k) {
         std::size_t i;
-        do i = below(n);
+        do i = rng.below(n);
         while (std::find(minimal.begin(), minimal.begin() + static_cast<std::ptrdiff_t>(k), i) !=
                minimal.begin() + static_cast<std::ptrdiff_t>(k));
         minimal[k] = i;
@@ -208,14 +201,11 @@ HosekFit fit_hosek(std::span<const LuminanceSample> samples, const SunPosition& 
 
   // Step 4: bootstrap.
   if (s.bootstrap >= 2) {
-    std::uint64_t state = s.seed ^ 0x9e3779b97f4a7c15ULL;
+    SplitMix64 rng(s.seed ^ 0x9e3779b97f4a7c15ULL);
     std::vector<double> ts, as;
     std::vector<std::size_t> resample(inliers.size());
     for (int b = 0; b < s.bootstrap; ++b) {
-      for (auto& i : resample) {
-        state = state * 6364136223846793005ULL + 1442695040888963407ULL;  // PCG's LCG step
-        i = inliers[static_cast<std::size_t>((state >> 11) % inliers.size())];
-      }
+      for (auto& i : resample) i = inliers[rng.below(inliers.size())];
       const State r = levenberg_marquardt(samples, log_y, resample, sun, fit);
       ts.push_back(r.t);
       as.push_back(r.a);

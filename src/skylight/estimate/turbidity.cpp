@@ -11,31 +11,12 @@
 #include <numeric>
 
 #include "skylight/core/error.h"
+#include "skylight/core/random.h"
 #include "skylight/models/perez_kernel.h"
 #include "skylight/models/preetham.h"
 
 namespace skylight::estimate {
 namespace {
-
-// SplitMix64 (Steele, Lea & Flood 2014): the same stream on every platform.
-class SplitMix64 {
- public:
-  explicit SplitMix64(std::uint64_t seed) : state_(seed) {}
-  std::uint64_t next() {
-    std::uint64_t z = (state_ += 0x9e3779b97f4a7c15ULL);
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
-    return z ^ (z >> 31);
-  }
-  // Uniform integer in [0, n), n >= 1 (53-bit uniform double times n).
-  std::size_t below(std::size_t n) {
-    const double u = static_cast<double>(next() >> 11) * 0x1.0p-53;
-    return std::min(n - 1, static_cast<std::size_t>(u * static_cast<double>(n)));
-  }
-
- private:
-  std::uint64_t state_;
-};
 
 // The samples in the form the fit evaluates: cos theta_i, gamma_i, ln Y_i, and the sun.
 struct Prepared {

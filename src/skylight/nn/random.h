@@ -1,8 +1,8 @@
 // The one pseudo-random generator of skylight::nn: xoshiro256** (Blackman & Vigna 2018) seeded by
-// SplitMix64 (Steele, Lea & Flood 2014). Everything that needs randomness (weight initialisation,
-// stratified jitter, example shuffling, mini-batches) draws from it, so a seed fixes every result
-// on every platform: no std::*_distribution (their output differs between standard libraries)
-// and no transcendental functions (uniform draws only).
+// SplitMix64 (Steele, Lea & Flood 2014; core/random.h). Everything that needs randomness (weight
+// initialisation, stratified jitter, example shuffling, mini-batches) draws from it, so a seed
+// fixes every result on every platform: no std::*_distribution (their output differs between
+// standard libraries) and no transcendental functions (uniform draws only).
 #pragma once
 
 #include <cstddef>
@@ -10,21 +10,9 @@
 #include <span>
 #include <utility>
 
+#include "skylight/core/random.h"
+
 namespace skylight::nn {
-
-class SplitMix64 {
- public:
-  explicit SplitMix64(std::uint64_t seed) : state_(seed) {}
-  std::uint64_t next() {
-    std::uint64_t z = (state_ += 0x9e3779b97f4a7c15ULL);
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
-    return z ^ (z >> 31);
-  }
-
- private:
-  std::uint64_t state_;
-};
 
 class Rng {
  public:
