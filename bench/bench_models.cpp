@@ -5,6 +5,9 @@
 // Ratios are printed by `skylight bench`; here compare the reported times of the three.
 // EstimateFisheye1Mpx: one `skylight estimate` on a 1024 x 1024 fisheye Preetham sky with the solar
 // disc (sun detection, automatic mask, 100 samples, RANSAC, bootstrap), on the calling thread.
+// GpuNnFrame* (with SKYLIGHT_GPU): the `nn` model's fragment-shader frame, 1024x512 equirect, on
+// the headless GL context (Mesa llvmpipe without a GPU; docs/GPU.md), with glFinish, without and
+// with the float readback.
 #include <benchmark/benchmark.h>
 
 #include <chrono>
@@ -17,6 +20,9 @@
 #include "skylight/models/sky_model.h"
 #include "skylight/render/sky_render.h"
 #include "skylight/sh/polynomial.h"
+#ifdef SKYLIGHT_HAVE_GPU
+#include "skylight/gpu/sky_render.h"
+#endif
 
 namespace {
 
@@ -178,6 +184,26 @@ void ShProjectPreetham(benchmark::State& state) {
 
 BENCHMARK(ShEvaluateTable)->Unit(benchmark::kMicrosecond);
 BENCHMARK(ShProjectPreetham)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+#ifdef SKYLIGHT_HAVE_GPU
+void GpuNnFrame(benchmark::State& state, bool readback) {
+  gpu::Context context;
+  const auto m = model("nn");
+  render::RenderSettings s;  // 1024 x 512 equirect
+  gpu::SkyRenderer r(dynamic_cast<const NeuralSkyModel&>(*m), s);
+  for (auto _ : state) {
+    r.draw();
+    if (readback)
+      benchmark::DoNotOptimize(r.read().data.data());
+    else
+      context.finish();
+  }
+}
+BENCHMARK_CAPTURE(GpuNnFrame, draw, false)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK_CAPTURE(GpuNnFrame, draw_and_readback, true)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+#endif
 
 BENCHMARK_MAIN();
 BENCHMARK(EstimateFisheye1Mpx)->Unit(benchmark::kMillisecond);

@@ -4,10 +4,12 @@
 set -euo pipefail
 # chromium: the headless browser test of the report (tests/report_browser_test.sh).
 # clang + libclang-rt-14-dev: the libFuzzer targets (scripts/fuzz.sh, docs/TESTING.md).
+# EGL/GL + Mesa (llvmpipe) + glslang-tools: the headless GL module gpu/ and its tests (docs/GPU.md).
 PACKAGES=(build-essential cmake ninja-build pkg-config git
   libeigen3-dev libopenexr-dev libimath-dev libstb-dev libcli11-dev libfmt-dev
   nlohmann-json3-dev libhwy-dev libgtest-dev libgmock-dev libbenchmark-dev
-  chromium clang libclang-rt-14-dev)
+  chromium clang libclang-rt-14-dev
+  libegl-dev libgles-dev libgl-dev libopengl-dev libegl-mesa0 libgl1-mesa-dri glslang-tools)
 missing=()
 for p in "${PACKAGES[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

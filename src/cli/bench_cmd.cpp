@@ -1,6 +1,8 @@
 // `skylight bench`: the batch path of each model timed against an in-run baseline (the plain
 // scalar loop of the same model), medians of repeated runs, printed as ratios; the neural sky
-// (`nn`, the embedded 6-12-3 network) also against the Hosek-Wilkie batch path (docs/NN.md).
+// (`nn`, the embedded 6-12-3 network) also against the Hosek-Wilkie batch path (docs/NN.md);
+// `--models gpu` times the same network's fragment-shader frame (gpu/, docs/GPU.md) against its
+// CPU batch path.
 #include <fmt/format.h>
 #include <time.h>
 
@@ -12,9 +14,13 @@
 #include "skylight/core/error.h"
 #include "skylight/core/parallel.h"
 #include "skylight/estimate/turbidity.h"
+#include "skylight/models/neural_sky.h"
 #include "skylight/models/sh.h"
 #include "skylight/render/sky_render.h"
 #include "skylight/sh/polynomial.h"
+#ifdef SKYLIGHT_HAVE_GPU
+#include "skylight/gpu/sky_render.h"
+#endif
 
 namespace skylight::cli {
 namespace {
@@ -115,6 +121,50 @@ void bench_sh(int repeats, const std::string& table_path) {
                   thread_count(), project / per_eval));
 }
 
+// The embedded network (`nn` at the bench's defaults) as a fragment shader on the headless GL
+// context, one width x height equirect frame: draw (glFinish) and draw + float readback, against
+// the CPU batch path over the same directions on all threads.
+void bench_gpu(int width, int height, int repeats) {
+#ifdef SKYLIGHT_HAVE_GPU
+  gpu::Context context;
+  SkyParameters p;
+  p.values = find_model("nn")->example;
+  const auto model = find_model("nn")->make(p);
+  const auto& nn = dynamic_cast<const NeuralSkyModel&>(*model);
+  render::RenderSettings s;
+  s.width = width;
+  s.height = height;
+  gpu::SkyRenderer r(nn, s);
+  r.draw();  // compile and first-use costs outside the timing
+  context.finish();
+  const double draw = median_seconds(repeats, [&] {
+    r.draw();
+    context.finish();
+  });
+  const double readback = median_seconds(repeats, [&] {
+    r.draw();
+    (void)r.read();
+  });
+  const auto dirs = render::pixel_directions(s);
+  const std::size_t n = dirs.x.size();
+  std::vector<float> X(n), Y(n), Z(n);
+  const double cpu = median_seconds(repeats, [&] {
+    tristimulus_parallel(nn, {dirs.x, dirs.y, dirs.z}, {X, Y, Z});
+  });
+  write_stdout(fmt::format(
+      "gpu: nn ({}) {}x{} equirect on '{}': frame {:.2f} ms (draw + glFinish), {:.2f} ms with the "
+      "float readback; CPU batch path ({} threads) {:.2f} ms; GL frame / CPU {:.1f}x, with the "
+      "readback {:.1f}x\n",
+      nn.network().net.layout().describe(), width, height, context.renderer(), 1e3 * draw,
+      1e3 * readback, thread_count(), 1e3 * cpu, draw / cpu, readback / cpu));
+#else
+  (void)width, (void)height, (void)repeats;
+  throw std::runtime_error(
+      "--models gpu: this skylight was built without the GPU module (SKYLIGHT_GPU=OFF; "
+      "docs/GPU.md)");
+#endif
+}
+
 int run_bench(const BenchFlags& f, const CLI::App& cmd) {
   std::string given;
   for (const auto& name : f.model_flags)
@@ -126,6 +176,7 @@ int run_bench(const BenchFlags& f, const CLI::App& cmd) {
         given));
   std::vector<const ModelInfo*> models;
   for (const auto& name : f.models) {
+    if (name == "gpu") continue;  // not a model: the GL frame, timed last (bench_gpu)
     const ModelInfo* m = find_model(name);
     if (!m) {
       std::string known;
@@ -185,6 +236,8 @@ int run_bench(const BenchFlags& f, const CLI::App& cmd) {
   if (f.estimate) bench_estimate(f.repeats);
   if (std::find(f.models.begin(), f.models.end(), "sh") != f.models.end())
     bench_sh(f.repeats, f.sh_table);
+  if (std::find(f.models.begin(), f.models.end(), "gpu") != f.models.end())
+    bench_gpu(f.width, f.height, f.repeats);
   return kExitOk;
 }
 
@@ -209,7 +262,8 @@ void add_bench_command(CLI::App& app, Commands& commands) {
               f->repeats);
   cmd->add_option("--models", f->models,
                   "models to time; default preetham,cie,hosek,nn; with sh also the SH table's "
-                  "evaluation against direct projection")
+                  "evaluation against direct projection; with gpu the nn network's GL frame "
+                  "against its CPU batch path")
       ->delimiter(',');
   cmd->add_option("--sh-table", f->sh_table,
                   "with sh in --models: the SH table timed (default: the embedded one)");

@@ -2,7 +2,8 @@
 // to any registered sky model with the paper's protocol as defaults and writes the weights file;
 // `nn validate` measures a weights file on the paper's validation set of its source (normalised
 // RMSE, relative radiance error, irradiance of eq. 11 per sun position: Tables 1 and 2).
-// Evaluating a network is `eval`/`render --model nn --weights FILE`.
+// `nn export --glsl` writes a network as a GLSL function with its weights baked in (nn/glsl.h,
+// docs/GPU.md). Evaluating a network is `eval`/`render --model nn --weights FILE`.
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
@@ -16,6 +17,7 @@
 #include "skylight/io/file.h"
 #include "skylight/models/neural_sky.h"
 #include "skylight/models/neural_training.h"
+#include "skylight/nn/glsl.h"
 #include "skylight/version.h"
 
 namespace skylight::cli {
@@ -39,6 +41,11 @@ struct ValidateFlags {
   std::string weights;
   bool json = false;
   int suns = 0, view_zeniths = 0, view_azimuths = 0;
+};
+
+struct ExportFlags {
+  std::string weights;  // empty: the embedded network
+  std::string glsl;
 };
 
 // Sampling overrides for quick runs (tests); 0 = the paper protocol.
@@ -200,11 +207,19 @@ int run_validate(const ValidateFlags& f) {
   return kExitOk;
 }
 
+int run_export(const ExportFlags& f) {
+  const nn::SkyNetwork sky =
+      f.weights.empty() ? embedded_sky_network() : load_sky_network_file(f.weights);
+  io::write_text_file(f.glsl, nn::glsl_sky_network_file(sky));
+  return kExitOk;
+}
+
 }  // namespace
 
 void add_nn_command(CLI::App& app, Commands& commands) {
   auto* nn_cmd = app.add_subcommand(
-      "nn", "neural sky models (Satilmis et al. 2016): train on a sky model, validate");
+      "nn",
+      "neural sky models (Satilmis et al. 2016): train on a sky model, validate, export as GLSL");
   nn_cmd->require_subcommand(1);
 
   auto tf = std::make_shared<TrainFlags>();
@@ -264,6 +279,15 @@ void add_nn_command(CLI::App& app, Commands& commands) {
   validate->add_flag("--json", vf->json, "JSON on standard output");
   add_sampling_flags(*validate, vf->suns, vf->view_zeniths, vf->view_azimuths);
   commands.push_back({validate, [vf] { return run_validate(*vf); }});
+
+  auto ef = std::make_shared<ExportFlags>();
+  auto* exp = nn_cmd->add_subcommand(
+      "export", "write a network as a GLSL function with its weights baked in (docs/GPU.md)");
+  exp->add_option("--weights", ef->weights, "weights file (JSON); default: the embedded network");
+  exp->add_option("--glsl", ef->glsl,
+                  "GLSL file to write: vec3 skylight_sky(vec3 view, vec3 sun, float turbidity)")
+      ->required();
+  commands.push_back({exp, [ef] { return run_export(*ef); }});
 }
 
 }  // namespace skylight::cli

@@ -1,5 +1,6 @@
 // `skylight render`: a sky model into an image (EXR, HDR, PFM or a PNG preview by extension), with
-// optional tone-mapped preview and log-luminance false-colour map.
+// optional tone-mapped preview and log-luminance false-colour map. `--gpu` renders the `nn` model
+// with the headless GL module instead (gpu/sky_render.h, docs/GPU.md).
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -8,9 +9,13 @@
 #include "common.h"
 #include "skylight/core/error.h"
 #include "skylight/io/image.h"
+#include "skylight/models/neural_sky.h"
 #include "skylight/render/false_colour.h"
 #include "skylight/render/sky_render.h"
 #include "skylight/render/tonemap.h"
+#ifdef SKYLIGHT_HAVE_GPU
+#include "skylight/gpu/sky_render.h"
+#endif
 
 namespace skylight::cli {
 namespace {
@@ -24,7 +29,24 @@ struct RenderFlags {
   bool width_given = false;  // cubemap: without --width the width is 6 x height
   std::string output, preview, false_colour;
   std::vector<double> fc_range{0.0, 6.0};
+  bool gpu = false;
 };
+
+// `--gpu`: the fragment-shader render of the `nn` model (gpu/sky_render.h).
+render::SkyImage render_on_gpu(const SkyModel& model, const render::RenderSettings& s) {
+  const auto* nn = dynamic_cast<const NeuralSkyModel*>(&model);
+  if (nn == nullptr)
+    throw InvalidArgument(
+        fmt::format("--gpu renders the nn model only (--model nn), not '{}'", model.name()));
+#ifdef SKYLIGHT_HAVE_GPU
+  return gpu::render_sky_gpu(*nn, s);
+#else
+  (void)s;
+  throw std::runtime_error(
+      "--gpu: this skylight was built without the GPU module (SKYLIGHT_GPU=OFF: EGL and OpenGL "
+      "were not found when configuring; docs/GPU.md)");
+#endif
+}
 
 // Default vertical field of view of the camera projection [deg] (fisheye: kFisheyeFovDeg).
 constexpr double kCameraFovDeg = 60.0;
@@ -84,7 +106,7 @@ int run_render(const RenderFlags& f, const CLI::App& cmd) {
                                       f.fc_range[0], f.fc_range[1]));
   const auto model = f.model.make();
   warn_domain(*model);
-  const render::SkyImage img = render::render_sky(*model, s);
+  const render::SkyImage img = f.gpu ? render_on_gpu(*model, s) : render::render_sky(*model, s);
   // No output may hold NaN or Inf: a model that overflows is an error, and nothing is written.
   const auto bad = std::count_if(img.rgb.data.begin(), img.rgb.data.end(),
                                  [](float v) { return !std::isfinite(v); });
@@ -99,6 +121,7 @@ int run_render(const RenderFlags& f, const CLI::App& cmd) {
                                                                            : "sky");
   for (auto& entry : f.model.solar_position_metadata()) md.push_back(std::move(entry));
   md.emplace_back("skylight:projection", f.projection);
+  if (f.gpu) md.emplace_back("skylight:renderer", "gpu (OpenGL fragment shader, docs/GPU.md)");
   if (s.projection == render::Projection::camera) {
     md.emplace_back("skylight:fov_deg",
                     fmt::format("{}", f.fisheye.fov_deg.value_or(kCameraFovDeg)));
@@ -170,6 +193,9 @@ void add_render_command(CLI::App& app, Commands& commands) {
   cmd->add_option("-o,--output", f->output,
                   "output image: .exr (float + metadata), .hdr, .pfm or .png (preview)")
       ->required();
+  cmd->add_flag("--gpu", f->gpu,
+                "render with OpenGL (headless EGL; the nn model only, docs/GPU.md) instead of the "
+                "CPU");
   cmd->add_option("--preview", f->preview, "also write a tone-mapped PNG preview here");
   cmd->add_option("--false-colour", f->false_colour,
                   "also write a log-luminance false-colour PNG with legend here");

@@ -58,5 +58,18 @@ TEST_F(Cli, BenchTimesOneEstimateOnAMegapixelFisheye) {
   EXPECT_NEAR(std::stod(r.out.substr(at + 5)), 4.0, kAutoSunTurbidityTol) << r.out;
 }
 
+TEST_F(Cli, BenchTimesTheGlFrameOfTheNetwork) {
+  const testing_support::CliResult r = run("bench --width 16 --height 8 --repeats 1 --models gpu");
+#ifdef SKYLIGHT_HAVE_GPU
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("gpu: nn (6-12-3 satilmis/satilmis) 16x8 equirect on '"), std::string::npos)
+      << r.out;
+  EXPECT_NE(r.out.find("with the readback"), std::string::npos) << r.out;
+#else
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.err.find("built without the GPU module"), std::string::npos) << r.err;
+#endif
+}
+
 }  // namespace
 }  // namespace skylight

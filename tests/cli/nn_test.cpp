@@ -9,6 +9,8 @@
 #include "skylight/models/neural_sky.h"
 #include "skylight/models/sky_model.h"
 #include "support/cli_run.h"
+#include "support/glslang.h"
+#include "support/scratch_dir.h"
 
 namespace fs = std::filesystem;
 
@@ -80,6 +82,35 @@ TEST_F(Cli, NnBadWeightsAndFlags) {
   EXPECT_FALSE(fs::exists(dir_ / "x.json"));
   r = run("nn train --source nosuch -o '" + (dir_ / "x.json").string() + "'");
   EXPECT_EQ(r.status, 2) << r.err;
+}
+
+TEST_F(Cli, NnExportGlslIsValidAndAtomic) {
+  // The embedded network (no --weights) and a weights file give the same GLSL.
+  const fs::path embedded = dir_ / "embedded.glsl", from_file = dir_ / "file.glsl";
+  const fs::path w = dir_ / "w.json";
+  std::ofstream(w) << nn::to_json(embedded_sky_network());
+  testing_support::CliResult r = run("nn export --glsl '" + embedded.string() + "'");
+  ASSERT_EQ(r.status, 0) << r.err;
+  r = run("nn export --weights '" + w.string() + "' --glsl '" + from_file.string() + "'");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const std::string text = testing_support::slurp(embedded);
+  EXPECT_EQ(text, testing_support::slurp(from_file));
+  EXPECT_EQ(text.rfind("#version 330 core\n", 0), 0u);
+  EXPECT_NE(text.find("vec3 skylight_sky(vec3 view, vec3 sun, float turbidity)"),
+            std::string::npos);
+  const auto v =
+      testing_support::run_glslang("-S frag '" + embedded.string() + "'", dir_ / "glslang.log");
+  EXPECT_EQ(v.status, 0) << v.output;
+  // A bad weights file: exit 2, nothing written.
+  const fs::path bad = dir_ / "bad.json", out = dir_ / "bad.glsl";
+  std::ofstream(bad) << "{\"format\": \"skylight-nn-sky\", \"version\": 9}\n";
+  r = run("nn export --weights '" + bad.string() + "' --glsl '" + out.string() + "'");
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_FALSE(fs::exists(out));
+  r = run("nn export --weights '" + (dir_ / "missing.json").string() + "' --glsl '" + out.string() +
+          "'");
+  EXPECT_EQ(r.status, 1) << r.err;
+  EXPECT_FALSE(fs::exists(out));
 }
 
 }  // namespace

@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -206,6 +207,40 @@ TEST_F(Cli, EveryMetadataKeyIsDocumentedInTheReadme) {
     }
   }
   EXPECT_GT(keys, 50);
+}
+
+// `render --gpu` against the CPU render of the same network (gpu/sky_render_test.cpp holds the
+// per-projection bounds; here the CLI path end to end): 1e-4 relative above 1e-3 of the peak.
+constexpr double kGpuCliRelativeTolerance = 1e-4;
+constexpr double kGpuCliFloor = 1e-3;
+
+TEST_F(Cli, RenderGpuMatchesTheCpuRender) {
+  const std::string model = "--model nn --turbidity 3 --sun-zenith 50 --sun-azimuth 120";
+  const fs::path gpu = dir_ / "gpu.exr", cpu = dir_ / "cpu.exr", png = dir_ / "gpu.png";
+  testing_support::CliResult r = run("render " + model + " --gpu --width 64 --height 32 -o '" +
+                                     gpu.string() + "' --preview '" + png.string() + "'");
+#ifdef SKYLIGHT_HAVE_GPU
+  ASSERT_EQ(r.status, 0) << r.err;
+  r = run("render " + model + " --width 64 --height 32 -o '" + cpu.string() + "'");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const io::ImageF a = io::read_image(gpu), b = io::read_image(cpu);
+  ASSERT_EQ(a.data.size(), b.data.size());
+  const float peak = *std::max_element(b.data.begin(), b.data.end());
+  double worst = 0.0;
+  for (std::size_t i = 0; i < a.data.size(); ++i)
+    if (b.data[i] > kGpuCliFloor * peak)
+      worst = std::max(worst, std::abs(a.data[i] - b.data[i]) / static_cast<double>(b.data[i]));
+  EXPECT_LE(worst, kGpuCliRelativeTolerance);
+  EXPECT_TRUE(fs::exists(png));
+  // Only the nn model has a shader.
+  r = run("render --model preetham --gpu --width 8 --height 4 -o '" + (dir_ / "p.exr").string() +
+          "'");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("--gpu renders the nn model only"), std::string::npos) << r.err;
+#else
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.err.find("built without the GPU module"), std::string::npos) << r.err;
+#endif
 }
 
 }  // namespace

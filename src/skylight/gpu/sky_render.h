@@ -1,0 +1,63 @@
+// The neural sky model (`nn`, models/neural_sky.h) rendered by a fragment shader (docs/GPU.md):
+// per pixel, the direction of render/sky_render.h's layout (ported to GLSL, every projection) and
+// the network exported by nn/glsl.h. The result is the same SkyImage as render::render_sky; the
+// colour conversion to XYZ, the mask and the solar disc (none for `nn`) are done on the CPU after
+// the readback.
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include "skylight/gpu/context.h"
+#include "skylight/models/neural_sky.h"
+#include "skylight/render/sky_render.h"
+
+namespace skylight::gpu {
+
+// GLSL of render::pixel_direction for s.projection (no #version line):
+//   bool skylight_pixel_direction(vec2 pixel, out vec3 dir)
+// pixel = (col, row) continuous with centres at +0.5, row 0 at the top; false (dir = zenith)
+// where the layout has no direction. Reads the uniforms it declares (see SkyRenderer).
+std::string glsl_pixel_direction(const render::RenderSettings& s);
+
+// The directions the shader computes (glsl_pixel_direction) for every pixel: x, y, z and 1 (a
+// direction) or 0 (none) as RGBA, row 0 at the top. Needs a current Context.
+io::ImageF shader_pixel_directions(const render::RenderSettings& s);
+
+// Where the fragment shader takes each pixel's direction from.
+enum class DirectionSource {
+  shader,   // computed in GLSL (glsl_pixel_direction): the render path
+  texture,  // render::pixel_directions (double, rounded to float) uploaded as an RGBA32F texture:
+            // the network alone against the CPU batch path on identical float inputs
+};
+
+// The compiled sky program and its float target for one model and layout.
+class SkyRenderer {
+ public:
+  // Needs a current Context. Throws InvalidArgument for bad settings (render::validate) and
+  // GpuError from GL.
+  SkyRenderer(const NeuralSkyModel& model, const render::RenderSettings& settings,
+              DirectionSource directions = DirectionSource::shader);
+  // The full fragment shader (for docs and tests).
+  const std::string& fragment_source() const { return source_; }
+  // Draws one frame into the target (no readback; Context::finish to wait for it).
+  void draw();
+  // The target read back: linear sRGB in r, g, b and 1 (a direction) or 0 (none) in alpha.
+  io::ImageF read() const;
+  // The frame as render::render_sky returns it (read() + XYZ, mask and solar disc on the CPU).
+  render::SkyImage image() const;
+
+ private:
+  const NeuralSkyModel& model_;
+  render::RenderSettings settings_;
+  std::string source_;
+  std::unique_ptr<Texture> directions_;
+  std::unique_ptr<Program> program_;
+  std::unique_ptr<Target> target_;
+};
+
+// One frame in a context of its own: render::render_sky(model, settings), computed by GL.
+render::SkyImage render_sky_gpu(const NeuralSkyModel& model,
+                                const render::RenderSettings& settings);
+
+}  // namespace skylight::gpu

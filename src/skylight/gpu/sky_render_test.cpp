@@ -1,0 +1,168 @@
+#include "skylight/gpu/sky_render.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "support/gpu_context.h"
+
+namespace skylight::gpu {
+namespace {
+
+using testing_support::GpuTest;
+
+// GL against the CPU network (nn SkyModel batch path, render::render_sky), per pixel and
+// channel, both with the CPU's float directions (DirectionSource::texture: the network alone) and
+// with the directions computed in GLSL (the render path): the relative difference where the CPU
+// value is above the floor (docs/GPU.md). Measured worst 2.2e-5.
+constexpr double kGpuRelativeTolerance = 1e-4;
+// Floor: a fraction of the image's brightest channel; below it the output is "tiny" (the satilmis
+// decoding 0.5 (1/y - 1) cancels as y -> 1 and absolute float rounding dominates).
+constexpr double kGpuRelativeFloor = 1e-3;
+// Angle between the GLSL and the CPU (double) direction of a pixel [rad]: Mesa's GLSL atan is a
+// polynomial approximation (measured errors up to 7e-6 rad, stereographic fisheye), the rest
+// single-precision rounding of angles up to 2 pi (1e-6).
+constexpr double kDirectionTolerance = 2e-5;
+
+struct Difference {
+  double worst_relative = 0.0;
+  int compared = 0, mask_mismatches = 0;
+};
+
+Difference compare(const render::SkyImage& gpu, const render::SkyImage& cpu) {
+  Difference d;
+  const float peak = *std::max_element(cpu.rgb.data.begin(), cpu.rgb.data.end());
+  const double floor = kGpuRelativeFloor * peak;
+  for (std::size_t i = 0; i < cpu.mask.size(); ++i) {
+    if (gpu.mask[i] != cpu.mask[i]) {
+      ++d.mask_mismatches;
+      continue;
+    }
+    for (int c = 0; c < 3; ++c) {
+      const double a = gpu.rgb.data[3 * i + c], b = cpu.rgb.data[3 * i + c];
+      if (std::abs(b) <= floor) continue;
+      d.worst_relative = std::max(d.worst_relative, std::abs(a - b) / std::abs(b));
+      ++d.compared;
+    }
+  }
+  return d;
+}
+
+NeuralSkyParameters sky(double sun_zenith_deg, double sun_azimuth_deg) {
+  NeuralSkyParameters p;
+  p.sun.zenith = deg_to_rad(sun_zenith_deg);
+  p.sun.azimuth = deg_to_rad(sun_azimuth_deg);
+  p.turbidity = 3.5;
+  return p;
+}
+
+std::vector<render::RenderSettings> layouts() {
+  std::vector<render::RenderSettings> out;
+  for (const auto proj :
+       {render::Projection::equirect, render::Projection::hemisphere, render::Projection::fisheye,
+        render::Projection::cubemap, render::Projection::camera}) {
+    render::RenderSettings s;
+    s.projection = proj;
+    s.width = proj == render::Projection::cubemap ? 192 : 160;
+    s.height = proj == render::Projection::cubemap ? 32 : 80;
+    s.camera.look_zenith = deg_to_rad(70.0);
+    s.camera.look_azimuth = deg_to_rad(120.0);
+    out.push_back(s);
+  }
+  for (const auto lens : {FisheyeLens::equidistant, FisheyeLens::equisolid,
+                          FisheyeLens::orthographic, FisheyeLens::stereographic}) {
+    render::RenderSettings s;
+    s.projection = render::Projection::fisheye;
+    s.width = 96;
+    s.height = 96;
+    s.fisheye.lens = lens;
+    s.fisheye.fov = lens == FisheyeLens::orthographic ? kPi : deg_to_rad(200.0);
+    s.fisheye.north_angle = deg_to_rad(30.0);
+    out.push_back(s);
+  }
+  return out;
+}
+
+std::string name(const render::RenderSettings& s) {
+  std::string n(to_string(s.projection));
+  if (s.projection == render::Projection::fisheye) {
+    n += '_';
+    n += to_string(s.fisheye.lens);
+  }
+  return n;
+}
+
+void expect_matches_cpu(const NeuralSkyModel& model, const render::RenderSettings& s,
+                        DirectionSource source, double tolerance) {
+  SkyRenderer r(model, s, source);
+  r.draw();
+  const render::SkyImage gpu = r.image();
+  const render::SkyImage cpu = render::render_sky(model, s);
+  const Difference d = compare(gpu, cpu);
+  EXPECT_GT(d.compared, s.width * s.height) << name(s);
+  EXPECT_LE(d.worst_relative, tolerance) << name(s);
+  // Shader directions: a pixel centre at the very edge of a fisheye circle may fall on either
+  // side in float; texture directions carry the CPU's mask.
+  EXPECT_LE(d.mask_mismatches, source == DirectionSource::texture ? 0 : s.width / 8) << name(s);
+  ::testing::Test::RecordProperty(
+      name(s) + (source == DirectionSource::texture ? "_texture" : "_shader") + "_worst_relative",
+      std::to_string(d.worst_relative));
+}
+
+TEST_F(GpuTest, NetworkMatchesTheCpuBatchPathInEveryProjection) {
+  for (const double sun_zenith_deg : {40.0, 75.0}) {
+    const NeuralSkyModel model(sky(sun_zenith_deg, 250.0));
+    for (const auto& s : layouts())
+      expect_matches_cpu(model, s, DirectionSource::texture, kGpuRelativeTolerance);
+  }
+}
+
+TEST_F(GpuTest, ShaderRenderMatchesTheCpuRenderInEveryProjection) {
+  for (const double sun_zenith_deg : {40.0, 75.0}) {
+    const NeuralSkyModel model(sky(sun_zenith_deg, 250.0));
+    for (const auto& s : layouts())
+      expect_matches_cpu(model, s, DirectionSource::shader, kGpuRelativeTolerance);
+  }
+}
+
+TEST_F(GpuTest, ShaderDirectionsMatchTheCpuLayouts) {
+  for (const auto& s : layouts()) {
+    const io::ImageF gpu = shader_pixel_directions(s);
+    const render::PixelDirections cpu = render::pixel_directions(s);
+    double worst = 0.0;
+    int mismatches = 0;
+    for (std::size_t i = 0; i < cpu.x.size(); ++i) {
+      const float* g = gpu.data.data() + 4 * i;
+      if ((g[3] != 0.0f) != (cpu.valid[i] != 0)) {
+        ++mismatches;
+        continue;
+      }
+      if (!cpu.valid[i]) continue;
+      worst = std::max(worst,
+                       angle_between(Vec3{g[0], g[1], g[2]}, Vec3{cpu.x[i], cpu.y[i], cpu.z[i]}));
+    }
+    EXPECT_LE(worst, kDirectionTolerance) << name(s);
+    EXPECT_LE(mismatches, s.width / 8) << name(s);
+    ::testing::Test::RecordProperty(name(s) + "_direction_worst_rad", std::to_string(worst));
+  }
+}
+
+TEST_F(GpuTest, SunBelowTheHorizonIsDarkAndMaskIsKept) {
+  const NeuralSkyModel model(sky(100.0, 180.0));
+  render::RenderSettings s;
+  s.projection = render::Projection::fisheye;
+  s.width = 64;
+  s.height = 32;
+  SkyRenderer r(model, s);
+  r.draw();
+  const render::SkyImage img = r.image();
+  EXPECT_TRUE(
+      std::all_of(img.rgb.data.begin(), img.rgb.data.end(), [](float v) { return v == 0.0f; }));
+  // The image circle (diameter 32) leaves the sides masked.
+  EXPECT_EQ(img.mask[0], 1);
+  EXPECT_EQ(img.mask[16 * 64 + 32], 0);
+}
+
+}  // namespace
+}  // namespace skylight::gpu

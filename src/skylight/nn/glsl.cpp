@@ -1,0 +1,206 @@
+#include "skylight/nn/glsl.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cctype>
+#include <set>
+
+#include "skylight/core/error.h"
+#include "skylight/nn/mlp_kernel.h"
+
+namespace skylight::nn {
+
+namespace {
+
+// A float literal that GLSL parses back to exactly static_cast<float>(v) (9 significant digits
+// round-trip any float; the exponent form always reads as float).
+std::string literal(double v) {
+  return fmt::format("{:.8e}", static_cast<float>(v));
+}
+
+// User text (a weights file's provenance) inside a // comment: one line, printable ASCII.
+std::string comment_text(std::string_view s) {
+  if (s.empty()) return "?";
+  std::string out(s.substr(0, 200));
+  for (char& c : out)
+    if (c < 0x20 || c > 0x7e) c = ' ';
+  return out;
+}
+
+bool is_identifier(std::string_view s) {
+  if (s.empty() || std::isdigit(static_cast<unsigned char>(s.front()))) return false;
+  return std::all_of(s.begin(), s.end(), [](char c) {
+    return std::isalnum(static_cast<unsigned char>(c)) || c == '_';
+  });
+}
+
+}  // namespace
+
+std::string glsl_activation_name(Activation a) {
+  return "skylight_act_" + std::string(to_string(a));
+}
+
+std::string glsl_activation_function(Activation a) {
+  switch (a) {
+    case Activation::identity:
+      return "return x;";
+    case Activation::satilmis:
+      return "return 1.0 / (1.0 + x * x);";
+    case Activation::pietras:
+      // 1 / (1 + 2^(2x)) = sigmoid(-2 ln2 x), through 2^(-2|x|) <= 1.
+      return "float e = exp2(-2.0 * abs(x));\n  return x > 0.0 ? e / (1.0 + e) : 1.0 / (1.0 + e);";
+    case Activation::tanh:
+      // Not the builtin tanh: some drivers evaluate it as (e^2x - 1) / (e^2x + 1), NaN for large x.
+      return "float e = exp(-2.0 * abs(x));\n  return sign(x) * (1.0 - e) / (1.0 + e);";
+    case Activation::sigmoid:
+      return "float e = exp(-abs(x));\n  return x >= 0.0 ? 1.0 / (1.0 + e) : e / (1.0 + e);";
+    case Activation::relu:
+      return "return max(x, 0.0);";
+    case Activation::softplus:
+      return "return max(x, 0.0) + log(1.0 + exp(-abs(x)));";
+  }
+  return "return x;";
+}
+
+std::string glsl_mlp(const Mlp& net, std::string_view name) {
+  const MlpLayout& l = net.layout();
+  l.validate();
+  if (!is_identifier(name))
+    throw InvalidArgument(fmt::format("GLSL function name '{}' is not an identifier", name));
+  std::string s;
+  std::set<Activation> used(l.activations.begin(), l.activations.end());
+  for (Activation a : used)
+    s += fmt::format("float {}(float x) {{\n  {}\n}}\n\n", glsl_activation_name(a),
+                     glsl_activation_function(a));
+  s += fmt::format("// {} ({} parameters), weights baked in (single precision).\n", l.describe(),
+                   l.parameter_count());
+  s += fmt::format("void {}(in float x[{}], out float y[{}]) {{\n", name, l.inputs(), l.outputs());
+  const auto p = net.parameters();
+  for (int k = 1; k <= l.layers(); ++k) {
+    const int n_in = l.widths[static_cast<std::size_t>(k - 1)];
+    const int n_out = l.widths[static_cast<std::size_t>(k)];
+    const std::size_t w = l.weight_offset(k), b = l.bias_offset(k);
+    const std::string f = glsl_activation_name(l.activations[static_cast<std::size_t>(k - 1)]);
+    const bool last = k == l.layers();
+    for (int j = 0; j < n_out; ++j) {
+      std::string sum = literal(p[b + static_cast<std::size_t>(j)]);
+      for (int i = 0; i < n_in; ++i) {
+        const std::string in = k == 1 ? fmt::format("x[{}]", i) : fmt::format("o{}_{}", k - 1, i);
+        sum +=
+            fmt::format(" + {} * {}", literal(p[w + static_cast<std::size_t>(j) * n_in + i]), in);
+      }
+      if (last)
+        s += fmt::format("  y[{}] = {}({});\n", j, f, sum);
+      else
+        s += fmt::format("  float o{}_{} = {}({});\n", k, j, f, sum);
+    }
+  }
+  s += "}\n";
+  return s;
+}
+
+namespace {
+
+std::string input_expression(Input in) {
+  switch (in) {
+    case Input::sqrt_turbidity:
+      return "sqrt(turbidity)";
+    case Input::sun_zenith:
+      return "sun_zenith";
+    case Input::view_x:
+      return "v.x";
+    case Input::view_y:
+      return "v.y";
+    case Input::view_z:
+      return "v.z";
+    case Input::chord:
+      return "d";
+    case Input::log_chord:
+      return fmt::format("log(d + {})", literal(detail::kLogChordOffset));
+    case Input::sqrt_view_z:
+      return "sqrt(max(v.z, 0.0))";
+    case Input::aureole:
+      return fmt::format("1.0 / (d * d + {})", literal(detail::kAureoleOffset));
+    case Input::cos_sun_zenith:
+      return "cos(sun_zenith)";
+    case Input::sun_elevation_cbrt:
+      // cbrt of a value in [0, 1]; GLSL's pow(x, y) is undefined only for x < 0 (and x = 0,
+      // y <= 0).
+      return fmt::format("pow(max(0.0, 1.0 - sun_zenith / {}), 1.0 / 3.0)", literal(kPi / 2));
+    case Input::turbidity:
+      return "turbidity";
+  }
+  return "0.0";
+}
+
+std::string decode_expression(OutputEncoding e, const std::string& y) {
+  switch (e) {
+    case OutputEncoding::satilmis:
+      return fmt::format("0.5 * (1.0 / {} - 1.0)", y);  // eq. 7
+    case OutputEncoding::log:
+      return fmt::format("exp({})", y);
+    case OutputEncoding::root4:
+      return fmt::format("({0} * {0}) * ({0} * {0})", y);
+    case OutputEncoding::root8:
+      return fmt::format("(({0} * {0}) * ({0} * {0})) * (({0} * {0}) * ({0} * {0}))", y);
+  }
+  return y;
+}
+
+}  // namespace
+
+std::string glsl_sky_network(const SkyNetwork& sky) {
+  const MlpLayout& l = sky.net.layout();
+  if (l.outputs() != 3 || static_cast<int>(sky.inputs.size()) != l.inputs())
+    throw InvalidArgument(fmt::format("sky network {}: needs {} inputs and 3 outputs", l.describe(),
+                                      sky.inputs.size()));
+  std::string s = glsl_mlp(sky.net, "skylight_sky_network");
+  s += "\n// SkyNetwork::rgb (nn/sky_network.h): linear sRGB on the source model's scale.\n";
+  s += "vec3 skylight_sky_state(vec3 view, float sun_zenith, float sun_azimuth, float turbidity) "
+       "{\n";
+  s += "  if (view.z < 0.0) return vec3(0.0);\n";
+  s += "  // Satilmis et al. 2016 eq. 10: the view rotated by phi_sun - pi about the zenith.\n";
+  s += fmt::format("  float r = sun_azimuth - {};\n", literal(kPi));
+  s += "  float cr = cos(r), sr = sin(r);\n";
+  s += "  vec3 v = vec3(view.x * cr - view.y * sr, view.y * cr + view.x * sr, view.z);\n";
+  s += "  float st = sin(sun_zenith);\n";
+  s += "  vec3 sun = vec3(st * sin(sun_azimuth), st * cos(sun_azimuth), cos(sun_zenith));\n";
+  s += "  float d = length(sun - view);  // the chord |omega_sun - omega_view|\n";
+  s += fmt::format("  float x[{}];\n", l.inputs());
+  for (std::size_t k = 0; k < sky.inputs.size(); ++k)
+    s += fmt::format("  x[{}] = {};  // {}\n", k, input_expression(sky.inputs[k]),
+                     to_string(sky.inputs[k]));
+  s += "  float y[3];\n  skylight_sky_network(x, y);\n";
+  s += fmt::format("  return {} * vec3({}, {}, {});\n", literal(sky.target_scale),
+                   decode_expression(sky.encoding, "y[0]"), decode_expression(sky.encoding, "y[1]"),
+                   decode_expression(sky.encoding, "y[2]"));
+  s += "}\n\n";
+  s += "// The same with the sun as a unit vector (ENU).\n";
+  s += "vec3 skylight_sky(vec3 view, vec3 sun, float turbidity) {\n";
+  s += "  float sun_zenith = atan(length(sun.xy), sun.z);  // not acos: accurate near the zenith\n";
+  s += fmt::format(
+      "  float sun_azimuth = (sun.x == 0.0 && sun.y == 0.0) ? {} : atan(sun.x, sun.y);\n",
+      literal(kPi));
+  s += "  return skylight_sky_state(view, sun_zenith, sun_azimuth, turbidity);\n}\n";
+  return s;
+}
+
+std::string glsl_sky_network_file(const SkyNetwork& sky) {
+  const SkyNetworkProvenance& pv = sky.provenance;
+  std::string s;
+  s += "#version 330 core\n";
+  s += "// A neural sky network exported by skylight (`skylight nn export --glsl`, docs/GPU.md).\n";
+  s += fmt::format("// Architecture: {}; inputs: {}; output encoding: {}; target scale: {}.\n",
+                   sky.net.layout().describe(), to_string(sky.inputs), to_string(sky.encoding),
+                   sky.target_scale);
+  s += fmt::format("// Trained on: {} ({}, {}), {}.\n", comment_text(pv.source),
+                   comment_text(pv.trainer), comment_text(pv.date), comment_text(pv.software));
+  s += "// Entry points: vec3 skylight_sky_state(vec3 view, float sun_zenith, float sun_azimuth,\n"
+       "// float turbidity) and vec3 skylight_sky(vec3 view, vec3 sun, float turbidity): linear\n"
+       "// sRGB, view and sun unit vectors (x east, y north, z up), angles in radians.\n\n";
+  s += glsl_sky_network(sky);
+  return s;
+}
+
+}  // namespace skylight::nn
