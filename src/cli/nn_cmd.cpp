@@ -296,6 +296,8 @@ void add_nn_command(CLI::App& app, Commands& commands) {
                   "GLSL file to write: vec3 skylight_sky(vec3 view, vec3 sun, float turbidity)")
       ->required();
   commands.push_back({exp, [ef] { return run_export(*ef); }});
+  add_nn_animate_command(*nn_cmd, commands);
+  add_nn_study_command(*nn_cmd, commands);
 }
 
 }  // namespace skylight::cli

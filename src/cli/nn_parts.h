@@ -1,5 +1,6 @@
 // The parts of the `skylight nn` family (nn_cmd.cpp) that live in their own files: training on
-// sky-image sequences with K-fold cross-validation (nn_images_cmd.cpp). docs/NN.md.
+// sky-image sequences with K-fold cross-validation (nn_images_cmd.cpp), `nn animate`
+// (nn_animate_cmd.cpp) and the hidden-layer study `nn study` (nn_study_cmd.cpp). docs/NN.md.
 #pragma once
 
 #include <CLI/CLI.hpp>
@@ -21,6 +22,9 @@ bool images_given(const ImageTrainFlags& f);
 // empty).
 int run_train_images(const ImageTrainFlags& f, const NeuralTraining& t, const std::string& output,
                      const std::string& log);
+
+void add_nn_animate_command(CLI::App& nn, Commands& commands);
+void add_nn_study_command(CLI::App& nn, Commands& commands);
 
 // ISO 8601 UTC of now, for provenance.date.
 std::string utc_now_iso8601();

@@ -121,8 +121,9 @@ TEST_F(Cli, NnExportGlslIsValidAndAtomic) {
 constexpr double kPrintedDeg = 5e-4;
 
 // A rendered 4-capture sequence (Hosek-Wilkie with the solar disc): suns from the list, from a
-// time through the SPA, and found in the image; leave-one-image-out K-fold, the final network.
-TEST_F(Cli, NnTrainImagesKfold) {
+// time through the SPA, and found in the image; leave-one-image-out K-fold, the final network,
+// then an animation between two suns with a strip image.
+TEST_F(Cli, NnTrainImagesKfoldAndAnimate) {
   sun::SpaInput in;
   in.time = sun::parse_iso8601("2024-06-21T15:00:00+02:00");
   in.latitude = deg_to_rad(48.0);
@@ -176,6 +177,18 @@ TEST_F(Cli, NnTrainImagesKfold) {
   EXPECT_EQ(net.provenance.source, "images");
   EXPECT_EQ(net.provenance.sun_count, 4);
   EXPECT_EQ(net.provenance.turbidities, std::vector<double>{0.0});
+
+  r = run("nn animate --weights '" + w +
+          "' --from 30,100 --to 70,200 --frames 3 --width 32 --height 16 -o '" + dir_.string() +
+          "/f_#.exr' --strip '" + dir_.string() + "/strip.png'");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("    1          50.000          150.000"), std::string::npos) << r.out;
+  for (const char* f : {"f_0.exr", "f_1.exr", "f_2.exr", "strip.png"})
+    EXPECT_TRUE(fs::exists(dir_ / f)) << f;
+  EXPECT_FALSE(fs::exists(dir_ / "f_3.exr"));
+  r = run("nn animate --weights '" + w + "' --from 30,100 --to 70,200 -o '" + dir_.string() +
+          "/nohash.exr'");
+  EXPECT_EQ(r.status, 2) << r.err;
 }
 
 TEST_F(Cli, NnTrainImagesListErrorsNameTheRow) {
@@ -194,6 +207,15 @@ TEST_F(Cli, NnTrainImagesListErrorsNameTheRow) {
   EXPECT_NE(r.err.find("n.csv:2: a time needs --lat and --lon"), std::string::npos) << r.err;
   r = run("nn train --images '" + (dir_ / "bad.csv").string() + "' --source hosek -o w.json");
   EXPECT_EQ(r.status, 2) << r.err;
+}
+
+TEST_F(Cli, NnStudyTabulatesEfficiency) {
+  const auto r =
+      run("nn study --source preetham --hidden 2,4 --iterations 5 --suns 2 "
+          "--view-zeniths 3 --view-azimuths 4 --repeats 1");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("eps=1/(var*T)"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("most efficient: "), std::string::npos) << r.out;
 }
 
 }  // namespace
