@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "common.h"
+#include "nn_parts.h"
 #include "skylight/core/error.h"
 #include "skylight/core/math.h"
 #include "skylight/core/numbers.h"
@@ -78,7 +79,7 @@ std::string percent(double v) {
   return fmt::format("{:.2f} %", 100.0 * v);
 }
 
-int run_train(const TrainFlags& f) {
+int run_train(const TrainFlags& f, const ImageTrainFlags& images) {
   const auto trainer = nn::parse_trainer(f.trainer);
   if (!trainer) {
     throw InvalidArgument(
@@ -104,6 +105,7 @@ int run_train(const TrainFlags& f) {
   t.options.max_iterations = f.iterations;
   Progress progress("nn train");
   double last_report = -1.0;
+  if (images_given(images)) return run_train_images(images, t, f.output, f.log);
   t.options.progress = [&](const nn::TrainLogEntry& e) {
     // At most one progress line a second (the trainers log every iteration).
     if (e.seconds - last_report >= 1.0 || e.iteration == f.iterations) {
@@ -140,6 +142,11 @@ int run_train(const TrainFlags& f) {
 
 int run_validate(const ValidateFlags& f) {
   const nn::SkyNetwork sky = load_sky_network_file(f.weights);
+  if (sky.provenance.source == "images")
+    throw InvalidArgument(
+        fmt::format("{}: trained on images, not on a sky model: nn validate "
+                    "needs a model source (use nn train --images --kfold)",
+                    excerpt(f.weights)));
   const NeuralValidation v = validate_neural_sky(sky, f.suns, f.view_zeniths, f.view_azimuths);
   const nn::ErrorStats& e = v.errors;
   const nn::IrradianceStats& ir = v.irradiance;
@@ -270,7 +277,8 @@ void add_nn_command(CLI::App& app, Commands& commands) {
   train->add_option("--log", tf->log,
                     "training log to write (CSV: restart,iteration,seconds,mse,validation_mse,"
                     "step)");
-  commands.push_back({train, [tf] { return run_train(*tf); }});
+  auto images = add_image_train_flags(*train);
+  commands.push_back({train, [tf, images] { return run_train(*tf, *images); }});
 
   auto vf = std::make_shared<ValidateFlags>();
   auto* validate = nn_cmd->add_subcommand(
@@ -288,6 +296,8 @@ void add_nn_command(CLI::App& app, Commands& commands) {
                   "GLSL file to write: vec3 skylight_sky(vec3 view, vec3 sun, float turbidity)")
       ->required();
   commands.push_back({exp, [ef] { return run_export(*ef); }});
+  add_nn_animate_command(*nn_cmd, commands);
+  add_nn_study_command(*nn_cmd, commands);
 }
 
 }  // namespace skylight::cli

@@ -1,13 +1,17 @@
 // End-to-end tests of `skylight nn` and `--model nn`: real processes, real files.
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <string>
 
 #include "skylight/models/neural_sky.h"
 #include "skylight/models/sky_model.h"
+#include "skylight/sun/spa.h"
+#include "skylight/sun/time.h"
 #include "support/cli_run.h"
 #include "support/glslang.h"
 #include "support/scratch_dir.h"
@@ -111,6 +115,107 @@ TEST_F(Cli, NnExportGlslIsValidAndAtomic) {
           "'");
   EXPECT_EQ(r.status, 1) << r.err;
   EXPECT_FALSE(fs::exists(out));
+}
+
+// The printed sun angles have 3 decimals.
+constexpr double kPrintedDeg = 5e-4;
+
+// A rendered 4-capture sequence (Hosek-Wilkie with the solar disc): suns from the list, from a
+// time through the SPA, and found in the image; leave-one-image-out K-fold, the final network,
+// then an animation between two suns with a strip image.
+TEST_F(Cli, NnTrainImagesKfoldAndAnimate) {
+  sun::SpaInput in;
+  in.time = sun::parse_iso8601("2024-06-21T15:00:00+02:00");
+  in.latitude = deg_to_rad(48.0);
+  in.longitude = deg_to_rad(11.0);
+  const sun::SpaResult spa = sun::solar_position(in);
+  const double suns[4][2] = {
+      {30, 120}, {45, 150}, {rad_to_deg(spa.zenith), rad_to_deg(spa.azimuth)}, {70, 210}};
+  for (int k = 0; k < 4; ++k) {
+    const auto r =
+        run(fmt::format("render --model hosek --turbidity 3 --include-sun --sun-zenith "
+                        "{} --sun-azimuth {} --width 96 --height 48 -o '{}/c{}.exr'",
+                        suns[k][0], suns[k][1], dir_.string(), k));
+    ASSERT_EQ(r.status, 0) << r.err;
+  }
+  std::ofstream(dir_ / "seq.csv") << "file,sun_zenith_deg,sun_azimuth_deg,time\n"
+                                     "c0.exr,30,120,\nc1.exr,45,150,\n"
+                                     "c2.exr,,,2024-06-21T15:00:00+02:00\nc3.exr,,,\n";
+  const std::string w = (dir_ / "w.json").string();
+  auto r =
+      run("nn train --images '" + (dir_ / "seq.csv").string() +
+          "' --lat 48 --lon 11 --kfold 4 --hidden 8 --iterations 40 --samples 300 -o '" + w + "'");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("4 images, 1200 examples"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("4-fold cross-validation"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("mean  RMSE"), std::string::npos) << r.out;
+  // The time row's sun is the SPA's; the last row's is found in the image.
+  std::istringstream lines(r.out);
+  std::string line;
+  int found = 0;
+  while (std::getline(lines, line)) {
+    std::istringstream ls(line);
+    int row = 0;
+    double z = 0, a = 0;
+    std::string from;
+    if (line.find(".exr") == std::string::npos || !(ls >> row >> z >> a >> from)) continue;
+    if (row == 4) {
+      EXPECT_EQ(from, "time");
+      EXPECT_NEAR(z, rad_to_deg(spa.zenith), kPrintedDeg);
+      EXPECT_NEAR(a, rad_to_deg(spa.azimuth), kPrintedDeg);
+      ++found;
+    }
+    if (row == 5) {
+      EXPECT_EQ(from, "image");
+      // The disc's centroid on a 3.75 deg pixel grid: within a pixel.
+      EXPECT_NEAR(z, 70.0, 3.75);
+      ++found;
+    }
+  }
+  EXPECT_EQ(found, 2) << r.out;
+  const nn::SkyNetwork net = load_sky_network_file(w);
+  EXPECT_EQ(net.provenance.source, "images");
+  EXPECT_EQ(net.provenance.sun_count, 4);
+  EXPECT_EQ(net.provenance.turbidities, std::vector<double>{0.0});
+
+  r = run("nn animate --weights '" + w +
+          "' --from 30,100 --to 70,200 --frames 3 --width 32 --height 16 -o '" + dir_.string() +
+          "/f_#.exr' --strip '" + dir_.string() + "/strip.png'");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("    1          50.000          150.000"), std::string::npos) << r.out;
+  for (const char* f : {"f_0.exr", "f_1.exr", "f_2.exr", "strip.png"})
+    EXPECT_TRUE(fs::exists(dir_ / f)) << f;
+  EXPECT_FALSE(fs::exists(dir_ / "f_3.exr"));
+  r = run("nn animate --weights '" + w + "' --from 30,100 --to 70,200 -o '" + dir_.string() +
+          "/nohash.exr'");
+  EXPECT_EQ(r.status, 2) << r.err;
+}
+
+TEST_F(Cli, NnTrainImagesListErrorsNameTheRow) {
+  std::ofstream(dir_ / "bad.csv") << "file,sun_zenith_deg,sun_azimuth_deg\na.exr,40,100\n"
+                                     "b.exr,40\n";
+  auto r = run("nn train --images '" + (dir_ / "bad.csv").string() + "' -o w.json");
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_NE(r.err.find("bad.csv:3: 2 cells, the header has 3"), std::string::npos) << r.err;
+  std::ofstream(dir_ / "t.csv") << "file,time\nmissing.exr,2024-06-21T25:00:00Z\n";
+  r = run("nn train --images '" + (dir_ / "t.csv").string() + "' --lat 1 --lon 2 -o w.json");
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_NE(r.err.find("t.csv:2: "), std::string::npos) << r.err;
+  std::ofstream(dir_ / "n.csv") << "file,time\nmissing.exr,2024-06-21T12:00:00Z\n";
+  r = run("nn train --images '" + (dir_ / "n.csv").string() + "' -o w.json");
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_NE(r.err.find("n.csv:2: a time needs --lat and --lon"), std::string::npos) << r.err;
+  r = run("nn train --images '" + (dir_ / "bad.csv").string() + "' --source hosek -o w.json");
+  EXPECT_EQ(r.status, 2) << r.err;
+}
+
+TEST_F(Cli, NnStudyTabulatesEfficiency) {
+  const auto r =
+      run("nn study --source preetham --hidden 2,4 --iterations 5 --suns 2 "
+          "--view-zeniths 3 --view-azimuths 4 --repeats 1");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("eps=1/(var*T)"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("most efficient: "), std::string::npos) << r.out;
 }
 
 }  // namespace

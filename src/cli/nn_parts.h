@@ -1,0 +1,32 @@
+// The parts of the `skylight nn` family (nn_cmd.cpp) that live in their own files: training on
+// sky-image sequences with K-fold cross-validation (nn_images_cmd.cpp), `nn animate`
+// (nn_animate_cmd.cpp) and the hidden-layer study `nn study` (nn_study_cmd.cpp). docs/NN.md.
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+#include <memory>
+#include <string>
+
+#include "common.h"
+#include "skylight/models/neural_training.h"
+
+namespace skylight::cli {
+
+struct ImageTrainFlags;
+// Adds --images and its flags (projection, mask, sun, sampling, --kfold) to `nn train`.
+std::shared_ptr<ImageTrainFlags> add_image_train_flags(CLI::App& train);
+bool images_given(const ImageTrainFlags& f);
+// `nn train --images LIST`: the network of `t` (hidden, inputs, encoding, target scale, trainer
+// options) trained on the list's images; writes `output` and the training log `log` (when not
+// empty).
+int run_train_images(const ImageTrainFlags& f, const NeuralTraining& t, const std::string& output,
+                     const std::string& log);
+
+void add_nn_animate_command(CLI::App& nn, Commands& commands);
+void add_nn_study_command(CLI::App& nn, Commands& commands);
+
+// ISO 8601 UTC of now, for provenance.date.
+std::string utc_now_iso8601();
+
+}  // namespace skylight::cli
