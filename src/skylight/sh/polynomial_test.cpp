@@ -122,6 +122,10 @@ TEST(ShPolynomial, JsonRoundTripIsExactAndLoadingNamesBadFields) {
   EXPECT_EQ(back.degree_theta, t.degree_theta);
   EXPECT_EQ(back.coefficients, t.coefficients);
   EXPECT_EQ(back.theta_max, t.theta_max);
+  EXPECT_FALSE(back.ground_albedo.has_value());
+  PolynomialTable grounded = t;
+  grounded.ground_albedo = 0.25;
+  EXPECT_EQ(table_from_json(table_to_json(grounded), "g.json").ground_albedo, 0.25);
   auto expect_error = [](const std::string& text, const std::string& needle) {
     try {
       table_from_json(text, "t.json");
@@ -135,6 +139,12 @@ TEST(ShPolynomial, JsonRoundTripIsExactAndLoadingNamesBadFields) {
   expect_error(std::string(j).replace(j.find("\"bands\": 3"), 10, "\"bands\": 99"), "'bands'");
   expect_error(std::string(j).replace(j.find("\"channels\": \"xyz\""), 17, "\"channels\": \"q\""),
                "'channels'");
+  const std::string g = table_to_json(grounded);
+  expect_error(
+      std::string(g).replace(g.find("\"ground_albedo\": 0.25"), 21, "\"ground_albedo\": 1.5"),
+      "'ground_albedo'");
+  expect_error(std::string(j).replace(j.find("\"tau_pieces\": 1"), 15, "\"tau_pieces\": 0"),
+               "'tau_pieces'");
 }
 
 // A fit in theta only with parameters held fixed (CIE type 7 at a fixed zenith luminance, 3 bands,
