@@ -37,6 +37,17 @@ const ParameterSpec& bands_spec() {
   return s;
 }
 
+// Hosek fits follow Hosek & Wilkie's structure by default (docs/SH.md, "Hosek fits", where the
+// study that chose these is): one tau piece per turbidity interval of width 1 (the knots at the
+// integers for an integer range, where Hosek interpolates linearly), degrees (17, 2) on 4
+// turbidities per piece, in the sun zenith itself (elevation^(1/3) measured worse at equal degree).
+constexpr int kHosekDegreeTheta = 17, kHosekDegreeTau = 2, kHosekGridTau = 4;
+constexpr sh::ThetaAxis kHosekThetaAxis = sh::ThetaAxis::theta;
+
+int integer_intervals(double lo, double hi) {
+  return std::clamp(static_cast<int>(std::lround(hi - lo)), 1, sh::kMaxTauPieces);
+}
+
 std::string channel_names(sh::Channels c) {
   return c == sh::Channels::xyz ? "X,Y,Z" : "r,g,b";
 }
@@ -49,6 +60,9 @@ struct FitFlags {
   std::vector<double> degrees{17.0, 12.0}, range, theta_range_deg{0.0, 90.0}, grid;
   std::vector<std::string> set;
   double tolerance = sh::ProjectionOptions{}.tolerance;
+  std::string theta_axis;               // empty: the model's default (kHosekThetaAxis)
+  int tau_pieces = 0;                   // 0: the model's default
+  std::optional<double> ground_albedo;  // absent: black lower hemisphere
   bool degrees_given = false;
 };
 
@@ -118,7 +132,23 @@ int run_fit(const FitFlags& f) {
     s.grid_theta = static_cast<int>(f.grid[0]);
     s.grid_tau = static_cast<int>(f.grid[1]);
   }
+  const bool hosek_form = info->name == "hosek" && s.parameter == "turbidity";
+  s.theta_axis =
+      f.theta_axis == "elevation-cbrt" ? sh::ThetaAxis::elevation_cbrt : sh::ThetaAxis::theta;
+  s.tau_pieces = f.tau_pieces > 0 ? f.tau_pieces : 1;
+  if (hosek_form && tau) {
+    if (f.theta_axis.empty()) s.theta_axis = kHosekThetaAxis;
+    if (f.tau_pieces == 0) s.tau_pieces = integer_intervals(s.tau_min, s.tau_max);
+    if (!f.degrees_given) {
+      s.degree_theta = kHosekDegreeTheta;
+      s.degree_tau = kHosekDegreeTau;
+    }
+    if (f.grid.empty() && s.tau_pieces > 1) s.grid_tau = kHosekGridTau;
+  }
+  if (!tau && s.tau_pieces != 1)
+    throw InvalidArgument("--tau-pieces: a fit in the sun zenith only has one piece");
   s.projection.tolerance = f.tolerance;
+  s.projection.ground_albedo = f.ground_albedo;
   Progress progress("sh fit");
   s.progress = [&](int done, int total) {
     progress(done, total, fmt::format("projections of '{}'", info->name));
@@ -401,6 +431,22 @@ void add_sh_command(CLI::App& app, Commands& commands) {
              {"tolerance", "1", ParameterKind::number, 1e-9, 1e-1, 1, ParameterValue(ff->tolerance),
               "projection convergence: largest coefficient change relative to c_00"},
              ff->tolerance);
+  fit->add_option("--theta-axis", ff->theta_axis,
+                  "the sun-zenith coordinate of the fit: theta (default), or elevation-cbrt "
+                  "((elevation / 90 deg)^(1/3), Hosek's)")
+      ->check(CLI::IsMember({"theta", "elevation-cbrt"}));
+  add_integer(*fit,
+              {"tau-pieces", "1", ParameterKind::integer, 1, sh::kMaxTauPieces, 1,
+               Absent{"hosek: one per unit of turbidity (degrees 17,2, 4 turbidities each); "
+                      "others: 1"},
+               "equal pieces of the tau range, each its own polynomial in tau"},
+              ff->tau_pieces);
+  add_number(
+      *fit,
+      {"ground-albedo", "1", ParameterKind::number, 0, 1, 1, Absent{"the lower hemisphere black"},
+       "the lower hemisphere as a uniform ground of this albedo lit by the sky and the sun "
+       "(L = albedo E / pi)"},
+      ff->ground_albedo);
   fit->add_option("-o,--output", ff->output, "table file (JSON)")->required();
   commands.push_back({fit, [ff, degrees] {
                         ff->degrees_given = degrees->count() > 0;

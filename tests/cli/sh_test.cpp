@@ -76,6 +76,26 @@ TEST_F(Cli, ShFitOtherModelsFromTheirSchema) {
   EXPECT_EQ(hj["parameter"], "turbidity");
   EXPECT_EQ(hj["tau_max"].get<double>(), 10.0);
   EXPECT_EQ(hj["fixed"]["albedo"].get<double>(), 0.5);
+  // Hosek's own structure by default (docs/SH.md, "Hosek fits"): one piece per integer
+  // turbidity interval; --theta-axis elevation-cbrt on request.
+  EXPECT_EQ(hj["theta_axis"], "theta");
+  EXPECT_EQ(hj["tau_pieces"].get<int>(), 9);
+  const auto cbrt =
+      run("sh fit --model hosek --bands 2 --degrees 1,1 --grid 2,2 --tolerance 1e-2 --range 2,4 "
+          "--theta-axis elevation-cbrt -o " +
+          h);
+  ASSERT_EQ(cbrt.status, 0) << cbrt.err;
+  const auto cj = nlohmann::json::parse(Cli::slurp(h));
+  EXPECT_EQ(cj["theta_axis"], "elevation_cbrt");
+  EXPECT_EQ(cj["tau_pieces"].get<int>(), 2);
+  EXPECT_EQ(run("sh eval --table " + h + " --sun-zenith 40 --turbidity 3.5").status, 0);
+  // A ground of albedo 0.2 is recorded in the table; out-of-range albedos and pieces refused.
+  const std::string g = (dir_ / "g.json").string();
+  const auto ground = run(kSmallFit + " --ground-albedo 0.2 -o " + g);
+  ASSERT_EQ(ground.status, 0) << ground.err;
+  EXPECT_EQ(nlohmann::json::parse(Cli::slurp(g))["ground_albedo"].get<double>(), 0.2);
+  EXPECT_EQ(run(kSmallFit + " --ground-albedo 1.5 -o " + g).status, 2);
+  EXPECT_EQ(run(kSmallFit + " --tau-pieces 0 -o " + g).status, 2);
   // cie: the sun zenith only (no turbidity), a type held fixed.
   const std::string c = (dir_ / "c.json").string();
   const auto cie =
@@ -86,6 +106,7 @@ TEST_F(Cli, ShFitOtherModelsFromTheirSchema) {
   EXPECT_EQ(run("sh eval --table " + c + " --sun-zenith 40").status, 0);
   EXPECT_EQ(run("sh eval --table " + c + " --sun-zenith 40 --turbidity 3").status, 2);
   EXPECT_EQ(run("sh fit --model cie --degrees 2,1 -o " + c).status, 2);
+  EXPECT_EQ(run("sh fit --model cie --tau-pieces 2 -o " + c).status, 2);
   EXPECT_EQ(run("sh fit --model preetham --set nope=1 -o " + c).status, 2);
   EXPECT_EQ(run("sh fit --model nope -o " + c).status, 2);
 }

@@ -12,6 +12,7 @@
 #pragma once
 
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -20,6 +21,16 @@
 #include "skylight/sh/projection.h"
 
 namespace skylight::sh {
+
+// The sun-zenith coordinate of the Chebyshev basis in theta (docs/SH.md, "Hosek fits"):
+//  * theta: theta itself (Habel's eq. 1);
+//  * elevation_cbrt: w = (eta / (pi/2))^(1/3), eta = pi/2 - theta the solar elevation, the
+//    coordinate in which Hosek & Wilkie 2012 (§5) store every coefficient as a quintic Bezier
+//    curve (so their sky has an infinite slope in theta at the horizon, smooth in w).
+enum class ThetaAxis { theta, elevation_cbrt };
+
+// Largest number of tau pieces of a table.
+inline constexpr int kMaxTauPieces = 64;
 
 struct PolynomialFitSettings {
   std::string model = "preetham";
@@ -37,22 +48,33 @@ struct PolynomialFitSettings {
   int degree_tau = 12;                          // d_j
   double theta_min = 0.0, theta_max = kPi / 2;  // sun zenith [rad]
   double tau_min = 2.5, tau_max = 6.0;          // Habel 2008 §2.2
-  int grid_theta = 0;                           // grid points; 0 = 2 (d_i + 1) + 1
-  int grid_tau = 0;                             // 0 = 2 (d_j + 1) + 1
+  ThetaAxis theta_axis = ThetaAxis::theta;
+  // tau split into this many equal pieces, each with its own polynomial of degree d_j in tau
+  // (Hosek & Wilkie 2012 interpolate linearly between integer turbidities: 9 pieces over [1, 10]
+  // put the knots there); 1: one polynomial over the range (eq. 1).
+  int tau_pieces = 1;
+  int grid_theta = 0;  // grid points, uniform in the theta axis' coordinate; 0 = 2 (d_i + 1) + 1
+  int grid_tau = 0;    // per piece, both ends included (shared); 0 = 2 (d_j + 1) + 1
   ProjectionOptions projection{};
   // Called after each grid point's projection with (done, total); may be empty.
   std::function<void(int, int)> progress;
 };
 
-// The fitted table: for each stored (l, m >= 0) and channel, (d_i + 1)(d_j + 1) coefficients of
-// T_i(u) T_j(v), in float (the fit is in double).
+// The fitted table: for each tau piece, stored (l, m >= 0) and channel, (d_i + 1)(d_j + 1)
+// coefficients of T_i(u) T_j(v), in float (the fit is in double). u: the theta axis' coordinate
+// mapped from its range onto [-1, 1]; v: tau mapped from its piece onto [-1, 1].
 struct PolynomialTable {
   std::string model, parameter;  // parameter empty: theta only
   ParameterValues fixed;         // the model's parameters held fixed in the fit
   Channels channels = Channels::xyz;
   int bands = 0, degree_theta = 0, degree_tau = 0;
   double theta_min = 0.0, theta_max = 0.0, tau_min = 0.0, tau_max = 0.0;
-  // [((l (l + 1) / 2 + m) * 3 + channel) * terms + i * (d_j + 1) + j], m = 0..l
+  ThetaAxis theta_axis = ThetaAxis::theta;
+  int tau_pieces = 1;
+  // The ground albedo of the projections (ProjectionOptions::ground_albedo); absent: black.
+  std::optional<double> ground_albedo;
+  // [((piece * N (N + 1) / 2 + l (l + 1) / 2 + m) * 3 + channel) * terms + i * (d_j + 1) + j],
+  // m = 0..l, N = bands
   std::vector<float> coefficients;
 
   int terms() const { return (degree_theta + 1) * (degree_tau + 1); }
@@ -67,10 +89,19 @@ PolynomialTable fit_polynomial(const PolynomialFitSettings& settings);
 // Eq. 1 at (theta, tau), then eq. 4 (rotation to azimuth phi) and, if asked, eq. 5 (ringing
 // filter for `bands` bands): the first `bands` <= table.bands bands. theta and tau outside the
 // fitted ranges throw InvalidArgument.
+// Fast path: the Chebyshev product vector in float, all stored coefficients as one float
+// matrix-vector product (SIMD, sh/evaluate_kernel.h), rotation and filter fused (the fitting
+// frame's c_l,-m are zero). Within ~1e-6 of |c_00| of evaluate_table_reference
+// (sh/polynomial_test.cpp), far below the fits' own error (docs/SH.md).
 Coefficients evaluate_table(const PolynomialTable& table, double theta, double tau, double phi,
                             int bands, bool ringing_filter);
+// Reference path: the same table, the sums in double, then rotate_about_zenith and
+// ringing_filter (sh/rotation.h) as separate steps.
+Coefficients evaluate_table_reference(const PolynomialTable& table, double theta, double tau,
+                                      double phi, int bands, bool ringing_filter);
 
-// The published monomial form of eq. 1, in double (export only; docs/SH.md): for each stored
+// The published monomial form of eq. 1, in double (export only; docs/SH.md), for tables in theta
+// with one tau piece (InvalidArgument otherwise): for each stored
 // coefficient in the table's layout, (d_i + 1)(d_j + 1) values p_ij of theta^i tau^j, theta in
 // radians. The Chebyshev series is expanded exactly in long double; evaluating the monomials loses
 // digits to cancellation (condition ~1e19 for (13, 7)), so this form is never evaluated here.
@@ -81,8 +112,9 @@ std::vector<double> monomial_coefficients(const PolynomialTable& table);
 // as a double array `<name>_monomial`. `name` must be a C identifier.
 std::string table_to_c_header(const PolynomialTable& table, const std::string& name, bool monomial);
 
-// The converged projection of the table's model at (theta, tau), sun at azimuth phi: the
-// reference that evaluate_table approximates.
+// The converged projection of the table's model at (theta, tau), sun at azimuth phi, with the
+// table's ground albedo (overriding options.ground_albedo): the reference that evaluate_table
+// approximates.
 Projection project_reference(const PolynomialTable& table, double theta, double tau, double phi,
                              int bands, const ProjectionOptions& options = {});
 

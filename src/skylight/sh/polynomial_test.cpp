@@ -4,10 +4,13 @@
 
 #include <cmath>
 #include <cstdio>
+#include <vector>
 
+#include "skylight/core/data.h"
 #include "skylight/core/error.h"
 #include "skylight/core/math.h"
 #include "skylight/models/preetham.h"
+#include "skylight/models/sh.h"
 #include "skylight/sh/basis.h"
 #include "skylight/sh/error.h"
 #include "skylight/sh/rotation.h"
@@ -32,6 +35,13 @@ PolynomialFitSettings small_settings() {
 
 const PolynomialTable& small_table() {
   static const PolynomialTable t = fit_polynomial(small_settings());
+  return t;
+}
+
+// The embedded default table (7 bands, degrees (17, 12)).
+const PolynomialTable& default_table() {
+  static const PolynomialTable t =
+      table_from_json(std::string(data::embedded_file(kDefaultShTable)), kDefaultShTable);
   return t;
 }
 
@@ -77,6 +87,36 @@ TEST(ShPolynomial, FilterAndRotationApplyAfterEvaluation) {
   EXPECT_THROW(evaluate_table(t, 0.5, 3.0, 0.0, 4, false), InvalidArgument);
 }
 
+// Fast (float SIMD) vs reference (double) evaluation: float coefficients times a float product
+// vector, summed in float over <= 234 terms whose sum is dominated by the first few; measured
+// 2.8e-7 of |c_00| (the reduced and the default table), so 2e-6 leaves a factor 7.
+constexpr double kFastVsReference = 2e-6;
+
+TEST(ShPolynomial, FastEvaluationMatchesTheDoubleReference) {
+  double worst = 0.0;  // largest |fast - reference| / |c_00|
+  for (const PolynomialTable* t : {&small_table(), &default_table()}) {
+    for (double theta : {0.0, 0.4, 1.04}) {
+      for (double tau : {2.5, 3.3, 5.9}) {
+        for (bool filter : {false, true}) {
+          const int bands = t->bands;
+          const auto fast = evaluate_table(*t, theta, tau, 2.3, bands, filter);
+          const auto ref = evaluate_table_reference(*t, theta, tau, 2.3, bands, filter);
+          ASSERT_EQ(fast.c.size(), ref.c.size());
+          for (int ch = 0; ch < 3; ++ch) {
+            const double scale = std::abs(ref.c[0][ch]);
+            for (std::size_t i = 0; i < ref.c.size(); ++i) {
+              worst = std::max(worst, std::abs(fast.c[i][ch] - ref.c[i][ch]) / scale);
+              EXPECT_NEAR(fast.c[i][ch], ref.c[i][ch], kFastVsReference * scale)
+                  << "bands " << bands << " i " << i << " ch " << ch;
+            }
+          }
+        }
+      }
+    }
+  }
+  std::printf("fast vs reference: worst %.3g of |c_00|\n", worst);
+}
+
 TEST(ShPolynomial, JsonRoundTripIsExactAndLoadingNamesBadFields) {
   const auto& t = small_table();
   const auto back = table_from_json(table_to_json(t), "t.json");
@@ -85,6 +125,10 @@ TEST(ShPolynomial, JsonRoundTripIsExactAndLoadingNamesBadFields) {
   EXPECT_EQ(back.degree_theta, t.degree_theta);
   EXPECT_EQ(back.coefficients, t.coefficients);
   EXPECT_EQ(back.theta_max, t.theta_max);
+  EXPECT_FALSE(back.ground_albedo.has_value());
+  PolynomialTable grounded = t;
+  grounded.ground_albedo = 0.25;
+  EXPECT_EQ(table_from_json(table_to_json(grounded), "g.json").ground_albedo, 0.25);
   auto expect_error = [](const std::string& text, const std::string& needle) {
     try {
       table_from_json(text, "t.json");
@@ -98,6 +142,12 @@ TEST(ShPolynomial, JsonRoundTripIsExactAndLoadingNamesBadFields) {
   expect_error(std::string(j).replace(j.find("\"bands\": 3"), 10, "\"bands\": 99"), "'bands'");
   expect_error(std::string(j).replace(j.find("\"channels\": \"xyz\""), 17, "\"channels\": \"q\""),
                "'channels'");
+  const std::string g = table_to_json(grounded);
+  expect_error(
+      std::string(g).replace(g.find("\"ground_albedo\": 0.25"), 21, "\"ground_albedo\": 1.5"),
+      "'ground_albedo'");
+  expect_error(std::string(j).replace(j.find("\"tau_pieces\": 1"), 15, "\"tau_pieces\": 0"),
+               "'tau_pieces'");
 }
 
 // A fit in theta only with parameters held fixed (CIE type 7 at a fixed zenith luminance, 3 bands,
@@ -143,6 +193,73 @@ TEST(ShPolynomial, ThetaOnlyFitWithFixedParametersRoundTrips) {
   EXPECT_THROW(fit_polynomial(s), InvalidArgument);  // no second parameter to fit in
 }
 
+// Worst E_mean (eq. 3, worst channel) of a table with a second parameter over off-grid points.
+double worst_mean_error(const PolynomialTable& t, const std::vector<double>& thetas_deg,
+                        const std::vector<double>& taus) {
+  double worst = 0.0;
+  for (double theta_deg : thetas_deg) {
+    for (double tau : taus) {
+      const double theta = deg_to_rad(theta_deg);
+      const auto rec = evaluate_table(t, theta, tau, 0.0, t.bands, false);
+      ProjectionOptions options;
+      options.tolerance = 1e-5;  // as the reduced fits' own projections
+      const auto ref = project_reference(t, theta, tau, 0.0, t.bands, options);
+      SkyParameters sp;
+      sp.sun = {theta, 0.0};
+      sp.values = t.fixed;
+      sp.values.set(t.parameter, tau);
+      const auto model = make_sky_model(t.model, sp);
+      const auto e =
+          error_measures(ref.coefficients, rec, t.bands, minimum_over_sky(*model, t.channels));
+      for (int ch = 0; ch < 3; ++ch) worst = std::max(worst, e.e_mean[ch]);
+    }
+  }
+  return worst;
+}
+
+// Hosek & Wilkie's own structure (docs/SH.md, "Hosek fits"), reduced: 3 bands, T in [2, 4], sun
+// zenith 30-90 deg, albedo 0.3. One polynomial in (theta, T) of degrees (6, 5) against two
+// turbidity pieces (the knot at T = 3, where Hosek's linear interpolation between integer
+// turbidities kinks) of degrees (6, 2) in elevation^(1/3): the same memory (42 terms per
+// coefficient). Measured worst E_mean at 3 x 4 off-grid points: global 0.575, piecewise 0.091
+// (these low degrees leave large errors; docs/SH.md has the full-size study).
+constexpr double kHosekPiecewiseGain = 3.0;  // piecewise at least this much better (measured 6.3x)
+constexpr double kHosekPiecewiseWorst = 0.15;  // measured 0.091
+
+TEST(ShPolynomial, HosekFitsFollowingItsStructureBeatTheGlobalPolynomial) {
+  PolynomialFitSettings s;
+  s.model = "hosek";
+  s.fixed.set("albedo", 0.3);
+  s.bands = 3;
+  s.theta_min = deg_to_rad(30.0);
+  s.theta_max = kPi / 2;
+  s.tau_min = 2.0;
+  s.tau_max = 4.0;
+  s.projection.tolerance = 1e-5;
+  s.degree_theta = 6;
+  s.degree_tau = 5;
+  s.grid_theta = 13;
+  s.grid_tau = 9;
+  const PolynomialTable global = fit_polynomial(s);
+  s.theta_axis = ThetaAxis::elevation_cbrt;
+  s.tau_pieces = 2;
+  s.degree_tau = 2;
+  s.grid_tau = 4;
+  const PolynomialTable piecewise = fit_polynomial(s);
+  EXPECT_EQ(global.coefficients.size(), piecewise.coefficients.size());
+  const auto back = table_from_json(table_to_json(piecewise), "t.json");
+  EXPECT_EQ(back.theta_axis, ThetaAxis::elevation_cbrt);
+  EXPECT_EQ(back.tau_pieces, 2);
+  EXPECT_EQ(back.coefficients, piecewise.coefficients);
+  EXPECT_THROW(monomial_coefficients(piecewise), InvalidArgument);
+  const std::vector<double> thetas{41.0, 67.0, 88.0}, taus{2.3, 2.9, 3.1, 3.8};
+  const double e_global = worst_mean_error(global, thetas, taus);
+  const double e_piecewise = worst_mean_error(back, thetas, taus);
+  std::printf("hosek reduced: worst E_mean global %.3g, piecewise %.3g\n", e_global, e_piecewise);
+  EXPECT_LT(e_piecewise, kHosekPiecewiseWorst);
+  EXPECT_LT(e_piecewise * kHosekPiecewiseGain, e_global);
+}
+
 // Found by the fuzz target sh_table_json (docs/TESTING.md): coefficients are stored in float, so
 // a finite double beyond FLT_MAX (~3.4e38) became +inf in an accepted table.
 TEST(ShPolynomial, JsonLoadRefusesCoefficientsBeyondTheFloatRange) {
@@ -155,6 +272,9 @@ TEST(ShPolynomial, JsonLoadRefusesCoefficientsBeyondTheFloatRange) {
   };
   const auto t = table_from_json(table_with("3e38, -3e38, 1"), "t.json");
   EXPECT_EQ(t.coefficients, (std::vector<float>{3e38f, -3e38f, 1.0f}));
+  // A version-1 table (before theta_axis and tau_pieces) loads as theta axis, one piece.
+  EXPECT_EQ(t.theta_axis, ThetaAxis::theta);
+  EXPECT_EQ(t.tau_pieces, 1);
   // "1e400" overflows the JSON parser's double: it threw nlohmann's out_of_range, not ours.
   for (const std::string bad : {"1e39, 0, 0", "0, -1e39, 0", "1e400, 0, 0"}) {
     try {

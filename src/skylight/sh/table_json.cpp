@@ -13,7 +13,8 @@ namespace skylight::sh {
 namespace {
 
 constexpr const char* kFormat = "skylight-sh-polynomial-table";
-constexpr int kVersion = 1;
+// Version 2 added theta_axis and tau_pieces; version 1 files load as theta axis, one piece.
+constexpr int kVersion = 2;
 
 [[noreturn]] void bad(const std::string& where, const std::string& field, const std::string& why) {
   throw InvalidArgument(where + ": field '" + field + "' " + why);
@@ -66,8 +67,15 @@ std::string table_to_json(const PolynomialTable& t) {
   j["theta_max_rad"] = t.theta_max;
   j["tau_min"] = t.tau_min;
   j["tau_max"] = t.tau_max;
-  j["basis"] = "chebyshev T_i(u) T_j(v), u, v = the ranges mapped onto [-1, 1]";
-  j["layout"] = "[((l (l + 1) / 2 + m) * 3 + channel) * terms + i * (degree_tau + 1) + j], m >= 0";
+  j["theta_axis"] = t.theta_axis == ThetaAxis::theta ? "theta" : "elevation_cbrt";
+  j["tau_pieces"] = t.tau_pieces;
+  if (t.ground_albedo) j["ground_albedo"] = *t.ground_albedo;
+  j["basis"] =
+      "chebyshev T_i(u) T_j(v), u = the theta axis' coordinate mapped from its range onto [-1, 1], "
+      "v = tau mapped from its piece onto [-1, 1]";
+  j["layout"] =
+      "[((piece * bands (bands + 1) / 2 + l (l + 1) / 2 + m) * 3 + channel) * terms + i * "
+      "(degree_tau + 1) + j], m >= 0";
   j["coefficients"] = t.coefficients;
   return j.dump(1);
 }
@@ -82,7 +90,8 @@ PolynomialTable table_from_json(const std::string& s, const std::string& where) 
   if (!j.is_object()) throw InvalidArgument(where + ": not a JSON object");
   if (text(j, where, "format") != kFormat)
     bad(where, "format", "is not '" + std::string(kFormat) + "'");
-  if (integer(j, where, "version", 0, 1000) != kVersion) bad(where, "version", "is not 1");
+  const int version = integer(j, where, "version", 0, 1000);
+  if (version != 1 && version != kVersion) bad(where, "version", "is not 1 or 2");
   PolynomialTable t;
   t.model = text(j, where, "model");
   t.parameter = text(j, where, "parameter");
@@ -128,8 +137,25 @@ PolynomialTable table_from_json(const std::string& s, const std::string& where) 
     bad(where, "theta_max_rad", "must give 0 <= theta_min_rad <= theta_max_rad <= pi");
   }
   if (!(t.tau_max >= t.tau_min)) bad(where, "tau_max", "is below tau_min");
+  if (version >= 2) {
+    const std::string axis = text(j, where, "theta_axis");
+    if (axis == "theta") {
+      t.theta_axis = ThetaAxis::theta;
+    } else if (axis == "elevation_cbrt") {
+      t.theta_axis = ThetaAxis::elevation_cbrt;
+    } else {
+      bad(where, "theta_axis", "is " + excerpt(axis) + ", not 'theta' or 'elevation_cbrt'");
+    }
+    t.tau_pieces = integer(j, where, "tau_pieces", 1, kMaxTauPieces);
+    if (j.contains("ground_albedo")) {
+      const double rho = number(j, where, "ground_albedo");
+      if (!(rho >= 0.0 && rho <= 1.0)) bad(where, "ground_albedo", "is outside [0, 1]");
+      t.ground_albedo = rho;
+    }
+  }
   const auto& c = field(j, where, "coefficients");
-  const std::size_t expect = static_cast<std::size_t>(t.bands * (t.bands + 1) / 2) * 3 *
+  const std::size_t expect = static_cast<std::size_t>(t.tau_pieces) *
+                             static_cast<std::size_t>(t.bands * (t.bands + 1) / 2) * 3 *
                              static_cast<std::size_t>(t.terms());
   if (!c.is_array() || c.size() != expect) {
     bad(where, "coefficients", "is not an array of " + std::to_string(expect) + " numbers");
