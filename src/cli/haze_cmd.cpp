@@ -15,6 +15,7 @@
 #include "skylight/core/frame.h"
 #include "skylight/core/math.h"
 #include "skylight/core/numbers.h"
+#include "skylight/estimate/camera.h"
 #include "skylight/haze/attenuation.h"
 #include "skylight/haze/coefficients.h"
 #include "skylight/haze/image_haze.h"
@@ -86,7 +87,8 @@ struct CameraFlags {
 // The airlight I^inf: constant, or a sky model seen through the camera.
 struct AirlightFlags {
   std::vector<double> airlight;
-  std::string sky_model;
+  std::string sky_model, sky_photo, sky_projection = "fisheye";
+  FisheyeFlags fisheye;
   double sun_zenith_deg = kDefaultSunZenithDeg, sun_azimuth_deg = kDefaultSunAzimuthDeg;
   double view_elevation_deg = 0.0, view_azimuth_deg = 0.0;
   void add(CLI::App& cmd) {
@@ -98,13 +100,20 @@ struct AirlightFlags {
     auto* m = cmd.add_option("--sky-model", sky_model,
                              "airlight from a spectral sky model (preetham, hosek, nishita) at the "
                              "turbidity, seen through the camera (eq. 7)");
-    a->excludes(m);
+    auto* photo = cmd.add_option(
+        "--sky", sky_photo,
+        "airlight from a sky photo's horizon region (eqs. 12-13): linear .exr, .hdr or .pfm");
+    a->excludes(m)->excludes(photo);
+    m->excludes(photo);
+    cmd.add_option("--sky-projection", sky_projection, "--sky: fisheye|equirect; default fisheye")
+        ->check(CLI::IsMember({"fisheye", "equirect"}));
+    fisheye.add(cmd, "180", "--sky fisheye: field of view across the image circle");
     ParameterSpec zenith = sun_parameter_specs()[0], azimuth = sun_parameter_specs()[1];
     add_number(cmd, zenith, sun_zenith_deg);
     add_number(cmd, azimuth, sun_azimuth_deg);
     add_number(cmd,
                {"view-elevation", "deg", ParameterKind::number, 0.0, 90.0, 1, ParameterValue(0.0),
-                "--sky-model: elevation of the sky seen behind the scene"},
+                "--sky-model, --sky: elevation of the sky seen behind the scene"},
                view_elevation_deg);
     add_number(cmd,
                {"view-azimuth", "deg", ParameterKind::number, -360.0, 360.0, 1, ParameterValue(0.0),
@@ -114,7 +123,19 @@ struct AirlightFlags {
   // At turbidity `t`.
   haze::Rgb3 at(double t, const haze::CameraSensitivity& camera) const {
     if (!airlight.empty()) return {airlight[0], airlight[1], airlight[2]};
-    if (sky_model.empty()) throw InvalidArgument("give --airlight R,G,B or --sky-model NAME");
+    const double theta = deg_to_rad(90.0 - view_elevation_deg);
+    if (!sky_photo.empty()) {
+      const io::ImageF photo = io::read_image(sky_photo);
+      estimate::SkyCamera cam;
+      cam.projection = *estimate::parse_photo_projection(sky_projection);
+      cam.width = photo.width;
+      cam.height = photo.height;
+      cam.fisheye = fisheye.layout();
+      estimate::validate(cam);
+      return haze::photo_airlight(photo, cam, t, theta).airlight;
+    }
+    if (sky_model.empty())
+      throw InvalidArgument("give --airlight R,G,B, --sky PHOTO or --sky-model NAME");
     const ModelInfo* info = find_model(sky_model);
     if (!info) throw InvalidArgument(fmt::format("unknown --sky-model '{}'", excerpt(sky_model)));
     SkyParameters p;
@@ -126,14 +147,14 @@ struct AirlightFlags {
       throw InvalidArgument(fmt::format("--sky-model '{}' has no turbidity", sky_model));
     p.values.set("turbidity", t);
     const auto model = make_sky_model(sky_model, p);
-    const Vec3 view = direction_from_angles(deg_to_rad(90.0 - view_elevation_deg),
-                                            wrap_azimuth(deg_to_rad(view_azimuth_deg)));
+    const Vec3 view = direction_from_angles(theta, wrap_azimuth(deg_to_rad(view_azimuth_deg)));
     return haze::sky_model_airlight(*model, view, camera);
   }
 };
 
 // An output must not replace any input.
 void check_output(const std::string& out, const std::vector<std::string>& inputs) {
+  if (out.empty()) throw InvalidArgument("give -o OUT");
   std::error_code ec;
   for (const auto& in : inputs)
     if (!in.empty() && (in == out || fs::equivalent(in, out, ec)))
@@ -272,7 +293,7 @@ haze::HazeSettings settings_of(const ImageFlags& f, const haze::CameraSensitivit
 }
 
 int run_image(const ImageFlags& f, std::string_view op) {
-  check_output(f.output, {f.image, f.depth});
+  check_output(f.output, {f.image, f.depth, f.airlight.sky_photo});
   const haze::CameraSensitivity cam = f.camera.camera();
   const haze::HazeSettings s = settings_of(f, cam);
   const io::ImageF image = io::read_image(f.image);
@@ -295,7 +316,7 @@ int run_image(const ImageFlags& f, std::string_view op) {
 }
 
 int run_composite(const ImageFlags& f) {
-  check_output(f.output, {f.image, f.object, f.object_depth, f.object_alpha});
+  check_output(f.output, {f.image, f.object, f.object_depth, f.object_alpha, f.airlight.sky_photo});
   const haze::CameraSensitivity cam = f.camera.camera();
   const haze::HazeSettings s = settings_of(f, cam);
   const io::ImageF bg = io::read_image(f.image);

@@ -43,7 +43,14 @@ class HazeCli : public Cli {
     io::write_image(dir_ / "depth.exr", d);
     scene_ = im;
   }
-  std::string p(const std::string& name) { return "'" + (dir_ / name).string() + "'"; }
+  // The path of a scratch file, quoted for the shell (built in steps: GCC 12 reports a false
+  // -Wrestrict on "'" + string + "'").
+  std::string p(const std::string& name) {
+    std::string quoted(1, '\'');
+    quoted += (dir_ / name).string();
+    quoted += '\'';
+    return quoted;
+  }
   io::ImageF scene_;
 };
 
@@ -173,6 +180,26 @@ TEST_F(HazeCli, ErrorsAreOneLineAndNothingIsWritten) {
           p("out.exr"));
   EXPECT_EQ(r.status, 2);
   EXPECT_FALSE(fs::exists(dir_ / "out.exr"));
+}
+
+TEST_F(HazeCli, AirlightFromARenderedSkyPhoto) {
+  write_scene();
+  auto r =
+      run("render --model preetham --turbidity 2.5 --projection fisheye --width 96 --height 96 "
+          "-o " +
+          p("sky.exr"));
+  ASSERT_EQ(r.status, 0) << r.err;
+  r = run("haze add --image " + p("scene.exr") + " --depth " + p("depth.exr") +
+          " --turbidity 2.5 --camera canon-eos-5d --sky " + p("sky.exr") + " -o " + p("out.exr"));
+  ASSERT_EQ(r.status, 0) << r.err;
+  const io::ImageF out = io::read_image(dir_ / "out.exr");
+  for (float v : out.data) EXPECT_TRUE(std::isfinite(v) && v >= 0.0f);
+  // The far pixels moved towards a bright sky.
+  EXPECT_GT(out.pixel(3, 0)[2], scene_.pixel(3, 0)[2]);
+  r = run("haze add --image " + p("scene.exr") + " --depth " + p("depth.exr") +
+          " --turbidity 2.5 --camera canon-eos-5d --sky " + p("sky.exr") + " --airlight 1,1,1 -o " +
+          p("out2.exr"));
+  EXPECT_EQ(r.status, 2);  // one airlight source only
 }
 
 TEST_F(HazeCli, CompositeWithASkyModelAirlight) {

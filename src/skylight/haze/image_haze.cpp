@@ -6,9 +6,12 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <vector>
 
 #include "skylight/core/error.h"
+#include "skylight/core/math.h"
 #include "skylight/core/parallel.h"
+#include "skylight/estimate/photo.h"
 
 namespace skylight::haze {
 namespace {
@@ -115,9 +118,14 @@ std::size_t haze_pixels(const Uniforms& u, float* px, const float* depth, std::s
   return low;
 }
 
+// The largest depth; the kernel's table index needs every depth finite and >= 0.
 float max_depth(const io::ImageF& depth_m) {
   float m = 0.0f;
-  for (float v : depth_m.data) m = std::max(m, v);
+  for (float v : depth_m.data) {
+    if (!(v >= 0.0f && std::isfinite(v)))
+      throw InvalidArgument(fmt::format("depth {} m: depths must be finite and >= 0", v));
+    m = std::max(m, v);
+  }
   return m;
 }
 
@@ -284,6 +292,43 @@ double zeta(double turbidity, double theta, double theta_prime) {
     return 1.0 + (0.178 * turbidity - 1.463) * std::exp((-0.355 * turbidity + 0.427) / cos_theta);
   };
   return term(theta) / term(theta_prime);
+}
+
+PhotoAirlight photo_airlight(const io::ImageF& sky, const estimate::SkyCamera& camera,
+                             double turbidity, double theta, double band) {
+  if (sky.channels != 3) throw InvalidArgument("the sky photo must be R, G, B");
+  if (camera.width != sky.width || camera.height != sky.height)
+    throw InvalidArgument(fmt::format("the sky photo is {}x{} but its camera {}x{}", sky.width,
+                                      sky.height, camera.width, camera.height));
+  struct Candidate {
+    double luminance, zenith;
+    int col, row;
+  };
+  std::vector<Candidate> region;
+  const double cos_top = std::cos(kPi / 2 - band);  // z of the band's upper edge
+  for (int row = 0; row < sky.height; ++row)
+    for (int col = 0; col < sky.width; ++col) {
+      const std::optional<Vec3> v = camera.pixel_direction(col, row);
+      if (!v || v->z <= 0.0 || v->z > cos_top) continue;
+      region.push_back({estimate::pixel_luminance(sky, col, row), std::acos(v->z), col, row});
+    }
+  if (region.empty())
+    throw InvalidArgument(fmt::format("the sky photo has no pixel within {} deg above the horizon",
+                                      rad_to_deg(band)));
+  const std::size_t n = std::max<std::size_t>(1, (region.size() + 99) / 100);
+  std::partial_sort(
+      region.begin(), region.begin() + static_cast<std::ptrdiff_t>(n), region.end(),
+      [](const Candidate& a, const Candidate& b) { return a.luminance > b.luminance; });
+  PhotoAirlight out;
+  out.pixels = n;
+  for (std::size_t i = 0; i < n; ++i) {
+    const float* p = sky.pixel(region[i].col, region[i].row);
+    for (std::size_t c = 0; c < 3; ++c) out.horizon[c] += p[c] / static_cast<double>(n);
+    out.theta_prime += region[i].zenith / static_cast<double>(n);
+  }
+  const double z = zeta(turbidity, theta, out.theta_prime);
+  for (std::size_t c = 0; c < 3; ++c) out.airlight[c] = out.horizon[c] * z;
+  return out;
 }
 
 }  // namespace skylight::haze

@@ -7,6 +7,8 @@
 
 #include <optional>
 
+#include "skylight/core/math.h"
+#include "skylight/estimate/camera.h"
 #include "skylight/haze/attenuation.h"
 #include "skylight/io/image.h"
 #include "skylight/models/sky_model.h"
@@ -90,5 +92,24 @@ Rgb3 sky_model_airlight(const SkyModel& model, Vec3 view, const CameraSensitivit
 // theta to that at theta' [1]; cos theta clamped at 0.01 (the Perez gradation's clamp,
 // docs/CONVENTIONS.md) so that the horizon is finite. Eq. 12: I^inf(T, theta) = I^inf(theta') zeta.
 double zeta(double turbidity, double theta, double theta_prime);
+
+// The airlight from a sky photo's horizon region (eqs. 12-13).
+struct PhotoAirlight {
+  Rgb3 airlight{};           // I^inf(T, theta) [photo units]
+  Rgb3 horizon{};            // I^inf(theta'): the mean of the brightest horizon pixels
+  double theta_prime = 0.0;  // their mean zenith angle [rad]
+  std::size_t pixels = 0;    // how many were averaged
+};
+
+// Default height of the horizon region above the horizon [rad].
+inline constexpr double kHorizonBand = 10.0 * kDegree;
+
+// Eq. 12: among the photo's pixels that see the sky between the horizon and `band` above it, the
+// brightest 1 % (at least one) by luminance (Rec. 709) are averaged to I^inf(theta') at their mean
+// zenith angle theta'; then I^inf(T, theta) = I^inf(theta') zeta(T, theta, theta') (eq. 13) for
+// the zenith angle `theta` [rad] seen behind the scene (pi/2: the horizon). InvalidArgument when
+// no pixel lies in the band or the photo is not RGB.
+PhotoAirlight photo_airlight(const io::ImageF& sky, const estimate::SkyCamera& camera,
+                             double turbidity, double theta, double band = kHorizonBand);
 
 }  // namespace skylight::haze

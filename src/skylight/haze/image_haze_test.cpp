@@ -84,6 +84,10 @@ TEST(HazeImage, DepthMapsAreChecked) {
   EXPECT_NO_THROW(depth_in_metres(d, {}, 4, 3, "depth"));
   EXPECT_THROW(depth_in_metres(d, {1.0, 10.0}, 4, 3, "depth"), InvalidArgument);  // > 1
   EXPECT_THROW(depth_in_metres(d, {std::nullopt, 10.0}, 4, 3, "depth"), InvalidArgument);
+  // Depth maps built in code are checked by the kernel too.
+  d.data[7] = -1.0f;
+  EXPECT_THROW(apply_haze(pattern(4, 3), d, eos(), settings(HazeOperation::add, 2.0)),
+               InvalidArgument);
 }
 
 TEST(HazeImage, AddIsEquation10AndMatchesTheExactPath) {
@@ -229,6 +233,31 @@ TEST(HazeImage, CompositeBlendsTheHazedObjectOverTheBackground) {
       EXPECT_EQ(out.pixel(x, 4)[c], bg.pixel(x, 4)[c]);
     }
   EXPECT_THROW(composite(bg, pattern(8, 12), alpha, depth, eos(), s), InvalidArgument);
+}
+
+TEST(HazeImage, PhotoAirlightEquations12And13) {
+  // An equirect 64 x 32 sky: rows 14 and 15 lie within 10 deg above the horizon (elevations 8.4
+  // and 2.8 deg); row 15 is the brighter, and its 64 pixels hold the top 1 % (2 of 128).
+  io::ImageF sky(64, 32, 3);
+  for (int row = 0; row < 32; ++row)
+    for (int col = 0; col < 64; ++col) {
+      const float k = row == 15 ? 2.0f : row < 16 ? 1.0f : 5.0f;  // below the horizon: ignored
+      sky.pixel(col, row)[0] = 0.4f * k;
+      sky.pixel(col, row)[1] = 0.5f * k;
+      sky.pixel(col, row)[2] = 0.7f * k;
+    }
+  const estimate::SkyCamera cam{estimate::PhotoProjection::equirect, 64, 32, {}};
+  const PhotoAirlight a = photo_airlight(sky, cam, 2.5, kPi / 2);
+  EXPECT_EQ(a.pixels, 2u);
+  const double theta_prime = kPi * 15.5 / 32.0;
+  EXPECT_NEAR(a.theta_prime, theta_prime, kClosedFormRelTol);
+  const double z = zeta(2.5, kPi / 2, theta_prime);
+  EXPECT_NEAR(a.airlight[0], 0.8 * z, kFloatTol);
+  EXPECT_NEAR(a.airlight[2], 1.4 * z, kFloatTol);
+  // A photo that sees nothing near the horizon.
+  const estimate::SkyCamera narrow{estimate::PhotoProjection::fisheye, 64, 32,
+                                   FisheyeLayout{FisheyeLens::equidistant, 60.0 * kDegree, 0.0}};
+  EXPECT_THROW(photo_airlight(sky, narrow, 2.5, kPi / 2), InvalidArgument);
 }
 
 TEST(HazeImage, ZetaEquation13AndSkyModelAirlight) {
