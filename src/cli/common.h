@@ -46,6 +46,7 @@ void add_sun_command(CLI::App& app, Commands& commands);
 void add_nn_command(CLI::App& app, Commands& commands);
 void add_estimate_command(CLI::App& app, Commands& commands);
 void add_sh_command(CLI::App& app, Commands& commands);
+void add_haze_command(CLI::App& app, Commands& commands);
 
 // ---- flags from the schema ----------------------------------------------------------------------
 

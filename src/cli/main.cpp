@@ -38,6 +38,7 @@ int main(int argc, char** argv) {
   cli::add_nn_command(app, commands);
   cli::add_estimate_command(app, commands);
   cli::add_sh_command(app, commands);
+  cli::add_haze_command(app, commands);
   // Each subcommand's --help also lists the global option (CLI11 shows only its own options).
   for (const auto& c : commands)
     c.app->footer(

@@ -86,6 +86,11 @@ ImageF read_image(const std::filesystem::path& path, const ReadImageOptions& opt
 // missing or corrupt file, InvalidArgument for an image over options.max_pixels (checked from the
 // header before any pixel memory is allocated; allow_non_finite does not apply to 8-bit data).
 Image8 read_png(const std::filesystem::path& path, const ReadImageOptions& options = {});
+// Reads a one-channel image (depth maps, masks): EXR channel Z, else Y, else R (any pixel type as
+// float); PFM `Pf`, or the first channel of `PF`; a 16-bit PNG (grey, or its first channel) as
+// v / 65535 in [0, 1]. Errors as read_image; an 8-bit PNG or .hdr is InvalidArgument naming it.
+ImageF read_scalar_image(const std::filesystem::path& path, const ReadImageOptions& options = {});
+
 // Reads the string attributes of an EXR header.
 Metadata read_exr_metadata(const std::filesystem::path& path);
 

@@ -225,7 +225,8 @@ std::pair<std::int64_t, std::int64_t> exr_data_window(const fs::path& path) {
   return *window;
 }
 
-ImageF read_exr(const fs::path& path, const ReadImageOptions& options) {
+// `scalar`: one channel, the first of Z, Y and R present (depth maps); otherwise R,G,B or Y.
+ImageF read_exr(const fs::path& path, const ReadImageOptions& options, bool scalar = false) {
   open_for_read(path);  // a clear system message for missing or unreadable files
   return converting_errors(path, true, [&] {
     const auto [first_width, first_height] = exr_data_window(path);
@@ -242,7 +243,17 @@ ImageF read_exr(const fs::path& path, const ReadImageOptions& options) {
 
     const Imf::ChannelList& channels = header.channels();
     std::vector<const char*> names;
-    if (channels.findChannel("R") && channels.findChannel("G") && channels.findChannel("B")) {
+    if (scalar) {
+      for (const char* name : {"Z", "Y", "R"})
+        if (names.empty() && channels.findChannel(name)) names = {name};
+      if (names.empty()) {
+        std::string present;
+        for (auto it = channels.begin(); it != channels.end(); ++it)
+          present += (present.empty() ? "" : ", ") + std::string(it.name());
+        throw_read_error(path, fmt::format("no Z, Y or R channel (has: {})", present));
+      }
+    } else if (channels.findChannel("R") && channels.findChannel("G") &&
+               channels.findChannel("B")) {
       names = {"R", "G", "B"};
     } else if (channels.findChannel("Y")) {
       names = {"Y"};
@@ -667,6 +678,54 @@ ImageF read_image(const std::filesystem::path& path, const ReadImageOptions& opt
       throw InvalidArgument(
           fmt::format("cannot read '{}': PNG files are 8-bit previews; read .exr, .hdr or .pfm",
                       path.string()));
+  }
+  if (!options.allow_non_finite) check_finite(path, image);
+  return image;
+}
+
+ImageF read_scalar_image(const std::filesystem::path& path, const ReadImageOptions& options) {
+  ImageF image;
+  switch (format_from_path(path)) {
+    case ImageFormat::exr:
+      image = read_exr(path, options, true);
+      break;
+    case ImageFormat::pfm: {
+      const ImageF all = read_pfm(path, options);
+      image = ImageF(all.width, all.height, 1);
+      for (std::size_t i = 0; i < image.data.size(); ++i)
+        image.data[i] = all.data[i * static_cast<std::size_t>(all.channels)];
+      break;
+    }
+    case ImageFormat::png: {
+      const std::vector<char> bytes = without_empty_idat_chunks(read_file(path));
+      constexpr std::string_view kPngSignature{"\x89PNG\r\n\x1a\n", 8};
+      if (bytes.size() < kPngSignature.size() ||
+          std::string_view(bytes.data(), kPngSignature.size()) != kPngSignature)
+        throw_read_error(path, "not a PNG file (no PNG signature)");
+      if (bytes.size() > static_cast<std::size_t>(std::numeric_limits<int>::max()))
+        throw_read_error(path, "larger than 2 GB");
+      const auto* data = reinterpret_cast<const stbi_uc*>(bytes.data());
+      const int size = static_cast<int>(bytes.size());
+      stbi_set_flip_vertically_on_load_thread(0);
+      int w = 0, h = 0, n = 0;
+      if (stbi_info_from_memory(data, size, &w, &h, &n) == 0)
+        throw_read_error(path, stbi_failure_reason());
+      check_read_size(path, w, h, options);
+      if (!stbi_is_16_bit_from_memory(data, size))
+        throw InvalidArgument(fmt::format(
+            "cannot read '{}': an 8-bit PNG is too coarse for depth; write 16-bit", path.string()));
+      std::uint16_t* pixels = stbi_load_16_from_memory(data, size, &w, &h, &n, 1);
+      if (pixels == nullptr) throw_read_error(path, stbi_failure_reason());
+      image = ImageF(w, h, 1);
+      for (std::size_t i = 0; i < image.data.size(); ++i)
+        image.data[i] = static_cast<float>(pixels[i]) / 65535.0f;
+      stbi_image_free(pixels);
+      break;
+    }
+    case ImageFormat::hdr:
+      throw InvalidArgument(fmt::format(
+          "cannot read '{}' as one channel: use .exr (Z, Y or R), .pfm or a 16-bit .png",
+          path.string()));
   }
   if (!options.allow_non_finite) check_finite(path, image);
   return image;

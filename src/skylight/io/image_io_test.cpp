@@ -137,6 +137,98 @@ TEST(ImageIo, ExrHalfChannelsAndOffsetDataWindowAreRead) {
   for (size_t i = 0; i < values.size(); ++i) EXPECT_EQ(image.data[i], float(values[i])) << i;
 }
 
+// ---- one-channel images (depth maps) ------------------------------------------------------------
+
+// A grey 16-bit PNG with stored (uncompressed) deflate blocks, written by hand: stb cannot write
+// 16-bit PNGs.
+std::string png16(int w, int h, const std::vector<std::uint16_t>& values) {
+  const auto crc = [](const std::string& bytes) {
+    std::uint32_t c = 0xffffffffu;
+    for (unsigned char b : bytes) {
+      c ^= b;
+      for (int k = 0; k < 8; ++k) c = (c >> 1) ^ (0xedb88320u & (0u - (c & 1u)));
+    }
+    return c ^ 0xffffffffu;
+  };
+  const auto be32 = [](std::uint32_t v) {
+    return std::string{static_cast<char>(v >> 24), static_cast<char>(v >> 16),
+                       static_cast<char>(v >> 8), static_cast<char>(v)};
+  };
+  const auto chunk = [&](const std::string& type, const std::string& data) {
+    return be32(static_cast<std::uint32_t>(data.size())) + type + data + be32(crc(type + data));
+  };
+  std::string raw;
+  for (int y = 0; y < h; ++y) {
+    raw += '\0';  // filter type none
+    for (int x = 0; x < w; ++x) {
+      const std::uint16_t v = values[static_cast<std::size_t>(y * w + x)];
+      raw += static_cast<char>(v >> 8);
+      raw += static_cast<char>(v & 0xff);
+    }
+  }
+  std::uint32_t a = 1, b = 0;
+  for (unsigned char ch : raw) {
+    a = (a + ch) % 65521;
+    b = (b + a) % 65521;
+  }
+  const auto len = static_cast<std::uint16_t>(raw.size());  // one stored block (< 64 KiB)
+  std::string z = "\x78\x01";
+  z += '\x01';
+  z += static_cast<char>(len & 0xff);
+  z += static_cast<char>(len >> 8);
+  z += static_cast<char>(~len & 0xff);
+  z += static_cast<char>((~len >> 8) & 0xff);
+  z += raw + be32((b << 16) | a);
+  const std::string ihdr = be32(static_cast<std::uint32_t>(w)) +
+                           be32(static_cast<std::uint32_t>(h)) +
+                           std::string("\x10\x00\x00\x00\x00", 5);
+  return std::string("\x89PNG\r\n\x1a\n", 8) + chunk("IHDR", ihdr) + chunk("IDAT", z) +
+         chunk("IEND", "");
+}
+
+TEST(ImageIo, ScalarImagesFromExrZPfmAndSixteenBitPng) {
+  ScratchDir dir;
+  // EXR: Z is preferred over Y and R.
+  const fs::path exr = dir / "depth.exr";
+  const Imath::Box2i window({0, 0}, {2, 1});
+  Imf::Header header(window, window);
+  for (const char* name : {"R", "Y", "Z"}) header.channels().insert(name, Imf::Channel(Imf::FLOAT));
+  std::vector<float> r(6, 1.0f), y(6, 2.0f), z = {10.0f, 20.0f, 30.0f, 40.0f, 50.0f, 60.0f};
+  Imf::FrameBuffer frame;
+  frame.insert("R", Imf::Slice::Make(Imf::FLOAT, r.data(), window));
+  frame.insert("Y", Imf::Slice::Make(Imf::FLOAT, y.data(), window));
+  frame.insert("Z", Imf::Slice::Make(Imf::FLOAT, z.data(), window));
+  {
+    Imf::OutputFile out(exr.c_str(), header);
+    out.setFrameBuffer(frame);
+    out.writePixels(2);
+  }
+  const ImageF from_exr = read_scalar_image(exr);
+  ASSERT_EQ(from_exr.channels, 1);
+  EXPECT_EQ(from_exr.data, z);
+  // An RGB EXR gives its R channel; an RGB PFM its first channel.
+  ImageF rgb(2, 1, 3);
+  rgb.data = {1.0f, 2.0f, 3.0f, 4.0f, 5.0f, 6.0f};
+  write_image(dir / "rgb.exr", rgb);
+  write_image(dir / "rgb.pfm", rgb);
+  EXPECT_EQ(read_scalar_image(dir / "rgb.exr").data, (std::vector<float>{1.0f, 4.0f}));
+  EXPECT_EQ(read_scalar_image(dir / "rgb.pfm").data, (std::vector<float>{1.0f, 4.0f}));
+  // 16-bit PNG: v / 65535, row 0 on top.
+  spit(dir / "d.png", png16(3, 2, {0, 65535, 32768, 1, 2, 3}));
+  const ImageF from_png = read_scalar_image(dir / "d.png");
+  ASSERT_EQ(from_png.width, 3);
+  ASSERT_EQ(from_png.height, 2);
+  EXPECT_EQ(from_png.data[0], 0.0f);
+  EXPECT_EQ(from_png.data[1], 1.0f);
+  EXPECT_EQ(from_png.data[2], 32768.0f / 65535.0f);
+  EXPECT_EQ(from_png.data[5], 3.0f / 65535.0f);
+  // 8-bit PNG and HDR are refused with the path named.
+  write_png(dir / "eight.png", Image8(2, 2));
+  EXPECT_THROW(read_scalar_image(dir / "eight.png"), InvalidArgument);
+  write_image(dir / "x.hdr", rgb);
+  EXPECT_THROW(read_scalar_image(dir / "x.hdr"), InvalidArgument);
+}
+
 // ---- PFM ---------------------------------------------------------------------------------------
 
 TEST(ImageIo, PfmRoundTripIsBitIdenticalAndKeepsRowOrder) {

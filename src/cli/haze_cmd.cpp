@@ -1,0 +1,446 @@
+// `skylight haze`: aerial perspective after Morales, Oishi & Ikeuchi 2017 (haze/; docs/HAZE.md):
+// scattering coefficients, the attenuation factor of a camera, the camera list, and add / retarget
+// / remove haze on an image with a depth map, or composite a virtual object into a hazy photo.
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "common.h"
+#include "skylight/core/error.h"
+#include "skylight/core/frame.h"
+#include "skylight/core/math.h"
+#include "skylight/core/numbers.h"
+#include "skylight/estimate/camera.h"
+#include "skylight/haze/attenuation.h"
+#include "skylight/haze/coefficients.h"
+#include "skylight/haze/image_haze.h"
+#include "skylight/io/image.h"
+#include "skylight/version.h"
+
+namespace skylight::cli {
+namespace {
+
+namespace fs = std::filesystem;
+
+// ---- shared flags ---------------------------------------------------------------------------
+
+const ParameterSpec& turbidity_spec() {
+  static const ParameterSpec s{"turbidity",
+                               "1",
+                               ParameterKind::number,
+                               1.0,
+                               64.0,
+                               1,
+                               Required{},
+                               "turbidity T of the air (Morales 2017 eq. 5; 1 = pure air)"};
+  return s;
+}
+
+const ParameterSpec& altitude_spec() {
+  static const ParameterSpec s{"altitude",
+                               "m",
+                               ParameterKind::number,
+                               -500.0,
+                               20000.0,
+                               1,
+                               ParameterValue(0.0),
+                               "observer altitude h0 above sea level (horizontal paths at h0)"};
+  return s;
+}
+
+struct AirFlags {
+  double turbidity = 2.0, altitude_m = 0.0;
+  std::string variant = "improved";
+  void add(CLI::App& cmd) {
+    add_number(cmd, turbidity_spec(), turbidity)->required();
+    add_number(cmd, altitude_spec(), altitude_m);
+    cmd.add_option("--variant", variant,
+                   "scattering coefficients: improved (Morales 2017 eqs. 15, 18), preetham or "
+                   "zhao; default improved")
+        ->check(CLI::IsMember({"improved", "preetham", "zhao"}));
+  }
+  haze::Atmosphere atmosphere() const {
+    return {turbidity, altitude_m, haze::parse_scattering_variant(variant)};
+  }
+};
+
+struct CameraFlags {
+  std::string name, csv;
+  void add(CLI::App& cmd) {
+    auto* n = cmd.add_option("--camera", name,
+                             "camera spectral sensitivity by name (skylight haze cameras)");
+    auto* c = cmd.add_option("--camera-csv", csv, "camera sensitivities: CSV 'nm,r,g,b'");
+    n->excludes(c);
+  }
+  haze::CameraSensitivity camera() const {
+    if (!csv.empty()) return haze::load_camera_csv(csv);
+    if (name.empty()) throw InvalidArgument("give --camera NAME or --camera-csv FILE");
+    return haze::find_camera(name);
+  }
+};
+
+// The airlight I^inf: constant, or a sky model seen through the camera.
+struct AirlightFlags {
+  std::vector<double> airlight;
+  std::string sky_model, sky_photo, sky_projection = "fisheye";
+  FisheyeFlags fisheye;
+  double sun_zenith_deg = kDefaultSunZenithDeg, sun_azimuth_deg = kDefaultSunAzimuthDeg;
+  double view_elevation_deg = 0.0, view_azimuth_deg = 0.0;
+  void add(CLI::App& cmd) {
+    auto* a = add_numbers(
+        cmd,
+        {"airlight", "image units", ParameterKind::numbers, 1e-30, 1e30, 3,
+         Absent{"from --sky-model"}, "constant airlight I^inf R,G,B (Morales 2017 eq. 10), > 0"},
+        airlight);
+    auto* m = cmd.add_option("--sky-model", sky_model,
+                             "airlight from a spectral sky model (preetham, hosek, nishita) at the "
+                             "turbidity, seen through the camera (eq. 7)");
+    auto* photo = cmd.add_option(
+        "--sky", sky_photo,
+        "airlight from a sky photo's horizon region (eqs. 12-13): linear .exr, .hdr or .pfm");
+    a->excludes(m)->excludes(photo);
+    m->excludes(photo);
+    cmd.add_option("--sky-projection", sky_projection, "--sky: fisheye|equirect; default fisheye")
+        ->check(CLI::IsMember({"fisheye", "equirect"}));
+    fisheye.add(cmd, "180", "--sky fisheye: field of view across the image circle");
+    ParameterSpec zenith = sun_parameter_specs()[0], azimuth = sun_parameter_specs()[1];
+    add_number(cmd, zenith, sun_zenith_deg);
+    add_number(cmd, azimuth, sun_azimuth_deg);
+    add_number(cmd,
+               {"view-elevation", "deg", ParameterKind::number, 0.0, 90.0, 1, ParameterValue(0.0),
+                "--sky-model, --sky: elevation of the sky seen behind the scene"},
+               view_elevation_deg);
+    add_number(cmd,
+               {"view-azimuth", "deg", ParameterKind::number, -360.0, 360.0, 1, ParameterValue(0.0),
+                "--sky-model: azimuth of that direction (north 0, east 90)"},
+               view_azimuth_deg);
+  }
+  // At turbidity `t`.
+  haze::Rgb3 at(double t, const haze::CameraSensitivity& camera) const {
+    if (!airlight.empty()) return {airlight[0], airlight[1], airlight[2]};
+    const double theta = deg_to_rad(90.0 - view_elevation_deg);
+    if (!sky_photo.empty()) {
+      const io::ImageF photo = io::read_image(sky_photo);
+      estimate::SkyCamera cam;
+      cam.projection = *estimate::parse_photo_projection(sky_projection);
+      cam.width = photo.width;
+      cam.height = photo.height;
+      cam.fisheye = fisheye.layout();
+      estimate::validate(cam);
+      return haze::photo_airlight(photo, cam, t, theta).airlight;
+    }
+    if (sky_model.empty())
+      throw InvalidArgument("give --airlight R,G,B, --sky PHOTO or --sky-model NAME");
+    const ModelInfo* info = find_model(sky_model);
+    if (!info) throw InvalidArgument(fmt::format("unknown --sky-model '{}'", excerpt(sky_model)));
+    SkyParameters p;
+    p.sun = sun_from_degrees(sun_zenith_deg, sun_azimuth_deg);
+    p.values = info->example;
+    bool has_turbidity = false;
+    for (const auto& spec : info->parameters) has_turbidity |= spec.name == "turbidity";
+    if (!has_turbidity)
+      throw InvalidArgument(fmt::format("--sky-model '{}' has no turbidity", sky_model));
+    p.values.set("turbidity", t);
+    const auto model = make_sky_model(sky_model, p);
+    const Vec3 view = direction_from_angles(theta, wrap_azimuth(deg_to_rad(view_azimuth_deg)));
+    return haze::sky_model_airlight(*model, view, camera);
+  }
+};
+
+// An output must not replace any input.
+void check_output(const std::string& out, const std::vector<std::string>& inputs) {
+  if (out.empty()) throw InvalidArgument("give -o OUT");
+  std::error_code ec;
+  for (const auto& in : inputs)
+    if (!in.empty() && (in == out || fs::equivalent(in, out, ec)))
+      throw InvalidArgument(
+          fmt::format("-o '{}' is also an input; write to another file", excerpt(out)));
+  if (io::format_from_path(out) == io::ImageFormat::png)
+    throw InvalidArgument(
+        fmt::format("-o '{}': write .exr, .pfm or .hdr (float data)", excerpt(out)));
+}
+
+void check_finite(const io::ImageF& image) {
+  for (float v : image.data)
+    if (!std::isfinite(v))
+      throw InvalidArgument("the result holds a non-finite value; nothing was written");
+}
+
+std::string json_or_text(bool json, const nlohmann::ordered_json& j, const std::string& text) {
+  return json ? j.dump(2) + "\n" : text;
+}
+
+// ---- coefficients, attenuation, cameras ----------------------------------------------------
+
+struct CoefficientsFlags {
+  AirFlags air;
+  double wavelength_nm = 550.0;
+  bool json = false;
+};
+
+int run_coefficients(const CoefficientsFlags& f) {
+  const haze::Atmosphere a = f.air.atmosphere();
+  haze::validate(a);
+  constexpr double kPerKm = 1e3;
+  const double br = haze::rayleigh_per_m(f.wavelength_nm, a.altitude_m, a.variant) * kPerKm;
+  const double bm = haze::mie_per_m(f.wavelength_nm, a.turbidity, a.altitude_m, a.variant) * kPerKm;
+  // Table 2 classifies at standard conditions: 550 nm, sea level.
+  const double bm_standard = haze::mie_per_m(550.0, a.turbidity, 0.0, a.variant) * kPerKm;
+  const std::string weather = haze::weather_class(bm_standard);
+  nlohmann::ordered_json j;
+  j["variant"] = f.air.variant;
+  j["turbidity"] = a.turbidity;
+  j["wavelength_nm"] = f.wavelength_nm;
+  j["altitude_m"] = a.altitude_m;
+  j["beta_rayleigh_per_km"] = br;
+  j["beta_mie_per_km"] = bm;
+  j["beta_total_per_km"] = br + bm;
+  j["beta_mie_standard_per_km"] = bm_standard;
+  j["weather_class"] = weather;
+  const std::string text = fmt::format(
+      "variant        {}\nbeta_rayleigh  {:.6g} /km\nbeta_mie       {:.6g} /km\nbeta_total     "
+      "{:.6g} /km\nweather class  {} (beta_mie {:.4g} /km at 550 nm, 0 m; Table 2)\n",
+      f.air.variant, br, bm, br + bm, weather, bm_standard);
+  write_stdout(json_or_text(f.json, j, text));
+  return kExitOk;
+}
+
+struct AttenuationFlags {
+  AirFlags air;
+  CameraFlags camera;
+  double distance_m = 1000.0;
+  bool json = false;
+};
+
+int run_attenuation(const AttenuationFlags& f) {
+  const haze::CameraSensitivity cam = f.camera.camera();
+  const haze::Attenuation att(f.air.atmosphere(), cam);
+  const haze::Rgb3 g = att.gamma(f.distance_m);
+  nlohmann::ordered_json j;
+  j["camera"] = cam.name;
+  j["variant"] = f.air.variant;
+  j["turbidity"] = f.air.turbidity;
+  j["altitude_m"] = f.air.altitude_m;
+  j["distance_m"] = f.distance_m;
+  j["gamma"] = {g[0], g[1], g[2]};
+  write_stdout(json_or_text(f.json, j,
+                            fmt::format("Gamma r g b  {:.6f} {:.6f} {:.6f}  ({}, {} m)\n", g[0],
+                                        g[1], g[2], cam.name, f.distance_m)));
+  return kExitOk;
+}
+
+int run_cameras(bool json) {
+  nlohmann::ordered_json j = nlohmann::ordered_json::array();
+  std::string text;
+  for (const auto& name : haze::camera_names()) {
+    const auto& cam = haze::find_camera(name);
+    j.push_back({{"name", name}, {"camera", cam.description}});
+    text += fmt::format("{:<28} {}\n", name, cam.description);
+  }
+  write_stdout(json ? j.dump(2) + "\n" : text);
+  return kExitOk;
+}
+
+// ---- image operations ------------------------------------------------------------------------
+
+struct ImageFlags {
+  haze::HazeOperation operation = haze::HazeOperation::add;
+  std::string image, depth, output;
+  std::optional<double> near_m, far_m, target_turbidity;
+  double min_transmission = haze::kDefaultMinTransmission;
+  AirFlags air;
+  CameraFlags camera;
+  AirlightFlags airlight;
+  // composite
+  std::string object, object_depth, object_alpha;
+};
+
+io::Metadata haze_metadata(const ImageFlags& f, const haze::CameraSensitivity& cam,
+                           std::string_view op, const haze::HazeSettings& s) {
+  io::Metadata md{{"skylight:version", kVersion},
+                  {"skylight:haze_operation", std::string(op)},
+                  {"skylight:camera", cam.name},
+                  {"skylight:scattering_variant", f.air.variant},
+                  {"skylight:turbidity", fmt::format("{}", f.air.turbidity)},
+                  {"skylight:altitude_m", fmt::format("{}", f.air.altitude_m)},
+                  {"skylight:airlight", fmt::format("{},{},{}", s.airlight_source[0],
+                                                    s.airlight_source[1], s.airlight_source[2])}};
+  if (s.target_turbidity)
+    md.emplace_back("skylight:target_turbidity", fmt::format("{}", *s.target_turbidity));
+  return md;
+}
+
+haze::HazeSettings settings_of(const ImageFlags& f, const haze::CameraSensitivity& cam) {
+  haze::HazeSettings s;
+  s.operation = f.operation;
+  s.source = f.air.atmosphere();
+  haze::validate(s.source);
+  s.min_transmission = f.min_transmission;
+  s.airlight_source = f.airlight.at(f.air.turbidity, cam);
+  if (f.operation == haze::HazeOperation::retarget) {
+    if (!f.target_turbidity) throw InvalidArgument("haze retarget needs --target-turbidity");
+    s.target_turbidity = f.target_turbidity;
+    s.airlight_target = f.airlight.at(*f.target_turbidity, cam);
+  } else if (f.target_turbidity) {
+    throw InvalidArgument("--target-turbidity is for haze retarget only");
+  }
+  return s;
+}
+
+int run_image(const ImageFlags& f, std::string_view op) {
+  check_output(f.output, {f.image, f.depth, f.airlight.sky_photo});
+  const haze::CameraSensitivity cam = f.camera.camera();
+  const haze::HazeSettings s = settings_of(f, cam);
+  const io::ImageF image = io::read_image(f.image);
+  if (image.channels != 3)
+    throw InvalidArgument(
+        fmt::format("--image '{}' has one channel; haze needs R, G, B", excerpt(f.image)));
+  const io::ImageF depth =
+      haze::depth_in_metres(io::read_scalar_image(f.depth), {f.near_m, f.far_m}, image.width,
+                            image.height, fmt::format("--depth '{}'", excerpt(f.depth)));
+  haze::HazeReport report;
+  const io::ImageF out = haze::apply_haze(image, depth, cam, s, &report);
+  check_finite(out);
+  io::write_image(f.output, out, haze_metadata(f, cam, op, s));
+  write_stdout(fmt::format(
+      "haze {}: {}x{}, Gamma table {} entries (interpolation error <= {:.2g}), {} pixels with "
+      "Gamma_s below {} -> {}\n",
+      op, image.width, image.height, report.table_entries, report.table_error_bound,
+      report.clamped_transmission_pixels, s.min_transmission, f.output));
+  return kExitOk;
+}
+
+int run_composite(const ImageFlags& f) {
+  check_output(f.output, {f.image, f.object, f.object_depth, f.object_alpha, f.airlight.sky_photo});
+  const haze::CameraSensitivity cam = f.camera.camera();
+  const haze::HazeSettings s = settings_of(f, cam);
+  const io::ImageF bg = io::read_image(f.image);
+  const io::ImageF obj = io::read_image(f.object);
+  const io::ImageF depth = haze::depth_in_metres(
+      io::read_scalar_image(f.object_depth), {f.near_m, f.far_m}, obj.width, obj.height,
+      fmt::format("--object-depth '{}'", excerpt(f.object_depth)));
+  io::ImageF alpha;
+  if (!f.object_alpha.empty()) {
+    alpha = io::read_scalar_image(f.object_alpha);
+  } else {  // no alpha: the object covers the pixels with depth > 0
+    alpha = io::ImageF(depth.width, depth.height, 1);
+    for (std::size_t i = 0; i < alpha.data.size(); ++i)
+      alpha.data[i] = depth.data[i] > 0.0f ? 1.0f : 0.0f;
+  }
+  const io::ImageF out = haze::composite(bg, obj, alpha, depth, cam, s);
+  check_finite(out);
+  io::write_image(f.output, out, haze_metadata(f, cam, "composite", s));
+  write_stdout(fmt::format("haze composite: {}x{} -> {}\n", bg.width, bg.height, f.output));
+  return kExitOk;
+}
+
+void add_image_flags(CLI::App& cmd, ImageFlags& f, bool composite) {
+  if (composite) {
+    cmd.add_option("--background", f.image, "the background photo (.exr, .pfm, .hdr; linear RGB)")
+        ->required();
+    cmd.add_option("--object", f.object, "the virtual object's RGB without haze")->required();
+    cmd.add_option("--object-depth", f.object_depth,
+                   "its depth: .exr (Z, Y or R), .pfm or 16-bit .png; metres, or normalised with "
+                   "--near/--far")
+        ->required();
+    cmd.add_option("--object-alpha", f.object_alpha,
+                   "its coverage in [0, 1] (one channel); default 1 where the depth is > 0");
+  } else {
+    cmd.add_option("--image", f.image, "the photo (.exr, .pfm, .hdr; linear RGB)")->required();
+    cmd.add_option("--depth", f.depth,
+                   "depth of every pixel: .exr (Z, Y or R), .pfm or 16-bit .png; metres, or "
+                   "normalised with --near/--far (eq. 19)")
+        ->required();
+  }
+  f.air.add(cmd);
+  if (!composite && f.operation == haze::HazeOperation::retarget)
+    add_number(cmd,
+               {"target-turbidity", "1", ParameterKind::number, 1.0, 64.0, 1, Required{},
+                "turbidity T_t to re-target to (eq. 26)"},
+               f.target_turbidity)
+        ->required();
+  f.camera.add(cmd);
+  add_number(cmd,
+             {"near", "m", ParameterKind::number, 1e-6, 1e9, 1,
+              Absent{"the depth map holds metres"}, "near plane of a normalised depth map"},
+             f.near_m);
+  add_number(cmd,
+             {"far", "m", ParameterKind::number, 1e-6, 1e9, 1, Absent{"the depth map holds metres"},
+              "far plane of a normalised depth map"},
+             f.far_m);
+  f.airlight.add(cmd);
+  if (!composite)
+    add_number(cmd,
+               {"min-transmission", "1", ParameterKind::number, 1e-6, 1.0, 1,
+                ParameterValue(f.min_transmission),
+                "remove/retarget: Gamma_s is taken as at least this (bounds the amplification)"},
+               f.min_transmission);
+  cmd.add_option("-o,--output", f.output, "output image (.exr, .pfm or .hdr)")->required();
+}
+
+}  // namespace
+
+void add_haze_command(CLI::App& app, Commands& commands) {
+  auto* haze = app.add_subcommand(
+      "haze",
+      "aerial perspective (Morales et al. 2017): coefficients, attenuation, cameras, "
+      "add/retarget/remove haze, composite");
+  haze->require_subcommand(1);
+
+  auto cf = std::make_shared<CoefficientsFlags>();
+  auto* coeff = haze->add_subcommand(
+      "coefficients", "Rayleigh and Mie scattering coefficients and the weather class (Table 2)");
+  cf->air.add(*coeff);
+  add_number(*coeff,
+             {"wavelength", "nm", ParameterKind::number, 300.0, 1000.0, 1, ParameterValue(550.0),
+              "wavelength"},
+             cf->wavelength_nm);
+  coeff->add_flag("--json", cf->json, "write JSON");
+  commands.push_back({coeff, [cf] { return run_coefficients(*cf); }});
+
+  auto af = std::make_shared<AttenuationFlags>();
+  auto* att = haze->add_subcommand(
+      "attenuation", "the attenuation factor Gamma_c (eq. 11) of a horizontal path for a camera");
+  af->air.add(*att);
+  af->camera.add(*att);
+  add_number(*att,
+             {"distance", "m", ParameterKind::number, 0.0, 1e7, 1, Required{}, "path length s"},
+             af->distance_m)
+      ->required();
+  att->add_flag("--json", af->json, "write JSON");
+  commands.push_back({att, [af] { return run_attenuation(*af); }});
+
+  auto json_cameras = std::make_shared<bool>(false);
+  auto* cams = haze->add_subcommand("cameras", "the embedded camera spectral sensitivities");
+  cams->add_flag("--json", *json_cameras, "write JSON");
+  commands.push_back({cams, [json_cameras] { return run_cameras(*json_cameras); }});
+
+  const std::pair<const char*, haze::HazeOperation> ops[] = {
+      {"add", haze::HazeOperation::add},
+      {"retarget", haze::HazeOperation::retarget},
+      {"remove", haze::HazeOperation::remove}};
+  for (const auto& [name, op] : ops) {
+    auto f = std::make_shared<ImageFlags>();
+    f->operation = op;
+    auto* cmd = haze->add_subcommand(
+        name, op == haze::HazeOperation::add        ? "add haze to an image with depth (eq. 10)"
+              : op == haze::HazeOperation::retarget ? "re-target haze from T to T_t (eq. 26)"
+                                                    : "remove haze (eq. 10 inverted)");
+    add_image_flags(*cmd, *f, false);
+    const std::string op_name = name;
+    commands.push_back({cmd, [f, op_name] { return run_image(*f, op_name); }});
+  }
+
+  auto comp = std::make_shared<ImageFlags>();
+  auto* c = haze->add_subcommand(
+      "composite", "a virtual object (RGB + depth) given the haze of T, over a background photo");
+  add_image_flags(*c, *comp, true);
+  commands.push_back({c, [comp] { return run_composite(*comp); }});
+}
+
+}  // namespace skylight::cli

@@ -1,0 +1,334 @@
+// Morales et al. 2017 eqs. 10, 12, 13, 19 and 26; docs/HAZE.md.
+#include "skylight/haze/image_haze.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <vector>
+
+#include "skylight/core/error.h"
+#include "skylight/core/math.h"
+#include "skylight/core/parallel.h"
+#include "skylight/estimate/photo.h"
+
+namespace skylight::haze {
+namespace {
+
+// The Gamma_s and Gamma_t tables of an operation over [0, max depth].
+struct Tables {
+  AttenuationTable source, target;  // empty gamma: identically 1
+};
+
+Atmosphere target_atmosphere(const HazeSettings& s) {
+  Atmosphere t = s.source;
+  t.turbidity = *s.target_turbidity;
+  return t;
+}
+
+void check_settings(const HazeSettings& s) {
+  validate(s.source);
+  if (s.operation == HazeOperation::retarget) {
+    if (!s.target_turbidity) throw InvalidArgument("retarget needs the target turbidity");
+    validate(target_atmosphere(s));
+  }
+  for (const Rgb3* a : {&s.airlight_source, &s.airlight_target})
+    for (double v : *a)
+      if (!(v > 0.0 && std::isfinite(v)))
+        throw InvalidArgument(fmt::format("airlight {} is not a finite number > 0", v));
+  if (!(s.min_transmission > 0.0 && s.min_transmission <= 1.0))
+    throw InvalidArgument(
+        fmt::format("minimum transmission {} is outside (0, 1]", s.min_transmission));
+  SKYLIGHT_CHECK(s.table_error > 0.0, "table error must be > 0");
+}
+
+void check_pair(const io::ImageF& image, const io::ImageF& depth_m) {
+  if (image.channels != 3)
+    throw InvalidArgument(
+        fmt::format("the image has {} channel(s); haze needs R, G, B", image.channels));
+  SKYLIGHT_CHECK(
+      depth_m.channels == 1 && depth_m.width == image.width && depth_m.height == image.height,
+      "depth map must be one channel of the image's size (depth_in_metres)");
+}
+
+// The two airlights and Gamma's role per operation (eq. 26 with Gamma_s = 1 for add, Gamma_t = 1
+// for remove).
+struct Roles {
+  bool source_is_one = false, target_is_one = false;
+  Rgb3 a_s{}, a_t{};
+};
+
+Roles roles(const HazeSettings& s) {
+  Roles r;
+  switch (s.operation) {
+    case HazeOperation::add:
+      r.source_is_one = true;
+      r.a_s = r.a_t = s.airlight_source;
+      break;
+    case HazeOperation::remove:
+      r.target_is_one = true;
+      r.a_s = r.a_t = s.airlight_source;
+      break;
+    case HazeOperation::retarget:
+      r.a_s = s.airlight_source;
+      r.a_t = s.airlight_target;
+      break;
+  }
+  return r;
+}
+
+// The kernel's uniforms: what a fragment shader gets (the Gamma tables as 1D textures).
+struct Uniforms {
+  const float* gs = nullptr;            // Gamma_s table (3 per entry), null: Gamma_s = 1 (add)
+  const float* gt = nullptr;            // Gamma_t table, null: Gamma_t = 1 (remove)
+  float inv_step = 1.0f;                // 1 / table step [1/m]
+  int last = 0;                         // entries - 2
+  float min_t = 0.05f;                  // floor of Gamma_s
+  std::array<float, 3> a_t{}, scale{};  // I^inf_t and I^inf_t / I^inf_s
+};
+
+// Eq. 26 on n pixels in place (RGB interleaved, depth [m]): per channel
+// I_out = max(0, I (A_t / A_s) r + A_t (1 - r)), r = Gamma_t / max(Gamma_s, min_t), with Gamma_s
+// = 1 (add) or Gamma_t = 1 (remove) known at compile time. Returns the pixels whose Gamma_s fell
+// below the floor in some channel.
+template <bool kSource, bool kTarget>
+std::size_t haze_pixels(const Uniforms& u, float* px, const float* depth, std::size_t n) {
+  std::size_t low = 0;
+  for (std::size_t x = 0; x < n; ++x) {
+    // Linear interpolation in the tables (a 1D texture lookup on a GPU).
+    const float pos = depth[x] * u.inv_step;
+    const int i = std::min(static_cast<int>(pos), u.last);
+    const float f = pos - static_cast<float>(i);
+    const std::size_t k = 3 * static_cast<std::size_t>(i);
+    bool below = false;
+    for (std::size_t c = 0; c < 3; ++c) {
+      float ratio = 1.0f;
+      if constexpr (kTarget) ratio = u.gt[k + c] + f * (u.gt[k + 3 + c] - u.gt[k + c]);
+      if constexpr (kSource) {
+        const float g_s = u.gs[k + c] + f * (u.gs[k + 3 + c] - u.gs[k + c]);
+        below |= g_s < u.min_t;
+        ratio /= std::max(g_s, u.min_t);
+      }
+      float& v = px[3 * x + c];
+      v = std::max(0.0f, v * u.scale[c] * ratio + u.a_t[c] * (1.0f - ratio));
+    }
+    low += below ? 1 : 0;
+  }
+  return low;
+}
+
+// The largest depth; the kernel's table index needs every depth finite and >= 0.
+float max_depth(const io::ImageF& depth_m) {
+  float m = 0.0f;
+  for (float v : depth_m.data) {
+    if (!(v >= 0.0f && std::isfinite(v)))
+      throw InvalidArgument(fmt::format("depth {} m: depths must be finite and >= 0", v));
+    m = std::max(m, v);
+  }
+  return m;
+}
+
+}  // namespace
+
+double depth_from_normalised(double s_bar, double near_m, double far_m) {
+  return near_m / (1.0 - s_bar * (1.0 - near_m / far_m));
+}
+
+io::ImageF depth_in_metres(const io::ImageF& depth, const DepthEncoding& encoding, int image_width,
+                           int image_height, std::string_view what) {
+  if (depth.width != image_width || depth.height != image_height)
+    throw InvalidArgument(fmt::format("{} is {}x{} but the image is {}x{}", what, depth.width,
+                                      depth.height, image_width, image_height));
+  if (encoding.near_m.has_value() != encoding.far_m.has_value())
+    throw InvalidArgument("--near and --far go together (normalised depth, eq. 19)");
+  const bool normalised = encoding.near_m.has_value();
+  if (normalised && !(*encoding.near_m > 0.0 && *encoding.far_m > *encoding.near_m))
+    throw InvalidArgument(fmt::format("near {} m and far {} m must satisfy 0 < near < far",
+                                      *encoding.near_m, *encoding.far_m));
+  io::ImageF out(depth.width, depth.height, 1);
+  for (int y = 0; y < depth.height; ++y)
+    for (int x = 0; x < depth.width; ++x) {
+      const float v = depth.pixel(x, y)[0];
+      if (!std::isfinite(v) || v < 0.0f || (normalised && v > 1.0f))
+        throw InvalidArgument(fmt::format("{} pixel ({}, {}) is {}; depth must be {}", what, x, y,
+                                          v, normalised ? "in [0, 1]" : "finite and >= 0 m"));
+      out.pixel(x, y)[0] =
+          normalised
+              ? static_cast<float>(depth_from_normalised(v, *encoding.near_m, *encoding.far_m))
+              : v;
+    }
+  return out;
+}
+
+void apply_haze_in_place(io::ImageF& image, const io::ImageF& depth_m,
+                         const CameraSensitivity& camera, const HazeSettings& settings,
+                         HazeReport* report) {
+  check_settings(settings);
+  check_pair(image, depth_m);
+  const Roles r = roles(settings);
+  const double far = max_depth(depth_m);
+  // Both tables on one grid, fine enough for the more curved of the two.
+  const Atmosphere target_air =
+      settings.operation == HazeOperation::retarget ? target_atmosphere(settings) : settings.source;
+  const Attenuation source_att(settings.source, camera), target_att(target_air, camera);
+  const double curvature = std::max(r.source_is_one ? 0.0 : source_att.max_curvature_per_m2(),
+                                    r.target_is_one ? 0.0 : target_att.max_curvature_per_m2());
+  Tables t;
+  if (!r.source_is_one)
+    t.source = make_attenuation_table(source_att, far, settings.table_error, curvature);
+  if (!r.target_is_one)
+    t.target = make_attenuation_table(target_att, far, settings.table_error, curvature);
+  const AttenuationTable& any = t.source.gamma.empty() ? t.target : t.source;
+  Uniforms u;
+  u.gs = t.source.gamma.empty() ? nullptr : t.source.gamma.data();
+  u.gt = t.target.gamma.empty() ? nullptr : t.target.gamma.data();
+  u.inv_step = static_cast<float>(1.0 / any.step_m);
+  u.last = static_cast<int>(any.size()) - 2;
+  u.min_t = static_cast<float>(settings.min_transmission);
+  for (std::size_t c = 0; c < 3; ++c) {
+    u.a_t[c] = static_cast<float>(r.a_t[c]);
+    u.scale[c] = static_cast<float>(r.a_t[c] / r.a_s[c]);
+  }
+  std::atomic<std::size_t> clamped{0};
+  const auto width = static_cast<std::size_t>(image.width);
+  parallel_for(static_cast<std::size_t>(image.height), 8, [&](std::size_t y0, std::size_t y1) {
+    float* px = image.data.data() + y0 * width * 3;
+    const float* d = depth_m.data.data() + y0 * width;
+    const std::size_t n = (y1 - y0) * width;
+    std::size_t low = 0;
+    if (!u.gs)
+      low = haze_pixels<false, true>(u, px, d, n);  // add
+    else if (!u.gt)
+      low = haze_pixels<true, false>(u, px, d, n);  // remove
+    else
+      low = haze_pixels<true, true>(u, px, d, n);  // retarget
+    clamped += low;
+  });
+  if (report) {
+    report->table_error_bound = std::max(t.source.error_bound, t.target.error_bound);
+    report->table_entries = any.size();
+    report->clamped_transmission_pixels = clamped.load();
+  }
+}
+
+io::ImageF apply_haze(const io::ImageF& image, const io::ImageF& depth_m,
+                      const CameraSensitivity& camera, const HazeSettings& settings,
+                      HazeReport* report) {
+  io::ImageF out = image;
+  apply_haze_in_place(out, depth_m, camera, settings, report);
+  return out;
+}
+
+io::ImageF apply_haze_exact(const io::ImageF& image, const io::ImageF& depth_m,
+                            const CameraSensitivity& camera, const HazeSettings& settings) {
+  check_settings(settings);
+  check_pair(image, depth_m);
+  const Roles r = roles(settings);
+  const Attenuation source(settings.source, camera);
+  const std::optional<Attenuation> target =
+      settings.operation == HazeOperation::retarget
+          ? std::optional<Attenuation>(std::in_place, target_atmosphere(settings), camera)
+          : std::nullopt;
+  io::ImageF out(image.width, image.height, 3);
+  for (std::size_t p = 0; p < depth_m.data.size(); ++p) {
+    const double s = depth_m.data[p];
+    const Rgb3 one{1.0, 1.0, 1.0};
+    const Rgb3 g_s = r.source_is_one ? one : source.gamma(s);
+    const Rgb3 g_t = r.target_is_one ? one : target ? target->gamma(s) : source.gamma(s);
+    for (std::size_t c = 0; c < 3; ++c) {
+      const double ratio = g_t[c] / std::max(g_s[c], settings.min_transmission);
+      const double v =
+          image.data[3 * p + c] * (r.a_t[c] / r.a_s[c]) * ratio + r.a_t[c] * (1.0 - ratio);
+      out.data[3 * p + c] = static_cast<float>(std::max(0.0, v));
+    }
+  }
+  return out;
+}
+
+io::ImageF composite(const io::ImageF& background, const io::ImageF& object,
+                     const io::ImageF& alpha, const io::ImageF& object_depth_m,
+                     const CameraSensitivity& camera, const HazeSettings& settings) {
+  if (background.channels != 3 || object.channels != 3)
+    throw InvalidArgument("the background and the object must be R, G, B images");
+  if (object.width != background.width || object.height != background.height)
+    throw InvalidArgument(fmt::format("the object is {}x{} but the background is {}x{}",
+                                      object.width, object.height, background.width,
+                                      background.height));
+  if (alpha.channels != 1 || alpha.width != object.width || alpha.height != object.height)
+    throw InvalidArgument(fmt::format("the alpha is {}x{} with {} channel(s); expected {}x{}, one",
+                                      alpha.width, alpha.height, alpha.channels, object.width,
+                                      object.height));
+  HazeSettings add = settings;
+  add.operation = HazeOperation::add;
+  const io::ImageF hazed = apply_haze(object, object_depth_m, camera, add);
+  io::ImageF out(background.width, background.height, 3);
+  for (std::size_t p = 0; p < alpha.data.size(); ++p) {
+    const float a = alpha.data[p];
+    if (!(a >= 0.0f && a <= 1.0f))
+      throw InvalidArgument(fmt::format("alpha pixel {} is {}; expected [0, 1]", p, a));
+    for (std::size_t c = 0; c < 3; ++c)
+      out.data[3 * p + c] = a * hazed.data[3 * p + c] + (1.0f - a) * background.data[3 * p + c];
+  }
+  return out;
+}
+
+Rgb3 sky_model_airlight(const SkyModel& model, Vec3 view, const CameraSensitivity& camera) {
+  const SpectralWeights w(camera);
+  Rgb3 out{};
+  for (std::size_t i = 0; i < kGridSamples; ++i) {
+    const std::optional<double> l = model.spectral_radiance(view, SpectralWeights::nm(i));
+    if (!l)
+      throw InvalidArgument(fmt::format("sky model '{}' has no spectral radiance at {} nm",
+                                        model.name(), SpectralWeights::nm(i)));
+    for (std::size_t c = 0; c < 3; ++c) out[c] += w.raw()[c][i] * *l;
+  }
+  return out;
+}
+
+double zeta(double turbidity, double theta, double theta_prime) {
+  const auto term = [turbidity](double th) {
+    const double cos_theta = std::max(std::cos(th), 0.01);
+    return 1.0 + (0.178 * turbidity - 1.463) * std::exp((-0.355 * turbidity + 0.427) / cos_theta);
+  };
+  return term(theta) / term(theta_prime);
+}
+
+PhotoAirlight photo_airlight(const io::ImageF& sky, const estimate::SkyCamera& camera,
+                             double turbidity, double theta, double band) {
+  if (sky.channels != 3) throw InvalidArgument("the sky photo must be R, G, B");
+  if (camera.width != sky.width || camera.height != sky.height)
+    throw InvalidArgument(fmt::format("the sky photo is {}x{} but its camera {}x{}", sky.width,
+                                      sky.height, camera.width, camera.height));
+  struct Candidate {
+    double luminance, zenith;
+    int col, row;
+  };
+  std::vector<Candidate> region;
+  const double cos_top = std::cos(kPi / 2 - band);  // z of the band's upper edge
+  for (int row = 0; row < sky.height; ++row)
+    for (int col = 0; col < sky.width; ++col) {
+      const std::optional<Vec3> v = camera.pixel_direction(col, row);
+      if (!v || v->z <= 0.0 || v->z > cos_top) continue;
+      region.push_back({estimate::pixel_luminance(sky, col, row), std::acos(v->z), col, row});
+    }
+  if (region.empty())
+    throw InvalidArgument(fmt::format("the sky photo has no pixel within {} deg above the horizon",
+                                      rad_to_deg(band)));
+  const std::size_t n = std::max<std::size_t>(1, (region.size() + 99) / 100);
+  std::partial_sort(
+      region.begin(), region.begin() + static_cast<std::ptrdiff_t>(n), region.end(),
+      [](const Candidate& a, const Candidate& b) { return a.luminance > b.luminance; });
+  PhotoAirlight out;
+  out.pixels = n;
+  for (std::size_t i = 0; i < n; ++i) {
+    const float* p = sky.pixel(region[i].col, region[i].row);
+    for (std::size_t c = 0; c < 3; ++c) out.horizon[c] += p[c] / static_cast<double>(n);
+    out.theta_prime += region[i].zenith / static_cast<double>(n);
+  }
+  const double z = zeta(turbidity, theta, out.theta_prime);
+  for (std::size_t c = 0; c < 3; ++c) out.airlight[c] = out.horizon[c] * z;
+  return out;
+}
+
+}  // namespace skylight::haze

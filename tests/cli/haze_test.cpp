@@ -1,0 +1,228 @@
+// End-to-end tests of `skylight haze`: coefficients, attenuation, cameras and the image operations.
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "skylight/io/image.h"
+#include "support/cli_run.h"
+
+namespace fs = std::filesystem;
+
+namespace skylight {
+namespace {
+
+using Cli = testing_support::CliTest;
+
+// Morales 2017 prints 4 decimals; eq. 3 gives 0.013563 (printed 0.0135, truncated).
+constexpr double kPrintedDigitTol = 1e-4;
+// Float images through EXR (bit-exact) and float arithmetic of values <= 1.
+constexpr double kFloatTol = 1e-5;
+
+bool one_line(const std::string& err) {
+  return !err.empty() && err.find('\n') == err.size() - 1 && err.rfind("skylight: error: ", 0) == 0;
+}
+
+class HazeCli : public Cli {
+ protected:
+  // A 24 x 16 RGB pattern and a depth ramp (metres), written as EXR.
+  void write_scene() {
+    io::ImageF im(24, 16, 3), d(24, 16, 1);
+    for (int y = 0; y < 16; ++y)
+      for (int x = 0; x < 24; ++x) {
+        im.pixel(x, y)[0] = 0.1f + 0.03f * x;
+        im.pixel(x, y)[1] = (x + y) % 2 ? 0.7f : 0.2f;
+        im.pixel(x, y)[2] = 0.1f + 0.05f * y;
+        d.pixel(x, y)[0] = 100.0f + 400.0f * static_cast<float>(16 - y);
+      }
+    io::write_image(dir_ / "scene.exr", im);
+    io::write_image(dir_ / "depth.exr", d);
+    scene_ = im;
+  }
+  // The path of a scratch file, quoted for the shell (built in steps: GCC 12 reports a false
+  // -Wrestrict on "'" + string + "'").
+  std::string p(const std::string& name) {
+    std::string quoted(1, '\'');
+    quoted += (dir_ / name).string();
+    quoted += '\'';
+    return quoted;
+  }
+  io::ImageF scene_;
+};
+
+TEST_F(HazeCli, CoefficientsJsonHasThePapersNumbers) {
+  auto r =
+      run("haze coefficients --turbidity 2 --wavelength 550 --altitude 0 --variant preetham "
+          "--json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  auto j = nlohmann::json::parse(r.out);
+  EXPECT_NEAR(j["beta_rayleigh_per_km"].get<double>(), 0.0135, kPrintedDigitTol);
+  r = run("haze coefficients --turbidity 2 --json");  // improved, 550 nm, 0 m by default
+  ASSERT_EQ(r.status, 0) << r.err;
+  j = nlohmann::json::parse(r.out);
+  EXPECT_NEAR(j["beta_rayleigh_per_km"].get<double>(), 0.0141, kPrintedDigitTol / 2);
+  // eq. 18 at T = 2: 0.4340 x 0.65e-16 x pi x (2 pi / 550 nm)^2 x 0.0092 = 0.1064 /km.
+  EXPECT_NEAR(j["beta_mie_per_km"].get<double>(), 0.1064, kPrintedDigitTol);
+  EXPECT_EQ(j["weather_class"], "very clear");
+  r = run("haze coefficients --turbidity 1.6");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("exceptionally clear"), std::string::npos) << r.out;
+  r = run("haze coefficients --turbidity 0.5");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_TRUE(one_line(r.err)) << r.err;
+}
+
+TEST_F(HazeCli, AttenuationJsonGivesGammaPerChannel) {
+  auto r = run("haze attenuation --turbidity 3 --distance 5000 --camera canon-eos-5d --json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto g = nlohmann::json::parse(r.out)["gamma"];
+  ASSERT_EQ(g.size(), 3u);
+  EXPECT_LT(g[2].get<double>(), g[1].get<double>());
+  EXPECT_LT(g[1].get<double>(), g[0].get<double>());
+  EXPECT_GT(g[2].get<double>(), 0.0);
+  r = run("haze attenuation --turbidity 3 --distance 0 --camera sony-ilce-7m3 --json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  for (const auto& v : nlohmann::json::parse(r.out)["gamma"])
+    EXPECT_DOUBLE_EQ(v.get<double>(), 1.0);
+  // A user CSV: flat channels.
+  std::ofstream(dir_ / "cam.csv") << "nm,r,g,b\n380,1,1,1\n780,1,1,1\n";
+  r = run("haze attenuation --turbidity 3 --distance 5000 --camera-csv " + p("cam.csv") +
+          " --json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto flat = nlohmann::json::parse(r.out)["gamma"];
+  EXPECT_DOUBLE_EQ(flat[0].get<double>(), flat[2].get<double>());
+  std::ofstream(dir_ / "bad.csv") << "nm,r,g,b\n380,1,1,1\n780,1,oops,1\n";
+  r = run("haze attenuation --turbidity 3 --distance 5000 --camera-csv " + p("bad.csv"));
+  EXPECT_EQ(r.status, 2);
+  EXPECT_TRUE(one_line(r.err)) << r.err;
+  EXPECT_NE(r.err.find("line 3 column 3: 'oops'"), std::string::npos) << r.err;
+  r = run("haze attenuation --turbidity 3 --distance 5000 --camera canon-eos-6d");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_TRUE(one_line(r.err)) << r.err;
+}
+
+TEST_F(HazeCli, CamerasListsTheEmbeddedNames) {
+  const auto r = run("haze cameras");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("canon-eos-5d "), std::string::npos);
+  EXPECT_NE(r.out.find("sony-ilce-7m3 "), std::string::npos);
+  EXPECT_EQ(std::count(r.out.begin(), r.out.end(), '\n'), 40);
+}
+
+TEST_F(HazeCli, AddThenRemoveRestoresTheImage) {
+  write_scene();
+  const std::string common = " --depth " + p("depth.exr") +
+                             " --turbidity 2.5 --camera canon-eos-5d --airlight 0.8,0.85,0.9 ";
+  auto r = run("haze add --image " + p("scene.exr") + common + "-o " + p("hazy.exr"));
+  ASSERT_EQ(r.status, 0) << r.err;
+  const io::ImageF hazy = io::read_image(dir_ / "hazy.exr");
+  // Far pixels (top) moved towards the airlight more than near ones (bottom).
+  EXPECT_LT(std::abs(hazy.pixel(3, 0)[1] - 0.85f), std::abs(scene_.pixel(3, 0)[1] - 0.85f));
+  r = run("haze remove --image " + p("hazy.exr") + common + "-o " + p("clear.exr"));
+  ASSERT_EQ(r.status, 0) << r.err;
+  const io::ImageF clear = io::read_image(dir_ / "clear.exr");
+  for (std::size_t i = 0; i < clear.data.size(); ++i)
+    EXPECT_NEAR(clear.data[i], scene_.data[i], 20 * kFloatTol) << i;
+  // Re-target 2.5 -> 2.5 with the same airlight: unchanged.
+  r = run("haze retarget --image " + p("hazy.exr") + common + "--target-turbidity 2.5 -o " +
+          p("same.exr"));
+  ASSERT_EQ(r.status, 0) << r.err;
+  const io::ImageF same = io::read_image(dir_ / "same.exr");
+  for (std::size_t i = 0; i < same.data.size(); ++i)
+    EXPECT_NEAR(same.data[i], hazy.data[i], kFloatTol) << i;
+}
+
+TEST_F(HazeCli, NormalisedDepthWithNearAndFar) {
+  write_scene();
+  io::ImageF bar(24, 16, 1);
+  for (float& v : bar.data) v = 1.0f;  // s_bar = 1: the far plane
+  io::write_image(dir_ / "bar.pfm", bar);
+  io::ImageF far(24, 16, 1);
+  for (float& v : far.data) v = 3000.0f;
+  io::write_image(dir_ / "far.pfm", far);
+  const std::string rest = " --turbidity 3 --camera canon-eos-5d --airlight 1,1,1 ";
+  auto r = run("haze add --image " + p("scene.exr") + " --depth " + p("bar.pfm") + rest +
+               "--near 10 --far 3000 -o " + p("a.exr"));
+  ASSERT_EQ(r.status, 0) << r.err;
+  r = run("haze add --image " + p("scene.exr") + " --depth " + p("far.pfm") + rest + "-o " +
+          p("b.exr"));
+  ASSERT_EQ(r.status, 0) << r.err;
+  const io::ImageF a = io::read_image(dir_ / "a.exr"), b = io::read_image(dir_ / "b.exr");
+  for (std::size_t i = 0; i < a.data.size(); ++i) EXPECT_NEAR(a.data[i], b.data[i], kFloatTol);
+}
+
+TEST_F(HazeCli, ErrorsAreOneLineAndNothingIsWritten) {
+  write_scene();
+  io::write_image(dir_ / "small.exr", io::ImageF(8, 8, 1));
+  const std::string rest = " --turbidity 3 --camera canon-eos-5d --airlight 1,1,1 ";
+  auto r = run("haze add --image " + p("scene.exr") + " --depth " + p("small.exr") + rest + "-o " +
+               p("out.exr"));
+  EXPECT_EQ(r.status, 2);
+  EXPECT_TRUE(one_line(r.err)) << r.err;
+  EXPECT_NE(r.err.find("is 8x8 but the image is 24x16"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir_ / "out.exr"));
+  // Never overwrite an input.
+  r = run("haze add --image " + p("scene.exr") + " --depth " + p("depth.exr") + rest + "-o " +
+          p("scene.exr"));
+  EXPECT_EQ(r.status, 2);
+  EXPECT_TRUE(one_line(r.err)) << r.err;
+  // No airlight source.
+  r = run("haze add --image " + p("scene.exr") + " --depth " + p("depth.exr") +
+          " --turbidity 3 --camera canon-eos-5d -o " + p("out.exr"));
+  EXPECT_EQ(r.status, 2);
+  EXPECT_TRUE(one_line(r.err)) << r.err;
+  // retarget needs its target.
+  r = run("haze retarget --image " + p("scene.exr") + " --depth " + p("depth.exr") + rest + "-o " +
+          p("out.exr"));
+  EXPECT_EQ(r.status, 2);
+  EXPECT_FALSE(fs::exists(dir_ / "out.exr"));
+}
+
+TEST_F(HazeCli, AirlightFromARenderedSkyPhoto) {
+  write_scene();
+  auto r =
+      run("render --model preetham --turbidity 2.5 --projection fisheye --width 96 --height 96 "
+          "-o " +
+          p("sky.exr"));
+  ASSERT_EQ(r.status, 0) << r.err;
+  r = run("haze add --image " + p("scene.exr") + " --depth " + p("depth.exr") +
+          " --turbidity 2.5 --camera canon-eos-5d --sky " + p("sky.exr") + " -o " + p("out.exr"));
+  ASSERT_EQ(r.status, 0) << r.err;
+  const io::ImageF out = io::read_image(dir_ / "out.exr");
+  for (float v : out.data) EXPECT_TRUE(std::isfinite(v) && v >= 0.0f);
+  // The far pixels moved towards a bright sky.
+  EXPECT_GT(out.pixel(3, 0)[2], scene_.pixel(3, 0)[2]);
+  r = run("haze add --image " + p("scene.exr") + " --depth " + p("depth.exr") +
+          " --turbidity 2.5 --camera canon-eos-5d --sky " + p("sky.exr") + " --airlight 1,1,1 -o " +
+          p("out2.exr"));
+  EXPECT_EQ(r.status, 2);  // one airlight source only
+}
+
+TEST_F(HazeCli, CompositeWithASkyModelAirlight) {
+  write_scene();
+  io::ImageF obj(24, 16, 3), od(24, 16, 1);
+  for (int x = 4; x < 12; ++x)
+    for (int y = 4; y < 12; ++y) {
+      for (int c = 0; c < 3; ++c) obj.pixel(x, y)[c] = 0.5f;
+      od.pixel(x, y)[0] = 3500.0f;
+    }
+  io::write_image(dir_ / "obj.exr", obj);
+  io::write_image(dir_ / "od.exr", od);
+  auto r = run("haze composite --background " + p("scene.exr") + " --object " + p("obj.exr") +
+               " --object-depth " + p("od.exr") +
+               " --turbidity 2.94 --altitude 40 --camera canon-eos-5d --sky-model preetham -o " +
+               p("mr.exr"));
+  ASSERT_EQ(r.status, 0) << r.err;
+  const io::ImageF mr = io::read_image(dir_ / "mr.exr");
+  for (int c = 0; c < 3; ++c) {
+    EXPECT_EQ(mr.pixel(0, 0)[c], scene_.pixel(0, 0)[c]);  // outside the object: the background
+    EXPECT_GT(mr.pixel(6, 6)[c], 0.5f);  // the object took on the (bright) sky's airlight
+  }
+}
+
+}  // namespace
+}  // namespace skylight
