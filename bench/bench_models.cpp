@@ -19,6 +19,7 @@
 #include "skylight/core/parallel.h"
 #include "skylight/estimate/turbidity.h"
 #include "skylight/haze/image_haze.h"
+#include "skylight/models/neural_sky.h"
 #include "skylight/models/nishita.h"
 #include "skylight/models/sh.h"
 #include "skylight/models/sky_model.h"
@@ -157,6 +158,21 @@ BENCHMARK_CAPTURE(Threads, nn, "nn")->Unit(benchmark::kMillisecond)->UseRealTime
 BENCHMARK_CAPTURE(Scalar, nishita, "nishita")->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(Batch, nishita, "nishita")->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(Threads, nishita, "nishita")->Unit(benchmark::kMillisecond)->UseRealTime();
+// Pietras §III: the nn model with a Pietras network (trainer's initial weights, the cost of a
+// trained one), observer on the ground, sun at zenith 45 deg; compare with Batch/nishita.
+void PietrasBatch(benchmark::State& state, nn::PietrasKind kind) {
+  NeuralSkyParameters p;
+  p.sun = {deg_to_rad(45.0), deg_to_rad(180.0)};
+  const NeuralSkyModel m(p, nn::initial_pietras_network(kind, 1));
+  Grid& g = grid();
+  for (auto _ : state) {
+    m.tristimulus_batch({g.d.x, g.d.y, g.d.z}, {g.X, g.Y, g.Z});
+    benchmark::DoNotOptimize(g.Y.data());
+  }
+  state.SetItemsProcessed(state.iterations() * static_cast<int64_t>(g.X.size()));
+}
+BENCHMARK_CAPTURE(PietrasBatch, pietras, nn::PietrasKind::pietras)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(PietrasBatch, log3, nn::PietrasKind::log3)->Unit(benchmark::kMillisecond);
 BENCHMARK(NishitaReference)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(1);
 BENCHMARK_CAPTURE(SetUp, preetham, "preetham")->Unit(benchmark::kMicrosecond);
 BENCHMARK_CAPTURE(SetUp, cie, "cie")->Unit(benchmark::kMicrosecond);

@@ -2,7 +2,8 @@
 // scalar loop of the same model), medians of repeated runs, printed as ratios; the neural sky
 // (`nn`, the embedded 6-12-3 network) also against the Hosek-Wilkie batch path (docs/NN.md);
 // `--models gpu` times the same network's fragment-shader frame (gpu/, docs/GPU.md) against its
-// CPU batch path.
+// CPU batch path; `--models pietras` the Pietras networks against nishita's fast path
+// (docs/PIETRAS.md).
 #include <fmt/format.h>
 #include <time.h>
 
@@ -224,6 +225,38 @@ void bench_haze(int repeats) {
       report.table_error_bound, 1e3 * exact, exact / fast, exact / fast_cpu));
 }
 
+// Pietras §III against its source: the `nn` model with Pietras networks (the trainer's initial
+// weights: the cost of a trained network) and `nishita`'s fast path (its batch is the scalar loop
+// over the table-driven path) on the same grid, one thread, observer on the ground, sun at zenith
+// 45 deg.
+void bench_pietras(int repeats, const render::PixelDirections& dirs) {
+  const std::size_t n = dirs.x.size();
+  std::vector<float> X(n), Y(n), Z(n);
+  volatile float sink = 0.0f;
+  auto time = [&](const SkyModel& m) {
+    return median_seconds(repeats, [&] {
+      m.tristimulus_batch({dirs.x, dirs.y, dirs.z}, {X, Y, Z});
+      sink = Y[n / 2];
+    });
+  };
+  SkyParameters p;
+  p.sun = {deg_to_rad(45.0), kPi};
+  const double nishita = time(*make_sky_model("nishita", p));
+  std::string out =
+      fmt::format("pietras: nishita fast path {:.2f} ms per frame (one thread)\n", 1e3 * nishita);
+  for (nn::PietrasKind k : {nn::PietrasKind::pietras, nn::PietrasKind::log3}) {
+    NeuralSkyParameters np;
+    np.sun = p.sun;
+    const NeuralSkyModel m(np, nn::initial_pietras_network(k, 1));
+    const double t = time(m);
+    out +=
+        fmt::format("pietras: {} ({} weights) {:.2f} ms per frame: {:.1f}x faster than nishita\n",
+                    nn::to_string(k), m.pietras()->parameter_count(), 1e3 * t, nishita / t);
+  }
+  (void)sink;
+  write_stdout(out);
+}
+
 int run_bench(const BenchFlags& f, const CLI::App& cmd) {
   std::string given;
   for (const auto& name : f.model_flags)
@@ -235,7 +268,8 @@ int run_bench(const BenchFlags& f, const CLI::App& cmd) {
         given));
   std::vector<const ModelInfo*> models;
   for (const auto& name : f.models) {
-    if (name == "gpu") continue;  // not a model: the GL frame, timed last (bench_gpu)
+    if (name == "gpu") continue;      // not a model: the GL frame, timed last (bench_gpu)
+    if (name == "pietras") continue;  // not a model: timed last (bench_pietras)
     const ModelInfo* m = find_model(name);
     if (!m) {
       std::string known;
@@ -292,6 +326,8 @@ int run_bench(const BenchFlags& f, const CLI::App& cmd) {
         "than its own scalar loop\n",
         timed["hosek"].second / timed["nn"].second, timed["nn"].first / timed["nn"].second));
   }
+  if (std::find(f.models.begin(), f.models.end(), "pietras") != f.models.end())
+    bench_pietras(f.repeats, dirs);
   if (f.estimate) bench_estimate(f.repeats);
   if (f.haze) bench_haze(f.repeats);
   if (std::find(f.models.begin(), f.models.end(), "sh") != f.models.end())
@@ -323,7 +359,7 @@ void add_bench_command(CLI::App& app, Commands& commands) {
   cmd->add_option("--models", f->models,
                   "models to time; default preetham,cie,hosek,nn; with sh also the SH table's "
                   "evaluation against direct projection; with gpu the nn network's GL frame "
-                  "against its CPU batch path")
+                  "against its CPU batch path; with pietras the Pietras networks against nishita")
       ->delimiter(',');
   cmd->add_option("--sh-table", f->sh_table,
                   "with sh in --models: the SH table timed (default: the embedded one)");

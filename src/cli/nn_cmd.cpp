@@ -12,6 +12,7 @@
 
 #include "common.h"
 #include "nn_parts.h"
+#include "nn_pietras.h"
 #include "skylight/core/error.h"
 #include "skylight/core/math.h"
 #include "skylight/core/numbers.h"
@@ -36,12 +37,15 @@ struct TrainFlags {
   std::optional<double> target_scale;
   int suns = 0, view_zeniths = 0, view_azimuths = 0;
   std::string output, log;
+  std::string network;  // pietras, log3 (nn_pietras.h); empty: the Satilmis sky network
+  int samples = 800000;
 };
 
 struct ValidateFlags {
   std::string weights;
   bool json = false;
   int suns = 0, view_zeniths = 0, view_azimuths = 0;
+  int samples = 20000;  // per validation set of a Pietras file
 };
 
 struct ExportFlags {
@@ -80,6 +84,11 @@ std::string percent(double v) {
 }
 
 int run_train(const TrainFlags& f, const ImageTrainFlags& images) {
+  if (!f.network.empty()) {
+    return run_pietras_train(
+        {f.network, f.source, f.trainer, f.samples, f.seed, f.iterations, f.time_limit_s, f.output},
+        utc_now(), std::string("skylight ") + SKYLIGHT_VERSION);
+  }
   const auto trainer = nn::parse_trainer(f.trainer);
   if (!trainer) {
     throw InvalidArgument(
@@ -141,6 +150,8 @@ int run_train(const TrainFlags& f, const ImageTrainFlags& images) {
 }
 
 int run_validate(const ValidateFlags& f) {
+  if (const std::string text = io::read_text_file(f.weights); nn::is_pietras_json(text))
+    return run_pietras_validate(f.weights, text, f.json, f.samples);
   const nn::SkyNetwork sky = load_sky_network_file(f.weights);
   if (sky.provenance.source == "images")
     throw InvalidArgument(
@@ -273,6 +284,14 @@ void add_nn_command(CLI::App& app, Commands& commands) {
               "the network learns the source's rgb() / target-scale"},
              tf->target_scale);
   add_sampling_flags(*train, tf->suns, tf->view_zeniths, tf->view_azimuths);
+  train->add_option("--network", tf->network,
+                    "pietras (Pietras's 4 x 4-8-4-1 per-vertex network) or log3 (3 x 4-16-16-1, "
+                    "log luminance and chromaticity): learn --source nishita (docs/PIETRAS.md)");
+  add_integer(*train,
+              {"samples", "1", ParameterKind::integer, 16, 100000000, 1,
+               ParameterValue(static_cast<double>(tf->samples)),
+               "--network: random samples of nishita to train on"},
+              tf->samples);
   train->add_option("-o,--output", tf->output, "weights file to write (JSON)")->required();
   train->add_option("--log", tf->log,
                     "training log to write (CSV: restart,iteration,seconds,mse,validation_mse,"
@@ -286,6 +305,11 @@ void add_nn_command(CLI::App& app, Commands& commands) {
   validate->add_option("--weights", vf->weights, "weights file (JSON)")->required();
   validate->add_flag("--json", vf->json, "JSON on standard output");
   add_sampling_flags(*validate, vf->suns, vf->view_zeniths, vf->view_azimuths);
+  add_integer(*validate,
+              {"samples", "1", ParameterKind::integer, 1, 100000000, 1,
+               ParameterValue(static_cast<double>(vf->samples)),
+               "Pietras files: random samples per validation set (day, twilight, night)"},
+              vf->samples);
   commands.push_back({validate, [vf] { return run_validate(*vf); }});
 
   auto ef = std::make_shared<ExportFlags>();

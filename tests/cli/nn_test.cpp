@@ -218,5 +218,39 @@ TEST_F(Cli, NnStudyTabulatesEfficiency) {
   EXPECT_NE(r.out.find("most efficient: "), std::string::npos) << r.out;
 }
 
+TEST_F(Cli, NnTrainValidateEvalPietras) {
+  const std::string w = (dir_ / "p.json").string();
+  testing_support::CliResult r = run(
+      "nn train --source nishita --network pietras --samples 2000 --iterations 5 -o '" + w + "'");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("pietras network (324 weights)"), std::string::npos) << r.out;
+  r = run("nn validate --weights '" + w + "' --json --samples 300");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["weights_count"].get<int>(), 324);
+  EXPECT_EQ(j["day"]["samples"].get<int>(), 300);
+  EXPECT_EQ(j["night_network_not_dark"].get<int>() <= j["night_reference_dark"].get<int>(), true);
+
+  // eval --model nn on a Pietras file is the network's forward pass (the library's rgb_at).
+  r = run("eval --model nn --weights '" + w +
+              "' --observer-altitude 1500 --sun-zenith 40 --sun-azimuth 180 --quantity rgb",
+          "zenith_deg,azimuth_deg\n10,20\n70,200\n");
+  ASSERT_EQ(r.status, 0) << r.err;
+  std::string header;
+  const auto rows = parse_csv_numbers(r.out, &header);
+  ASSERT_EQ(rows.size(), 2u);
+  SkyParameters p;
+  p.sun = {deg_to_rad(40.0), deg_to_rad(180.0)};
+  p.values.set("weights", w.c_str()).set("observer-altitude", 1500.0);
+  const auto m = make_sky_model("nn", p);
+  const Rgb c = m->rgb(direction_from_angles(deg_to_rad(70.0), deg_to_rad(200.0)));
+  EXPECT_NEAR(rows[1].back(), c.b, kEvalExact) << r.out;
+  EXPECT_GT(c.g, 0.0);
+
+  r = run("nn train --source hosek --network pietras --samples 100 -o '" + w + "'");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("--source must be nishita"), std::string::npos) << r.err;
+}
+
 }  // namespace
 }  // namespace skylight

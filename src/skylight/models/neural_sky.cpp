@@ -3,10 +3,12 @@
 #include <fmt/format.h>
 #include <algorithm>
 #include <array>
+#include <cmath>
 
 #include "skylight/core/data.h"
 #include "skylight/core/math.h"
 #include "skylight/io/file.h"
+#include "skylight/models/nishita.h"
 
 namespace skylight {
 
@@ -23,6 +25,10 @@ const ParameterSchema<NeuralSkyParameters>& NeuralSkyParameters::schema() {
               ParameterValue(defaults.turbidity),
               "atmospheric turbidity T, the network's sqrt(T) input (trained range: the weights "
               "file's provenance)"});
+    s.number(&NeuralSkyParameters::observer_altitude_m,
+             {"observer-altitude", "m", ParameterKind::number, 0.0, kNishitaMaxAltitude, 1,
+              ParameterValue(defaults.observer_altitude_m),
+              "observer above the ground (Pietras networks: the density input; others ignore it)"});
     return s;
   }();
   return s;
@@ -38,20 +44,39 @@ const nn::SkyNetwork& embedded_sky_network() {
   return net;
 }
 
-namespace {
-
-nn::SkyNetwork network_of(const NeuralSkyParameters& p) {
+NeuralSkyModel::NeuralSkyModel(const NeuralSkyParameters& p) : SkyModel(p.sun), params_(p) {
   NeuralSkyParameters::schema().validate(p, model_context("nn"));
-  return p.weights.empty() ? embedded_sky_network() : load_sky_network_file(p.weights);
+  if (!p.weights.empty()) {
+    const std::string text = io::read_text_file(p.weights);
+    if (nn::is_pietras_json(text)) {
+      pietras_ = std::make_unique<nn::PietrasNetwork>(nn::pietras_from_json(text, p.weights));
+      pietras_batch_ = std::make_unique<nn::PietrasBatch>(*pietras_, p.observer_altitude_m,
+                                                          std::cos(p.sun.zenith));
+      return;
+    }
+    network_ = nn::sky_network_from_json(text, p.weights);
+  } else {
+    network_ = embedded_sky_network();
+  }
+  init_sky();
 }
 
-}  // namespace
-
-NeuralSkyModel::NeuralSkyModel(const NeuralSkyParameters& p) : NeuralSkyModel(p, network_of(p)) {}
+NeuralSkyModel::NeuralSkyModel(const NeuralSkyParameters& p, nn::PietrasNetwork network)
+    : SkyModel(p.sun), params_(p) {
+  NeuralSkyParameters::schema().validate(p, model_context("nn"));
+  pietras_ = std::make_unique<nn::PietrasNetwork>(std::move(network));
+  pietras_batch_ =
+      std::make_unique<nn::PietrasBatch>(*pietras_, p.observer_altitude_m, std::cos(p.sun.zenith));
+}
 
 NeuralSkyModel::NeuralSkyModel(const NeuralSkyParameters& p, nn::SkyNetwork network)
     : SkyModel(p.sun), params_(p), network_(std::move(network)) {
   NeuralSkyParameters::schema().validate(p, model_context("nn"));
+  init_sky();
+}
+
+void NeuralSkyModel::init_sky() {
+  const NeuralSkyParameters& p = params_;
   if (network_.net.layout().outputs() != 3 ||
       network_.net.layout().inputs() != static_cast<int>(network_.inputs.size())) {
     throw InvalidArgument("model 'nn': the network needs one input per input name and 3 outputs");
@@ -73,6 +98,11 @@ ParameterValues NeuralSkyModel::parameter_values() const {
 }
 
 Rgb NeuralSkyModel::rgb(Vec3 view) const {
+  if (pietras_) {
+    const Vec3 v = normalize(view);
+    return pietras_->rgb_at(params_.observer_altitude_m, v.z, dot(v, sun().direction()),
+                            std::cos(sun().zenith));
+  }
   if (!sun_up_) return {};
   return network_.rgb(state_, view);
 }
@@ -83,15 +113,23 @@ Xyz NeuralSkyModel::tristimulus(Vec3 view) const {
 
 void NeuralSkyModel::tristimulus_batch(const DirectionsSoA& dirs, const XyzSoA& out) const {
   const std::size_t n = dirs.size();
-  if (!sun_up_) {
+  if (pietras_) {
+    // cos alpha0 = z, cos beta0 = view . sun; then rgb into the output spans.
+    const Vec3 s = sun().direction();
+    std::vector<float> cb(n);
+    for (std::size_t i = 0; i < n; ++i)
+      cb[i] = static_cast<float>(s.x * dirs.x[i] + s.y * dirs.y[i] + s.z * dirs.z[i]);
+    pietras_batch_->rgb(dirs.z.data(), cb.data(), out.X.data(), out.Y.data(), out.Z.data(), n);
+  } else if (!sun_up_) {
     std::fill(out.X.begin(), out.X.end(), 0.0f);
     std::fill(out.Y.begin(), out.Y.end(), 0.0f);
     std::fill(out.Z.begin(), out.Z.end(), 0.0f);
     return;
+  } else {
+    // rgb into the output spans, then the 3x3 matrix in place.
+    batch_->rgb(dirs.x.data(), dirs.y.data(), dirs.z.data(), out.X.data(), out.Y.data(),
+                out.Z.data(), n);
   }
-  // rgb into the output spans, then the 3x3 matrix in place.
-  batch_->rgb(dirs.x.data(), dirs.y.data(), dirs.z.data(), out.X.data(), out.Y.data(), out.Z.data(),
-              n);
   const Matrix3& m = srgb_to_xyz_matrix();
   std::array<float, 9> f{};
   for (int r = 0; r < 3; ++r)
@@ -106,6 +144,7 @@ void NeuralSkyModel::tristimulus_batch(const DirectionsSoA& dirs, const XyzSoA& 
 
 Domain NeuralSkyModel::domain() const {
   Domain d;
+  if (pietras_) return d;
   if (!sun_up_) {
     d.issues.push_back({"sun_zenith", Validity::undefined,
                         "the sun is below the horizon: the network was trained for suns in "

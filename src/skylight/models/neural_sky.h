@@ -10,6 +10,7 @@
 #include <string>
 
 #include "skylight/models/sky_model.h"
+#include "skylight/nn/pietras.h"
 #include "skylight/nn/sky_network.h"
 
 namespace skylight {
@@ -26,6 +27,8 @@ struct NeuralSkyParameters {
   SunPosition sun;
   std::string weights;     // --weights FILE; empty: the embedded network (kEmbeddedSkyNetwork)
   double turbidity = 3.0;  // --turbidity T [1], the network's sqrt(T) input
+  // --observer-altitude [m]: the rho0 input of a Pietras network (nn/pietras.h); others ignore it.
+  double observer_altitude_m = 0.0;
 
   static const ParameterSchema<NeuralSkyParameters>& schema();
 };
@@ -46,6 +49,9 @@ class NeuralSkyModel final : public SkyModel {
   explicit NeuralSkyModel(const NeuralSkyParameters& p);
   // A network given in code (weights = its description only).
   NeuralSkyModel(const NeuralSkyParameters& p, nn::SkyNetwork network);
+  // A Pietras network (docs/PIETRAS.md): rgb() in the units of its source's rgb() for every view
+  // (views meeting the ground: the air up to the ground, as the source without --albedo).
+  NeuralSkyModel(const NeuralSkyParameters& p, nn::PietrasNetwork network);
 
   std::string_view name() const override { return "nn"; }
   ParameterValues parameter_values() const override;
@@ -56,14 +62,18 @@ class NeuralSkyModel final : public SkyModel {
 
   const nn::SkyNetwork& network() const { return network_; }
   const nn::SkyState& state() const { return state_; }
+  const nn::PietrasNetwork* pietras() const { return pietras_.get(); }
 
  private:
+  void init_sky();
   NeuralSkyParameters params_;
   nn::SkyNetwork network_;
   nn::SkyState state_;
   bool sun_up_ = true;
   bool turbidity_unused_ = false;  // trained on a source without turbidity: the input is 0
   std::unique_ptr<nn::SkyNetworkBatch> batch_;
+  std::unique_ptr<nn::PietrasNetwork> pietras_;
+  std::unique_ptr<nn::PietrasBatch> pietras_batch_;
 };
 
 }  // namespace skylight

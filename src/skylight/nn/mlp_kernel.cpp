@@ -35,8 +35,10 @@ HWY_INLINE V Satilmis(D d, V x) {
 
 template <class D, class V = hn::Vec<D>>
 HWY_INLINE V Sigmoid(D d, V x) {
-  // 1/(1 + e^-x); e^-x overflows to inf for x < -88, giving 0 as it should.
-  return hn::Div(hn::Set(d, 1.0f), hn::Add(hn::Set(d, 1.0f), hn::Exp(d, hn::Neg(x))));
+  // 1/(1 + e^-x). hn::Exp is specified for arguments <= 88 only (beyond, its result is not inf
+  // but wrong), so -x is clamped there: e^88 = 1.7e38 gives 6e-39, i.e. 0 in float as it should.
+  const V e = hn::Exp(d, hn::Min(hn::Neg(x), hn::Set(d, 88.0f)));
+  return hn::Div(hn::Set(d, 1.0f), hn::Add(hn::Set(d, 1.0f), e));
 }
 
 template <Activation F, class D, class V = hn::Vec<D>>

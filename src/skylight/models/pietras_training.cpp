@@ -1,0 +1,346 @@
+#include "skylight/models/pietras_training.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include "skylight/core/error.h"
+#include "skylight/core/math.h"
+#include "skylight/core/numbers.h"
+#include "skylight/core/parallel.h"
+#include "skylight/nn/metrics.h"
+#include "skylight/nn/random.h"
+
+namespace skylight {
+namespace {
+
+NishitaParameters at_ground(NishitaParameters p) {
+  p.observer_altitude_m = 0.0;
+  p.sun = SunPosition{};
+  return p;
+}
+
+// Validation sets: altitudes 0-20 km, upward views; sun zenith bands [deg].
+constexpr double kValidationMaxAltitude = 20e3;  // [m]
+constexpr double kDayMaxSunZenithDeg = 85.0;
+constexpr double kTwilightMaxSunZenithDeg = 96.0;
+// §III: max N over 100 000 random samples.
+constexpr std::size_t kMaxNSamples = 100000;
+
+}  // namespace
+
+NishitaSampler::NishitaSampler(const NishitaParameters& atmosphere)
+    : params_(at_ground(atmosphere)), model_(params_) {
+  std::array<double, kNishitaXyzCount> nm{}, solar{};
+  for (int k = 0; k < kNishitaXyzCount; ++k) {
+    nm[k] = kNishitaXyzFirst + kNishitaXyzStep * k;
+    solar[k] =
+        params_.solar_irradiance ? *params_.solar_irradiance : solar_spectral_irradiance(nm[k]);
+    cmf_[k] = cie1931_cmf(nm[k]);
+  }
+  spectral_ = atmosphere::make_spectral(model_.atmosphere().parameters(), nm, solar);
+  const std::array<double, 3> unit{1.0, 1.0, 1.0};
+  channels_ = atmosphere::make_spectral(model_.atmosphere().parameters(), kSurfaceChannelNm, unit);
+}
+
+Vec3 NishitaSampler::position(double altitude_m) const {
+  return {0.0, 0.0, model_.atmosphere().parameters().ground_radius_m + altitude_m};
+}
+
+Rgb NishitaSampler::to_rgb(const std::array<double, kNishitaXyzCount>& r) const {
+  Xyz c{0, 0, 0};
+  for (int k = 0; k < kNishitaXyzCount; ++k) {
+    c.X += cmf_[k].x * r[k];
+    c.Y += cmf_[k].y * r[k];
+    c.Z += cmf_[k].z * r[k];
+  }
+  const double f = kMaxLuminousEfficacy * kNishitaXyzStep;
+  return xyz_to_linear_srgb({c.X * f, c.Y * f, c.Z * f});
+}
+
+Rgb NishitaSampler::aerial_perspective(double altitude_m, Vec3 view, double distance_m,
+                                       double albedo, Vec3 sun) const {
+  std::array<double, kNishitaXyzCount> a{}, r{};
+  a.fill(albedo);
+  model_.atmosphere().aerial_perspective(position(altitude_m), view, distance_m, a, sun, spectral_,
+                                         r);
+  return to_rgb(r);
+}
+
+Rgb NishitaSampler::reflected(double altitude_m, Vec3 view, double distance_m, double albedo,
+                              Vec3 sun) const {
+  std::array<double, kNishitaXyzCount> a{}, with{}, without{};
+  a.fill(albedo);
+  const Vec3 p = position(altitude_m);
+  model_.atmosphere().aerial_perspective(p, view, distance_m, a, sun, spectral_, with);
+  a.fill(0.0);
+  model_.atmosphere().aerial_perspective(p, view, distance_m, a, sun, spectral_, without);
+  for (int k = 0; k < kNishitaXyzCount; ++k) with[k] -= without[k];
+  return to_rgb(with);
+}
+
+std::array<double, 3> NishitaSampler::channel_transmittance(double altitude_m, Vec3 view,
+                                                            double distance_m) const {
+  std::array<double, 3> t{};
+  model_.atmosphere().transmittance(position(altitude_m), view, distance_m, channels_, t);
+  return t;
+}
+
+Rgb pietras_surface(const PietrasSkyFunction& sky, const NishitaSampler& atmosphere,
+                    double altitude_m, Vec3 view, double distance_m, double albedo, Vec3 sun) {
+  const double r0 = atmosphere.atmosphere().parameters().ground_radius_m;
+  const Vec3 p{0.0, 0.0, r0 + altitude_m};
+  const Vec3 q = p + distance_m * view;
+  const double rq = length(q);
+  const Vec3 up = (1.0 / rq) * q;  // the probe's zenith
+  const double cb = dot(view, sun);
+  const Rgb obs = sky(altitude_m, view.z, cb, sun.z);
+  const Rgb probe = sky(std::max(rq - r0, 0.0), dot(view, up), cb, dot(sun, up));
+  const auto t = atmosphere.channel_transmittance(altitude_m, view, distance_m);
+  const Rgb refl = atmosphere.reflected(altitude_m, view, distance_m, albedo, sun);
+  return {obs.r - t[0] * probe.r + refl.r, obs.g - t[1] * probe.g + refl.g,
+          obs.b - t[2] * probe.b + refl.b};
+}
+
+PietrasSkyFunction sky_function(const nn::PietrasNetwork& net) {
+  return [&net](double h, double ca, double cb, double ct) { return net.rgb_at(h, ca, cb, ct); };
+}
+
+// NishitaModel::tristimulus at another observer and sun: the same sum as nishita.cpp's to_xyz.
+Rgb NishitaSampler::rgb(double altitude_m, Vec3 view, Vec3 sun) const {
+  std::array<double, kNishitaXyzCount> r{};
+  model_.atmosphere().single_scattering(position(altitude_m), view, sun, spectral_, r);
+  return to_rgb(r);
+}
+
+PietrasSamples sample_nishita(const NishitaSampler& source, PietrasSampling sampling, std::size_t n,
+                              std::uint64_t seed) {
+  const NishitaParameters& p = source.parameters();
+  const double top = p.top_radius() - p.ground_radius_m;
+  const double h0 = p.rayleigh_scale_height_m;
+  PietrasSamples s;
+  s.inputs.resize(n);
+  s.altitude_m.resize(n);
+  s.rgb.resize(n);
+  struct Geometry {
+    Vec3 view, sun;
+  };
+  std::vector<Geometry> g(n);
+  nn::Rng rng(seed);
+  const double c85 = std::cos(deg_to_rad(kDayMaxSunZenithDeg));
+  const double c96 = std::cos(deg_to_rad(kTwilightMaxSunZenithDeg));
+  for (std::size_t i = 0; i < n; ++i) {
+    double ca = 0, ct = 0, h = 0;
+    if (sampling == PietrasSampling::training) {
+      ca = rng.uniform(-1.0, 1.0);
+      ct = rng.uniform(-1.0, 1.0);
+      const double rho = rng.uniform();
+      h = rho > 0.0 ? std::min(-h0 * std::log(rho), top) : top;
+    } else {
+      ca = rng.uniform();
+      ct = sampling == PietrasSampling::day        ? rng.uniform(c85, 1.0)
+           : sampling == PietrasSampling::twilight ? rng.uniform(c96, c85)
+                                                   : rng.uniform(-1.0, c96);
+      h = rng.uniform(0.0, kValidationMaxAltitude);
+    }
+    const double phi = rng.uniform(0.0, 2.0 * kPi);
+    const double sa = std::sqrt(std::max(0.0, 1.0 - ca * ca));
+    const double st = std::sqrt(std::max(0.0, 1.0 - ct * ct));
+    g[i].view = {sa * std::cos(phi), sa * std::sin(phi), ca};
+    g[i].sun = {st, 0.0, ct};
+    s.altitude_m[i] = h;
+    s.inputs[i] = {ca, std::clamp(dot(g[i].view, g[i].sun), -1.0, 1.0), ct, std::exp(-h / h0)};
+  }
+  parallel_for(n, 256, [&](std::size_t b, std::size_t e) {
+    for (std::size_t i = b; i < e; ++i) s.rgb[i] = source.rgb(s.altitude_m[i], g[i].view, g[i].sun);
+  });
+  return s;
+}
+
+NishitaParameters nishita_parameters_of(const nn::PietrasNetwork& net) {
+  NishitaParameters p;
+  for (const auto& [k, v] : net.provenance.source_parameters) {
+    if (k == "ground-radius")
+      p.ground_radius_m = v;
+    else if (k == "top-radius")
+      p.top_radius_m = v;
+    else if (k == "rayleigh-scale-height")
+      p.rayleigh_scale_height_m = v;
+    else if (k == "mie-scale-height")
+      p.mie_scale_height_m = v;
+    else if (k == "mie-g")
+      p.mie_g = v;
+    else if (k == "ozone")
+      p.ozone_du = v;
+    else if (k == "solar-irradiance")
+      p.solar_irradiance = v;
+    else
+      throw InvalidArgument(
+          fmt::format("provenance.source_parameters: '{}' is not a nishita "
+                      "atmosphere parameter",
+                      excerpt(k)));
+  }
+  return p;
+}
+
+namespace {
+
+double luminance(const Rgb& c) {
+  return 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b;
+}
+
+std::vector<std::pair<std::string, double>> recorded(const NishitaParameters& p) {
+  std::vector<std::pair<std::string, double>> v{
+      {"ground-radius", p.ground_radius_m},
+      {"top-radius", p.top_radius()},
+      {"rayleigh-scale-height", p.rayleigh_scale_height_m},
+      {"mie-scale-height", p.mie_scale_height_m},
+      {"mie-g", p.mie_g}};
+  if (p.ozone_du) v.emplace_back("ozone", *p.ozone_du);
+  if (p.solar_irradiance) v.emplace_back("solar-irradiance", *p.solar_irradiance);
+  return v;
+}
+
+}  // namespace
+
+nn::PietrasNetwork train_pietras(const PietrasTraining& t) {
+  if (t.samples < 16) throw InvalidArgument(fmt::format("--samples {} is below 16", t.samples));
+  const auto start = std::chrono::steady_clock::now();
+  const NishitaSampler source(t.atmosphere);
+  const PietrasSamples s =
+      sample_nishita(source, PietrasSampling::training, t.samples, t.options.seed);
+  nn::PietrasNetwork net;
+  net.kind = t.kind;
+  const NishitaParameters& p = source.parameters();
+  net.scale_height_m = p.rayleigh_scale_height_m;
+  net.top_altitude_m = p.top_radius() - p.ground_radius_m;
+  net.ground_radius_m = p.ground_radius_m;
+  const bool paper = t.kind == nn::PietrasKind::pietras;
+  const std::size_t n = s.size();
+  auto value = [&](const Rgb& c) { return paper ? std::max({c.r, c.g, c.b}) : luminance(c); };
+  double max_value = 0.0;
+  for (std::size_t i = 0; i < std::min(n, kMaxNSamples); ++i)
+    max_value = std::max(max_value, value(s.rgb[i]));
+  if (!(max_value > 0.0)) throw InvalidArgument("nn train: every sample of nishita is dark");
+  net.max_value = max_value;
+
+  const auto layouts = nn::pietras_layouts(t.kind);
+  std::vector<double> all_in(4 * n), day_in;
+  std::size_t day = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const nn::PietrasInput& x = s.inputs[i];
+    const double v[4] = {x.cos_view_zenith, x.cos_view_sun, x.cos_sun_zenith, x.density};
+    std::copy(v, v + 4, all_in.begin() + 4 * i);
+    if (value(s.rgb[i]) > 0.0) {
+      day_in.insert(day_in.end(), v, v + 4);
+      ++day;
+    }
+  }
+  // Targets per sub-network: the "all samples" one (M, l) and the day-only ones (R, G, B; r, b).
+  const std::size_t k_all = paper ? 3 : 0;
+  std::vector<std::vector<double>> targets(layouts.size());
+  for (std::size_t i = 0; i < n; ++i) {
+    const Rgb& c = s.rgb[i];
+    const double v = value(c);
+    if (paper) {
+      targets[3].push_back(
+          v > 0.0 ? std::min(nn::kPietrasMScale * v / max_value + nn::kPietrasMOffset, 0.999)
+                  : 0.0);
+    } else {
+      targets[0].push_back(v > 0.0 ? std::log(v / max_value + nn::kLog3Epsilon)
+                                   : std::log(nn::kLog3Epsilon) - 1.0);
+    }
+    if (!(v > 0.0)) continue;
+    if (paper) {
+      targets[0].push_back(std::clamp(c.r / v, 0.0, 1.0));
+      targets[1].push_back(std::clamp(c.g / v, 0.0, 1.0));
+      targets[2].push_back(std::clamp(c.b / v, 0.0, 1.0));
+    } else {
+      const double sum = std::max(c.r + c.g + c.b, 1e-300);
+      targets[1].push_back(c.r / sum);
+      targets[2].push_back(c.b / sum);
+    }
+  }
+  net.provenance.iterations.clear();
+  for (std::size_t k = 0; k < layouts.size(); ++k) {
+    const bool all = k == k_all;
+    nn::Examples ex{all ? std::span<const double>(all_in) : std::span<const double>(day_in),
+                    targets[k], all ? n : day};
+    nn::TrainOptions o = t.options;
+    o.seed = t.options.seed + k;
+    o.init_output_from_targets = paper;
+    if (t.progress) {
+      o.progress = [&, k](const nn::TrainLogEntry& e) {
+        return t.progress(static_cast<int>(k), e);
+      };
+    }
+    nn::TrainResult r = nn::train(layouts[k], ex, o);
+    net.subnets.push_back(std::move(r.net));
+    net.provenance.iterations.push_back(r.iterations);
+  }
+  net.provenance.source = "nishita";
+  net.provenance.colour =
+      "nishita rgb(): linear sRGB (D65) on the photometric scale, Y in cd/m^2 for the ASTM G-173 "
+      "sun (or per W m^-2 nm^-1 with --solar-irradiance); no ground reflection";
+  net.provenance.geometry =
+      "consistent geometry: cos alpha0, cos theta0 uniform in [-1, 1], view azimuth relative to "
+      "the sun uniform; rho0 = exp(-h/H0) uniform in [0, 1], h clamped to the top of the "
+      "atmosphere";
+  net.provenance.source_parameters = recorded(p);
+  net.provenance.samples = n;
+  net.provenance.seed = t.options.seed;
+  net.provenance.trainer = std::string(nn::to_string(t.options.trainer));
+  net.provenance.training_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return net;
+}
+
+PietrasErrors pietras_errors(const nn::PietrasNetwork& net, const PietrasSamples& s) {
+  PietrasErrors e;
+  e.count = s.size();
+  std::vector<double> lum, chroma;
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    const nn::PietrasInput& x = s.inputs[i];
+    const Rgb c = net.rgb_at(s.altitude_m[i], x.cos_view_zenith, x.cos_view_sun, x.cos_sun_zenith);
+    const double y = luminance(s.rgb[i]);
+    if (!(y > 0.0)) {
+      ++e.excluded;
+      continue;
+    }
+    lum.push_back(std::abs(luminance(c) - y) / y);
+    const Chromaticity a = chromaticity(linear_srgb_to_xyz(c));
+    const Chromaticity b = chromaticity(linear_srgb_to_xyz(s.rgb[i]));
+    chroma.push_back(std::hypot(a.x - b.x, a.y - b.y));
+  }
+  if (lum.empty()) return e;
+  e.luminance_max = *std::max_element(lum.begin(), lum.end());
+  e.luminance_median = nn::percentile(lum, 0.5);
+  e.luminance_p95 = nn::percentile(lum, 0.95);
+  e.chromaticity_median = nn::percentile(chroma, 0.5);
+  e.chromaticity_p95 = nn::percentile(chroma, 0.95);
+  return e;
+}
+
+PietrasValidation validate_pietras(const nn::PietrasNetwork& net, std::size_t samples,
+                                   std::uint64_t seed) {
+  const NishitaSampler source(nishita_parameters_of(net));
+  PietrasValidation v;
+  v.day = pietras_errors(net, sample_nishita(source, PietrasSampling::day, samples, seed));
+  v.twilight =
+      pietras_errors(net, sample_nishita(source, PietrasSampling::twilight, samples, seed + 1));
+  const PietrasSamples night = sample_nishita(source, PietrasSampling::night, samples, seed + 2);
+  v.night_count = night.size();
+  for (std::size_t i = 0; i < night.size(); ++i) {
+    if (luminance(night.rgb[i]) != 0.0) continue;
+    ++v.night_reference_dark;
+    const nn::PietrasInput& x = night.inputs[i];
+    const Rgb c =
+        net.rgb_at(night.altitude_m[i], x.cos_view_zenith, x.cos_view_sun, x.cos_sun_zenith);
+    if (c.r != 0.0 || c.g != 0.0 || c.b != 0.0) ++v.night_nonzero;
+  }
+  return v;
+}
+
+}  // namespace skylight
