@@ -25,6 +25,10 @@
 namespace skylight::cli {
 namespace {
 
+// Defaults of nn train --samples: Pietras trains on 800 000 random samples (§VI, results); 2000
+// sky pixels per image keep a 12-image sequence at 24 000 examples (docs/NN.md).
+constexpr int kPietrasSamples = 800000, kImageSamples = 2000;
+
 struct TrainFlags {
   std::string source = "preetham";
   int seed = 1;
@@ -38,7 +42,7 @@ struct TrainFlags {
   int suns = 0, view_zeniths = 0, view_azimuths = 0;
   std::string output, log;
   std::string network;  // pietras, log3 (nn_pietras.h); empty: the Satilmis sky network
-  int samples = 800000;
+  int samples = 0;      // 0: the default of the mode (kPietrasSamples, kImageSamples)
 };
 
 struct ValidateFlags {
@@ -86,7 +90,8 @@ std::string percent(double v) {
 int run_train(const TrainFlags& f, const ImageTrainFlags& images) {
   if (!f.network.empty()) {
     return run_pietras_train(
-        {f.network, f.source, f.trainer, f.samples, f.seed, f.iterations, f.time_limit_s, f.output},
+        {f.network, f.source, f.trainer, f.samples > 0 ? f.samples : kPietrasSamples, f.seed,
+         f.iterations, f.time_limit_s, f.output},
         utc_now(), std::string("skylight ") + SKYLIGHT_VERSION);
   }
   const auto trainer = nn::parse_trainer(f.trainer);
@@ -114,7 +119,8 @@ int run_train(const TrainFlags& f, const ImageTrainFlags& images) {
   t.options.max_iterations = f.iterations;
   Progress progress("nn train");
   double last_report = -1.0;
-  if (images_given(images)) return run_train_images(images, t, f.output, f.log);
+  if (images_given(images))
+    return run_train_images(images, t, f.output, f.log, f.samples > 0 ? f.samples : kImageSamples);
   t.options.progress = [&](const nn::TrainLogEntry& e) {
     // At most one progress line a second (the trainers log every iteration).
     if (e.seconds - last_report >= 1.0 || e.iteration == f.iterations) {
@@ -289,8 +295,10 @@ void add_nn_command(CLI::App& app, Commands& commands) {
                     "log luminance and chromaticity): learn --source nishita (docs/PIETRAS.md)");
   add_integer(*train,
               {"samples", "1", ParameterKind::integer, 16, 100000000, 1,
-               ParameterValue(static_cast<double>(tf->samples)),
-               "--network: random samples of nishita to train on"},
+               Absent{fmt::format("{} with --network, {} per image with --images", kPietrasSamples,
+                                  kImageSamples)},
+               "--network: random samples of nishita to train on; --images: sky pixels sampled "
+               "per image (all when the mask has fewer)"},
               tf->samples);
   train->add_option("-o,--output", tf->output, "weights file to write (JSON)")->required();
   train->add_option("--log", tf->log,

@@ -31,7 +31,7 @@ struct ImageTrainFlags {
   std::string projection = "equirect";
   FisheyeFlags fisheye;
   std::optional<double> lat_deg, lon_deg;
-  int samples = 2000, kfold = 0;
+  int kfold = 0;
   double min_elevation_deg = 0.0, sun_exclusion_deg = 5.0, saturation = 0.999;
 };
 
@@ -67,11 +67,6 @@ std::shared_ptr<ImageTrainFlags> add_image_train_flags(CLI::App& train) {
   add_number(train, lat, f->lat_deg);
   add_number(train, lon, f->lon_deg);
   add_integer(train,
-              {"samples", "1", ParameterKind::integer, 1, 100000000, 1,
-               ParameterValue(static_cast<double>(f->samples)),
-               "sky pixels sampled per image (all when the mask has fewer)"},
-              f->samples);
-  add_integer(train,
               {"kfold", "1", ParameterKind::integer, 0, 100000, 1, ParameterValue(0.0),
                "K-fold cross-validation over the images first (K = the number of images: leave "
                "one image out; 0: none)"},
@@ -89,7 +84,9 @@ std::shared_ptr<ImageTrainFlags> add_image_train_flags(CLI::App& train) {
               "pixels with a channel >= this fraction of the image's largest value are not sky "
               "(a clipped sun)"},
              f->saturation);
-  if (CLI::Option* source = train.get_option_no_throw("--source")) images->excludes(source);
+  // The flags of model-source training have no meaning for images: giving them is an error.
+  for (const char* name : {"--source", "--suns", "--view-zeniths", "--view-azimuths", "--network"})
+    if (CLI::Option* other = train.get_option_no_throw(name)) images->excludes(other);
   return f;
 }
 
@@ -134,7 +131,7 @@ std::optional<SunPosition> entry_sun(const ImageTrainFlags& f, const estimate::S
 }  // namespace
 
 int run_train_images(const ImageTrainFlags& f, const NeuralTraining& t, const std::string& output,
-                     const std::string& log) {
+                     const std::string& log, int samples_per_image) {
   const std::filesystem::path list_path(f.list);
   const std::vector<char> text = io::read_file(list_path);
   const std::vector<estimate::SequenceEntry> entries =
@@ -146,7 +143,7 @@ int run_train_images(const ImageTrainFlags& f, const NeuralTraining& t, const st
   sampling.mask.min_elevation = deg_to_rad(f.min_elevation_deg);
   sampling.mask.sun_exclusion = deg_to_rad(f.sun_exclusion_deg);
   sampling.mask.saturation_fraction = f.saturation;
-  sampling.samples_per_image = f.samples;
+  sampling.samples_per_image = samples_per_image;
 
   Progress progress("nn train --images");
   std::vector<LoadedImage> loaded;

@@ -19,9 +19,9 @@ std::shared_ptr<ImageTrainFlags> add_image_train_flags(CLI::App& train);
 bool images_given(const ImageTrainFlags& f);
 // `nn train --images LIST`: the network of `t` (hidden, inputs, encoding, target scale, trainer
 // options) trained on the list's images; writes `output` and the training log `log` (when not
-// empty).
+// empty); `samples_per_image` sky pixels are drawn from each image (all when it has fewer).
 int run_train_images(const ImageTrainFlags& f, const NeuralTraining& t, const std::string& output,
-                     const std::string& log);
+                     const std::string& log, int samples_per_image);
 
 void add_nn_animate_command(CLI::App& nn, Commands& commands);
 void add_nn_study_command(CLI::App& nn, Commands& commands);

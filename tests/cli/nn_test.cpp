@@ -207,6 +207,11 @@ TEST_F(Cli, NnTrainImagesListErrorsNameTheRow) {
   EXPECT_NE(r.err.find("n.csv:2: a time needs --lat and --lon"), std::string::npos) << r.err;
   r = run("nn train --images '" + (dir_ / "bad.csv").string() + "' --source hosek -o w.json");
   EXPECT_EQ(r.status, 2) << r.err;
+  for (const char* flag : {"--suns 3", "--view-zeniths 4", "--view-azimuths 5", "--network log3"}) {
+    r = run("nn train --images '" + (dir_ / "bad.csv").string() + "' " + flag + " -o w.json");
+    EXPECT_EQ(r.status, 2) << flag << ": " << r.err;
+    EXPECT_NE(r.err.find("excludes"), std::string::npos) << flag << ": " << r.err;
+  }
 }
 
 TEST_F(Cli, NnStudyTabulatesEfficiency) {
