@@ -78,12 +78,9 @@ int run_estimate(const EstimateFlags& f) {
   if (f.sun_zenith_deg.has_value() != f.sun_azimuth_deg.has_value())
     throw InvalidArgument("--sun-zenith and --sun-azimuth go together");
   const io::ImageF image = io::read_image(f.image);
-  estimate::SkyCamera camera;
-  camera.projection = *estimate::parse_photo_projection(f.projection);
-  camera.width = image.width;
-  camera.height = image.height;
-  camera.fisheye = f.fisheye.layout();
-  estimate::validate(camera);
+  const estimate::SkyCamera camera =
+      estimate::image_camera(*estimate::parse_photo_projection(f.projection), f.fisheye.layout(),
+                             image.width, image.height);
   std::optional<io::ImageF> user_mask;
   if (!f.mask.empty()) user_mask = estimate::load_mask(f.mask);
   if (!f.compare.empty() && io::format_from_path(f.compare) != io::ImageFormat::png)

@@ -7,7 +7,6 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
-#include <ctime>
 #include <sstream>
 
 #include "common.h"
@@ -74,15 +73,6 @@ void add_sampling_flags(CLI::App& cmd, int& suns, int& zeniths, int& azimuths) {
               azimuths);
 }
 
-std::string utc_now() {
-  const std::time_t t = std::time(nullptr);
-  std::tm tm{};
-  gmtime_r(&t, &tm);
-  char buf[32];
-  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", &tm);
-  return buf;
-}
-
 std::string percent(double v) {
   return fmt::format("{:.2f} %", 100.0 * v);
 }
@@ -92,7 +82,7 @@ int run_train(const TrainFlags& f, const ImageTrainFlags& images) {
     return run_pietras_train(
         {f.network, f.source, f.trainer, f.samples > 0 ? f.samples : kPietrasSamples, f.seed,
          f.iterations, f.time_limit_s, f.output},
-        utc_now(), std::string("skylight ") + SKYLIGHT_VERSION);
+        utc_now_iso8601(), std::string("skylight ") + SKYLIGHT_VERSION);
   }
   const auto trainer = nn::parse_trainer(f.trainer);
   if (!trainer) {
@@ -130,7 +120,7 @@ int run_train(const TrainFlags& f, const ImageTrainFlags& images) {
     return true;
   };
   NeuralTrainingResult r = train_neural_sky(t);
-  r.network.provenance.date = utc_now();
+  r.network.provenance.date = utc_now_iso8601();
   r.network.provenance.software = std::string("skylight ") + SKYLIGHT_VERSION;
   io::write_text_file(f.output, nn::to_json(r.network));
   if (!f.log.empty()) {

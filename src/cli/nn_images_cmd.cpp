@@ -155,12 +155,9 @@ int run_train_images(const ImageTrainFlags& f, const NeuralTraining& t, const st
     li.entry = e;
     const std::optional<SunPosition> sun = entry_sun(f, e, li.sun_source);
     const io::ImageF image = io::read_image(e.file);
-    estimate::SkyCamera camera;
-    camera.projection = *estimate::parse_photo_projection(f.projection);
-    camera.width = image.width;
-    camera.height = image.height;
-    camera.fisheye = f.fisheye.layout();
-    estimate::validate(camera);
+    const estimate::SkyCamera camera =
+        estimate::image_camera(*estimate::parse_photo_projection(f.projection), f.fisheye.layout(),
+                               image.width, image.height);
     std::optional<io::ImageF> own_mask;
     if (!e.mask.empty()) own_mask = estimate::load_mask(e.mask);
     const io::ImageF* mask = own_mask ? &*own_mask : common_mask ? &*common_mask : nullptr;

@@ -49,4 +49,15 @@ void validate(const SkyCamera& c) {
     throw InvalidArgument(fmt::format("north-angle = {} is not finite", c.fisheye.north_angle));
 }
 
+SkyCamera image_camera(PhotoProjection projection, const FisheyeLayout& layout, int width,
+                       int height) {
+  SkyCamera camera;
+  camera.projection = projection;
+  camera.width = width;
+  camera.height = height;
+  camera.fisheye = layout;
+  validate(camera);
+  return camera;
+}
+
 }  // namespace skylight::estimate

@@ -39,4 +39,8 @@ struct SkyCamera {
 // (0, 2 pi) and within its lens's limits (orthographic <= pi).
 void validate(const SkyCamera& camera);
 
+// The camera of a width x height image in `projection` (fisheye: `layout`), validated.
+SkyCamera image_camera(PhotoProjection projection, const FisheyeLayout& layout, int width,
+                       int height);
+
 }  // namespace skylight::estimate

@@ -632,31 +632,42 @@ std::vector<char> without_empty_idat_chunks(const std::vector<char>& png) {
   return out;
 }
 
-}  // namespace
+// A PNG file's bytes for stb, with the header's size (w x h, n channels) checked.
+struct PngFile {
+  std::vector<char> bytes;
+  int w = 0, h = 0, n = 0;
+  const stbi_uc* data() const { return reinterpret_cast<const stbi_uc*>(bytes.data()); }
+  int size() const { return static_cast<int>(bytes.size()); }
+};
 
-Image8 read_png(const std::filesystem::path& path, const ReadImageOptions& options) {
-  const std::vector<char> bytes = without_empty_idat_chunks(read_file(path));
+PngFile open_png(const std::filesystem::path& path, const ReadImageOptions& options) {
+  PngFile png;
+  png.bytes = without_empty_idat_chunks(read_file(path));
   // Only PNG: stb would try its other decoders (PNM, TGA, ...) on anything else, and those have
   // their own undefined behaviour on corrupt input (found by the image_png fuzz target).
   constexpr std::string_view kPngSignature{"\x89PNG\r\n\x1a\n", 8};
-  if (bytes.size() < kPngSignature.size() ||
-      std::string_view(bytes.data(), kPngSignature.size()) != kPngSignature)
+  if (png.bytes.size() < kPngSignature.size() ||
+      std::string_view(png.bytes.data(), kPngSignature.size()) != kPngSignature)
     throw_read_error(path, "not a PNG file (no PNG signature)");
-  if (bytes.size() > static_cast<std::size_t>(std::numeric_limits<int>::max()))
+  if (png.bytes.size() > static_cast<std::size_t>(std::numeric_limits<int>::max()))
     throw_read_error(path, "larger than 2 GB");
-  const auto* data = reinterpret_cast<const stbi_uc*>(bytes.data());
-  const int size = static_cast<int>(bytes.size());
   stbi_set_flip_vertically_on_load_thread(0);  // row 0 at the top, whatever others set globally
-  int w = 0, h = 0, n = 0;
   // The header's size first: stb allocates the whole decoded image (up to 2^30 bytes) before
   // inflating the data, so a few bytes would otherwise cost up to a gigabyte.
-  if (stbi_info_from_memory(data, size, &w, &h, &n) == 0)
+  if (stbi_info_from_memory(png.data(), png.size(), &png.w, &png.h, &png.n) == 0)
     throw_read_error(path, stbi_failure_reason());
-  check_read_size(path, w, h, options);
+  check_read_size(path, png.w, png.h, options);
+  return png;
+}
+
+}  // namespace
+
+Image8 read_png(const std::filesystem::path& path, const ReadImageOptions& options) {
+  PngFile png = open_png(path, options);
   // 8-bit samples as stored (no gamma applied); grey and grey+alpha expand to RGB.
-  stbi_uc* pixels = stbi_load_from_memory(data, size, &w, &h, &n, 3);
+  stbi_uc* pixels = stbi_load_from_memory(png.data(), png.size(), &png.w, &png.h, &png.n, 3);
   if (pixels == nullptr) throw_read_error(path, stbi_failure_reason());
-  Image8 image(w, h);
+  Image8 image(png.w, png.h);
   std::copy(pixels, pixels + image.data.size(), image.data.begin());
   stbi_image_free(pixels);
   return image;
@@ -697,26 +708,14 @@ ImageF read_scalar_image(const std::filesystem::path& path, const ReadImageOptio
       break;
     }
     case ImageFormat::png: {
-      const std::vector<char> bytes = without_empty_idat_chunks(read_file(path));
-      constexpr std::string_view kPngSignature{"\x89PNG\r\n\x1a\n", 8};
-      if (bytes.size() < kPngSignature.size() ||
-          std::string_view(bytes.data(), kPngSignature.size()) != kPngSignature)
-        throw_read_error(path, "not a PNG file (no PNG signature)");
-      if (bytes.size() > static_cast<std::size_t>(std::numeric_limits<int>::max()))
-        throw_read_error(path, "larger than 2 GB");
-      const auto* data = reinterpret_cast<const stbi_uc*>(bytes.data());
-      const int size = static_cast<int>(bytes.size());
-      stbi_set_flip_vertically_on_load_thread(0);
-      int w = 0, h = 0, n = 0;
-      if (stbi_info_from_memory(data, size, &w, &h, &n) == 0)
-        throw_read_error(path, stbi_failure_reason());
-      check_read_size(path, w, h, options);
-      if (!stbi_is_16_bit_from_memory(data, size))
+      PngFile png = open_png(path, options);
+      if (!stbi_is_16_bit_from_memory(png.data(), png.size()))
         throw InvalidArgument(fmt::format(
             "cannot read '{}': an 8-bit PNG is too coarse for depth; write 16-bit", path.string()));
-      std::uint16_t* pixels = stbi_load_16_from_memory(data, size, &w, &h, &n, 1);
+      std::uint16_t* pixels =
+          stbi_load_16_from_memory(png.data(), png.size(), &png.w, &png.h, &png.n, 1);
       if (pixels == nullptr) throw_read_error(path, stbi_failure_reason());
-      image = ImageF(w, h, 1);
+      image = ImageF(png.w, png.h, 1);
       for (std::size_t i = 0; i < image.data.size(); ++i)
         image.data[i] = static_cast<float>(pixels[i]) / 65535.0f;
       stbi_image_free(pixels);

@@ -3,10 +3,13 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <nlohmann/json.hpp>
 
 #include "skylight/core/error.h"
 #include "skylight/core/math.h"
+#include "skylight/nn/detail/json_fields.h"
+#include "skylight/nn/mlp_kernel.h"
 #include "skylight/nn/random.h"
 #include "skylight/nn/train.h"
 
@@ -99,49 +102,17 @@ Rgb PietrasNetwork::rgb_at(double altitude_m, double cos_view_zenith, double cos
 
 namespace {
 
-[[noreturn]] void bad(const std::string& where, const std::string& field, const std::string& why) {
-  throw InvalidArgument(where + ": field '" + field + "' " + why);
-}
+using detail::array;
+using detail::bad;
+using detail::field;
+using detail::integer;
+using detail::number;
+using detail::numbers;
+using detail::positive;
+using detail::text;
 
-const nlohmann::json& field(const nlohmann::json& j, const std::string& where,
-                            const std::string& name) {
-  if (!j.is_object() || !j.contains(name)) bad(where, name, "is missing");
-  return j.at(name);
-}
-
-double number(const nlohmann::json& v, const std::string& where, const std::string& name) {
-  if (!v.is_number() || !std::isfinite(v.get<double>())) bad(where, name, "is not a finite number");
-  return v.get<double>();
-}
-
-double positive(const nlohmann::json& v, const std::string& where, const std::string& name) {
-  const double x = number(v, where, name);
-  if (!(x > 0.0)) bad(where, name, "is not positive");
-  return x;
-}
-
-std::string text(const nlohmann::json& v, const std::string& where, const std::string& name) {
-  if (!v.is_string()) bad(where, name, "is not a string");
-  return v.get<std::string>();
-}
-
-const nlohmann::json& array(const nlohmann::json& v, const std::string& where,
-                            const std::string& name) {
-  if (!v.is_array()) bad(where, name, "is not an array");
-  return v;
-}
-
-std::vector<double> numbers(const nlohmann::json& v, const std::string& where,
-                            const std::string& name) {
-  std::vector<double> out;
-  for (const auto& e : array(v, where, name)) out.push_back(number(e, where, name));
-  return out;
-}
-
-long long integer(const nlohmann::json& v, const std::string& where, const std::string& name) {
-  if (!v.is_number_integer() || v.get<long long>() < 0) bad(where, name, "is not an integer >= 0");
-  return v.get<long long>();
-}
+// Bounds of the weights file's integers (a corrupt file stops at the loader).
+constexpr long long kMaxVersion = 1000000, kMaxSamples = 1LL << 53, kMaxIterations = 1LL << 31;
 
 constexpr const char* kInputs[] = {"cos_view_zenith", "cos_view_sun", "cos_sun_zenith", "density"};
 
@@ -206,7 +177,7 @@ PietrasNetwork pietras_from_json(std::string_view s, const std::string& where) {
   }
   if (text(field(j, where, "format"), where, "format") != kPietrasFormat)
     bad(where, "format", "is not \"" + std::string(kPietrasFormat) + "\"");
-  if (integer(field(j, where, "version"), where, "version") != kPietrasVersion)
+  if (integer(field(j, where, "version"), where, "version", 0, kMaxVersion) != kPietrasVersion)
     bad(where, "version", "is not " + std::to_string(kPietrasVersion));
   PietrasNetwork net;
   const std::string kind = text(field(j, where, "network"), where, "network");
@@ -230,7 +201,8 @@ PietrasNetwork pietras_from_json(std::string_view s, const std::string& where) {
     const std::string name = "subnets[" + std::to_string(i) + "]";
     std::vector<int> widths;
     for (const auto& w : array(field(subs[i], where, "widths"), where, name + ".widths"))
-      widths.push_back(static_cast<int>(integer(w, where, name + ".widths")));
+      widths.push_back(
+          static_cast<int>(integer(w, where, name + ".widths", 1, detail::kMaxBatchWidth)));
     std::vector<Activation> acts;
     for (const auto& a :
          array(field(subs[i], where, "activations"), where, name + ".activations")) {
@@ -256,11 +228,14 @@ PietrasNetwork pietras_from_json(std::string_view s, const std::string& where) {
   if (!sp.is_object()) bad(where, "provenance.source_parameters", "is not an object");
   for (const auto& [key, v] : sp.items())
     pv.source_parameters.emplace_back(key, number(v, where, "provenance.source_parameters." + key));
-  pv.samples = static_cast<std::size_t>(integer(field(pj, where, "samples"), where, "samples"));
-  pv.seed = static_cast<std::uint64_t>(integer(field(pj, where, "seed"), where, "seed"));
+  pv.samples = static_cast<std::size_t>(
+      integer(field(pj, where, "samples"), where, "provenance.samples", 0, kMaxSamples));
+  pv.seed = static_cast<std::uint64_t>(integer(field(pj, where, "seed"), where, "provenance.seed",
+                                               0, std::numeric_limits<long long>::max()));
   pv.trainer = text(field(pj, where, "trainer"), where, "provenance.trainer");
   for (const auto& it : array(field(pj, where, "iterations"), where, "provenance.iterations"))
-    pv.iterations.push_back(static_cast<int>(integer(it, where, "provenance.iterations")));
+    pv.iterations.push_back(
+        static_cast<int>(integer(it, where, "provenance.iterations", 0, kMaxIterations)));
   pv.training_seconds =
       number(field(pj, where, "training_seconds"), where, "provenance.training_seconds");
   pv.date = text(field(pj, where, "date"), where, "provenance.date");

@@ -7,6 +7,7 @@
 
 #include "skylight/core/error.h"
 #include "skylight/core/numbers.h"
+#include "skylight/nn/detail/json_fields.h"
 
 namespace skylight::nn {
 
@@ -28,48 +29,13 @@ Rgb SkyNetwork::rgb(const SkyState& state, Vec3 view) const {
 
 namespace {
 
-[[noreturn]] void bad(const std::string& where, const std::string& field, const std::string& why) {
-  throw InvalidArgument(where + ": field '" + field + "' " + why);
-}
-
-// j[name]; `prefix` names the enclosing object in the message ("provenance.").
-const nlohmann::json& field(const nlohmann::json& j, const std::string& where,
-                            const std::string& name, const std::string& prefix = {}) {
-  if (!j.is_object() || !j.contains(name)) bad(where, prefix + name, "is missing");
-  return j.at(name);
-}
-
-double number(const nlohmann::json& v, const std::string& where, const std::string& name) {
-  if (!v.is_number() || !std::isfinite(v.get<double>())) bad(where, name, "is not a finite number");
-  return v.get<double>();
-}
-
-long long integer(const nlohmann::json& v, const std::string& where, const std::string& name,
-                  long long lo, long long hi) {
-  if (!v.is_number_integer() || v.get<long long>() < lo || v.get<long long>() > hi) {
-    bad(where, name,
-        "is not an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
-  }
-  return v.get<long long>();
-}
-
-std::string text(const nlohmann::json& v, const std::string& where, const std::string& name) {
-  if (!v.is_string()) bad(where, name, "is not a string");
-  return v.get<std::string>();
-}
-
-const nlohmann::json& array(const nlohmann::json& v, const std::string& where,
-                            const std::string& name) {
-  if (!v.is_array()) bad(where, name, "is not an array");
-  return v;
-}
-
-std::vector<double> numbers(const nlohmann::json& v, const std::string& where,
-                            const std::string& name) {
-  std::vector<double> out;
-  for (const auto& e : array(v, where, name)) out.push_back(number(e, where, name));
-  return out;
-}
+using detail::array;
+using detail::bad;
+using detail::field;
+using detail::integer;
+using detail::number;
+using detail::numbers;
+using detail::text;
 
 // The widest layer a weights file may describe: what the batch kernels accept (this also guards
 // the allocation of a corrupt file).
