@@ -21,6 +21,7 @@
 #include "skylight/render/sky_render.h"
 #include "skylight/sh/polynomial.h"
 #ifdef SKYLIGHT_HAVE_GPU
+#include "skylight/gpu/haze.h"
 #include "skylight/gpu/sky_render.h"
 #endif
 
@@ -223,6 +224,23 @@ void bench_haze(int repeats) {
       "thread: {:.0f} ms per frame = {:.0f}x the wall time, {:.0f}x the CPU time\n",
       1e3 * fast, 1.0 / fast, thread_count(), 1e3 * fast_cpu, 2.0 / fast_cpu, report.table_entries,
       report.table_error_bound, 1e3 * exact, exact / fast, exact / fast_cpu));
+#ifdef SKYLIGHT_HAVE_GPU
+  // The same frame through the fragment shader (gpu/haze.h): the kernel's tables, upload of image,
+  // depth and tables, draw and float readback.
+  try {
+    gpu::Context context;
+    gpu::HazeRenderer r(1920, 1080, s.operation, {});
+    (void)r.apply(full.first, full.second, cam, s);  // compile and first-use costs outside
+    const double gl =
+        median_seconds(repeats, [&] { (void)r.apply(full.first, full.second, cam, s); });
+    write_stdout(fmt::format(
+        "haze retarget 1920x1080 on GL '{}' (gpu/haze.h): {:.2f} ms per frame (tables + upload + "
+        "draw + float readback) = {:.0f} frames/s = {:.2f}x the CPU path's wall time\n",
+        context.renderer(), 1e3 * gl, 1.0 / gl, gl / fast));
+  } catch (const gpu::GpuError& e) {
+    write_stdout(fmt::format("haze on GL: not timed, no headless GL here ({})\n", e.what()));
+  }
+#endif
 }
 
 // Pietras §III against its source: the `nn` model with Pietras networks (the trainer's initial
@@ -384,7 +402,8 @@ void add_bench_command(CLI::App& app, Commands& commands) {
                 "also time one turbidity estimate on a 1-megapixel fisheye (skylight estimate)");
   cmd->add_flag("--haze", f->haze,
                 "also time haze retarget on a 1920x1080 frame + depth against the exact "
-                "per-pixel spectral integral (skylight haze)");
+                "per-pixel spectral integral (skylight haze), and its GL frame when built with "
+                "the GPU module");
   commands.push_back({cmd, [f, cmd] { return run_bench(*f, *cmd); }});
 }
 

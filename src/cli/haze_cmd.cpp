@@ -1,6 +1,7 @@
 // `skylight haze`: aerial perspective after Morales, Oishi & Ikeuchi 2017 (haze/; docs/HAZE.md):
 // scattering coefficients, the attenuation factor of a camera, the camera list, and add / retarget
-// / remove haze on an image with a depth map, or composite a virtual object into a hazy photo.
+// / remove haze on an image with a depth map (`--gpu`: by the fragment shader of gpu/haze.h), or
+// composite a virtual object into a hazy photo.
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
@@ -21,6 +22,9 @@
 #include "skylight/haze/image_haze.h"
 #include "skylight/io/image.h"
 #include "skylight/version.h"
+#ifdef SKYLIGHT_HAVE_GPU
+#include "skylight/gpu/haze.h"
+#endif
 
 namespace skylight::cli {
 namespace {
@@ -253,6 +257,7 @@ struct ImageFlags {
   std::string image, depth, output;
   std::optional<double> near_m, far_m, target_turbidity;
   double min_transmission = haze::kDefaultMinTransmission;
+  bool gpu = false;  // add / retarget / remove on the headless GL context (gpu/haze.h)
   AirFlags air;
   CameraFlags camera;
   AirlightFlags airlight;
@@ -292,6 +297,20 @@ haze::HazeSettings settings_of(const ImageFlags& f, const haze::CameraSensitivit
   return s;
 }
 
+// `--gpu`: the same operation by the fragment shader (gpu/haze.h; depth already in metres).
+io::ImageF apply_on_gpu(const io::ImageF& image, const io::ImageF& depth_m,
+                        const haze::CameraSensitivity& cam, const haze::HazeSettings& s,
+                        haze::HazeReport* report) {
+#ifdef SKYLIGHT_HAVE_GPU
+  return gpu::apply_haze(image, depth_m, {}, cam, s, report);
+#else
+  (void)image, (void)depth_m, (void)cam, (void)s, (void)report;
+  throw std::runtime_error(
+      "--gpu: this skylight was built without the GPU module (SKYLIGHT_GPU=OFF: EGL and OpenGL "
+      "were not found when configuring; docs/GPU.md)");
+#endif
+}
+
 int run_image(const ImageFlags& f, std::string_view op) {
   check_output(f.output, {f.image, f.depth, f.airlight.sky_photo});
   const haze::CameraSensitivity cam = f.camera.camera();
@@ -304,7 +323,8 @@ int run_image(const ImageFlags& f, std::string_view op) {
       haze::depth_in_metres(io::read_scalar_image(f.depth), {f.near_m, f.far_m}, image.width,
                             image.height, fmt::format("--depth '{}'", excerpt(f.depth)));
   haze::HazeReport report;
-  const io::ImageF out = haze::apply_haze(image, depth, cam, s, &report);
+  const io::ImageF out = f.gpu ? apply_on_gpu(image, depth, cam, s, &report)
+                               : haze::apply_haze(image, depth, cam, s, &report);
   check_finite(out);
   io::write_image(f.output, out, haze_metadata(f, cam, op, s));
   write_stdout(fmt::format(
@@ -380,6 +400,9 @@ void add_image_flags(CLI::App& cmd, ImageFlags& f, bool composite) {
                 ParameterValue(f.min_transmission),
                 "remove/retarget: Gamma_s is taken as at least this (bounds the amplification)"},
                f.min_transmission);
+  if (!composite)
+    cmd.add_flag("--gpu", f.gpu,
+                 "run the operation as a fragment shader on the headless GL context (docs/GPU.md)");
   cmd.add_option("-o,--output", f.output, "output image (.exr, .pfm or .hdr)")->required();
 }
 

@@ -136,6 +136,29 @@ TEST_F(HazeCli, AddThenRemoveRestoresTheImage) {
     EXPECT_NEAR(same.data[i], hazy.data[i], kFloatTol) << i;
 }
 
+// `haze retarget --gpu` against the CPU path end to end: the shader reproduces the CPU kernel's
+// float arithmetic (gpu/haze_test.cpp), so the files agree to float rounding.
+TEST_F(HazeCli, RetargetOnTheGpuMatchesTheCpuPath) {
+  write_scene();
+  const std::string common = "haze retarget --image " + p("scene.exr") + " --depth " +
+                             p("depth.exr") +
+                             " --turbidity 5 --target-turbidity 2 --camera canon-eos-5d "
+                             "--airlight 0.8,0.85,0.9 ";
+  auto r = run(common + "--gpu -o " + p("gpu.exr"));
+#ifdef SKYLIGHT_HAVE_GPU
+  ASSERT_EQ(r.status, 0) << r.err;
+  r = run(common + "-o " + p("cpu.exr"));
+  ASSERT_EQ(r.status, 0) << r.err;
+  const io::ImageF a = io::read_image(dir_ / "gpu.exr"), b = io::read_image(dir_ / "cpu.exr");
+  ASSERT_EQ(a.data.size(), b.data.size());
+  for (std::size_t i = 0; i < a.data.size(); ++i)
+    EXPECT_NEAR(a.data[i], b.data[i], kFloatTol * (1.0 + std::abs(b.data[i]))) << i;
+#else
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.err.find("built without the GPU module"), std::string::npos) << r.err;
+#endif
+}
+
 TEST_F(HazeCli, NormalisedDepthWithNearAndFar) {
   write_scene();
   io::ImageF bar(24, 16, 1);

@@ -16,11 +16,6 @@
 namespace skylight::haze {
 namespace {
 
-// The Gamma_s and Gamma_t tables of an operation over [0, max depth].
-struct Tables {
-  AttenuationTable source, target;  // empty gamma: identically 1
-};
-
 Atmosphere target_atmosphere(const HazeSettings& s) {
   Atmosphere t = s.source;
   t.turbidity = *s.target_turbidity;
@@ -161,34 +156,47 @@ io::ImageF depth_in_metres(const io::ImageF& depth, const DepthEncoding& encodin
   return out;
 }
 
-void apply_haze_in_place(io::ImageF& image, const io::ImageF& depth_m,
-                         const CameraSensitivity& camera, const HazeSettings& settings,
-                         HazeReport* report) {
+HazeKernel haze_kernel(double max_depth_m, const CameraSensitivity& camera,
+                       const HazeSettings& settings) {
   check_settings(settings);
-  check_pair(image, depth_m);
   const Roles r = roles(settings);
-  const double far = max_depth(depth_m);
   // Both tables on one grid, fine enough for the more curved of the two.
   const Atmosphere target_air =
       settings.operation == HazeOperation::retarget ? target_atmosphere(settings) : settings.source;
   const Attenuation source_att(settings.source, camera), target_att(target_air, camera);
   const double curvature = std::max(r.source_is_one ? 0.0 : source_att.max_curvature_per_m2(),
                                     r.target_is_one ? 0.0 : target_att.max_curvature_per_m2());
-  Tables t;
+  HazeKernel k;
   if (!r.source_is_one)
-    t.source = make_attenuation_table(source_att, far, settings.table_error, curvature);
+    k.source = make_attenuation_table(source_att, max_depth_m, settings.table_error, curvature);
   if (!r.target_is_one)
-    t.target = make_attenuation_table(target_att, far, settings.table_error, curvature);
-  const AttenuationTable& any = t.source.gamma.empty() ? t.target : t.source;
-  Uniforms u;
-  u.gs = t.source.gamma.empty() ? nullptr : t.source.gamma.data();
-  u.gt = t.target.gamma.empty() ? nullptr : t.target.gamma.data();
-  u.inv_step = static_cast<float>(1.0 / any.step_m);
-  u.last = static_cast<int>(any.size()) - 2;
-  u.min_t = static_cast<float>(settings.min_transmission);
+    k.target = make_attenuation_table(target_att, max_depth_m, settings.table_error, curvature);
+  const AttenuationTable& any = k.source.gamma.empty() ? k.target : k.source;
+  k.step_m = any.step_m;
+  k.entries = any.size();
+  k.min_transmission = settings.min_transmission;
   for (std::size_t c = 0; c < 3; ++c) {
-    u.a_t[c] = static_cast<float>(r.a_t[c]);
-    u.scale[c] = static_cast<float>(r.a_t[c] / r.a_s[c]);
+    k.airlight_target[c] = r.a_t[c];
+    k.scale[c] = r.a_t[c] / r.a_s[c];
+  }
+  return k;
+}
+
+void apply_haze_in_place(io::ImageF& image, const io::ImageF& depth_m,
+                         const CameraSensitivity& camera, const HazeSettings& settings,
+                         HazeReport* report) {
+  check_settings(settings);
+  check_pair(image, depth_m);
+  const HazeKernel k = haze_kernel(max_depth(depth_m), camera, settings);
+  Uniforms u;
+  u.gs = k.source.gamma.empty() ? nullptr : k.source.gamma.data();
+  u.gt = k.target.gamma.empty() ? nullptr : k.target.gamma.data();
+  u.inv_step = static_cast<float>(1.0 / k.step_m);
+  u.last = static_cast<int>(k.entries) - 2;
+  u.min_t = static_cast<float>(k.min_transmission);
+  for (std::size_t c = 0; c < 3; ++c) {
+    u.a_t[c] = static_cast<float>(k.airlight_target[c]);
+    u.scale[c] = static_cast<float>(k.scale[c]);
   }
   std::atomic<std::size_t> clamped{0};
   const auto width = static_cast<std::size_t>(image.width);
@@ -206,8 +214,8 @@ void apply_haze_in_place(io::ImageF& image, const io::ImageF& depth_m,
     clamped += low;
   });
   if (report) {
-    report->table_error_bound = std::max(t.source.error_bound, t.target.error_bound);
-    report->table_entries = any.size();
+    report->table_error_bound = k.error_bound();
+    report->table_entries = k.entries;
     report->clamped_transmission_pixels = clamped.load();
   }
 }

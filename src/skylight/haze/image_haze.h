@@ -5,6 +5,7 @@
 // the CPU kernel and a fragment shader compute the same thing.
 #pragma once
 
+#include <algorithm>
 #include <optional>
 
 #include "skylight/core/math.h"
@@ -56,6 +57,27 @@ struct HazeReport {
   std::size_t table_entries = 0;
   std::size_t clamped_transmission_pixels = 0;  // pixels where Gamma_s < min_transmission
 };
+
+// What every pixel of an operation reads besides its own value and depth: the Gamma_s and
+// Gamma_t tables on one grid (eq. 11, AttenuationTable) and the uniforms of eq. 26. The CPU kernel
+// (apply_haze_in_place) and the fragment shader (gpu/haze.h) evaluate the same thing from it:
+//   pos = s / step, i = min(floor(pos), entries - 2), f = pos - i,
+//   Gamma = G[i] + f (G[i + 1] - G[i]) per table, r = Gamma_t / max(Gamma_s, min_transmission),
+//   I_out = max(0, I scale r + airlight_target (1 - r)).
+struct HazeKernel {
+  AttenuationTable source, target;  // empty gamma: identically 1 (source: add, target: remove)
+  double step_m = 1.0;              // the common table step [m]
+  std::size_t entries = 0;          // entries of each non-empty table
+  double min_transmission = kDefaultMinTransmission;
+  Rgb3 airlight_target{};  // I^inf_t [image units]
+  Rgb3 scale{};            // I^inf_t / I^inf_s [1]
+  double error_bound() const { return std::max(source.error_bound, target.error_bound); }
+};
+
+// The kernel of `settings` for depths in [0, max_depth_m] (checked: InvalidArgument for bad
+// settings, as apply_haze).
+HazeKernel haze_kernel(double max_depth_m, const CameraSensitivity& camera,
+                       const HazeSettings& settings);
 
 // The operation on a 3-channel image with a depth map in metres (same size, one channel): fast
 // path (Gamma tables + threads). Gamma_s = 1 for add (eq. 10 with Gamma_t = Gamma), Gamma_t = 1
