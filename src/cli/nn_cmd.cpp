@@ -73,10 +73,6 @@ void add_sampling_flags(CLI::App& cmd, int& suns, int& zeniths, int& azimuths) {
               azimuths);
 }
 
-std::string percent(double v) {
-  return fmt::format("{:.2f} %", 100.0 * v);
-}
-
 int run_train(const TrainFlags& f, const ImageTrainFlags& images) {
   if (!f.network.empty()) {
     return run_pietras_train(

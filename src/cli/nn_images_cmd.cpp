@@ -35,6 +35,10 @@ struct ImageTrainFlags {
   double min_elevation_deg = 0.0, sun_exclusion_deg = 5.0, saturation = 0.999;
 };
 
+std::string percent(double fraction) {
+  return fmt::format("{:.2f} %", 100.0 * fraction);
+}
+
 std::string utc_now_iso8601() {
   const std::time_t t = std::time(nullptr);
   std::tm tm{};

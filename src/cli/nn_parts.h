@@ -28,5 +28,7 @@ void add_nn_study_command(CLI::App& nn, Commands& commands);
 
 // ISO 8601 UTC of now, for provenance.date.
 std::string utc_now_iso8601();
+// A fraction as a percentage with two decimals ("1.69 %"), as the nn commands print errors.
+std::string percent(double fraction);
 
 }  // namespace skylight::cli

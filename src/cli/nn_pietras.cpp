@@ -6,6 +6,7 @@
 #include <algorithm>
 
 #include "common.h"
+#include "nn_parts.h"
 #include "skylight/core/error.h"
 #include "skylight/core/numbers.h"
 #include "skylight/io/file.h"
@@ -16,10 +17,6 @@ namespace {
 
 // The validation sets' seed: fixed, and apart from training seeds (1, 2, ...).
 constexpr std::uint64_t kValidationSeed = 1000003;
-
-std::string percent(double v) {
-  return fmt::format("{:.2f} %", 100.0 * v);
-}
 
 nlohmann::ordered_json errors_json(const PietrasErrors& e) {
   nlohmann::ordered_json j;
