@@ -2,7 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <iostream>
 
 #include "skylight/core/error.h"
 #include "skylight/core/math.h"
@@ -44,16 +46,20 @@ TEST(Positioning, SingularMatrixIsAnError) {
 // The image centre (l = 1/2, 1/2) looks along the optical axis: zenith pi/2 - pitch, azimuth =
 // heading, whatever the roll.
 TEST(Positioning, CentreIsTheOpticalAxis) {
+  double worst_centre = 0.0;
   for (double heading : {0.0, 0.3, kPi / 2, 2.5, 4.0})
     for (double pitch : {-0.4, 0.0, 0.2, 1.0})
       for (double roll : {0.0, 0.35, -1.2}) {
         const ImagePositioning p = camera(heading, pitch, roll, 50.0 * kDegree);
         const ZenithAzimuth a = angles_from_direction(p.direction(0.5, 0.5));
+        worst_centre = std::max({worst_centre, std::abs(a.zenith - (kPi / 2 - pitch)),
+                                 std::abs(std::remainder(a.azimuth - heading, 2 * kPi))});
         EXPECT_NEAR(a.zenith, kPi / 2 - pitch, kAngleTol);
         EXPECT_NEAR(std::remainder(a.azimuth - heading, 2 * kPi), 0.0, kAngleTol);
         const Vec3 eye = p.eye();
         EXPECT_NEAR(length(eye), 0.0, 1e-12);
       }
+  std::cout << "[ positioning ] centre pixel vs optical axis: worst " << worst_centre << " rad\n";
 }
 
 // A level camera (pitch and roll 0): the top and bottom edge centres are fov_y / 2 above and below
@@ -94,6 +100,7 @@ TEST(Positioning, RollTurnsTheImageClockwise) {
 // Eq. 22 then the forward projection is the identity, and the forward projection then eq. 22.
 TEST(Positioning, RoundTripWithTheForwardProjection) {
   const ImagePositioning p = camera(2.0, 0.3, -0.2, 60.0 * kDegree);
+  double worst = 0.0;
   for (double lx : {0.0, 0.13, 0.5, 0.97})
     for (double ly : {0.02, 0.5, 1.0})
       for (double s_bar : {0.0, 0.4, 0.9, 0.999}) {
@@ -101,7 +108,9 @@ TEST(Positioning, RoundTripWithTheForwardProjection) {
         EXPECT_NEAR(w[0], lx, kWindowTol);
         EXPECT_NEAR(w[1], ly, kWindowTol);
         EXPECT_NEAR(w[2], s_bar, kWindowTol);
+        for (double e : {w[0] - lx, w[1] - ly, w[2] - s_bar}) worst = std::max(worst, std::abs(e));
       }
+  std::cout << "[ positioning ] round trip: worst window error " << worst << "\n";
   const Vec3 x{120.0, -340.0, 55.0};
   const std::array<double, 3> w = p.project(x);
   EXPECT_NEAR(length(p.position(w[0], w[1], w[2]) - x), 0.0, kRoundTripTol * length(x));
@@ -113,15 +122,19 @@ TEST(Positioning, Equation19IsTheDepthOfEquation22) {
   const double pitch = 0.25, heading = 3.0;
   const ImagePositioning p = camera(heading, pitch, 0.1, 45.0 * kDegree);
   const Vec3 axis = direction_from_angles(kPi / 2 - pitch, heading);
+  double worst = 0.0;
   for (double lx : {0.1, 0.5, 0.8})
     for (double ly : {0.3, 0.5, 0.95})
       for (double s_bar : {0.0, 0.25, 0.5, 0.9, 0.99}) {
         const Vec3 x = p.position(lx, ly, s_bar);
         const double s = depth_from_normalised(s_bar, kNear, kFar);
         EXPECT_NEAR(dot(x, axis), s, kDepthRelTol * s);
+        worst = std::max(worst, std::abs(dot(x, axis) - s) / s);
         const Vec3 d = p.direction(lx, ly);
         EXPECT_NEAR(length(x - dot(x, d) * d), 0.0, kDepthRelTol * s);
       }
+  std::cout << "[ positioning ] eq. 19 vs eq. 22's eye depth: worst relative difference " << worst
+            << "\n";
 }
 
 // A raw model-view with a translation: directions do not depend on where the camera stands.
