@@ -363,6 +363,27 @@ TEST_F(HazeCameraCli, RawMatricesEqualThePinholeFlags) {
               term(3.0, row_zenith(0, 30.0)) / term(3.0, row_zenith(kH - 1, 30.0)), kRatioTol);
 }
 
+// `--gpu` with an image camera: the per-pixel airlights as textures (gpu/haze.h).
+TEST_F(HazeCameraCli, PerPixelAirlightOnTheGpuMatchesTheCpuPath) {
+#ifdef SKYLIGHT_HAVE_GPU
+  write_scene();
+  const std::string common = "haze retarget --image " + p("scene.exr") + " --depth " +
+                             p("depth.exr") +
+                             " --turbidity 5 --target-turbidity 2 --camera canon-eos-5d "
+                             "--sky-model preetham --vfov 30 --heading 120 --pitch 5 ";
+  auto r = run(common + "--gpu -o " + p("gpu.exr"));
+  ASSERT_EQ(r.status, 0) << r.err;
+  r = run(common + "-o " + p("cpu.exr"));
+  ASSERT_EQ(r.status, 0) << r.err;
+  const io::ImageF a = io::read_image(dir_ / "gpu.exr"), b = io::read_image(dir_ / "cpu.exr");
+  ASSERT_EQ(a.data.size(), b.data.size());
+  for (std::size_t i = 0; i < a.data.size(); ++i)
+    EXPECT_NEAR(a.data[i], b.data[i], kFloatTol * (1.0 + std::abs(b.data[i]))) << i;
+#else
+  GTEST_SKIP() << "built without the GPU module";
+#endif
+}
+
 TEST_F(HazeCameraCli, IncompleteOrConflictingCamerasAreErrors) {
   write_black_far(1000.0f);
   const std::string common = "haze add --image " + p("black.exr") + " --depth " + p("far.exr") +
