@@ -126,7 +126,14 @@ std::array<double, 3> ImagePositioning::project(Vec3 world) const {
 }
 
 Vec3 ImagePositioning::direction(double lx, double ly) const {
-  return normalize(position(lx, ly, 1.0) - position(lx, ly, 0.0));
+  const Vec3 v = position(lx, ly, 1.0) - position(lx, ly, 0.0);
+  const double len = length(v);
+  if (!(len > 0.0 && std::isfinite(len)))
+    throw InvalidArgument(fmt::format(
+        "the image camera gives window point ({:.4g}, {:.4g}) no view direction (its near or far "
+        "point has w = 0 in eq. 22, or they coincide): check the projection matrix",
+        lx, ly));
+  return (1.0 / len) * v;
 }
 
 Vec3 ImagePositioning::pixel_direction(int col, int row) const {

@@ -58,6 +58,7 @@ class ImagePositioning {
 
   // The unit direction of a pixel's ray, from its near-plane point (s_bar = 0) to its far-plane
   // point (s_bar = 1): the same for every depth on the ray, also for orthographic P.
+  // InvalidArgument when the matrices give the point none (w = 0, or near = far point).
   Vec3 direction(double lx, double ly) const;
   Vec3 pixel_direction(int col, int row) const;
   // Eqs. 20-21 for a pixel's direction: theta = arccos(z / |v|); the paper's phi = arctan(y / x)

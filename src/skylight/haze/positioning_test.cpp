@@ -41,6 +41,10 @@ TEST(Positioning, SingularMatrixIsAnError) {
   Mat4 m{};
   EXPECT_THROW(invert(m, "zero"), InvalidArgument);
   EXPECT_THROW(ImagePositioning(m, identity4(), 4, 4), InvalidArgument);
+  // Invertible, but the window's far plane (s_bar = 1) is at infinity: w = 0.
+  const Mat4 far_at_infinity{1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 1, 1};
+  const ImagePositioning p(identity4(), far_at_infinity, 4, 4);
+  EXPECT_THROW(p.pixel_direction(1, 1), InvalidArgument);
 }
 
 // The image centre (l = 1/2, 1/2) looks along the optical axis: zenith pi/2 - pitch, azimuth =
