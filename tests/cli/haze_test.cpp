@@ -394,7 +394,8 @@ TEST_F(HazeCameraCli, IncompleteOrConflictingCamerasAreErrors) {
       "--vfov 30 --view-elevation 10",  // one airlight and a camera
       "--vfov 30 --view-matrix 1,0,0,0,0,1,0,0,0,0,1,0,0,0,0,1 --pitch 3",  // M and angles
       "--projection-matrix 0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0",                // singular
-      "--vfov 200",                                                         // out of range
+      "--projection-matrix 1,0,0,0,0,1,0,0,0,0,1,0,0,0,1,1",  // far plane at infinity: w = 0
+      "--vfov 200",                                           // out of range
   };
   for (const std::string& flags : bad) {
     auto r = run(common + flags + " -o " + p("bad.exr"));
