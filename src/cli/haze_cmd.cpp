@@ -12,11 +12,13 @@
 #include <vector>
 
 #include "common.h"
+#include "haze_camera.h"
 #include "skylight/core/error.h"
 #include "skylight/core/frame.h"
 #include "skylight/core/math.h"
 #include "skylight/core/numbers.h"
 #include "skylight/estimate/camera.h"
+#include "skylight/haze/airlight_field.h"
 #include "skylight/haze/attenuation.h"
 #include "skylight/haze/coefficients.h"
 #include "skylight/haze/image_haze.h"
@@ -95,6 +97,7 @@ struct AirlightFlags {
   FisheyeFlags fisheye;
   double sun_zenith_deg = kDefaultSunZenithDeg, sun_azimuth_deg = kDefaultSunAzimuthDeg;
   double view_elevation_deg = 0.0, view_azimuth_deg = 0.0;
+  CLI::Option *view_elevation = nullptr, *view_azimuth = nullptr;
   void add(CLI::App& cmd) {
     auto* a = add_numbers(
         cmd,
@@ -115,31 +118,30 @@ struct AirlightFlags {
     ParameterSpec zenith = sun_parameter_specs()[0], azimuth = sun_parameter_specs()[1];
     add_number(cmd, zenith, sun_zenith_deg);
     add_number(cmd, azimuth, sun_azimuth_deg);
-    add_number(cmd,
-               {"view-elevation", "deg", ParameterKind::number, 0.0, 90.0, 1, ParameterValue(0.0),
-                "--sky-model, --sky: elevation of the sky seen behind the scene"},
-               view_elevation_deg);
-    add_number(cmd,
-               {"view-azimuth", "deg", ParameterKind::number, -360.0, 360.0, 1, ParameterValue(0.0),
-                "--sky-model: azimuth of that direction (north 0, east 90)"},
-               view_azimuth_deg);
+    view_elevation = add_number(
+        cmd,
+        {"view-elevation", "deg", ParameterKind::number, 0.0, 90.0, 1, ParameterValue(0.0),
+         "--sky-model, --sky without an image camera: elevation of the sky seen behind the scene"},
+        view_elevation_deg);
+    view_azimuth = add_number(
+        cmd,
+        {"view-azimuth", "deg", ParameterKind::number, -360.0, 360.0, 1, ParameterValue(0.0),
+         "--sky-model without an image camera: azimuth of that direction "
+         "(north 0, east 90)"},
+        view_azimuth_deg);
   }
-  // At turbidity `t`.
-  haze::Rgb3 at(double t, const haze::CameraSensitivity& camera) const {
-    if (!airlight.empty()) return {airlight[0], airlight[1], airlight[2]};
-    const double theta = deg_to_rad(90.0 - view_elevation_deg);
-    if (!sky_photo.empty()) {
-      const io::ImageF photo = io::read_image(sky_photo);
-      estimate::SkyCamera cam;
-      cam.projection = *estimate::parse_photo_projection(sky_projection);
-      cam.width = photo.width;
-      cam.height = photo.height;
-      cam.fisheye = fisheye.layout();
-      estimate::validate(cam);
-      return haze::photo_airlight(photo, cam, t, theta).airlight;
-    }
-    if (sky_model.empty())
-      throw InvalidArgument("give --airlight R,G,B, --sky PHOTO or --sky-model NAME");
+  // The sky photo's horizon region (eq. 12) at turbidity `t`, its airlight for zenith `theta`.
+  haze::PhotoAirlight photo_horizon(double t, double theta) const {
+    const io::ImageF photo = io::read_image(sky_photo);
+    estimate::SkyCamera cam;
+    cam.projection = *estimate::parse_photo_projection(sky_projection);
+    cam.width = photo.width;
+    cam.height = photo.height;
+    cam.fisheye = fisheye.layout();
+    estimate::validate(cam);
+    return haze::photo_airlight(photo, cam, t, theta);
+  }
+  std::unique_ptr<SkyModel> model_at(double t) const {
     const ModelInfo* info = find_model(sky_model);
     if (!info) throw InvalidArgument(fmt::format("unknown --sky-model '{}'", excerpt(sky_model)));
     SkyParameters p;
@@ -150,7 +152,30 @@ struct AirlightFlags {
     if (!has_turbidity)
       throw InvalidArgument(fmt::format("--sky-model '{}' has no turbidity", sky_model));
     p.values.set("turbidity", t);
-    const auto model = make_sky_model(sky_model, p);
+    return make_sky_model(sky_model, p);
+  }
+  // Per pixel at turbidity `t` through the image camera (Morales 2017 §6.2 step 3); null for a
+  // constant --airlight.
+  std::shared_ptr<const haze::AirlightMap> per_pixel(double t,
+                                                     const haze::CameraSensitivity& camera,
+                                                     const haze::ImagePositioning& image) const {
+    if (view_elevation->count() > 0 || view_azimuth->count() > 0)
+      throw InvalidArgument(
+          "--view-elevation and --view-azimuth are for one airlight per image; with an image "
+          "camera every pixel sees its own direction");
+    if (!airlight.empty()) return nullptr;
+    if (!sky_photo.empty()) return haze::photo_airlight_map(image, photo_horizon(t, kPi / 2), t);
+    const haze::AirlightTable table(*model_at(t), camera);
+    return haze::sky_model_airlight_map(image, table);
+  }
+  // At turbidity `t`.
+  haze::Rgb3 at(double t, const haze::CameraSensitivity& camera) const {
+    if (!airlight.empty()) return {airlight[0], airlight[1], airlight[2]};
+    const double theta = deg_to_rad(90.0 - view_elevation_deg);
+    if (!sky_photo.empty()) return photo_horizon(t, theta).airlight;
+    if (sky_model.empty())
+      throw InvalidArgument("give --airlight R,G,B, --sky PHOTO or --sky-model NAME");
+    const auto model = model_at(t);
     const Vec3 view = direction_from_angles(theta, wrap_azimuth(deg_to_rad(view_azimuth_deg)));
     return haze::sky_model_airlight(*model, view, camera);
   }
@@ -261,20 +286,24 @@ struct ImageFlags {
   AirFlags air;
   CameraFlags camera;
   AirlightFlags airlight;
+  HazeCameraFlags image_camera;  // per-pixel airlight (Morales 2017 eqs. 20-23)
   // composite
   std::string object, object_depth, object_alpha;
 };
 
 io::Metadata haze_metadata(const ImageFlags& f, const haze::CameraSensitivity& cam,
                            std::string_view op, const haze::HazeSettings& s) {
-  io::Metadata md{{"skylight:version", kVersion},
-                  {"skylight:haze_operation", std::string(op)},
-                  {"skylight:camera", cam.name},
-                  {"skylight:scattering_variant", f.air.variant},
-                  {"skylight:turbidity", fmt::format("{}", f.air.turbidity)},
-                  {"skylight:altitude_m", fmt::format("{}", f.air.altitude_m)},
-                  {"skylight:airlight", fmt::format("{},{},{}", s.airlight_source[0],
-                                                    s.airlight_source[1], s.airlight_source[2])}};
+  io::Metadata md{
+      {"skylight:version", kVersion},
+      {"skylight:haze_operation", std::string(op)},
+      {"skylight:camera", cam.name},
+      {"skylight:scattering_variant", f.air.variant},
+      {"skylight:turbidity", fmt::format("{}", f.air.turbidity)},
+      {"skylight:altitude_m", fmt::format("{}", f.air.altitude_m)},
+      {"skylight:airlight", s.airlight_source_map
+                                ? std::string("per pixel")
+                                : fmt::format("{},{},{}", s.airlight_source[0],
+                                              s.airlight_source[1], s.airlight_source[2])}};
   if (s.target_turbidity)
     md.emplace_back("skylight:target_turbidity", fmt::format("{}", *s.target_turbidity));
   return md;
@@ -297,6 +326,22 @@ haze::HazeSettings settings_of(const ImageFlags& f, const haze::CameraSensitivit
   return s;
 }
 
+// Clip planes of a pinhole image camera when the depth map holds metres (the pixels' directions do
+// not depend on them) [m].
+constexpr double kPinholeNearM = 1.0, kPinholeFarM = 1e4;
+
+// With an image camera, --sky and --sky-model give every pixel the airlight of its own direction
+// (Morales 2017 §6.2: eqs. 20-22, then eqs. 12-13 or the model); --airlight stays constant.
+void add_per_pixel_airlight(const ImageFlags& f, const haze::CameraSensitivity& cam,
+                            haze::HazeSettings& s, int width, int height) {
+  const std::optional<haze::ImagePositioning> image = f.image_camera.positioning(
+      width, height, f.near_m.value_or(kPinholeNearM), f.far_m.value_or(kPinholeFarM));
+  if (!image) return;
+  s.airlight_source_map = f.airlight.per_pixel(f.air.turbidity, cam, *image);
+  if (s.airlight_source_map && s.target_turbidity)
+    s.airlight_target_map = f.airlight.per_pixel(*s.target_turbidity, cam, *image);
+}
+
 // `--gpu`: the same operation by the fragment shader (gpu/haze.h; depth already in metres).
 io::ImageF apply_on_gpu(const io::ImageF& image, const io::ImageF& depth_m,
                         const haze::CameraSensitivity& cam, const haze::HazeSettings& s,
@@ -314,11 +359,12 @@ io::ImageF apply_on_gpu(const io::ImageF& image, const io::ImageF& depth_m,
 int run_image(const ImageFlags& f, std::string_view op) {
   check_output(f.output, {f.image, f.depth, f.airlight.sky_photo});
   const haze::CameraSensitivity cam = f.camera.camera();
-  const haze::HazeSettings s = settings_of(f, cam);
+  haze::HazeSettings s = settings_of(f, cam);
   const io::ImageF image = io::read_image(f.image);
   if (image.channels != 3)
     throw InvalidArgument(
         fmt::format("--image '{}' has one channel; haze needs R, G, B", excerpt(f.image)));
+  add_per_pixel_airlight(f, cam, s, image.width, image.height);
   const io::ImageF depth =
       haze::depth_in_metres(io::read_scalar_image(f.depth), {f.near_m, f.far_m}, image.width,
                             image.height, fmt::format("--depth '{}'", excerpt(f.depth)));
@@ -328,18 +374,20 @@ int run_image(const ImageFlags& f, std::string_view op) {
   check_finite(out);
   io::write_image(f.output, out, haze_metadata(f, cam, op, s));
   write_stdout(fmt::format(
-      "haze {}: {}x{}, Gamma table {} entries (interpolation error <= {:.2g}), {} pixels with "
-      "Gamma_s below {} -> {}\n",
-      op, image.width, image.height, report.table_entries, report.table_error_bound,
-      report.clamped_transmission_pixels, s.min_transmission, f.output));
+      "haze {}: {}x{}, {} airlight, Gamma table {} entries (interpolation error <= {:.2g}), {} "
+      "pixels with Gamma_s below {} -> {}\n",
+      op, image.width, image.height, s.airlight_source_map ? "per-pixel" : "constant",
+      report.table_entries, report.table_error_bound, report.clamped_transmission_pixels,
+      s.min_transmission, f.output));
   return kExitOk;
 }
 
 int run_composite(const ImageFlags& f) {
   check_output(f.output, {f.image, f.object, f.object_depth, f.object_alpha, f.airlight.sky_photo});
   const haze::CameraSensitivity cam = f.camera.camera();
-  const haze::HazeSettings s = settings_of(f, cam);
+  haze::HazeSettings s = settings_of(f, cam);
   const io::ImageF bg = io::read_image(f.image);
+  add_per_pixel_airlight(f, cam, s, bg.width, bg.height);
   const io::ImageF obj = io::read_image(f.object);
   const io::ImageF depth = haze::depth_in_metres(
       io::read_scalar_image(f.object_depth), {f.near_m, f.far_m}, obj.width, obj.height,
@@ -394,6 +442,7 @@ void add_image_flags(CLI::App& cmd, ImageFlags& f, bool composite) {
               "far plane of a normalised depth map"},
              f.far_m);
   f.airlight.add(cmd);
+  f.image_camera.add(cmd);
   if (!composite)
     add_number(cmd,
                {"min-transmission", "1", ParameterKind::number, 1e-6, 1.0, 1,

@@ -1,4 +1,5 @@
 // End-to-end tests of `skylight haze`: coefficients, attenuation, cameras and the image operations.
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -8,6 +9,7 @@
 #include <fstream>
 #include <string>
 
+#include "skylight/core/math.h"
 #include "skylight/io/image.h"
 #include "support/cli_run.h"
 
@@ -247,6 +249,159 @@ TEST_F(HazeCli, CompositeWithASkyModelAirlight) {
   for (int c = 0; c < 3; ++c) {
     EXPECT_EQ(mr.pixel(0, 0)[c], scene_.pixel(0, 0)[c]);  // outside the object: the background
     EXPECT_GT(mr.pixel(6, 6)[c], 0.5f);  // the object took on the (bright) sky's airlight
+  }
+}
+
+// An image camera gives every pixel its own airlight (Morales 2017 §6.2): a black scene at one
+// far depth shows A (1 - Gamma) with one Gamma, so rows differ by the airlight alone; with --sky
+// by eq. 13's ratio zeta(T, theta_a, theta') / zeta(T, theta_b, theta') = term(theta_a) /
+// term(theta_b), theta of each row from the pinhole (level camera: tan(elevation) = (1 - 2 l_y)
+// tan(fov / 2) at the centre column).
+class HazeCameraCli : public HazeCli {
+ protected:
+  static constexpr int kW = 25, kH = 15;  // odd: the centre pixel is on the optical axis
+  void write_black_far(float depth_m) {
+    io::ImageF im(kW, kH, 3), d(kW, kH, 1);
+    for (float& v : d.data) v = depth_m;
+    io::write_image(dir_ / "black.exr", im);
+    io::write_image(dir_ / "far.exr", d);
+  }
+  static double term(double turbidity, double theta) {  // Morales 2017 eq. 13's numerator
+    const double c = std::max(std::cos(theta), 0.01);
+    return 1.0 + (0.178 * turbidity - 1.463) * std::exp((-0.355 * turbidity + 0.427) / c);
+  }
+  static double row_zenith(int row, double vfov_deg) {
+    const double ly = 1.0 - (row + 0.5) / kH;
+    return kPi / 2 - std::atan((2.0 * ly - 1.0) * std::tan(vfov_deg * kDegree / 2));
+  }
+};
+
+// Float images of values <= 1 through EXR and float arithmetic.
+constexpr double kRatioTol = 1e-5;
+// The sky-model airlight table (1 deg grid, bilinear) against direct evaluation: the library's
+// measured worst away from the sun (haze/airlight_field_test.cpp).
+constexpr double kAirlightTableRelTol = 2e-3;
+
+TEST_F(HazeCameraCli, SkyPhotoAirlightFollowsEquation13PerRow) {
+  write_black_far(20000.0f);
+  auto r =
+      run("render --model preetham --turbidity 3 --projection fisheye --width 96 --height 96 "
+          "-o " +
+          p("sky.exr"));
+  ASSERT_EQ(r.status, 0) << r.err;
+  const double vfov = 30.0;
+  r = run("haze add --image " + p("black.exr") + " --depth " + p("far.exr") +
+          " --turbidity 3 --camera canon-eos-5d --sky " + p("sky.exr") +
+          " --vfov 30 --heading 200 --pitch 0 -o " + p("out.exr"));
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("per-pixel airlight"), std::string::npos) << r.out;
+  const io::ImageF out = io::read_image(dir_ / "out.exr");
+  const int mid = kW / 2;
+  for (int row = 0; row < kH; ++row)
+    for (int c = 0; c < 3; ++c) {
+      const double expected =
+          term(3.0, row_zenith(row, vfov)) / term(3.0, row_zenith(kH - 1, vfov));
+      EXPECT_NEAR(out.pixel(mid, row)[c] / out.pixel(mid, kH - 1)[c], expected, kRatioTol)
+          << row << " " << c;
+    }
+  // The horizon row is brighter than the top row (a clear sky darkens towards the zenith).
+  EXPECT_GT(out.pixel(mid, kH / 2)[0], out.pixel(mid, 0)[0]);
+}
+
+TEST_F(HazeCameraCli, SkyModelAirlightAtTheCentreIsTheOpticalAxis) {
+  write_black_far(20000.0f);
+  const std::string common = "haze add --image " + p("black.exr") + " --depth " + p("far.exr") +
+                             " --turbidity 3 --camera canon-eos-5d --sky-model preetham "
+                             "--sun-zenith 40 --sun-azimuth 90 ";
+  auto r = run(common + "--vfov 40 --heading 250 --pitch 12 --roll 7 -o " + p("cam.exr"));
+  ASSERT_EQ(r.status, 0) << r.err;
+  r = run(common + "--view-elevation 12 --view-azimuth 250 -o " + p("one.exr"));
+  ASSERT_EQ(r.status, 0) << r.err;
+  const io::ImageF cam = io::read_image(dir_ / "cam.exr"), one = io::read_image(dir_ / "one.exr");
+  for (int c = 0; c < 3; ++c)
+    EXPECT_NEAR(cam.pixel(kW / 2, kH / 2)[c], one.pixel(kW / 2, kH / 2)[c],
+                kAirlightTableRelTol * one.pixel(kW / 2, kH / 2)[c]);
+  // Off the axis the airlight differs; the constant one does not.
+  EXPECT_NE(cam.pixel(0, 0)[0], cam.pixel(kW - 1, kH - 1)[0]);
+  EXPECT_EQ(one.pixel(0, 0)[0], one.pixel(kW - 1, kH - 1)[0]);
+}
+
+// The raw matrices of the same pinhole give the same image; retarget and composite take the camera.
+TEST_F(HazeCameraCli, RawMatricesEqualThePinholeFlags) {
+  write_black_far(8000.0f);
+  auto r =
+      run("render --model preetham --turbidity 3 --projection fisheye --width 96 --height 96 "
+          "-o " +
+          p("sky.exr"));
+  ASSERT_EQ(r.status, 0) << r.err;
+  const std::string common = "haze retarget --image " + p("black.exr") + " --depth " +
+                             p("far.exr") +
+                             " --turbidity 3 --target-turbidity 5 --camera "
+                             "canon-eos-5d --sky " +
+                             p("sky.exr") + " ";
+  r = run(common + "--hfov 60 --heading 90 --pitch 5 -o " + p("pinhole.exr"));
+  ASSERT_EQ(r.status, 0) << r.err;
+  // heading 90 (east), pitch 5: right = (0, -1, 0) (south), forward = (cos 5, 0, sin 5).
+  const double c5 = std::cos(5.0 * kDegree), s5 = std::sin(5.0 * kDegree);
+  const std::string view = fmt::format("0,-1,0,0,{},0,{},0,{},0,{},0,0,0,0,1", -s5, c5, -c5, -s5);
+  const double aspect = static_cast<double>(kW) / kH, fx = 1.0 / std::tan(30.0 * kDegree);
+  const double n = 1.0, f = 1e4;
+  const std::string proj = fmt::format("{},0,0,0,0,{},0,0,0,0,{},{},0,0,-1,0", fx, fx * aspect,
+                                       (f + n) / (n - f), 2 * f * n / (n - f));
+  r = run(common + "--view-matrix " + view + " --projection-matrix " + proj + " -o " +
+          p("raw.exr"));
+  ASSERT_EQ(r.status, 0) << r.err;
+  const io::ImageF a = io::read_image(dir_ / "pinhole.exr"), b = io::read_image(dir_ / "raw.exr");
+  for (std::size_t i = 0; i < a.data.size(); ++i) EXPECT_NEAR(a.data[i], b.data[i], kFloatTol) << i;
+  // Composite: the object's pixels (black, one depth) take the per-pixel airlight too.
+  r = run("haze composite --background " + p("black.exr") + " --object " + p("black.exr") +
+          " --object-depth " + p("far.exr") + " --turbidity 3 --camera canon-eos-5d --sky " +
+          p("sky.exr") + " --vfov 30 --pitch 0 -o " + p("comp.exr"));
+  ASSERT_EQ(r.status, 0) << r.err;
+  const io::ImageF comp = io::read_image(dir_ / "comp.exr");
+  EXPECT_NEAR(comp.pixel(kW / 2, 0)[1] / comp.pixel(kW / 2, kH - 1)[1],
+              term(3.0, row_zenith(0, 30.0)) / term(3.0, row_zenith(kH - 1, 30.0)), kRatioTol);
+}
+
+// `--gpu` with an image camera: the per-pixel airlights as textures (gpu/haze.h).
+TEST_F(HazeCameraCli, PerPixelAirlightOnTheGpuMatchesTheCpuPath) {
+#ifdef SKYLIGHT_HAVE_GPU
+  write_scene();
+  const std::string common = "haze retarget --image " + p("scene.exr") + " --depth " +
+                             p("depth.exr") +
+                             " --turbidity 5 --target-turbidity 2 --camera canon-eos-5d "
+                             "--sky-model preetham --vfov 30 --heading 120 --pitch 5 ";
+  auto r = run(common + "--gpu -o " + p("gpu.exr"));
+  ASSERT_EQ(r.status, 0) << r.err;
+  r = run(common + "-o " + p("cpu.exr"));
+  ASSERT_EQ(r.status, 0) << r.err;
+  const io::ImageF a = io::read_image(dir_ / "gpu.exr"), b = io::read_image(dir_ / "cpu.exr");
+  ASSERT_EQ(a.data.size(), b.data.size());
+  for (std::size_t i = 0; i < a.data.size(); ++i)
+    EXPECT_NEAR(a.data[i], b.data[i], kFloatTol * (1.0 + std::abs(b.data[i]))) << i;
+#else
+  GTEST_SKIP() << "built without the GPU module";
+#endif
+}
+
+TEST_F(HazeCameraCli, IncompleteOrConflictingCamerasAreErrors) {
+  write_black_far(1000.0f);
+  const std::string common = "haze add --image " + p("black.exr") + " --depth " + p("far.exr") +
+                             " --turbidity 3 --camera canon-eos-5d --sky-model preetham ";
+  const std::string bad[] = {
+      "--heading 10",                   // no field of view
+      "--vfov 30 --hfov 40",            // two fields of view
+      "--vfov 30 --view-elevation 10",  // one airlight and a camera
+      "--vfov 30 --view-matrix 1,0,0,0,0,1,0,0,0,0,1,0,0,0,0,1 --pitch 3",  // M and angles
+      "--projection-matrix 0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0",                // singular
+      "--projection-matrix 1,0,0,0,0,1,0,0,0,0,1,0,0,0,1,1",  // far plane at infinity: w = 0
+      "--vfov 200",                                           // out of range
+  };
+  for (const std::string& flags : bad) {
+    auto r = run(common + flags + " -o " + p("bad.exr"));
+    EXPECT_EQ(r.status, 2) << flags << ": " << r.err;
+    EXPECT_TRUE(one_line(r.err)) << flags << ": " << r.err;
+    EXPECT_FALSE(fs::exists(dir_ / "bad.exr")) << flags;
   }
 }
 

@@ -67,7 +67,8 @@ std::array<float, 3> to_float(const haze::Rgb3& v) {
 
 }  // namespace
 
-std::string haze_fragment_source(haze::HazeOperation operation, bool normalised) {
+std::string haze_fragment_source(haze::HazeOperation operation, bool normalised,
+                                 bool per_pixel_airlight) {
   const bool source = has_source(operation), target = has_target(operation);
   std::string s(kGlslVersion);
   s += "// skylight: haze by pixel, eq. 26 (Morales et al. 2017; docs/HAZE.md, docs/GPU.md).\n";
@@ -81,6 +82,10 @@ std::string haze_fragment_source(haze::HazeOperation operation, bool normalised)
   s += "uniform float skylight_min_t;  // floor of Gamma_s\n";
   s += "uniform vec3 skylight_airlight_t, skylight_scale;  // I^inf_t, I^inf_t / I^inf_s\n";
   if (normalised) s += "uniform float skylight_near_m, skylight_near_over_far;\n";
+  if (per_pixel_airlight) {
+    s += "uniform sampler2D skylight_airlight_t_map;  // per-pixel I^inf_t, RGB\n";
+    if (source && target) s += "uniform sampler2D skylight_airlight_s_map;  // per-pixel I^inf_s\n";
+  }
   s += "out vec4 colour;\n";
   s += fmt::format(
       "vec3 skylight_lerp(sampler2D t, int i, float f) {{\n"
@@ -106,17 +111,27 @@ std::string haze_fragment_source(haze::HazeOperation operation, bool normalised)
     s += "  vec3 g_s = skylight_lerp(skylight_gamma_s, i, f);\n"
          "  below = any(lessThan(g_s, vec3(skylight_min_t))) ? 1.0 : 0.0;\n"
          "  ratio /= max(g_s, vec3(skylight_min_t));\n";
-  s += "  vec3 o = v * skylight_scale * ratio + skylight_airlight_t * (1.0 - ratio);\n"
+  s += "  vec3 a_t = skylight_airlight_t, scale = skylight_scale;\n";
+  if (per_pixel_airlight) {
+    s += "  a_t = texelFetch(skylight_airlight_t_map, p, 0).rgb;\n";
+    s += source && target ? "  scale = a_t / texelFetch(skylight_airlight_s_map, p, 0).rgb;\n"
+                          : "  scale = vec3(1.0);\n";
+  }
+  s += "  vec3 o = v * scale * ratio + a_t * (1.0 - ratio);\n"
        "  colour = vec4(max(o, vec3(0.0)), below);\n"
        "}\n";
   return s;
 }
 
 HazeRenderer::HazeRenderer(int width, int height, haze::HazeOperation operation,
-                           const haze::DepthEncoding& encoding)
-    : width_(width), height_(height), operation_(operation), encoding_(encoding) {
-  program_ = std::make_unique<Program>(
-      Program::fullscreen(haze_fragment_source(operation, encoding.near_m.has_value())));
+                           const haze::DepthEncoding& encoding, bool per_pixel_airlight)
+    : width_(width),
+      height_(height),
+      operation_(operation),
+      encoding_(encoding),
+      per_pixel_(per_pixel_airlight) {
+  program_ = std::make_unique<Program>(Program::fullscreen(
+      haze_fragment_source(operation, encoding.near_m.has_value(), per_pixel_airlight)));
   target_ = std::make_unique<Target>(width, height);
 }
 
@@ -131,6 +146,8 @@ io::ImageF HazeRenderer::apply(const io::ImageF& image, const io::ImageF& depth,
   SKYLIGHT_CHECK(
       image.width == width_ && image.height == height_ && settings.operation == operation_,
       "HazeRenderer: the frame's size or operation differs from the renderer's");
+  SKYLIGHT_CHECK((settings.airlight_source_map != nullptr) == per_pixel_,
+                 "HazeRenderer: per-pixel airlight in the settings but not the renderer or back");
   const double far = checked_max_depth(depth, encoding_, width_, height_);
   const haze::HazeKernel k = haze::haze_kernel(far, camera, settings);
   Program& p = *program_;
@@ -151,8 +168,21 @@ io::ImageF HazeRenderer::apply(const io::ImageF& image, const io::ImageF& depth,
   p.set("skylight_table_rows",
         static_cast<int>((k.entries + kTableRow - 1) / static_cast<std::size_t>(kTableRow)));
   p.set_if_active("skylight_min_t", static_cast<float>(k.min_transmission));
-  p.set("skylight_airlight_t", to_float(k.airlight_target));
-  p.set("skylight_scale", to_float(k.scale));
+  std::unique_ptr<Texture> at_map, as_map;
+  if (per_pixel_) {
+    for (const auto* map : {k.airlight_target_map.get(), k.airlight_source_map.get()})
+      if (map && (map->rgb().width != width_ || map->rgb().height != height_))
+        throw InvalidArgument(fmt::format("the per-pixel airlight is {}x{} but the image {}x{}",
+                                          map->rgb().width, map->rgb().height, width_, height_));
+    at_map = std::make_unique<Texture>(k.airlight_target_map->rgb());
+    p.bind("skylight_airlight_t_map", *at_map, 4);
+    if (k.airlight_source_map) {
+      as_map = std::make_unique<Texture>(k.airlight_source_map->rgb());
+      p.bind("skylight_airlight_s_map", *as_map, 5);
+    }
+  }
+  p.set_if_active("skylight_airlight_t", to_float(k.airlight_target));
+  p.set_if_active("skylight_scale", to_float(k.scale));
   if (encoding_.near_m) {
     p.set("skylight_near_m", static_cast<float>(*encoding_.near_m));
     p.set("skylight_near_over_far", static_cast<float>(*encoding_.near_m / *encoding_.far_m));
@@ -178,7 +208,8 @@ io::ImageF apply_haze(const io::ImageF& image, const io::ImageF& depth,
                       const haze::DepthEncoding& encoding, const haze::CameraSensitivity& camera,
                       const haze::HazeSettings& settings, haze::HazeReport* report) {
   Context context;
-  HazeRenderer renderer(image.width, image.height, settings.operation, encoding);
+  HazeRenderer renderer(image.width, image.height, settings.operation, encoding,
+                        settings.airlight_source_map != nullptr);
   return renderer.apply(image, depth, camera, settings, report);
 }
 

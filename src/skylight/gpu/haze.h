@@ -1,7 +1,8 @@
 // The haze kernel of haze/image_haze.h (Morales et al. 2017 eqs. 10, 19 and 26; docs/HAZE.md)
 // as a fragment shader (docs/GPU.md): image and depth as float textures, the Gamma_s and Gamma_t
 // tables (haze::HazeKernel) as float textures read with the CPU kernel's own linear
-// interpolation, airlights and the transmission floor as uniforms. Add, remove and retarget.
+// interpolation, airlights and the transmission floor as uniforms, or per-pixel airlights
+// (haze::AirlightMap, Morales 2017 §6.2 step 3) as RGB textures. Add, remove and retarget.
 #pragma once
 
 #include <memory>
@@ -14,8 +15,10 @@ namespace skylight::gpu {
 
 // The fragment shader of an operation (for docs and tests). `normalised`: the depth texture holds
 // eq. 19's s_bar in [0, 1] and the shader converts it with the uniforms skylight_near_m and
-// skylight_far_m; otherwise metres.
-std::string haze_fragment_source(haze::HazeOperation operation, bool normalised);
+// skylight_far_m; otherwise metres. `per_pixel_airlight`: the airlights are RGB textures of the
+// image's size (haze::HazeSettings::airlight_source_map, airlight_target_map).
+std::string haze_fragment_source(haze::HazeOperation operation, bool normalised,
+                                 bool per_pixel_airlight = false);
 
 // The compiled program and its target for one image size, operation and depth encoding; frames
 // are uploaded, drawn and read back one at a time (the per-frame path of `skylight bench --haze`).
@@ -23,7 +26,7 @@ class HazeRenderer {
  public:
   // Needs a current Context. Throws GpuError from GL.
   HazeRenderer(int width, int height, haze::HazeOperation operation,
-               const haze::DepthEncoding& encoding);
+               const haze::DepthEncoding& encoding, bool per_pixel_airlight = false);
   ~HazeRenderer();
   HazeRenderer(const HazeRenderer&) = delete;
   HazeRenderer& operator=(const HazeRenderer&) = delete;
@@ -39,6 +42,7 @@ class HazeRenderer {
   int width_, height_;
   haze::HazeOperation operation_;
   haze::DepthEncoding encoding_;
+  bool per_pixel_;
   std::unique_ptr<Program> program_;
   std::unique_ptr<Target> target_;
 };

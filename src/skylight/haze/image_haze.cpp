@@ -6,12 +6,14 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <utility>
 #include <vector>
 
 #include "skylight/core/error.h"
 #include "skylight/core/math.h"
 #include "skylight/core/parallel.h"
 #include "skylight/estimate/photo.h"
+#include "skylight/haze/pixel_kernel.h"
 
 namespace skylight::haze {
 namespace {
@@ -36,15 +38,24 @@ void check_settings(const HazeSettings& s) {
     throw InvalidArgument(
         fmt::format("minimum transmission {} is outside (0, 1]", s.min_transmission));
   SKYLIGHT_CHECK(s.table_error > 0.0, "table error must be > 0");
+  if (s.airlight_target_map && !s.airlight_source_map)
+    throw InvalidArgument("a per-pixel target airlight needs a per-pixel source airlight");
+  if (s.operation == HazeOperation::retarget && s.airlight_source_map && !s.airlight_target_map)
+    throw InvalidArgument("retarget with a per-pixel airlight needs it at both turbidities");
 }
 
-void check_pair(const io::ImageF& image, const io::ImageF& depth_m) {
+void check_pair(const io::ImageF& image, const io::ImageF& depth_m, const HazeSettings& s) {
   if (image.channels != 3)
     throw InvalidArgument(
         fmt::format("the image has {} channel(s); haze needs R, G, B", image.channels));
   SKYLIGHT_CHECK(
       depth_m.channels == 1 && depth_m.width == image.width && depth_m.height == image.height,
       "depth map must be one channel of the image's size (depth_in_metres)");
+  for (const auto* map : {s.airlight_source_map.get(), s.airlight_target_map.get()})
+    if (map && (map->rgb().width != image.width || map->rgb().height != image.height))
+      throw InvalidArgument(fmt::format("the per-pixel airlight is {}x{} but the image {}x{}",
+                                        map->rgb().width, map->rgb().height, image.width,
+                                        image.height));
 }
 
 // The two airlights and Gamma's role per operation (eq. 26 with Gamma_s = 1 for add, Gamma_t = 1
@@ -52,6 +63,8 @@ void check_pair(const io::ImageF& image, const io::ImageF& depth_m) {
 struct Roles {
   bool source_is_one = false, target_is_one = false;
   Rgb3 a_s{}, a_t{};
+  const AirlightMap* map_s = nullptr;  // per pixel; null: the constants
+  const AirlightMap* map_t = nullptr;
 };
 
 Roles roles(const HazeSettings& s) {
@@ -60,57 +73,21 @@ Roles roles(const HazeSettings& s) {
     case HazeOperation::add:
       r.source_is_one = true;
       r.a_s = r.a_t = s.airlight_source;
+      r.map_s = r.map_t = s.airlight_source_map.get();
       break;
     case HazeOperation::remove:
       r.target_is_one = true;
       r.a_s = r.a_t = s.airlight_source;
+      r.map_s = r.map_t = s.airlight_source_map.get();
       break;
     case HazeOperation::retarget:
       r.a_s = s.airlight_source;
       r.a_t = s.airlight_target;
+      r.map_s = s.airlight_source_map.get();
+      r.map_t = s.airlight_target_map.get();
       break;
   }
   return r;
-}
-
-// The kernel's uniforms: what a fragment shader gets (the Gamma tables as 1D textures).
-struct Uniforms {
-  const float* gs = nullptr;            // Gamma_s table (3 per entry), null: Gamma_s = 1 (add)
-  const float* gt = nullptr;            // Gamma_t table, null: Gamma_t = 1 (remove)
-  float inv_step = 1.0f;                // 1 / table step [1/m]
-  int last = 0;                         // entries - 2
-  float min_t = 0.05f;                  // floor of Gamma_s
-  std::array<float, 3> a_t{}, scale{};  // I^inf_t and I^inf_t / I^inf_s
-};
-
-// Eq. 26 on n pixels in place (RGB interleaved, depth [m]): per channel
-// I_out = max(0, I (A_t / A_s) r + A_t (1 - r)), r = Gamma_t / max(Gamma_s, min_t), with Gamma_s
-// = 1 (add) or Gamma_t = 1 (remove) known at compile time. Returns the pixels whose Gamma_s fell
-// below the floor in some channel.
-template <bool kSource, bool kTarget>
-std::size_t haze_pixels(const Uniforms& u, float* px, const float* depth, std::size_t n) {
-  std::size_t low = 0;
-  for (std::size_t x = 0; x < n; ++x) {
-    // Linear interpolation in the tables (a 1D texture lookup on a GPU).
-    const float pos = depth[x] * u.inv_step;
-    const int i = std::min(static_cast<int>(pos), u.last);
-    const float f = pos - static_cast<float>(i);
-    const std::size_t k = 3 * static_cast<std::size_t>(i);
-    bool below = false;
-    for (std::size_t c = 0; c < 3; ++c) {
-      float ratio = 1.0f;
-      if constexpr (kTarget) ratio = u.gt[k + c] + f * (u.gt[k + 3 + c] - u.gt[k + c]);
-      if constexpr (kSource) {
-        const float g_s = u.gs[k + c] + f * (u.gs[k + 3 + c] - u.gs[k + c]);
-        below |= g_s < u.min_t;
-        ratio /= std::max(g_s, u.min_t);
-      }
-      float& v = px[3 * x + c];
-      v = std::max(0.0f, v * u.scale[c] * ratio + u.a_t[c] * (1.0f - ratio));
-    }
-    low += below ? 1 : 0;
-  }
-  return low;
 }
 
 // The largest depth; the kernel's table index needs every depth finite and >= 0.
@@ -125,6 +102,19 @@ float max_depth(const io::ImageF& depth_m) {
 }
 
 }  // namespace
+
+AirlightMap::AirlightMap(io::ImageF rgb) : rgb_(std::move(rgb)) {
+  if (rgb_.channels != 3)
+    throw InvalidArgument(
+        fmt::format("a per-pixel airlight has {} channel(s); expected R, G, B", rgb_.channels));
+  for (std::size_t i = 0; i < rgb_.data.size(); ++i)
+    if (!(rgb_.data[i] > 0.0f && std::isfinite(rgb_.data[i])))
+      throw InvalidArgument(
+          fmt::format("the per-pixel airlight at pixel ({}, {}) is {}; expected "
+                      "a finite number > 0",
+                      i / 3 % static_cast<std::size_t>(rgb_.width),
+                      i / 3 / static_cast<std::size_t>(rgb_.width), rgb_.data[i]));
+}
 
 double depth_from_normalised(double s_bar, double near_m, double far_m) {
   return near_m / (1.0 - s_bar * (1.0 - near_m / far_m));
@@ -179,6 +169,12 @@ HazeKernel haze_kernel(double max_depth_m, const CameraSensitivity& camera,
     k.airlight_target[c] = r.a_t[c];
     k.scale[c] = r.a_t[c] / r.a_s[c];
   }
+  if (r.map_t) {
+    k.airlight_target_map = r.map_t == settings.airlight_source_map.get()
+                                ? settings.airlight_source_map
+                                : settings.airlight_target_map;
+    if (r.map_s != r.map_t) k.airlight_source_map = settings.airlight_source_map;
+  }
   return k;
 }
 
@@ -186,9 +182,9 @@ void apply_haze_in_place(io::ImageF& image, const io::ImageF& depth_m,
                          const CameraSensitivity& camera, const HazeSettings& settings,
                          HazeReport* report) {
   check_settings(settings);
-  check_pair(image, depth_m);
+  check_pair(image, depth_m, settings);
   const HazeKernel k = haze_kernel(max_depth(depth_m), camera, settings);
-  Uniforms u;
+  detail::PixelUniforms u;
   u.gs = k.source.gamma.empty() ? nullptr : k.source.gamma.data();
   u.gt = k.target.gamma.empty() ? nullptr : k.target.gamma.data();
   u.inv_step = static_cast<float>(1.0 / k.step_m);
@@ -198,20 +194,17 @@ void apply_haze_in_place(io::ImageF& image, const io::ImageF& depth_m,
     u.a_t[c] = static_cast<float>(k.airlight_target[c]);
     u.scale[c] = static_cast<float>(k.scale[c]);
   }
+  const float* a_t_map = k.airlight_target_map ? k.airlight_target_map->rgb().data.data() : nullptr;
+  const float* a_s_map = k.airlight_source_map ? k.airlight_source_map->rgb().data.data() : nullptr;
   std::atomic<std::size_t> clamped{0};
   const auto width = static_cast<std::size_t>(image.width);
   parallel_for(static_cast<std::size_t>(image.height), 8, [&](std::size_t y0, std::size_t y1) {
     float* px = image.data.data() + y0 * width * 3;
     const float* d = depth_m.data.data() + y0 * width;
     const std::size_t n = (y1 - y0) * width;
-    std::size_t low = 0;
-    if (!u.gs)
-      low = haze_pixels<false, true>(u, px, d, n);  // add
-    else if (!u.gt)
-      low = haze_pixels<true, false>(u, px, d, n);  // remove
-    else
-      low = haze_pixels<true, true>(u, px, d, n);  // retarget
-    clamped += low;
+    const float* at = a_t_map ? a_t_map + y0 * width * 3 : nullptr;
+    const float* as = a_s_map ? a_s_map + y0 * width * 3 : nullptr;
+    clamped += detail::haze_pixels(u, px, d, at, as, n);
   });
   if (report) {
     report->table_error_bound = k.error_bound();
@@ -231,7 +224,7 @@ io::ImageF apply_haze(const io::ImageF& image, const io::ImageF& depth_m,
 io::ImageF apply_haze_exact(const io::ImageF& image, const io::ImageF& depth_m,
                             const CameraSensitivity& camera, const HazeSettings& settings) {
   check_settings(settings);
-  check_pair(image, depth_m);
+  check_pair(image, depth_m, settings);
   const Roles r = roles(settings);
   const Attenuation source(settings.source, camera);
   const std::optional<Attenuation> target =
@@ -246,8 +239,9 @@ io::ImageF apply_haze_exact(const io::ImageF& image, const io::ImageF& depth_m,
     const Rgb3 g_t = r.target_is_one ? one : target ? target->gamma(s) : source.gamma(s);
     for (std::size_t c = 0; c < 3; ++c) {
       const double ratio = g_t[c] / std::max(g_s[c], settings.min_transmission);
-      const double v =
-          image.data[3 * p + c] * (r.a_t[c] / r.a_s[c]) * ratio + r.a_t[c] * (1.0 - ratio);
+      const double a_t = r.map_t ? r.map_t->rgb().data[3 * p + c] : r.a_t[c];
+      const double a_s = r.map_s ? r.map_s->rgb().data[3 * p + c] : r.a_s[c];
+      const double v = image.data[3 * p + c] * (a_t / a_s) * ratio + a_t * (1.0 - ratio);
       out.data[3 * p + c] = static_cast<float>(std::max(0.0, v));
     }
   }

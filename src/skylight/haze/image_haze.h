@@ -6,6 +6,7 @@
 #pragma once
 
 #include <algorithm>
+#include <memory>
 #include <optional>
 
 #include "skylight/core/math.h"
@@ -41,12 +42,27 @@ inline constexpr double kDefaultMinTransmission = 0.05;
 // The largest interpolation error the Gamma tables may add [1] (far below 8-bit quantisation).
 inline constexpr double kDefaultTableError = 1e-5;
 
+// A per-pixel airlight I^inf(T, phi, theta) (Morales 2017 §6.2 step 3; haze/airlight_field.h
+// builds them): an RGB image of the operation's image size, every value finite and > 0.
+class AirlightMap {
+ public:
+  // InvalidArgument unless `rgb` has 3 channels and every value is finite and > 0.
+  explicit AirlightMap(io::ImageF rgb);
+  const io::ImageF& rgb() const { return rgb_; }
+
+ private:
+  io::ImageF rgb_;
+};
+
 struct HazeSettings {
   HazeOperation operation = HazeOperation::add;
   Atmosphere source;  // add: the haze added; remove, retarget: the photo's (T_s)
   std::optional<double> target_turbidity;  // retarget: T_t (required)
   Rgb3 airlight_source{1.0, 1.0, 1.0};     // I^inf at T_s (add, remove) [image units], > 0
   Rgb3 airlight_target{1.0, 1.0, 1.0};     // I^inf at T_t (retarget)
+  // Per pixel instead (both for retarget, the source alone otherwise; of the image's size): they
+  // replace the constant airlights above.
+  std::shared_ptr<const AirlightMap> airlight_source_map, airlight_target_map;
   double min_transmission = kDefaultMinTransmission;  // (0, 1]
   double table_error = kDefaultTableError;
 };
@@ -63,7 +79,9 @@ struct HazeReport {
 // (apply_haze_in_place) and the fragment shader (gpu/haze.h) evaluate the same thing from it:
 //   pos = s / step, i = min(floor(pos), entries - 2), f = pos - i,
 //   Gamma = G[i] + f (G[i + 1] - G[i]) per table, r = Gamma_t / max(Gamma_s, min_transmission),
-//   I_out = max(0, I scale r + airlight_target (1 - r)).
+//   I_out = max(0, I scale r + airlight_target (1 - r)),
+// with, when airlight_target_map is set, airlight_target the pixel's value in it and scale its
+// ratio to the pixel's value in airlight_source_map (1 when that is null: add and remove).
 struct HazeKernel {
   AttenuationTable source, target;  // empty gamma: identically 1 (source: add, target: remove)
   double step_m = 1.0;              // the common table step [m]
@@ -71,6 +89,7 @@ struct HazeKernel {
   double min_transmission = kDefaultMinTransmission;
   Rgb3 airlight_target{};  // I^inf_t [image units]
   Rgb3 scale{};            // I^inf_t / I^inf_s [1]
+  std::shared_ptr<const AirlightMap> airlight_target_map, airlight_source_map;  // per pixel
   double error_bound() const { return std::max(source.error_bound, target.error_bound); }
 };
 
