@@ -6,8 +6,10 @@
 #pragma once
 
 #include <algorithm>
+#include <cstdint>
 #include <memory>
 #include <optional>
+#include <vector>
 
 #include "skylight/core/math.h"
 #include "skylight/estimate/camera.h"
@@ -152,5 +154,12 @@ inline constexpr double kHorizonBand = 10.0 * kDegree;
 // no pixel lies in the band or the photo is not RGB.
 PhotoAirlight photo_airlight(const io::ImageF& sky, const estimate::SkyCamera& camera,
                              double turbidity, double theta, double band = kHorizonBand);
+
+// Eq. 12 on a given horizon region (`region`: one byte per pixel, nonzero = in the region; its
+// pixels below the horizon or outside the image circle are ignored): the brightest 1 % as above.
+// photo_airlight's band and the watershed region of haze/sky_segmentation.h both end here.
+PhotoAirlight region_airlight(const io::ImageF& sky, const estimate::SkyCamera& camera,
+                              const std::vector<std::uint8_t>& region, double turbidity,
+                              double theta);
 
 }  // namespace skylight::haze
