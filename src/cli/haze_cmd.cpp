@@ -1,7 +1,7 @@
 // `skylight haze`: aerial perspective after Morales, Oishi & Ikeuchi 2017 (haze/; docs/HAZE.md):
 // scattering coefficients, the attenuation factor of a camera, the camera list, add / retarget /
-// remove haze on an image with a depth map (`--gpu`: by the fragment shader of gpu/haze.h) or
-// composite a virtual object into a hazy photo, and the watershed sky mask of a sky photo.
+// remove haze on an image with a depth map or composite a virtual object into a hazy photo
+// (`--gpu`: by the fragment shaders of gpu/haze.h), and the watershed sky mask of a sky photo.
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
@@ -35,6 +35,18 @@ namespace {
 namespace fs = std::filesystem;
 
 // ---- shared flags ---------------------------------------------------------------------------
+
+// `--gpu` needs the GPU module: said before any input is read.
+void check_gpu_available(bool gpu) {
+#ifdef SKYLIGHT_HAVE_GPU
+  (void)gpu;
+#else
+  if (gpu)
+    throw std::runtime_error(
+        "--gpu: this skylight was built without the GPU module (SKYLIGHT_GPU=OFF: EGL and OpenGL "
+        "were not found when configuring; docs/GPU.md)");
+#endif
+}
 
 // A sky photo and its camera (--sky, --sky-projection and the fisheye flags).
 struct SkyPhotoFlags {
@@ -415,13 +427,13 @@ io::ImageF apply_on_gpu(const io::ImageF& image, const io::ImageF& depth_m,
   return gpu::apply_haze(image, depth_m, {}, cam, s, report);
 #else
   (void)image, (void)depth_m, (void)cam, (void)s, (void)report;
-  throw std::runtime_error(
-      "--gpu: this skylight was built without the GPU module (SKYLIGHT_GPU=OFF: EGL and OpenGL "
-      "were not found when configuring; docs/GPU.md)");
+  check_gpu_available(true);
+  return {};
 #endif
 }
 
 int run_image(const ImageFlags& f, std::string_view op) {
+  check_gpu_available(f.gpu);
   check_output(f.output, {f.image, f.depth, f.airlight.sky.path, f.airlight.sky_mask});
   const haze::CameraSensitivity cam = f.camera.camera();
   haze::HazeSettings s = settings_of(f, cam);
@@ -448,6 +460,7 @@ int run_image(const ImageFlags& f, std::string_view op) {
 }
 
 int run_composite(const ImageFlags& f) {
+  check_gpu_available(f.gpu);
   check_output(f.output, {f.image, f.object, f.object_depth, f.object_alpha, f.airlight.sky.path,
                           f.airlight.sky_mask});
   const haze::CameraSensitivity cam = f.camera.camera();
@@ -466,10 +479,16 @@ int run_composite(const ImageFlags& f) {
     for (std::size_t i = 0; i < alpha.data.size(); ++i)
       alpha.data[i] = depth.data[i] > 0.0f ? 1.0f : 0.0f;
   }
+#ifdef SKYLIGHT_HAVE_GPU
+  const io::ImageF out = f.gpu ? gpu::composite(bg, obj, alpha, depth, cam, s)
+                               : haze::composite(bg, obj, alpha, depth, cam, s);
+#else
   const io::ImageF out = haze::composite(bg, obj, alpha, depth, cam, s);
+#endif
   check_finite(out);
   io::write_image(f.output, out, haze_metadata(f, cam, "composite", s));
-  write_stdout(fmt::format("haze composite: {}x{} -> {}\n", bg.width, bg.height, f.output));
+  write_stdout(fmt::format("haze composite{}: {}x{} -> {}\n", f.gpu ? " (GL)" : "", bg.width,
+                           bg.height, f.output));
   return kExitOk;
 }
 
@@ -515,9 +534,8 @@ void add_image_flags(CLI::App& cmd, ImageFlags& f, bool composite) {
                 ParameterValue(f.min_transmission),
                 "remove/retarget: Gamma_s is taken as at least this (bounds the amplification)"},
                f.min_transmission);
-  if (!composite)
-    cmd.add_flag("--gpu", f.gpu,
-                 "run the operation as a fragment shader on the headless GL context (docs/GPU.md)");
+  cmd.add_flag("--gpu", f.gpu,
+               "run the operation as a fragment shader on the headless GL context (docs/GPU.md)");
   cmd.add_option("-o,--output", f.output, "output image (.exr, .pfm or .hdr)")->required();
 }
 

@@ -478,5 +478,45 @@ TEST_F(HazeCli, SkyMaskAndTheWatershedHorizonRegion) {
   EXPECT_FALSE(fs::exists(dir_ / "m.exr"));
 }
 
+// `haze composite --gpu` against the CPU path; without the GPU module the error comes before any
+// input is read (the inputs here do not exist).
+TEST_F(HazeCli, CompositeOnTheGpuMatchesTheCpuPath) {
+  write_scene();
+  io::ImageF obj(24, 16, 3), od(24, 16, 1), alpha(24, 16, 1);
+  for (int x = 4; x < 20; ++x)
+    for (int y = 2; y < 14; ++y) {
+      for (int c = 0; c < 3; ++c) obj.pixel(x, y)[c] = 0.2f + 0.1f * static_cast<float>(c);
+      od.pixel(x, y)[0] = 300.0f * static_cast<float>(x);
+      alpha.pixel(x, y)[0] = static_cast<float>(y) / 16.0f;
+    }
+  io::write_image(dir_ / "obj.exr", obj);
+  io::write_image(dir_ / "od.exr", od);
+  io::write_image(dir_ / "alpha.pfm", alpha);
+  const std::string common = "haze composite --background " + p("scene.exr") + " --object " +
+                             p("obj.exr") + " --object-depth " + p("od.exr") + " --object-alpha " +
+                             p("alpha.pfm") +
+                             " --turbidity 4 --camera canon-eos-5d --airlight 0.8,0.85,0.9 ";
+  auto r = run(common + "--gpu -o " + p("gpu.exr"));
+#ifdef SKYLIGHT_HAVE_GPU
+  ASSERT_EQ(r.status, 0) << r.err;
+  r = run(common + "-o " + p("cpu.exr"));
+  ASSERT_EQ(r.status, 0) << r.err;
+  const io::ImageF a = io::read_image(dir_ / "gpu.exr"), b = io::read_image(dir_ / "cpu.exr");
+  ASSERT_EQ(a.data.size(), b.data.size());
+  for (std::size_t i = 0; i < a.data.size(); ++i)
+    EXPECT_NEAR(a.data[i], b.data[i], kFloatTol * (1.0 + std::abs(b.data[i]))) << i;
+#else
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.err.find("built without the GPU module"), std::string::npos) << r.err;
+  for (const char* op : {"add", "remove"}) {
+    r = run(std::string("haze ") + op + " --image " + p("missing.exr") + " --depth " +
+            p("missing.pfm") + " --turbidity 3 --camera canon-eos-5d --airlight 1,1,1 --gpu -o " +
+            p("out.exr"));
+    EXPECT_EQ(r.status, 1);
+    EXPECT_NE(r.err.find("built without the GPU module"), std::string::npos) << r.err;
+  }
+#endif
+}
+
 }  // namespace
 }  // namespace skylight

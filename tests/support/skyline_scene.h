@@ -1,9 +1,9 @@
 // Test helper: a synthetic daylight photo with a known sky (haze/sky_segmentation_test.cpp,
 // tests/cli/haze_test.cpp): a smooth sky with the Perez gradation of Morales 2017 eq. 13 at T =
-// 2.5, a sun 35 deg up and two clouds, over a dark textured mountain range with a snow field 1 to
-// 6 deg above the horizon (brighter than the horizon's sky) and a building with windows 28 deg
-// high; below the horizon, textured ground. Drawn through an estimate::SkyCamera (3 x 3 samples a
-// pixel, 1 % noise), with the true sky mask.
+// 2.5, a sun 35 deg up and two clouds, over a dark textured mountain range with a snow field from
+// 1 deg above the horizon to 2 deg below the skyline (brighter than the horizon's sky) and a
+// building with windows 28 deg high; below the horizon, textured ground. Drawn through an
+// estimate::SkyCamera (3 x 3 samples a pixel, 1 % noise), with the true sky mask.
 #pragma once
 
 #include <algorithm>

@@ -248,9 +248,8 @@ io::ImageF apply_haze_exact(const io::ImageF& image, const io::ImageF& depth_m,
   return out;
 }
 
-io::ImageF composite(const io::ImageF& background, const io::ImageF& object,
-                     const io::ImageF& alpha, const io::ImageF& object_depth_m,
-                     const CameraSensitivity& camera, const HazeSettings& settings) {
+void check_composite_inputs(const io::ImageF& background, const io::ImageF& object,
+                            const io::ImageF& alpha) {
   if (background.channels != 3 || object.channels != 3)
     throw InvalidArgument("the background and the object must be R, G, B images");
   if (object.width != background.width || object.height != background.height)
@@ -261,14 +260,21 @@ io::ImageF composite(const io::ImageF& background, const io::ImageF& object,
     throw InvalidArgument(fmt::format("the alpha is {}x{} with {} channel(s); expected {}x{}, one",
                                       alpha.width, alpha.height, alpha.channels, object.width,
                                       object.height));
+  for (std::size_t p = 0; p < alpha.data.size(); ++p)
+    if (!(alpha.data[p] >= 0.0f && alpha.data[p] <= 1.0f))
+      throw InvalidArgument(fmt::format("alpha pixel {} is {}; expected [0, 1]", p, alpha.data[p]));
+}
+
+io::ImageF composite(const io::ImageF& background, const io::ImageF& object,
+                     const io::ImageF& alpha, const io::ImageF& object_depth_m,
+                     const CameraSensitivity& camera, const HazeSettings& settings) {
+  check_composite_inputs(background, object, alpha);
   HazeSettings add = settings;
   add.operation = HazeOperation::add;
   const io::ImageF hazed = apply_haze(object, object_depth_m, camera, add);
   io::ImageF out(background.width, background.height, 3);
   for (std::size_t p = 0; p < alpha.data.size(); ++p) {
     const float a = alpha.data[p];
-    if (!(a >= 0.0f && a <= 1.0f))
-      throw InvalidArgument(fmt::format("alpha pixel {} is {}; expected [0, 1]", p, a));
     for (std::size_t c = 0; c < 3; ++c)
       out.data[3 * p + c] = a * hazed.data[3 * p + c] + (1.0f - a) * background.data[3 * p + c];
   }

@@ -126,6 +126,12 @@ io::ImageF composite(const io::ImageF& background, const io::ImageF& object,
                      const io::ImageF& alpha, const io::ImageF& object_depth_m,
                      const CameraSensitivity& camera, const HazeSettings& settings);
 
+// The checks of composite (RGB background and object of one size, a one-channel alpha of that
+// size with every value in [0, 1]): InvalidArgument naming what differs. The GL composite
+// (gpu/haze.h) checks the same.
+void check_composite_inputs(const io::ImageF& background, const io::ImageF& object,
+                            const io::ImageF& alpha);
+
 // The airlight I^inf_c of a sky model in direction `view`: its spectral radiance seen through the
 // camera (eq. 7, trapezoid on the 5 nm grid) [W m^-2 sr^-1 x relative sensitivity].
 // InvalidArgument when the model has no spectral output in 380 .. 780 nm.
