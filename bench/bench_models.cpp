@@ -18,6 +18,7 @@
 #include <chrono>
 #include <vector>
 
+#include "estimate_fixture.h"
 #include "skylight/core/parallel.h"
 #include "skylight/estimate/turbidity.h"
 #include "skylight/haze/airlight_field.h"
@@ -123,17 +124,9 @@ void NishitaReference(benchmark::State& state) {
 }
 
 void EstimateFisheye1Mpx(benchmark::State& state) {
-  render::RenderSettings s;
-  s.projection = render::Projection::fisheye;
-  s.width = s.height = 1024;
-  s.sun = render::SunMode::sky_and_sun;
-  SkyParameters p;
-  p.sun = {deg_to_rad(40.0), deg_to_rad(150.0)};
-  p.values.set("turbidity", 4.0);
-  const auto img = render::render_sky(*make_sky_model("preetham", p), s).rgb;
-  const estimate::SkyCamera cam{estimate::PhotoProjection::fisheye, 1024, 1024, {}};
+  const bench::EstimateFixture f = bench::estimate_fixture();
   for (auto _ : state) {
-    const auto e = estimate::estimate_from_photo(img, cam, std::nullopt, {}, {});
+    const auto e = estimate::estimate_from_photo(f.photo, f.camera, std::nullopt, {}, {});
     benchmark::DoNotOptimize(e.estimate.turbidity);
   }
 }

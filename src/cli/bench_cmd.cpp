@@ -11,6 +11,7 @@
 #include <chrono>
 #include <map>
 
+#include "../../bench/estimate_fixture.h"  // the fixture of bench/bench_models.cpp
 #include "common.h"
 #include "skylight/core/error.h"
 #include "skylight/core/parallel.h"
@@ -67,22 +68,14 @@ double median_seconds(int repeats, F&& f) {
 // One `skylight estimate` (estimate_from_photo: sun detection, automatic mask, 100 samples, RANSAC,
 // bootstrap) on a 1024 x 1024 fisheye Preetham sky with the solar disc, on the calling thread.
 void bench_estimate(int repeats) {
-  render::RenderSettings s;
-  s.projection = render::Projection::fisheye;
-  s.width = s.height = 1024;
-  s.sun = render::SunMode::sky_and_sun;
-  SkyParameters p;
-  p.sun = {deg_to_rad(40.0), deg_to_rad(150.0)};
-  p.values.set("turbidity", 4.0);
-  const auto img = render::render_sky(*make_sky_model("preetham", p), s).rgb;
-  const estimate::SkyCamera cam{estimate::PhotoProjection::fisheye, 1024, 1024, {}};
+  const bench::EstimateFixture f = bench::estimate_fixture();
   estimate::PhotoEstimate e;
   // Wall time and this thread's CPU time (the estimate runs on the calling thread only; on a busy
   // machine the CPU time is the cost, the wall time includes waiting for a core).
   std::vector<double> cpu;
   const double wall = median_seconds(repeats, [&] {
     const double c0 = thread_cpu_s();
-    e = estimate::estimate_from_photo(img, cam, std::nullopt, {}, {});
+    e = estimate::estimate_from_photo(f.photo, f.camera, std::nullopt, {}, {});
     cpu.push_back(thread_cpu_s() - c0);
   });
   write_stdout(fmt::format(

@@ -1,7 +1,7 @@
 // `skylight haze`: aerial perspective after Morales, Oishi & Ikeuchi 2017 (haze/; docs/HAZE.md):
-// scattering coefficients, the attenuation factor of a camera, the camera list, and add / retarget
-// / remove haze on an image with a depth map (`--gpu`: by the fragment shader of gpu/haze.h), or
-// composite a virtual object into a hazy photo.
+// scattering coefficients, the attenuation factor of a camera, the camera list, add / retarget /
+// remove haze on an image with a depth map or composite a virtual object into a hazy photo
+// (`--gpu`: by the fragment shaders of gpu/haze.h), and the watershed sky mask of a sky photo.
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
@@ -22,6 +22,7 @@
 #include "skylight/haze/attenuation.h"
 #include "skylight/haze/coefficients.h"
 #include "skylight/haze/image_haze.h"
+#include "skylight/haze/sky_segmentation.h"
 #include "skylight/io/image.h"
 #include "skylight/version.h"
 #ifdef SKYLIGHT_HAVE_GPU
@@ -34,6 +35,33 @@ namespace {
 namespace fs = std::filesystem;
 
 // ---- shared flags ---------------------------------------------------------------------------
+
+// `--gpu` needs the GPU module: said before any input is read.
+void check_gpu_available(bool gpu) {
+#ifdef SKYLIGHT_HAVE_GPU
+  (void)gpu;
+#else
+  if (gpu)
+    throw std::runtime_error(
+        "--gpu: this skylight was built without the GPU module (SKYLIGHT_GPU=OFF: EGL and OpenGL "
+        "were not found when configuring; docs/GPU.md)");
+#endif
+}
+
+// A sky photo and its camera (--sky, --sky-projection and the fisheye flags).
+struct SkyPhotoFlags {
+  std::string path, projection = "fisheye";
+  FisheyeFlags fisheye;
+  void add_projection(CLI::App& cmd) {
+    cmd.add_option("--sky-projection", projection, "--sky: fisheye|equirect; default fisheye")
+        ->check(CLI::IsMember({"fisheye", "equirect"}));
+    fisheye.add(cmd, "180", "--sky fisheye: field of view across the image circle");
+  }
+  estimate::SkyCamera camera(const io::ImageF& photo) const {
+    return estimate::image_camera(*estimate::parse_photo_projection(projection), fisheye.layout(),
+                                  photo.width, photo.height);
+  }
+};
 
 const ParameterSpec& turbidity_spec() {
   static const ParameterSpec s{"turbidity",
@@ -93,8 +121,9 @@ struct CameraFlags {
 // The airlight I^inf: constant, or a sky model seen through the camera.
 struct AirlightFlags {
   std::vector<double> airlight;
-  std::string sky_model, sky_photo, sky_projection = "fisheye";
-  FisheyeFlags fisheye;
+  std::string sky_model, sky_mask, horizon_region = "watershed";
+  SkyPhotoFlags sky;
+  mutable std::optional<haze::PhotoAirlight> photo;  // the horizon region of --sky, read once
   double sun_zenith_deg = kDefaultSunZenithDeg, sun_azimuth_deg = kDefaultSunAzimuthDeg;
   double view_elevation_deg = 0.0, view_azimuth_deg = 0.0;
   CLI::Option *view_elevation = nullptr, *view_azimuth = nullptr;
@@ -107,14 +136,20 @@ struct AirlightFlags {
     auto* m = cmd.add_option("--sky-model", sky_model,
                              "airlight from a spectral sky model (preetham, hosek, nishita) at the "
                              "turbidity, seen through the camera (eq. 7)");
-    auto* photo = cmd.add_option(
-        "--sky", sky_photo,
+    auto* sky_photo = cmd.add_option(
+        "--sky", sky.path,
         "airlight from a sky photo's horizon region (eqs. 12-13): linear .exr, .hdr or .pfm");
-    a->excludes(m)->excludes(photo);
-    m->excludes(photo);
-    cmd.add_option("--sky-projection", sky_projection, "--sky: fisheye|equirect; default fisheye")
-        ->check(CLI::IsMember({"fisheye", "equirect"}));
-    fisheye.add(cmd, "180", "--sky fisheye: field of view across the image circle");
+    a->excludes(m)->excludes(sky_photo);
+    m->excludes(sky_photo);
+    sky.add_projection(cmd);
+    cmd.add_option("--horizon-region", horizon_region,
+                   "--sky: the horizon region over the watershed sky mask (the band above the "
+                   "skyline) or the fixed band above the horizon; default watershed (docs/HAZE.md)")
+        ->check(CLI::IsMember({"watershed", "band"}));
+    cmd.add_option("--sky-mask", sky_mask,
+                   "--sky: its sky mask (.png, .pfm, .exr; nonzero = sky, e.g. from `skylight haze "
+                   "sky-mask`) instead of the watershed")
+        ->needs(sky_photo);
     ParameterSpec zenith = sun_parameter_specs()[0], azimuth = sun_parameter_specs()[1];
     add_number(cmd, zenith, sun_zenith_deg);
     add_number(cmd, azimuth, sun_azimuth_deg);
@@ -131,15 +166,29 @@ struct AirlightFlags {
         view_azimuth_deg);
   }
   // The sky photo's horizon region (eq. 12) at turbidity `t`, its airlight for zenith `theta`.
+  // The region (watershed or band, haze/sky_segmentation.h) is found once; only zeta depends on t
+  // and theta.
   haze::PhotoAirlight photo_horizon(double t, double theta) const {
-    const io::ImageF photo = io::read_image(sky_photo);
-    estimate::SkyCamera cam;
-    cam.projection = *estimate::parse_photo_projection(sky_projection);
-    cam.width = photo.width;
-    cam.height = photo.height;
-    cam.fisheye = fisheye.layout();
-    estimate::validate(cam);
-    return haze::photo_airlight(photo, cam, t, theta);
+    if (!photo) {
+      const io::ImageF image = io::read_image(sky.path);
+      const estimate::SkyCamera cam = sky.camera(image);
+      haze::HorizonSettings h;
+      if (horizon_region == "band") {
+        if (!sky_mask.empty())
+          throw InvalidArgument("--sky-mask goes with --horizon-region watershed");
+        h.region = haze::HorizonRegion::band;
+      }
+      estimate::SkyMask mask;
+      if (!sky_mask.empty()) {
+        mask = haze::mask_from_image(estimate::load_mask(sky_mask), cam);
+        h.mask = &mask;
+      }
+      photo = haze::photo_airlight(image, cam, t, theta, h);
+    }
+    haze::PhotoAirlight out = *photo;
+    const double z = haze::zeta(t, theta, out.theta_prime);
+    for (std::size_t c = 0; c < 3; ++c) out.airlight[c] = out.horizon[c] * z;
+    return out;
   }
   std::unique_ptr<SkyModel> model_at(double t) const {
     const ModelInfo* info = find_model(sky_model);
@@ -164,7 +213,7 @@ struct AirlightFlags {
           "--view-elevation and --view-azimuth are for one airlight per image; with an image "
           "camera every pixel sees its own direction");
     if (!airlight.empty()) return nullptr;
-    if (!sky_photo.empty()) return haze::photo_airlight_map(image, photo_horizon(t, kPi / 2), t);
+    if (!sky.path.empty()) return haze::photo_airlight_map(image, photo_horizon(t, kPi / 2), t);
     const haze::AirlightTable table(*model_at(t), camera);
     return haze::sky_model_airlight_map(image, table);
   }
@@ -172,7 +221,7 @@ struct AirlightFlags {
   haze::Rgb3 at(double t, const haze::CameraSensitivity& camera) const {
     if (!airlight.empty()) return {airlight[0], airlight[1], airlight[2]};
     const double theta = deg_to_rad(90.0 - view_elevation_deg);
-    if (!sky_photo.empty()) return photo_horizon(t, theta).airlight;
+    if (!sky.path.empty()) return photo_horizon(t, theta).airlight;
     if (sky_model.empty())
       throw InvalidArgument("give --airlight R,G,B, --sky PHOTO or --sky-model NAME");
     const auto model = model_at(t);
@@ -275,6 +324,34 @@ int run_cameras(bool json) {
   return kExitOk;
 }
 
+// ---- sky mask ----------------------------------------------------------------------------------
+
+struct SkyMaskFlags {
+  SkyPhotoFlags sky;
+  std::string output;
+};
+
+int run_sky_mask(const SkyMaskFlags& f) {
+  if (io::format_from_path(f.output) != io::ImageFormat::png)
+    throw InvalidArgument(fmt::format("-o '{}': the sky mask is an 8-bit .png", excerpt(f.output)));
+  std::error_code ec;
+  if (f.output == f.sky.path || fs::equivalent(f.sky.path, f.output, ec))
+    throw InvalidArgument(
+        fmt::format("-o '{}' is also an input; write to another file", excerpt(f.output)));
+  const io::ImageF photo = io::read_image(f.sky.path);
+  const estimate::SkyCamera cam = f.sky.camera(photo);
+  const estimate::SkyMask mask = haze::segment_sky(photo, cam);
+  io::write_png(f.output, haze::mask_image(mask),
+                {{"Software", fmt::format("skylight {}", kVersion)},
+                 {"Comment", "sky mask (watershed, Morales 2017 eq. 12): 255 = sky"}});
+  write_stdout(fmt::format(
+      "haze sky-mask: {}x{}, {} sky pixels ({:.1f} %) -> {}\n", photo.width, photo.height,
+      mask.count,
+      100.0 * static_cast<double>(mask.count) / (static_cast<double>(photo.width) * photo.height),
+      f.output));
+  return kExitOk;
+}
+
 // ---- image operations ------------------------------------------------------------------------
 
 struct ImageFlags {
@@ -350,14 +427,14 @@ io::ImageF apply_on_gpu(const io::ImageF& image, const io::ImageF& depth_m,
   return gpu::apply_haze(image, depth_m, {}, cam, s, report);
 #else
   (void)image, (void)depth_m, (void)cam, (void)s, (void)report;
-  throw std::runtime_error(
-      "--gpu: this skylight was built without the GPU module (SKYLIGHT_GPU=OFF: EGL and OpenGL "
-      "were not found when configuring; docs/GPU.md)");
+  check_gpu_available(true);
+  return {};
 #endif
 }
 
 int run_image(const ImageFlags& f, std::string_view op) {
-  check_output(f.output, {f.image, f.depth, f.airlight.sky_photo});
+  check_gpu_available(f.gpu);
+  check_output(f.output, {f.image, f.depth, f.airlight.sky.path, f.airlight.sky_mask});
   const haze::CameraSensitivity cam = f.camera.camera();
   haze::HazeSettings s = settings_of(f, cam);
   const io::ImageF image = io::read_image(f.image);
@@ -383,7 +460,9 @@ int run_image(const ImageFlags& f, std::string_view op) {
 }
 
 int run_composite(const ImageFlags& f) {
-  check_output(f.output, {f.image, f.object, f.object_depth, f.object_alpha, f.airlight.sky_photo});
+  check_gpu_available(f.gpu);
+  check_output(f.output, {f.image, f.object, f.object_depth, f.object_alpha, f.airlight.sky.path,
+                          f.airlight.sky_mask});
   const haze::CameraSensitivity cam = f.camera.camera();
   haze::HazeSettings s = settings_of(f, cam);
   const io::ImageF bg = io::read_image(f.image);
@@ -400,10 +479,16 @@ int run_composite(const ImageFlags& f) {
     for (std::size_t i = 0; i < alpha.data.size(); ++i)
       alpha.data[i] = depth.data[i] > 0.0f ? 1.0f : 0.0f;
   }
+#ifdef SKYLIGHT_HAVE_GPU
+  const io::ImageF out = f.gpu ? gpu::composite(bg, obj, alpha, depth, cam, s)
+                               : haze::composite(bg, obj, alpha, depth, cam, s);
+#else
   const io::ImageF out = haze::composite(bg, obj, alpha, depth, cam, s);
+#endif
   check_finite(out);
   io::write_image(f.output, out, haze_metadata(f, cam, "composite", s));
-  write_stdout(fmt::format("haze composite: {}x{} -> {}\n", bg.width, bg.height, f.output));
+  write_stdout(fmt::format("haze composite{}: {}x{} -> {}\n", f.gpu ? " (GL)" : "", bg.width,
+                           bg.height, f.output));
   return kExitOk;
 }
 
@@ -449,9 +534,8 @@ void add_image_flags(CLI::App& cmd, ImageFlags& f, bool composite) {
                 ParameterValue(f.min_transmission),
                 "remove/retarget: Gamma_s is taken as at least this (bounds the amplification)"},
                f.min_transmission);
-  if (!composite)
-    cmd.add_flag("--gpu", f.gpu,
-                 "run the operation as a fragment shader on the headless GL context (docs/GPU.md)");
+  cmd.add_flag("--gpu", f.gpu,
+               "run the operation as a fragment shader on the headless GL context (docs/GPU.md)");
   cmd.add_option("-o,--output", f.output, "output image (.exr, .pfm or .hdr)")->required();
 }
 
@@ -461,7 +545,7 @@ void add_haze_command(CLI::App& app, Commands& commands) {
   auto* haze = app.add_subcommand(
       "haze",
       "aerial perspective (Morales et al. 2017): coefficients, attenuation, cameras, "
-      "add/retarget/remove haze, composite");
+      "add/retarget/remove haze, composite, sky-mask");
   haze->require_subcommand(1);
 
   auto cf = std::make_shared<CoefficientsFlags>();
@@ -507,6 +591,15 @@ void add_haze_command(CLI::App& app, Commands& commands) {
     const std::string op_name = name;
     commands.push_back({cmd, [f, op_name] { return run_image(*f, op_name); }});
   }
+
+  auto sm = std::make_shared<SkyMaskFlags>();
+  auto* mask_cmd = haze->add_subcommand(
+      "sky-mask", "the sky of a photo by a marker-controlled watershed (eq. 12's segmentation)");
+  mask_cmd->add_option("--sky", sm->sky.path, "the sky photo: linear .exr, .hdr or .pfm")
+      ->required();
+  sm->sky.add_projection(*mask_cmd);
+  mask_cmd->add_option("-o,--output", sm->output, "the mask: 8-bit .png, 255 = sky")->required();
+  commands.push_back({mask_cmd, [sm] { return run_sky_mask(*sm); }});
 
   auto comp = std::make_shared<ImageFlags>();
   auto* c = haze->add_subcommand(

@@ -213,4 +213,76 @@ io::ImageF apply_haze(const io::ImageF& image, const io::ImageF& depth,
   return renderer.apply(image, depth, camera, settings, report);
 }
 
+std::string composite_fragment_source() {
+  std::string s(kGlslVersion);
+  s += "// skylight: composite by pixel, eq. 10 and §6.2 step 3 (Morales et al. 2017; "
+       "docs/HAZE.md).\n";
+  s += "uniform sampler2D skylight_background;  // RGB, already hazy\n";
+  s += "uniform sampler2D skylight_object;  // RGB without haze\n";
+  s += "uniform sampler2D skylight_alpha;  // r: coverage in [0, 1]\n";
+  s += "uniform sampler2D skylight_depth;  // r: the object's depth [m]\n";
+  s += "uniform sampler2D skylight_gamma_t;  // Gamma table, RGB\n";
+  s += "uniform float skylight_inv_step;  // 1 / table step [1/m]\n";
+  s += "uniform int skylight_last;  // entries - 2\n";
+  s += "uniform int skylight_table_rows;\n";
+  s += "uniform vec3 skylight_airlight_t, skylight_scale;  // I^inf, 1\n";
+  s += "out vec4 colour;\n";
+  s += fmt::format(
+      "vec3 skylight_lerp(sampler2D t, int i, float f) {{\n"
+      "  ivec2 a = ivec2(i % {0}, skylight_table_rows - 1 - i / {0});\n"
+      "  ivec2 b = ivec2((i + 1) % {0}, skylight_table_rows - 1 - (i + 1) / {0});\n"
+      "  vec3 g0 = texelFetch(t, a, 0).rgb;\n"
+      "  return g0 + f * (texelFetch(t, b, 0).rgb - g0);\n"
+      "}}\n",
+      kTableRow);
+  s += "void main() {\n  ivec2 p = ivec2(gl_FragCoord.xy);\n"
+       "  vec3 v = texelFetch(skylight_object, p, 0).rgb;\n"
+       "  float s = texelFetch(skylight_depth, p, 0).r;\n"
+       "  float a = texelFetch(skylight_alpha, p, 0).r;\n"
+       "  float pos = s * skylight_inv_step;\n"
+       "  int i = min(int(pos), skylight_last);\n"
+       "  float f = pos - float(i);\n"
+       "  vec3 ratio = skylight_lerp(skylight_gamma_t, i, f);\n"
+       "  vec3 hazed = max(v * skylight_scale * ratio + skylight_airlight_t * (1.0 - ratio), "
+       "vec3(0.0));\n"
+       "  vec3 bg = texelFetch(skylight_background, p, 0).rgb;\n"
+       "  colour = vec4(a * hazed + (1.0 - a) * bg, 1.0);\n"
+       "}\n";
+  return s;
+}
+
+io::ImageF composite(const io::ImageF& background, const io::ImageF& object,
+                     const io::ImageF& alpha, const io::ImageF& object_depth_m,
+                     const haze::CameraSensitivity& camera, const haze::HazeSettings& settings) {
+  haze::check_composite_inputs(background, object, alpha);
+  if (settings.airlight_source_map)
+    throw InvalidArgument(
+        "the composite on GL takes one airlight per image; a per-pixel airlight (an image camera) "
+        "composites on the CPU");
+  const int w = background.width, h = background.height;
+  haze::HazeSettings add = settings;
+  add.operation = haze::HazeOperation::add;
+  const double far = checked_max_depth(object_depth_m, {}, w, h);
+  const haze::HazeKernel k = haze::haze_kernel(far, camera, add);
+  Context context;
+  Program p = Program::fullscreen(composite_fragment_source());
+  const Texture bg_tex(background), object_tex(object), alpha_tex(alpha), depth_tex(object_depth_m),
+      table(table_image(k.target));
+  p.bind("skylight_background", bg_tex, 0);
+  p.bind("skylight_object", object_tex, 1);
+  p.bind("skylight_alpha", alpha_tex, 2);
+  p.bind("skylight_depth", depth_tex, 3);
+  p.bind("skylight_gamma_t", table, 4);
+  p.set("skylight_inv_step", static_cast<float>(1.0 / k.step_m));
+  p.set("skylight_last", static_cast<int>(k.entries) - 2);
+  p.set("skylight_table_rows",
+        static_cast<int>((k.entries + kTableRow - 1) / static_cast<std::size_t>(kTableRow)));
+  p.set("skylight_airlight_t", to_float(k.airlight_target));
+  p.set("skylight_scale", to_float(k.scale));
+  Target target(w, h);
+  target.clear();
+  target.draw_fullscreen(p);
+  return target.read(3);
+}
+
 }  // namespace skylight::gpu

@@ -54,4 +54,17 @@ io::ImageF apply_haze(const io::ImageF& image, const io::ImageF& depth,
                       const haze::DepthEncoding& encoding, const haze::CameraSensitivity& camera,
                       const haze::HazeSettings& settings, haze::HazeReport* report = nullptr);
 
+// The composite of haze::composite (Morales et al. 2017 eq. 10, §6.2 step 3) as a fragment shader:
+// the object's RGB hazed at the settings' turbidity (eq. 10 through the Gamma table of
+// haze::HazeKernel, add) and laid over the background, alpha I_VO,hazed + (1 - alpha) I_BG, in
+// the CPU path's float arithmetic.
+std::string composite_fragment_source();
+
+// haze::composite computed by GL in a context of its own: the same inputs (object depth in
+// metres), checks and errors; InvalidArgument for a per-pixel airlight (settings'
+// airlight_source_map: the CPU path composites with it).
+io::ImageF composite(const io::ImageF& background, const io::ImageF& object,
+                     const io::ImageF& alpha, const io::ImageF& object_depth_m,
+                     const haze::CameraSensitivity& camera, const haze::HazeSettings& settings);
+
 }  // namespace skylight::gpu

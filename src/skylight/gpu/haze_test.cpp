@@ -197,5 +197,42 @@ TEST_F(GpuTest, HazePerPixelAirlightMatchesTheCpuKernel) {
   }
 }
 
+TEST_F(GpuTest, CompositeMatchesTheCpuComposite) {
+  // A partly covering object (alpha ramps 0 .. 1 across, 0 in the left quarter, where its depth is
+  // 0 too) at 200 m .. 25 km over a background; T 3 and T 7.
+  const int w = 64, h = 48;
+  const io::ImageF background = pattern(w, h);
+  io::ImageF object(w, h, 3), alpha(w, h, 1), depth = ramp(w, h, 200.0f, 25000.0f);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const float a = x < w / 4 ? 0.0f : static_cast<float>(x - w / 4) / (w - 1 - w / 4);
+      alpha.pixel(x, y)[0] = a;
+      if (a == 0.0f) depth.pixel(x, y)[0] = 0.0f;
+      for (int c = 0; c < 3; ++c)
+        object.pixel(x, y)[c] = 0.1f + 0.2f * static_cast<float>(c) + 0.01f * ((x + y) % 7);
+    }
+  for (double t : {3.0, 7.0}) {
+    const haze::HazeSettings s = settings(haze::HazeOperation::add, t);
+    const io::ImageF cpu = haze::composite(background, object, alpha, depth, eos(), s);
+    const io::ImageF on_gl = gpu::composite(background, object, alpha, depth, eos(), s);
+    const double worst = worst_difference(on_gl, cpu);
+    std::cout << "[ haze gpu ] composite T " << t << ": worst |gpu - cpu| / (1 + |cpu|) = " << worst
+              << "\n";
+    EXPECT_LE(worst, kGpuHazeTolerance);
+    // Uncovered pixels are the background.
+    for (int c = 0; c < 3; ++c) EXPECT_EQ(on_gl.pixel(2, 5)[c], background.pixel(2, 5)[c]);
+  }
+  // The CPU path's checks.
+  io::ImageF bad_alpha = alpha;
+  bad_alpha.pixel(30, 3)[0] = 1.5f;
+  const haze::HazeSettings s = settings(haze::HazeOperation::add, 3.0);
+  EXPECT_THROW(gpu::composite(background, object, bad_alpha, depth, eos(), s), InvalidArgument);
+  EXPECT_THROW(gpu::composite(background, pattern(w, h - 1), alpha, depth, eos(), s),
+               InvalidArgument);
+  io::ImageF bad_depth = depth;
+  bad_depth.pixel(40, 3)[0] = -2.0f;
+  EXPECT_THROW(gpu::composite(background, object, alpha, bad_depth, eos(), s), InvalidArgument);
+}
+
 }  // namespace
 }  // namespace skylight::gpu

@@ -248,9 +248,8 @@ io::ImageF apply_haze_exact(const io::ImageF& image, const io::ImageF& depth_m,
   return out;
 }
 
-io::ImageF composite(const io::ImageF& background, const io::ImageF& object,
-                     const io::ImageF& alpha, const io::ImageF& object_depth_m,
-                     const CameraSensitivity& camera, const HazeSettings& settings) {
+void check_composite_inputs(const io::ImageF& background, const io::ImageF& object,
+                            const io::ImageF& alpha) {
   if (background.channels != 3 || object.channels != 3)
     throw InvalidArgument("the background and the object must be R, G, B images");
   if (object.width != background.width || object.height != background.height)
@@ -261,14 +260,21 @@ io::ImageF composite(const io::ImageF& background, const io::ImageF& object,
     throw InvalidArgument(fmt::format("the alpha is {}x{} with {} channel(s); expected {}x{}, one",
                                       alpha.width, alpha.height, alpha.channels, object.width,
                                       object.height));
+  for (std::size_t p = 0; p < alpha.data.size(); ++p)
+    if (!(alpha.data[p] >= 0.0f && alpha.data[p] <= 1.0f))
+      throw InvalidArgument(fmt::format("alpha pixel {} is {}; expected [0, 1]", p, alpha.data[p]));
+}
+
+io::ImageF composite(const io::ImageF& background, const io::ImageF& object,
+                     const io::ImageF& alpha, const io::ImageF& object_depth_m,
+                     const CameraSensitivity& camera, const HazeSettings& settings) {
+  check_composite_inputs(background, object, alpha);
   HazeSettings add = settings;
   add.operation = HazeOperation::add;
   const io::ImageF hazed = apply_haze(object, object_depth_m, camera, add);
   io::ImageF out(background.width, background.height, 3);
   for (std::size_t p = 0; p < alpha.data.size(); ++p) {
     const float a = alpha.data[p];
-    if (!(a >= 0.0f && a <= 1.0f))
-      throw InvalidArgument(fmt::format("alpha pixel {} is {}; expected [0, 1]", p, a));
     for (std::size_t c = 0; c < 3; ++c)
       out.data[3 * p + c] = a * hazed.data[3 * p + c] + (1.0f - a) * background.data[3 * p + c];
   }
@@ -302,31 +308,58 @@ PhotoAirlight photo_airlight(const io::ImageF& sky, const estimate::SkyCamera& c
   if (camera.width != sky.width || camera.height != sky.height)
     throw InvalidArgument(fmt::format("the sky photo is {}x{} but its camera {}x{}", sky.width,
                                       sky.height, camera.width, camera.height));
-  struct Candidate {
-    double luminance, zenith;
-    int col, row;
-  };
-  std::vector<Candidate> region;
+  std::vector<std::uint8_t> region(sky.data.size() / 3, 0);
   const double cos_top = std::cos(kPi / 2 - band);  // z of the band's upper edge
+  bool any = false;
   for (int row = 0; row < sky.height; ++row)
     for (int col = 0; col < sky.width; ++col) {
       const std::optional<Vec3> v = camera.pixel_direction(col, row);
       if (!v || v->z <= 0.0 || v->z > cos_top) continue;
-      region.push_back({estimate::pixel_luminance(sky, col, row), std::acos(v->z), col, row});
+      region[static_cast<std::size_t>(row) * static_cast<std::size_t>(sky.width) +
+             static_cast<std::size_t>(col)] = 1;
+      any = true;
     }
-  if (region.empty())
+  if (!any)
     throw InvalidArgument(fmt::format("the sky photo has no pixel within {} deg above the horizon",
                                       rad_to_deg(band)));
-  const std::size_t n = std::max<std::size_t>(1, (region.size() + 99) / 100);
+  return region_airlight(sky, camera, region, turbidity, theta);
+}
+
+PhotoAirlight region_airlight(const io::ImageF& sky, const estimate::SkyCamera& camera,
+                              const std::vector<std::uint8_t>& region, double turbidity,
+                              double theta) {
+  if (sky.channels != 3) throw InvalidArgument("the sky photo must be R, G, B");
+  if (camera.width != sky.width || camera.height != sky.height)
+    throw InvalidArgument(fmt::format("the sky photo is {}x{} but its camera {}x{}", sky.width,
+                                      sky.height, camera.width, camera.height));
+  SKYLIGHT_CHECK(region.size() == sky.data.size() / 3, "region and sky photo sizes differ");
+  struct Candidate {
+    double luminance, zenith;
+    int col, row;
+  };
+  std::vector<Candidate> candidates;
+  for (int row = 0; row < sky.height; ++row)
+    for (int col = 0; col < sky.width; ++col) {
+      if (!region[static_cast<std::size_t>(row) * static_cast<std::size_t>(sky.width) +
+                  static_cast<std::size_t>(col)])
+        continue;
+      const std::optional<Vec3> v = camera.pixel_direction(col, row);
+      if (!v || v->z <= 0.0) continue;
+      candidates.push_back(
+          {estimate::pixel_luminance(sky, col, row), std::acos(std::min(v->z, 1.0)), col, row});
+    }
+  if (candidates.empty())
+    throw InvalidArgument("the sky photo's horizon region holds no pixel above the horizon");
+  const std::size_t n = std::max<std::size_t>(1, (candidates.size() + 99) / 100);
   std::partial_sort(
-      region.begin(), region.begin() + static_cast<std::ptrdiff_t>(n), region.end(),
+      candidates.begin(), candidates.begin() + static_cast<std::ptrdiff_t>(n), candidates.end(),
       [](const Candidate& a, const Candidate& b) { return a.luminance > b.luminance; });
   PhotoAirlight out;
   out.pixels = n;
   for (std::size_t i = 0; i < n; ++i) {
-    const float* p = sky.pixel(region[i].col, region[i].row);
+    const float* p = sky.pixel(candidates[i].col, candidates[i].row);
     for (std::size_t c = 0; c < 3; ++c) out.horizon[c] += p[c] / static_cast<double>(n);
-    out.theta_prime += region[i].zenith / static_cast<double>(n);
+    out.theta_prime += candidates[i].zenith / static_cast<double>(n);
   }
   const double z = zeta(turbidity, theta, out.theta_prime);
   for (std::size_t c = 0; c < 3; ++c) out.airlight[c] = out.horizon[c] * z;

@@ -6,8 +6,10 @@
 #pragma once
 
 #include <algorithm>
+#include <cstdint>
 #include <memory>
 #include <optional>
+#include <vector>
 
 #include "skylight/core/math.h"
 #include "skylight/estimate/camera.h"
@@ -124,6 +126,12 @@ io::ImageF composite(const io::ImageF& background, const io::ImageF& object,
                      const io::ImageF& alpha, const io::ImageF& object_depth_m,
                      const CameraSensitivity& camera, const HazeSettings& settings);
 
+// The checks of composite (RGB background and object of one size, a one-channel alpha of that
+// size with every value in [0, 1]): InvalidArgument naming what differs. The GL composite
+// (gpu/haze.h) checks the same.
+void check_composite_inputs(const io::ImageF& background, const io::ImageF& object,
+                            const io::ImageF& alpha);
+
 // The airlight I^inf_c of a sky model in direction `view`: its spectral radiance seen through the
 // camera (eq. 7, trapezoid on the 5 nm grid) [W m^-2 sr^-1 x relative sensitivity].
 // InvalidArgument when the model has no spectral output in 380 .. 780 nm.
@@ -152,5 +160,12 @@ inline constexpr double kHorizonBand = 10.0 * kDegree;
 // no pixel lies in the band or the photo is not RGB.
 PhotoAirlight photo_airlight(const io::ImageF& sky, const estimate::SkyCamera& camera,
                              double turbidity, double theta, double band = kHorizonBand);
+
+// Eq. 12 on a given horizon region (`region`: one byte per pixel, nonzero = in the region; its
+// pixels below the horizon or outside the image circle are ignored): the brightest 1 % as above.
+// photo_airlight's band and the watershed region of haze/sky_segmentation.h both end here.
+PhotoAirlight region_airlight(const io::ImageF& sky, const estimate::SkyCamera& camera,
+                              const std::vector<std::uint8_t>& region, double turbidity,
+                              double theta);
 
 }  // namespace skylight::haze
