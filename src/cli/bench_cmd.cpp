@@ -24,6 +24,7 @@
 #include "skylight/sh/polynomial.h"
 #ifdef SKYLIGHT_HAVE_GPU
 #include "skylight/gpu/haze.h"
+#include "skylight/gpu/planet.h"
 #include "skylight/gpu/sky_render.h"
 #endif
 
@@ -161,6 +162,26 @@ void bench_gpu(int width, int height, int repeats) {
       "readback {:.1f}x\n",
       nn.network().net.layout().describe(), width, height, context.renderer(), 1e3 * draw,
       1e3 * readback, thread_count(), 1e3 * cpu, draw / cpu, readback / cpu));
+  // The Pietras vertex shader's planet from orbit (gpu/planet.h) at the `nn planet` default mesh:
+  // the paper's network (untrained weights: the same cost), vertex terms on the CPU once, then
+  // compile + upload + draw + readback per frame.
+  const nn::PietrasNetwork pietras = nn::initial_pietras_network(nn::PietrasKind::pietras, 1);
+  const NishitaParameters earth;
+  gpu::PlanetView view = gpu::orbit_view(earth, 2.0 * earth.ground_radius_m, 0.5);
+  view.width = width;
+  view.height = height;
+  const NishitaSampler atmosphere(earth);
+  gpu::PlanetMesh mesh;
+  const double terms =
+      median_seconds(1, [&] { mesh = gpu::planet_mesh(pietras, atmosphere, view); });
+  const double frame =
+      median_seconds(repeats, [&] { (void)gpu::render_planet(pietras, mesh, width, height); });
+  write_stdout(fmt::format(
+      "gpu: Pietras planet from orbit, icosphere level {} ({} vertices, {} triangles) {}x{} on "
+      "'{}': {:.2f} ms per frame (compile + upload + draw + readback); vertex terms on the CPU "
+      "({} threads) {:.1f} ms\n",
+      view.subdivisions, mesh.vertices.size(), mesh.indices.size() / 3, width, height,
+      context.renderer(), 1e3 * frame, thread_count(), 1e3 * terms));
 #else
   (void)width, (void)height, (void)repeats;
   throw std::runtime_error(

@@ -42,6 +42,7 @@ struct TrainFlags {
   std::string output, log;
   std::string network;  // pietras, log3 (nn_pietras.h); empty: the Satilmis sky network
   int samples = 0;      // 0: the default of the mode (kPietrasSamples, kImageSamples)
+  std::map<std::string, std::optional<double>> planet;  // --network: nishita's planet
 };
 
 struct ValidateFlags {
@@ -77,9 +78,11 @@ int run_train(const TrainFlags& f, const ImageTrainFlags& images) {
   if (!f.network.empty()) {
     return run_pietras_train(
         {f.network, f.source, f.trainer, f.samples > 0 ? f.samples : kPietrasSamples, f.seed,
-         f.iterations, f.time_limit_s, f.output},
+         f.iterations, f.time_limit_s, f.output, f.planet},
         utc_now_iso8601(), std::string("skylight ") + SKYLIGHT_VERSION);
   }
+  if (planet_given(f.planet))
+    throw InvalidArgument("the planet flags (--ground-radius, ...) need --network pietras|log3");
   const auto trainer = nn::parse_trainer(f.trainer);
   if (!trainer) {
     throw InvalidArgument(
@@ -286,6 +289,7 @@ void add_nn_command(CLI::App& app, Commands& commands) {
                "--network: random samples of nishita to train on; --images: sky pixels sampled "
                "per image (all when the mask has fewer)"},
               tf->samples);
+  add_planet_flags(*train, tf->planet);
   train->add_option("-o,--output", tf->output, "weights file to write (JSON)")->required();
   train->add_option("--log", tf->log,
                     "training log to write (CSV: restart,iteration,seconds,mse,validation_mse,"
@@ -316,6 +320,7 @@ void add_nn_command(CLI::App& app, Commands& commands) {
   commands.push_back({exp, [ef] { return run_export(*ef); }});
   add_nn_animate_command(*nn_cmd, commands);
   add_nn_study_command(*nn_cmd, commands);
+  add_nn_planet_command(*nn_cmd, commands);
 }
 
 }  // namespace skylight::cli

@@ -1,6 +1,7 @@
 // The parts of the `skylight nn` family (nn_cmd.cpp) that live in their own files: training on
 // sky-image sequences with K-fold cross-validation (nn_images_cmd.cpp), `nn animate`
-// (nn_animate_cmd.cpp) and the hidden-layer study `nn study` (nn_study_cmd.cpp). docs/NN.md.
+// (nn_animate_cmd.cpp), the hidden-layer study `nn study` (nn_study_cmd.cpp) and `nn planet`
+// (nn_planet_cmd.cpp). docs/NN.md, docs/PIETRAS.md.
 #pragma once
 
 #include <CLI/CLI.hpp>
@@ -25,6 +26,8 @@ int run_train_images(const ImageTrainFlags& f, const NeuralTraining& t, const st
 
 void add_nn_animate_command(CLI::App& nn, Commands& commands);
 void add_nn_study_command(CLI::App& nn, Commands& commands);
+// `nn planet` (nn_planet_cmd.cpp): the Pietras vertex shader's planet (gpu/planet.h).
+void add_nn_planet_command(CLI::App& nn, Commands& commands);
 
 // ISO 8601 UTC of now, for provenance.date.
 std::string utc_now_iso8601();

@@ -38,7 +38,25 @@ std::string errors_line(const char* name, const PietrasErrors& e) {
       percent(e.luminance_max), e.chromaticity_median, e.chromaticity_p95);
 }
 
+// The nishita parameters of add_planet_flags (observer, sun and albedo are not the network's).
+constexpr const char* kPlanetParameters[] = {
+    "ground-radius", "top-radius", "rayleigh-scale-height", "mie-scale-height",
+    "mie-g",         "ozone",      "solar-irradiance"};
+
 }  // namespace
+
+void add_planet_flags(CLI::App& train, std::map<std::string, std::optional<double>>& values) {
+  for (const char* name : kPlanetParameters) {
+    ParameterSpec spec = *NishitaParameters::schema().find(name);
+    spec.description = "--network: nishita's " + spec.description + " (recorded in the file)";
+    add_number(train, spec, values[name]);
+  }
+}
+
+bool planet_given(const std::map<std::string, std::optional<double>>& values) {
+  return std::any_of(values.begin(), values.end(),
+                     [](const auto& v) { return v.second.has_value(); });
+}
 
 int run_pietras_train(const PietrasTrainArgs& a, const std::string& date,
                       const std::string& software) {
@@ -55,6 +73,13 @@ int run_pietras_train(const PietrasTrainArgs& a, const std::string& date,
         fmt::format("--trainer: '{}' is not lm, backprop, adam or lbfgs", excerpt(a.trainer)));
   PietrasTraining t;
   t.kind = *kind;
+  ParameterValues planet;
+  for (const auto& [name, value] : a.planet)
+    if (value) planet.set(name, *value);
+  NishitaParameters::schema().bind(planet, t.atmosphere, "nn train --source nishita");
+  if (!(t.atmosphere.top_radius() > t.atmosphere.ground_radius_m))
+    throw InvalidArgument(fmt::format("--top-radius {} m is not above --ground-radius {} m",
+                                      t.atmosphere.top_radius(), t.atmosphere.ground_radius_m));
   t.samples = static_cast<std::size_t>(a.samples);
   t.options.trainer = *trainer;
   t.options.seed = static_cast<std::uint64_t>(a.seed);

@@ -2,6 +2,10 @@
 // (docs/PIETRAS.md), called from nn_cmd.cpp.
 #pragma once
 
+#include <CLI/CLI.hpp>
+
+#include <map>
+#include <optional>
 #include <string>
 
 namespace skylight::cli {
@@ -15,7 +19,14 @@ struct PietrasTrainArgs {
   int iterations = 500;
   double time_limit_s = 60.0;  // per sub-network
   std::string output;
+  // The nishita planet and atmosphere (add_planet_flags): given values over Earth's defaults.
+  std::map<std::string, std::optional<double>> planet;
 };
+// The nishita schema's planet and atmosphere parameters (ground-radius, top-radius, scale
+// heights, mie-g, ozone, solar-irradiance) as flags of `nn train`, into `values` by name.
+void add_planet_flags(CLI::App& train, std::map<std::string, std::optional<double>>& values);
+// True when any of them was given.
+bool planet_given(const std::map<std::string, std::optional<double>>& values);
 int run_pietras_train(const PietrasTrainArgs& a, const std::string& date,
                       const std::string& software);
 // Validation sets of `samples` each (day, twilight, night), seed fixed.

@@ -8,6 +8,7 @@
 #include <sstream>
 #include <string>
 
+#include "skylight/io/image.h"
 #include "skylight/models/neural_sky.h"
 #include "skylight/models/sky_model.h"
 #include "skylight/sun/spa.h"
@@ -255,6 +256,75 @@ TEST_F(Cli, NnTrainValidateEvalPietras) {
   r = run("nn train --source hosek --network pietras --samples 100 -o '" + w + "'");
   EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.err.find("--source must be nishita"), std::string::npos) << r.err;
+}
+
+// A smaller planet than Earth (Mars's radius, a thin atmosphere with Mars's scale height): the
+// flags are the nishita schema's, recorded in provenance.source_parameters, and the loader and
+// `nn validate` rebuild that planet, not Earth's.
+TEST_F(Cli, NnTrainPietrasOnAnotherPlanet) {
+  const std::string w = (dir_ / "mars.json").string();
+  testing_support::CliResult r =
+      run("nn train --source nishita --network log3 --samples 2000 --iterations 5 --ground-radius "
+          "3389500 --top-radius 3449500 --rayleigh-scale-height 11100 --mie-scale-height 1500 "
+          "--mie-g 0.65 -o '" +
+          w + "'");
+  ASSERT_EQ(r.status, 0) << r.err;
+  std::ifstream in(w);
+  const auto j = nlohmann::json::parse(in);
+  EXPECT_EQ(j["ground_radius_m"].get<double>(), 3389500.0);
+  EXPECT_EQ(j["top_altitude_m"].get<double>(), 60000.0);
+  EXPECT_EQ(j["scale_height_m"].get<double>(), 11100.0);
+  const auto& sp = j["provenance"]["source_parameters"];
+  EXPECT_EQ(sp["ground-radius"].get<double>(), 3389500.0) << sp.dump();
+  EXPECT_EQ(sp["mie-g"].get<double>(), 0.65) << sp.dump();
+  r = run("nn validate --weights '" + w + "' --json --samples 300");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto v = nlohmann::json::parse(r.out);
+  EXPECT_EQ(v["day"]["samples"].get<int>(), 300);
+
+  r =
+      run("nn train --source nishita --network log3 --samples 100 --ground-radius 6000 "
+          "--top-radius 5000 -o '" +
+          w + "'");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("--top-radius"), std::string::npos) << r.err;
+  r = run("nn train --source preetham --ground-radius 3389500 -o '" + w + "'");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("need --network"), std::string::npos) << r.err;
+}
+
+// `nn planet`: the GL vertex shader's frame from orbit and from the ground (gpu/planet_test.cpp
+// compares it with the CPU network per vertex).
+TEST_F(Cli, NnPlanetRendersFromOrbitAndFromTheGround) {
+  const std::string w = (dir_ / "p.json").string();
+  testing_support::CliResult r = run(
+      "nn train --source nishita --network pietras --samples 2000 --iterations 5 -o '" + w + "'");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const std::string orbit = (dir_ / "orbit.pfm").string(), ground = (dir_ / "ground.png").string();
+  r = run("nn planet --weights '" + w +
+          "' --view orbit --sun-zenith 40 --subdivisions 2 --width 48 --height 32 -o '" + orbit +
+          "'");
+#ifdef SKYLIGHT_HAVE_GPU
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("icosphere level 2: 324 vertices, 640 triangles"), std::string::npos)
+      << r.out;
+  const io::ImageF img = io::read_image(orbit);
+  ASSERT_EQ(img.width, 48);
+  for (float x : img.data) EXPECT_TRUE(std::isfinite(x) && x >= 0.0f);
+  // Space in the corner is black.
+  EXPECT_EQ(img.pixel(0, 0)[1], 0.0f);
+  r = run("nn planet --weights '" + w +
+          "' --view ground --sun-zenith 80 --altitude 100 --subdivisions 2 --width 48 --height 32 "
+          "-o '" +
+          ground + "'");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_TRUE(fs::exists(ground));
+  r = run("nn planet --weights '" + w + "' --view ground --altitude -5 -o '" + ground + "'");
+  EXPECT_EQ(r.status, 2);
+#else
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.err.find("built without the GPU module"), std::string::npos) << r.err;
+#endif
 }
 
 }  // namespace

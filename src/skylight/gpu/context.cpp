@@ -353,7 +353,21 @@ void Target::draw_mesh(const Program& program, std::span<const float> positions,
                        std::span<const float> attribute1, std::span<const unsigned> indices) {
   if (positions.size() % 3 != 0 || (!attribute1.empty() && attribute1.size() != positions.size()))
     fail("mesh: positions and attribute 1 need 3 floats per vertex each");
-  const std::size_t vertices = positions.size() / 3;
+  std::vector<Attribute> a{{3, positions}};
+  if (!attribute1.empty()) a.push_back({3, attribute1});
+  draw_mesh(program, a, indices);
+}
+
+void Target::draw_mesh(const Program& program, std::span<const Attribute> attributes,
+                       std::span<const unsigned> indices) {
+  if (attributes.empty()) fail("mesh: no vertex attributes");
+  const auto c0 = static_cast<std::size_t>(attributes[0].components);
+  if (c0 < 1 || c0 > 4) fail("mesh: an attribute has 1 to 4 floats per vertex");
+  const std::size_t vertices = attributes[0].values.size() / c0;
+  for (const Attribute& a : attributes)
+    if (a.components < 1 || a.components > 4 ||
+        a.values.size() != vertices * static_cast<std::size_t>(a.components))
+      fail(fmt::format("mesh: every attribute needs {} vertices of 1 to 4 floats", vertices));
   for (unsigned i : indices)
     if (i >= vertices) fail(fmt::format("mesh: index {} beyond {} vertices", i, vertices));
   glBindFramebuffer(GL_FRAMEBUFFER, fbo_);
@@ -361,29 +375,25 @@ void Target::draw_mesh(const Program& program, std::span<const float> positions,
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LESS);
   use(program, program.textures_);
-  GLuint buffers[3] = {0, 0, 0};
-  glGenBuffers(3, buffers);
-  glBindBuffer(GL_ARRAY_BUFFER, buffers[0]);
-  glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(positions.size_bytes()), positions.data(),
-               GL_STREAM_DRAW);
-  glEnableVertexAttribArray(0);
-  glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 0, nullptr);
-  if (!attribute1.empty()) {
-    glBindBuffer(GL_ARRAY_BUFFER, buffers[1]);
-    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(attribute1.size_bytes()),
-                 attribute1.data(), GL_STREAM_DRAW);
-    glEnableVertexAttribArray(1);
-    glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, 0, nullptr);
+  std::vector<GLuint> buffers(attributes.size() + 1, 0);
+  glGenBuffers(static_cast<GLsizei>(buffers.size()), buffers.data());
+  for (std::size_t k = 0; k < attributes.size(); ++k) {
+    glBindBuffer(GL_ARRAY_BUFFER, buffers[k]);
+    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(attributes[k].values.size_bytes()),
+                 attributes[k].values.data(), GL_STREAM_DRAW);
+    glEnableVertexAttribArray(static_cast<GLuint>(k));
+    glVertexAttribPointer(static_cast<GLuint>(k), attributes[k].components, GL_FLOAT, GL_FALSE, 0,
+                          nullptr);
   }
-  glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, buffers[2]);
+  glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, buffers.back());
   glBufferData(GL_ELEMENT_ARRAY_BUFFER, static_cast<GLsizeiptr>(indices.size_bytes()),
                indices.data(), GL_STREAM_DRAW);
   glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(indices.size()), GL_UNSIGNED_INT, nullptr);
-  glDisableVertexAttribArray(0);
-  glDisableVertexAttribArray(1);
+  for (std::size_t k = 0; k < attributes.size(); ++k)
+    glDisableVertexAttribArray(static_cast<GLuint>(k));
   glBindBuffer(GL_ARRAY_BUFFER, 0);
   glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, 0);
-  glDeleteBuffers(3, buffers);
+  glDeleteBuffers(static_cast<GLsizei>(buffers.size()), buffers.data());
   check_gl("drawing the mesh");
 }
 

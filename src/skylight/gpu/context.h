@@ -128,6 +128,14 @@ class Target {
   // attribute 1 = vec3 per vertex (e.g. normals; empty: none), with the depth test (less).
   void draw_mesh(const Program& program, std::span<const float> positions,
                  std::span<const float> attribute1, std::span<const unsigned> indices);
+  // The same with any vertex attributes: attribute i (layout(location = i) in the shader) takes
+  // `components` (1..4) floats per vertex from `values`; every attribute has the same vertex count.
+  struct Attribute {
+    int components = 3;
+    std::span<const float> values;
+  };
+  void draw_mesh(const Program& program, std::span<const Attribute> attributes,
+                 std::span<const unsigned> indices);
   // The colour buffer, the first `channels` (1..4) of RGBA, row 0 at the top.
   io::ImageF read(int channels = 4) const;
 

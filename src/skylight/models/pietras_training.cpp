@@ -88,20 +88,38 @@ std::array<double, 3> NishitaSampler::channel_transmittance(double altitude_m, V
   return t;
 }
 
-Rgb pietras_surface(const PietrasSkyFunction& sky, const NishitaSampler& atmosphere,
-                    double altitude_m, Vec3 view, double distance_m, double albedo, Vec3 sun) {
+PietrasSurfaceTerms pietras_surface_terms(const NishitaSampler& atmosphere, double altitude_m,
+                                          Vec3 view, double distance_m, double albedo, Vec3 sun) {
   const double r0 = atmosphere.atmosphere().parameters().ground_radius_m;
   const Vec3 p{0.0, 0.0, r0 + altitude_m};
   const Vec3 q = p + distance_m * view;
   const double rq = length(q);
   const Vec3 up = (1.0 / rq) * q;  // the probe's zenith
-  const double cb = dot(view, sun);
-  const Rgb obs = sky(altitude_m, view.z, cb, sun.z);
-  const Rgb probe = sky(std::max(rq - r0, 0.0), dot(view, up), cb, dot(sun, up));
-  const auto t = atmosphere.channel_transmittance(altitude_m, view, distance_m);
-  const Rgb refl = atmosphere.reflected(altitude_m, view, distance_m, albedo, sun);
-  return {obs.r - t[0] * probe.r + refl.r, obs.g - t[1] * probe.g + refl.g,
-          obs.b - t[2] * probe.b + refl.b};
+  PietrasSurfaceTerms t;
+  t.observer_altitude_m = altitude_m;
+  t.probe_altitude_m = std::max(rq - r0, 0.0);
+  t.cos_view_sun = dot(view, sun);
+  t.observer_cos_view_zenith = view.z;
+  t.observer_cos_sun_zenith = sun.z;
+  t.probe_cos_view_zenith = dot(view, up);
+  t.probe_cos_sun_zenith = dot(sun, up);
+  t.transmittance = atmosphere.channel_transmittance(altitude_m, view, distance_m);
+  t.reflected = atmosphere.reflected(altitude_m, view, distance_m, albedo, sun);
+  return t;
+}
+
+Rgb pietras_surface(const PietrasSkyFunction& sky, const NishitaSampler& atmosphere,
+                    double altitude_m, Vec3 view, double distance_m, double albedo, Vec3 sun) {
+  const PietrasSurfaceTerms t =
+      pietras_surface_terms(atmosphere, altitude_m, view, distance_m, albedo, sun);
+  const Rgb obs = sky(t.observer_altitude_m, t.observer_cos_view_zenith, t.cos_view_sun,
+                      t.observer_cos_sun_zenith);
+  const Rgb probe =
+      sky(t.probe_altitude_m, t.probe_cos_view_zenith, t.cos_view_sun, t.probe_cos_sun_zenith);
+  const auto& tr = t.transmittance;
+  const Rgb& refl = t.reflected;
+  return {obs.r - tr[0] * probe.r + refl.r, obs.g - tr[1] * probe.g + refl.g,
+          obs.b - tr[2] * probe.b + refl.b};
 }
 
 PietrasSkyFunction sky_function(const nn::PietrasNetwork& net) {

@@ -63,6 +63,19 @@ inline constexpr std::array<double, 3> kSurfaceChannelNm = {612.0, 549.0, 465.0}
 // function is the network (nn::PietrasNetwork::rgb_at) or, for checks, nishita.
 using PietrasSkyFunction = std::function<Rgb(double altitude_m, double cos_view_zenith,
                                              double cos_view_sun, double cos_sun_zenith)>;
+// The parts of that sum for one surface point: the sky function's arguments at the observer and
+// at the probe, T(P, q) per channel and the reflected sunlight (what gpu/planet.h hands each
+// vertex of a planet mesh).
+struct PietrasSurfaceTerms {
+  double observer_altitude_m = 0, probe_altitude_m = 0;
+  double cos_view_sun = 1;  // the same at both points
+  double observer_cos_view_zenith = 1, observer_cos_sun_zenith = 1;
+  double probe_cos_view_zenith = 1, probe_cos_sun_zenith = 1;
+  std::array<double, 3> transmittance{};  // T(P, q) at kSurfaceChannelNm
+  Rgb reflected{};                        // T(P, q) albedo/pi E_sun(q)
+};
+PietrasSurfaceTerms pietras_surface_terms(const NishitaSampler& atmosphere, double altitude_m,
+                                          Vec3 view, double distance_m, double albedo, Vec3 sun);
 Rgb pietras_surface(const PietrasSkyFunction& sky, const NishitaSampler& atmosphere,
                     double altitude_m, Vec3 view, double distance_m, double albedo, Vec3 sun);
 // The sky function of a network.

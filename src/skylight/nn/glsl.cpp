@@ -63,16 +63,20 @@ std::string glsl_activation_function(Activation a) {
   return "return x;";
 }
 
-std::string glsl_mlp(const Mlp& net, std::string_view name) {
-  const MlpLayout& l = net.layout();
-  l.validate();
-  if (!is_identifier(name))
-    throw InvalidArgument(fmt::format("GLSL function name '{}' is not an identifier", name));
+namespace {
+
+std::string activation_helpers(const std::set<Activation>& used) {
   std::string s;
-  std::set<Activation> used(l.activations.begin(), l.activations.end());
   for (Activation a : used)
     s += fmt::format("float {}(float x) {{\n  {}\n}}\n\n", glsl_activation_name(a),
                      glsl_activation_function(a));
+  return s;
+}
+
+// glsl_mlp without the activation helpers.
+std::string mlp_function(const Mlp& net, std::string_view name) {
+  const MlpLayout& l = net.layout();
+  std::string s;
   s += fmt::format("// {} ({} parameters), weights baked in (single precision).\n", l.describe(),
                    l.parameter_count());
   s += fmt::format("void {}(in float x[{}], out float y[{}]) {{\n", name, l.inputs(), l.outputs());
@@ -97,6 +101,54 @@ std::string glsl_mlp(const Mlp& net, std::string_view name) {
     }
   }
   s += "}\n";
+  return s;
+}
+
+}  // namespace
+
+std::string glsl_mlp(const Mlp& net, std::string_view name) {
+  const MlpLayout& l = net.layout();
+  l.validate();
+  if (!is_identifier(name))
+    throw InvalidArgument(fmt::format("GLSL function name '{}' is not an identifier", name));
+  return activation_helpers(std::set<Activation>(l.activations.begin(), l.activations.end())) +
+         mlp_function(net, name);
+}
+
+std::string glsl_pietras_network(const PietrasNetwork& net) {
+  std::set<Activation> used;
+  for (const Mlp& m : net.subnets) {
+    m.layout().validate();
+    if (m.layout().inputs() != 4 || m.layout().outputs() != 1)
+      throw InvalidArgument("glsl_pietras_network: a sub-network is not 4 -> 1");
+    used.insert(m.layout().activations.begin(), m.layout().activations.end());
+  }
+  const std::size_t k = net.kind == PietrasKind::pietras ? 4 : 3;
+  if (net.subnets.size() != k)
+    throw InvalidArgument(fmt::format("glsl_pietras_network: {} sub-networks for {}, not {}",
+                                      net.subnets.size(), to_string(net.kind), k));
+  std::string s = activation_helpers(used);
+  for (std::size_t i = 0; i < k; ++i)
+    s += mlp_function(net.subnets[i], fmt::format("skylight_pietras_{}", i)) + "\n";
+  s += fmt::format("// PietrasNetwork::rgb (nn/pietras.h, decode_pietras): {} network.\n",
+                   to_string(net.kind));
+  s += "vec3 skylight_pietras(vec4 v) {\n  float x[4] = float[4](v.x, v.y, v.z, v.w);\n";
+  for (std::size_t i = 0; i < k; ++i)
+    s += fmt::format("  float y{0}[1];\n  skylight_pietras_{0}(x, y{0});\n", i);
+  if (net.kind == PietrasKind::pietras) {
+    s += fmt::format("  if (!(y3[0] > {})) return vec3(0.0);  // night: M = 0\n",
+                     literal(kPietrasMOffset));
+    s += fmt::format("  float n = {} * (y3[0] - {}) / {};\n", literal(net.max_value),
+                     literal(kPietrasMOffset), literal(kPietrasMScale));
+    s += "  return n * max(vec3(y0[0], y1[0], y2[0]), vec3(0.0));\n}\n";
+  } else {
+    s += fmt::format("  float Y = {} * max(0.0, exp(min(y0[0], 50.0)) - {});\n",
+                     literal(net.max_value), literal(kLog3Epsilon));
+    s += "  if (!(Y > 0.0)) return vec3(0.0);\n";
+    s += "  float r = y1[0], b = y2[0], g = 1.0 - r - b;\n";
+    s += "  float d = max(0.2126 * r + 0.7152 * g + 0.0722 * b, 1e-3);\n";
+    s += "  return (Y / d) * vec3(r, g, b);\n}\n";
+  }
   return s;
 }
 

@@ -14,6 +14,7 @@
 #include <string_view>
 
 #include "skylight/nn/mlp.h"
+#include "skylight/nn/pietras.h"
 #include "skylight/nn/sky_network.h"
 
 namespace skylight::nn {
@@ -29,6 +30,13 @@ std::string glsl_activation_name(Activation a);
 //   void <name>(in float x[n_0], out float y[n_L])
 // computing Psi(x) (mlp.h). `name` must be a GLSL identifier (InvalidArgument otherwise).
 std::string glsl_mlp(const Mlp& net, std::string_view name);
+
+// A Pietras network (pietras.h) as GLSL (no #version line): the sub-networks as functions
+// skylight_pietras_0, _1, ... and
+//   vec3 skylight_pietras(vec4 x)
+// = PietrasNetwork::rgb for x = (cos alpha0, cos beta0, cos theta0, rho0): the decoding of
+// decode_pietras in single precision. The night bound of rgb_at is the caller's (gpu/planet.h).
+std::string glsl_pietras_network(const PietrasNetwork& net);
 
 // A sky network as GLSL (no #version line; glsl_sky_network_file adds it):
 //   vec3 skylight_sky_state(vec3 view, float sun_zenith, float sun_azimuth, float turbidity)

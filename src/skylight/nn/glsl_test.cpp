@@ -98,6 +98,25 @@ TEST(Glsl, EveryActivationInputAndEncodingIsValidGlsl) {
   }
 }
 
+TEST(Glsl, PietrasNetworksAreValidVertexShaderGlsl) {
+  // Both kinds, with a vertex shader main() calling skylight_pietras (gpu/planet.h's use).
+  ScratchDir dir;
+  for (const auto kind : {PietrasKind::pietras, PietrasKind::log3}) {
+    const PietrasNetwork net = initial_pietras_network(kind, 3);
+    const std::string name(to_string(kind));
+    const auto file = dir / (name + ".vert");
+    std::ofstream(file) << "#version 330 core\n"
+                        << glsl_pietras_network(net)
+                        << "in vec4 x;\nout vec3 c;\nvoid main() {\n  c = skylight_pietras(x);\n"
+                           "  gl_Position = vec4(0.0);\n}\n";
+    const auto r = run_glslang("-S vert '" + file.string() + "'", dir / "log.txt");
+    EXPECT_EQ(r.status, 0) << name << ":\n" << r.output;
+  }
+  PietrasNetwork bad = initial_pietras_network(PietrasKind::pietras, 3);
+  bad.subnets.pop_back();
+  EXPECT_THROW(glsl_pietras_network(bad), InvalidArgument);
+}
+
 TEST(Glsl, WeightsAreBakedInAsRoundTripFloats) {
   // Every parameter appears as a literal that parses back to the same float.
   const Mlp net = random_mlp(MlpLayout::make(2, {3}, 1, Activation::tanh, Activation::identity), 7);
