@@ -18,6 +18,7 @@
 #include "skylight/io/file.h"
 #include "skylight/models/neural_sky.h"
 #include "skylight/models/neural_training.h"
+#include "skylight/models/pietras_training.h"
 #include "skylight/nn/glsl.h"
 #include "skylight/version.h"
 
@@ -27,16 +28,21 @@ namespace {
 // Defaults of nn train --samples: Pietras trains on 800 000 random samples (§VI, results); 2000
 // sky pixels per image keep a 12-image sequence at 24 000 examples (docs/NN.md).
 constexpr int kPietrasSamples = 800000, kImageSamples = 2000;
+// Trainer defaults of the sky networks (docs/NN.md); --network takes pietras_training.h's
+// (L-BFGS, kPietrasIterations, kPietrasTimeLimitS per sub-network).
+constexpr const char* kSkyTrainer = "lm";
+constexpr int kSkyIterations = 500;
+constexpr double kSkyTimeLimitS = 60.0;
 
 struct TrainFlags {
   std::string source = "preetham";
   int seed = 1;
   int hidden = 12;
-  std::string trainer = "lm";
+  std::string trainer;  // empty: kSkyTrainer, with --network kPietrasTrainer
   std::string inputs = nn::to_string(nn::satilmis_inputs());
   std::string encoding = "satilmis";
-  double time_limit_s = 60.0;
-  int iterations = 500;
+  std::optional<double> time_limit_s;  // absent: kSkyTimeLimitS, with --network kPietrasTimeLimitS
+  int iterations = 0;                  // 0: kSkyIterations, with --network kPietrasIterations
   std::optional<double> target_scale;
   int suns = 0, view_zeniths = 0, view_azimuths = 0;
   std::string output, log;
@@ -77,13 +83,16 @@ void add_sampling_flags(CLI::App& cmd, int& suns, int& zeniths, int& azimuths) {
 int run_train(const TrainFlags& f, const ImageTrainFlags& images) {
   if (!f.network.empty()) {
     return run_pietras_train(
-        {f.network, f.source, f.trainer, f.samples > 0 ? f.samples : kPietrasSamples, f.seed,
-         f.iterations, f.time_limit_s, f.output, f.planet},
+        {f.network, f.source,
+         f.trainer.empty() ? std::string(nn::to_string(kPietrasTrainer)) : f.trainer,
+         f.samples > 0 ? f.samples : kPietrasSamples, f.seed,
+         f.iterations > 0 ? f.iterations : kPietrasIterations,
+         f.time_limit_s.value_or(kPietrasTimeLimitS), f.output, f.planet},
         utc_now_iso8601(), std::string("skylight ") + SKYLIGHT_VERSION);
   }
   if (planet_given(f.planet))
     throw InvalidArgument("the planet flags (--ground-radius, ...) need --network pietras|log3");
-  const auto trainer = nn::parse_trainer(f.trainer);
+  const auto trainer = nn::parse_trainer(f.trainer.empty() ? kSkyTrainer : f.trainer);
   if (!trainer) {
     throw InvalidArgument(
         fmt::format("--trainer: '{}' is not lm, backprop, adam or lbfgs", excerpt(f.trainer)));
@@ -104,17 +113,18 @@ int run_train(const TrainFlags& f, const ImageTrainFlags& images) {
   t.view_azimuths = f.view_azimuths;
   t.options.trainer = *trainer;
   t.options.seed = static_cast<std::uint64_t>(f.seed);
-  t.options.time_limit_s = f.time_limit_s;
-  t.options.max_iterations = f.iterations;
+  t.options.time_limit_s = f.time_limit_s.value_or(kSkyTimeLimitS);
+  t.options.max_iterations = f.iterations > 0 ? f.iterations : kSkyIterations;
   Progress progress("nn train");
   double last_report = -1.0;
   if (images_given(images))
     return run_train_images(images, t, f.output, f.log, f.samples > 0 ? f.samples : kImageSamples);
   t.options.progress = [&](const nn::TrainLogEntry& e) {
     // At most one progress line a second (the trainers log every iteration).
-    if (e.seconds - last_report >= 1.0 || e.iteration == f.iterations) {
+    const int total = t.options.max_iterations;
+    if (e.seconds - last_report >= 1.0 || e.iteration == total) {
       last_report = e.seconds;
-      progress(std::min(e.iteration, f.iterations), f.iterations, fmt::format("mse {:.3g}", e.mse));
+      progress(std::min(e.iteration, total), total, fmt::format("mse {:.3g}", e.mse));
     }
     return true;
   };
@@ -249,10 +259,10 @@ void add_nn_command(CLI::App& app, Commands& commands) {
               {"hidden", "1", ParameterKind::integer, 1, 256, 1,
                ParameterValue(static_cast<double>(tf->hidden)), "neurons of the hidden layer"},
               tf->hidden);
-  train
-      ->add_option("--trainer", tf->trainer,
-                   "lm (Levenberg-Marquardt, default), backprop (the paper's), adam, lbfgs")
-      ->capture_default_str();
+  train->add_option("--trainer", tf->trainer,
+                    fmt::format("lm (Levenberg-Marquardt), backprop (the paper's), adam, lbfgs; "
+                                "default {}, with --network {}",
+                                kSkyTrainer, nn::to_string(kPietrasTrainer)));
   train
       ->add_option("--inputs", tf->inputs,
                    "the network's inputs, comma-separated (the paper's V_NN by default; also "
@@ -266,11 +276,14 @@ void add_nn_command(CLI::App& app, Commands& commands) {
       ->capture_default_str();
   add_number(*train,
              {"time-limit", "s", ParameterKind::number, 0.01, 1e6, 1,
-              ParameterValue(tf->time_limit_s), "stop training after this wall time"},
+              Absent{fmt::format("{} s, with --network {} s per sub-network", kSkyTimeLimitS,
+                                 kPietrasTimeLimitS)},
+              "stop training after this wall time"},
              tf->time_limit_s);
   add_integer(*train,
               {"iterations", "1", ParameterKind::integer, 1, 100000000, 1,
-               ParameterValue(static_cast<double>(tf->iterations)),
+               Absent{fmt::format("{}, with --network {} per sub-network", kSkyIterations,
+                                  kPietrasIterations)},
                "at most this many iterations (LM, L-BFGS) or epochs (backprop, adam)"},
               tf->iterations);
   add_number(*train,

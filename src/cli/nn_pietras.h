@@ -13,11 +13,11 @@ namespace skylight::cli {
 struct PietrasTrainArgs {
   std::string network;  // pietras, log3
   std::string source;   // must be nishita
-  std::string trainer;
+  std::string trainer;  // train.h's names
   int samples = 800000;
   int seed = 1;
-  int iterations = 500;
-  double time_limit_s = 60.0;  // per sub-network
+  int iterations = 4000;        // per sub-network
+  double time_limit_s = 600.0;  // per sub-network
   std::string output;
   // The nishita planet and atmosphere (add_planet_flags): given values over Earth's defaults.
   std::map<std::string, std::optional<double>> planet;

@@ -230,6 +230,7 @@ TEST_F(Cli, NnTrainValidateEvalPietras) {
       "nn train --source nishita --network pietras --samples 2000 --iterations 5 -o '" + w + "'");
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_NE(r.out.find("pietras network (324 weights)"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("trainer lbfgs"), std::string::npos) << r.out;  // --network's default
   r = run("nn validate --weights '" + w + "' --json --samples 300");
   ASSERT_EQ(r.status, 0) << r.err;
   const auto j = nlohmann::json::parse(r.out);

@@ -100,12 +100,25 @@ PietrasSamples sample_nishita(const NishitaSampler& source, PietrasSampling samp
 // unknown name).
 NishitaParameters nishita_parameters_of(const nn::PietrasNetwork& net);
 
+// Training defaults per sub-network (docs/PIETRAS.md): full-batch L-BFGS (at 800 000 samples LM's
+// J^T J costs seconds per iteration), up to kPietrasIterations or kPietrasTimeLimitS.
+inline constexpr nn::Trainer kPietrasTrainer = nn::Trainer::lbfgs;
+inline constexpr int kPietrasIterations = 4000;
+inline constexpr double kPietrasTimeLimitS = 600.0;
+inline nn::TrainOptions pietras_train_options() {
+  nn::TrainOptions o;
+  o.trainer = kPietrasTrainer;
+  o.max_iterations = kPietrasIterations;
+  o.time_limit_s = kPietrasTimeLimitS;
+  return o;
+}
+
 struct PietrasTraining {
   nn::PietrasKind kind = nn::PietrasKind::pietras;
   NishitaParameters atmosphere;  // sun and observer ignored
   std::size_t samples = 800000;
-  // Per sub-network; seed is also the sampling seed. The LM defaults (500 iterations, 60 s).
-  nn::TrainOptions options;
+  // Per sub-network; seed is also the sampling seed.
+  nn::TrainOptions options = pietras_train_options();
   // progress(sub-network index, entry) after every iteration; return false to stop.
   std::function<bool(int, const nn::TrainLogEntry&)> progress;
 };

@@ -13,16 +13,18 @@
 #include "skylight/core/math.h"
 #include "skylight/core/parallel.h"
 #include "skylight/nn/random.h"
+#include "skylight/nn/train_gradient.h"
 #include "skylight/nn/train_kernel.h"
 
 namespace skylight::nn {
 
 namespace {
 
-// Examples are split into this many contiguous slices; per-slice partial sums (loss, gradient,
-// J^T J) are added in slice order. The split does not depend on the thread count, so neither do
-// the results.
-constexpr std::size_t kSlices = 16;
+using detail::gradient;
+using detail::kSlices;
+using detail::slice_begin;
+using detail::sse;
+
 // Examples per Jacobian block in Levenberg-Marquardt: the products of J^T J run over blocks of
 // this many examples (3 residual rows each).
 constexpr std::size_t kJacobianBlock = 2048;
@@ -30,10 +32,6 @@ constexpr std::size_t kJacobianBlock = 2048;
 using Clock = std::chrono::steady_clock;
 using Eigen::MatrixXd;
 using Eigen::VectorXd;
-
-std::size_t slice_begin(std::size_t s, std::size_t n, std::size_t slices) {
-  return s * n / slices;
-}
 
 // Training state shared by the trainers: standardised inputs, targets, the clock, the log.
 struct Context {
@@ -60,70 +58,6 @@ struct Context {
     return t.subspan(i * layout.outputs(), layout.outputs());
   }
 };
-
-// Sum of squared errors over examples [begin, end) of (x, t).
-double sse_range(const Mlp& net, MlpWorkspace& ws, std::span<const double> x,
-                 std::span<const double> t, std::size_t begin, std::size_t end) {
-  const int n_in = net.layout().inputs(), n_out = net.layout().outputs();
-  double e = 0.0;
-  for (std::size_t i = begin; i < end; ++i) {
-    forward(net, x.subspan(i * n_in, n_in), ws);
-    const auto y = ws.output();
-    for (int c = 0; c < n_out; ++c) {
-      const double r = y[c] - t[i * n_out + c];
-      e += r * r;
-    }
-  }
-  return e;
-}
-
-// Sum of squared errors over all n examples, parallel over fixed slices, ordered reduction.
-double sse(const Mlp& net, std::span<const double> x, std::span<const double> t, std::size_t n) {
-  std::vector<double> part(kSlices, 0.0);
-  parallel_for(kSlices, 1, [&](std::size_t b, std::size_t e) {
-    MlpWorkspace ws(net.layout());
-    for (std::size_t s = b; s < e; ++s) {
-      part[s] =
-          sse_range(net, ws, x, t, slice_begin(s, n, kSlices), slice_begin(s + 1, n, kSlices));
-    }
-  });
-  return std::accumulate(part.begin(), part.end(), 0.0);
-}
-
-// Gradient of E = sum (Psi - t)^2 over examples idx[begin..end) (all when idx is empty), summed
-// into grad (overwritten); returns E.
-double gradient(const Mlp& net, std::span<const double> x, std::span<const double> t,
-                std::span<const std::size_t> idx, std::size_t n, std::span<double> grad) {
-  const std::size_t P = net.layout().parameter_count();
-  const int n_in = net.layout().inputs(), n_out = net.layout().outputs();
-  const std::size_t slices = std::min<std::size_t>(kSlices, std::max<std::size_t>(1, n / 64));
-  std::vector<std::vector<double>> part(slices, std::vector<double>(P, 0.0));
-  std::vector<double> loss(slices, 0.0);
-  parallel_for(slices, 1, [&](std::size_t b, std::size_t e) {
-    MlpWorkspace ws(net.layout());
-    std::vector<double> g(n_out);
-    for (std::size_t s = b; s < e; ++s) {
-      for (std::size_t k = slice_begin(s, n, slices); k < slice_begin(s + 1, n, slices); ++k) {
-        const std::size_t i = idx.empty() ? k : idx[k];
-        forward(net, x.subspan(i * n_in, n_in), ws);
-        const auto y = ws.output();
-        for (int c = 0; c < n_out; ++c) {
-          const double r = y[c] - t[i * n_out + c];
-          loss[s] += r * r;
-          g[c] = 2.0 * r;  // dE/dPsi_c
-        }
-        backward(net, ws, g, part[s]);
-      }
-    }
-  });
-  std::fill(grad.begin(), grad.end(), 0.0);
-  double e = 0.0;
-  for (std::size_t s = 0; s < slices; ++s) {
-    for (std::size_t p = 0; p < P; ++p) grad[p] += part[s][p];
-    e += loss[s];
-  }
-  return e;
-}
 
 // Logs one iteration; returns false when training must stop (time limit, callback, iterations).
 bool log_iteration(Context& ctx, const Mlp& net, double train_sse, double step,
@@ -267,19 +201,29 @@ void run_lbfgs(Context& ctx, Mlp& net, int last) {
       for (std::size_t p = 0; p < P; ++p) d[p] = -g[p] * gamma;
       slope = std::inner_product(g.begin(), g.end(), d.begin(), 0.0);
     }
-    // Backtracking Armijo line search.
+    // Backtracking Armijo line search. The first trial (step 1, accepted on most iterations)
+    // evaluates E and its gradient in one pass; after a rejection the step is the minimiser of the
+    // quadratic through f, slope and the rejected E (kept in [0.1, 0.5] of the last step), trials
+    // evaluate E alone (no backward pass) and the gradient is computed once, at the accepted step.
     std::copy(params.begin(), params.end(), x_old.begin());
     double step = 1.0, f_new = f;
-    bool ok = false;
+    bool ok = false, have_gradient = false;
     for (int k = 0; k < 30; ++k) {
       for (std::size_t p = 0; p < P; ++p) params[p] = x_old[p] + step * d[p];
-      f_new = gradient(net, ctx.x, ctx.t, {}, ctx.n, g_new);
+      have_gradient = k == 0;
+      f_new = have_gradient ? gradient(net, ctx.x, ctx.t, {}, ctx.n, g_new)
+                            : sse(net, ctx.x, ctx.t, ctx.n);
       if (f_new <= f + 1e-4 * step * slope) {
         ok = true;
         break;
       }
-      step *= 0.5;
+      const double curvature = f_new - f - slope * step;  // > 0 after a rejection
+      const double q = std::isfinite(f_new) && curvature > 0.0
+                           ? -slope * step * step / (2.0 * curvature)
+                           : 0.1 * step;
+      step = std::clamp(q, 0.1 * step, 0.5 * step);
     }
+    if (ok && !have_gradient) f_new = gradient(net, ctx.x, ctx.t, {}, ctx.n, g_new);
     if (!ok) {
       std::copy(x_old.begin(), x_old.end(), params.begin());
       S.clear();
@@ -713,6 +657,11 @@ void gauss_newton_system(const Mlp& net, const Examples& ex, std::vector<double>
   }
   g.assign(ne.g.data(), ne.g.data() + P);
   e = ne.e;
+}
+
+double loss_gradient(const Mlp& net, const Examples& ex, std::vector<double>& grad) {
+  grad.assign(net.layout().parameter_count(), 0.0);
+  return gradient(net, ex.inputs, ex.targets, {}, ex.count, grad);
 }
 }  // namespace detail
 

@@ -12,7 +12,9 @@
 //    layer's block sparsity is used (output c's weights move output c only) and the products run
 //    in a Highway kernel (train_kernel.h). Eigen only solves the P x P system (Cholesky).
 //  * adam: mini-batch Adam (Kingma & Ba 2015).
-//  * lbfgs: full-batch L-BFGS (m = 10) with a backtracking Armijo line search.
+//  * lbfgs: full-batch L-BFGS (m = 10) with a backtracking Armijo line search (quadratic
+//    interpolation; rejected trials evaluate E only). Its and Adam's gradient run the layers of
+//    blocks of examples as matrix products (Eigen), the activations as array expressions.
 //
 // Determinism: the initial weights, shuffles and mini-batches come from Rng(seed); the result is
 // bit-identical for a seed and an iteration count on any thread count, for one SIMD target (the
@@ -136,6 +138,9 @@ namespace detail {
 // r = Psi(inputs) - targets over all examples (inputs used as given). For tests.
 void gauss_newton_system(const Mlp& net, const Examples& examples, std::vector<double>& A,
                          std::vector<double>& g, double& e);
+// E = sum (Psi - t)^2 over all examples and grad = dE/d(parameters) as the L-BFGS trainer computes
+// them (blocks of examples as matrix products); inputs used as given. For tests.
+double loss_gradient(const Mlp& net, const Examples& examples, std::vector<double>& grad);
 }  // namespace detail
 
 // Machine-readable log: CSV with header

@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <sstream>
+#include <utility>
 #include <vector>
 
 #include "skylight/core/error.h"
@@ -167,6 +168,43 @@ TEST(Train, GaussNewtonSystemMatchesDenseJacobian) {
     EXPECT_NEAR(g[p], g_ref[p], kNormalEquationsTolerance) << p;
     for (std::size_t q = 0; q < P; ++q) {
       EXPECT_NEAR(A[p + q * P], A_ref[p + q * P], kNormalEquationsTolerance) << p << "," << q;
+    }
+  }
+}
+
+// The blocked gradient (matrix products, array activations) sums the same terms as backward()
+// per example, in another order: equal to double round-off over a few hundred examples.
+constexpr double kBlockedGradientTolerance = 1e-10;
+
+TEST(Train, BlockedGradientMatchesPerExampleBackprop) {
+  // Every activation with an array path, more examples than one block, two outputs.
+  for (const auto& [hidden, output] : {std::pair{Activation::pietras, Activation::pietras},
+                                       std::pair{Activation::pietras, Activation::identity},
+                                       std::pair{Activation::satilmis, Activation::sigmoid},
+                                       std::pair{Activation::tanh, Activation::softplus}}) {
+    const auto layout = MlpLayout::make(2, {6, 5}, 2, hidden, output);
+    Rng rng(9);
+    const Mlp net = initial_network(layout, rng);
+    const Toy t = toy(700, 6);
+    std::vector<double> grad;
+    const double e = detail::loss_gradient(net, t.examples(), grad);
+    const std::size_t P = layout.parameter_count();
+    std::vector<double> ref(P, 0.0), g(2);
+    double e_ref = 0.0;
+    MlpWorkspace ws(layout);
+    for (std::size_t i = 0; i < t.n; ++i) {
+      forward(net, std::span<const double>(t.x).subspan(2 * i, 2), ws);
+      for (int c = 0; c < 2; ++c) {
+        const double r = ws.output()[c] - t.y[2 * i + c];
+        e_ref += r * r;
+        g[c] = 2.0 * r;
+      }
+      backward(net, ws, g, ref);
+    }
+    EXPECT_NEAR(e, e_ref, kBlockedGradientTolerance * e_ref) << layout.describe();
+    for (std::size_t p = 0; p < P; ++p) {
+      EXPECT_NEAR(grad[p], ref[p], kBlockedGradientTolerance * (1.0 + std::abs(ref[p])))
+          << layout.describe() << " parameter " << p;
     }
   }
 }
