@@ -67,9 +67,30 @@ Rgb3 AirlightTable::at(Vec3 direction) const {
 std::shared_ptr<const AirlightMap> photo_airlight_map(const ImagePositioning& camera,
                                                       const PhotoAirlight& horizon,
                                                       double turbidity) {
+  const auto eq12 = [turbidity](const Rgb3& h, double theta_prime, double theta) {
+    const double z = zeta(turbidity, theta, theta_prime);
+    return Rgb3{h[0] * z, h[1] * z, h[2] * z};
+  };
+  const std::vector<HorizonSector>& sectors = horizon.sectors;
+  if (sectors.empty())
+    return map_of(camera, [&](Vec3 d) {
+      return eq12(horizon.horizon, horizon.theta_prime, angles_from_direction(d).zenith);
+    });
   return map_of(camera, [&](Vec3 d) {
-    const double z = zeta(turbidity, angles_from_direction(d).zenith, horizon.theta_prime);
-    return Rgb3{horizon.horizon[0] * z, horizon.horizon[1] * z, horizon.horizon[2] * z};
+    const ZenithAzimuth a = angles_from_direction(d);
+    // The sectors on either side of phi (periodic), linear in azimuth between their centres.
+    const auto next =
+        std::lower_bound(sectors.begin(), sectors.end(), a.azimuth,
+                         [](const HorizonSector& s, double phi) { return s.azimuth < phi; });
+    const HorizonSector& hi = next == sectors.end() ? sectors.front() : *next;
+    const HorizonSector& lo = next == sectors.begin() ? sectors.back() : *(next - 1);
+    double span = hi.azimuth - lo.azimuth, offset = a.azimuth - lo.azimuth;
+    if (span <= 0.0) span += 2 * kPi;
+    if (offset < 0.0) offset += 2 * kPi;
+    const double f = sectors.size() == 1 ? 0.0 : std::clamp(offset / span, 0.0, 1.0);
+    const Rgb3 x = eq12(lo.horizon, lo.theta_prime, a.zenith);
+    const Rgb3 y = eq12(hi.horizon, hi.theta_prime, a.zenith);
+    return Rgb3{x[0] + f * (y[0] - x[0]), x[1] + f * (y[1] - x[1]), x[2] + f * (y[2] - x[2])};
   });
 }
 

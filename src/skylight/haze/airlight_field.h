@@ -37,7 +37,9 @@ class AirlightTable {
 
 // Eqs. 12-13 per pixel: I^inf(theta') zeta(T, theta, theta') with theta the pixel's zenith angle
 // (zeta clamps cos theta at 0.01, so below the horizon the horizon's value) and I^inf(theta'),
-// theta' the horizon region's (PhotoAirlight::horizon, theta_prime).
+// theta' the horizon region's at the pixel's azimuth phi (eq. 12's "same azimuth"): the two
+// PhotoAirlight::sectors around phi, each through eq. 13, linear in azimuth between the sectors'
+// centres; without sectors the whole region's (PhotoAirlight::horizon, theta_prime).
 std::shared_ptr<const AirlightMap> photo_airlight_map(const ImagePositioning& camera,
                                                       const PhotoAirlight& horizon,
                                                       double turbidity);

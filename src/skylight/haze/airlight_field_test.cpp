@@ -92,6 +92,38 @@ TEST(AirlightMap, PhotoMapIsEquation12PerPixel) {
   EXPECT_GT(map->rgb().pixel(12, 15)[0], map->rgb().pixel(12, 0)[0]);
 }
 
+// Eq. 12 at the pixel's own azimuth: two sectors (azimuth 0.5 and 1.5 rad), each through eq. 13,
+// linear in azimuth between their centres and across north (periodic) on the other side.
+TEST(AirlightMap, PhotoMapTakesTheHorizonAtThePixelsAzimuth) {
+  PhotoAirlight h;
+  h.horizon = {1.0, 1.0, 1.0};
+  h.theta_prime = 85.0 * kDegree;
+  h.sectors = {HorizonSector{0.5, {0.4, 0.5, 0.6}, 84.0 * kDegree, 1},
+               HorizonSector{1.5, {0.9, 0.8, 0.7}, 86.0 * kDegree, 1}};
+  for (double heading : {0.3, 1.0, 2.5, 5.5}) {
+    const ImagePositioning cam = small_camera(24, 16, heading, 0.1);
+    const auto map = photo_airlight_map(cam, h, 4.0);
+    for (int row : {0, 15})
+      for (int col : {0, 11, 23}) {
+        const ZenithAzimuth a = cam.pixel_angles(col, row);
+        const double f =
+            a.azimuth >= 0.5 && a.azimuth <= 1.5
+                ? a.azimuth - 0.5
+                : 1.0 + std::fmod(a.azimuth - 1.5 + 2 * kPi, 2 * kPi) / (2 * kPi - 1.0);
+        const HorizonSector& lo = h.sectors[f <= 1.0 ? 0 : 1];
+        const HorizonSector& hi = h.sectors[f <= 1.0 ? 1 : 0];
+        const double t = f <= 1.0 ? f : f - 1.0;
+        const double zl = zeta(4.0, a.zenith, lo.theta_prime);
+        const double zh = zeta(4.0, a.zenith, hi.theta_prime);
+        for (std::size_t c = 0; c < 3; ++c) {
+          const double expected = (1 - t) * lo.horizon[c] * zl + t * hi.horizon[c] * zh;
+          EXPECT_NEAR(map->rgb().pixel(col, row)[c], expected, kFloatRelTol * expected)
+              << "heading " << heading << " pixel " << col << "," << row;
+        }
+      }
+  }
+}
+
 TEST(AirlightMap, BadValuesAreErrors) {
   io::ImageF rgb(2, 2, 3);
   EXPECT_THROW(AirlightMap{rgb}, InvalidArgument);  // zeros

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "skylight/core/error.h"
+#include "skylight/core/frame.h"
 #include "skylight/core/math.h"
 #include "skylight/core/parallel.h"
 #include "skylight/estimate/photo.h"
@@ -336,6 +337,7 @@ PhotoAirlight region_airlight(const io::ImageF& sky, const estimate::SkyCamera& 
   struct Candidate {
     double luminance, zenith;
     int col, row;
+    int sector;
   };
   std::vector<Candidate> candidates;
   for (int row = 0; row < sky.height; ++row)
@@ -345,22 +347,45 @@ PhotoAirlight region_airlight(const io::ImageF& sky, const estimate::SkyCamera& 
         continue;
       const std::optional<Vec3> v = camera.pixel_direction(col, row);
       if (!v || v->z <= 0.0) continue;
-      candidates.push_back(
-          {estimate::pixel_luminance(sky, col, row), std::acos(std::min(v->z, 1.0)), col, row});
+      const ZenithAzimuth a = angles_from_direction(*v);
+      const int sector =
+          std::min(kHorizonSectors - 1, static_cast<int>(a.azimuth / (2 * kPi) * kHorizonSectors));
+      candidates.push_back({estimate::pixel_luminance(sky, col, row), a.zenith, col, row, sector});
     }
   if (candidates.empty())
     throw InvalidArgument("the sky photo's horizon region holds no pixel above the horizon");
-  const std::size_t n = std::max<std::size_t>(1, (candidates.size() + 99) / 100);
-  std::partial_sort(
-      candidates.begin(), candidates.begin() + static_cast<std::ptrdiff_t>(n), candidates.end(),
-      [](const Candidate& a, const Candidate& b) { return a.luminance > b.luminance; });
+  // The brightest 1 % (at least one) of [first, last): their mean colour and zenith angle.
+  const auto brightest = [&sky](std::vector<Candidate>::iterator first,
+                                std::vector<Candidate>::iterator last, Rgb3& horizon,
+                                double& theta_prime) {
+    const auto count = static_cast<std::size_t>(last - first);
+    const std::size_t n = std::max<std::size_t>(1, (count + 99) / 100);
+    std::partial_sort(
+        first, first + static_cast<std::ptrdiff_t>(n), last,
+        [](const Candidate& a, const Candidate& b) { return a.luminance > b.luminance; });
+    horizon = {};
+    theta_prime = 0.0;
+    for (auto it = first; it != first + static_cast<std::ptrdiff_t>(n); ++it) {
+      const float* p = sky.pixel(it->col, it->row);
+      for (std::size_t c = 0; c < 3; ++c) horizon[c] += p[c] / static_cast<double>(n);
+      theta_prime += it->zenith / static_cast<double>(n);
+    }
+    return n;
+  };
   PhotoAirlight out;
-  out.pixels = n;
-  for (std::size_t i = 0; i < n; ++i) {
-    const float* p = sky.pixel(candidates[i].col, candidates[i].row);
-    for (std::size_t c = 0; c < 3; ++c) out.horizon[c] += p[c] / static_cast<double>(n);
-    out.theta_prime += candidates[i].zenith / static_cast<double>(n);
+  // Per sector of azimuth first (the candidates grouped by sector, stable within one).
+  std::stable_sort(candidates.begin(), candidates.end(),
+                   [](const Candidate& a, const Candidate& b) { return a.sector < b.sector; });
+  for (auto first = candidates.begin(); first != candidates.end();) {
+    const auto last = std::find_if(first, candidates.end(),
+                                   [&](const Candidate& c) { return c.sector != first->sector; });
+    HorizonSector sector;
+    sector.azimuth = (first->sector + 0.5) * 2 * kPi / kHorizonSectors;
+    sector.pixels = brightest(first, last, sector.horizon, sector.theta_prime);
+    out.sectors.push_back(sector);
+    first = last;
   }
+  out.pixels = brightest(candidates.begin(), candidates.end(), out.horizon, out.theta_prime);
   const double z = zeta(turbidity, theta, out.theta_prime);
   for (std::size_t c = 0; c < 3; ++c) out.airlight[c] = out.horizon[c] * z;
   return out;

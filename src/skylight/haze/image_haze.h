@@ -143,11 +143,25 @@ Rgb3 sky_model_airlight(const SkyModel& model, Vec3 view, const CameraSensitivit
 double zeta(double turbidity, double theta, double theta_prime);
 
 // The airlight from a sky photo's horizon region (eqs. 12-13).
+// Eq. 12 takes I^inf(theta') "with the same azimuth phi" as the view: the horizon region is
+// also split into kHorizonSectors sectors of azimuth, each with its own brightest pixels.
+inline constexpr int kHorizonSectors = 36;
+
+struct HorizonSector {
+  double azimuth = 0.0;      // the sector's centre [rad], north 0, east pi/2
+  Rgb3 horizon{};            // I^inf(theta') of the sector's brightest 1 % (at least one pixel)
+  double theta_prime = 0.0;  // their mean zenith angle [rad]
+  std::size_t pixels = 0;
+};
+
 struct PhotoAirlight {
-  Rgb3 airlight{};           // I^inf(T, theta) [photo units]
+  Rgb3 airlight{};           // I^inf(T, theta) [photo units], from the whole region
   Rgb3 horizon{};            // I^inf(theta'): the mean of the brightest horizon pixels
   double theta_prime = 0.0;  // their mean zenith angle [rad]
   std::size_t pixels = 0;    // how many were averaged
+  // The same per sector of azimuth, ascending, the sectors the region reaches only (the
+  // per-pixel airlight interpolates between them in azimuth, haze/airlight_field.h).
+  std::vector<HorizonSector> sectors;
 };
 
 // Default height of the horizon region above the horizon [rad].

@@ -6,6 +6,7 @@
 #include <iostream>
 
 #include "skylight/core/error.h"
+#include "skylight/core/frame.h"
 #include "skylight/core/math.h"
 #include "skylight/haze/metrics.h"
 #include "skylight/models/sky_model.h"
@@ -258,6 +259,43 @@ TEST(HazeImage, PhotoAirlightEquations12And13) {
   const estimate::SkyCamera narrow{estimate::PhotoProjection::fisheye, 64, 32,
                                    FisheyeLayout{FisheyeLens::equidistant, 60.0 * kDegree, 0.0}};
   EXPECT_THROW(photo_airlight(sky, narrow, 2.5, kPi / 2), InvalidArgument);
+}
+
+// Eq. 12's "same azimuth": each sector of azimuth of the horizon region has its own brightest
+// pixels. An equirect 72 x 36 sky (5 deg a row; rows 16 and 17 lie within 10 deg above the
+// horizon, row 17 twice as bright) whose brightness grows with the pixel's azimuth.
+TEST(HazeImage, PhotoAirlightPerSectorOfAzimuth) {
+  const estimate::SkyCamera cam{estimate::PhotoProjection::equirect, 72, 36, {}};
+  const auto gain = [&](int col, int row) {
+    return 1.0 + angles_from_direction(*cam.pixel_direction(col, row)).azimuth / (2 * kPi);
+  };
+  io::ImageF sky(72, 36, 3);
+  for (int row = 0; row < 36; ++row)
+    for (int col = 0; col < 72; ++col) {
+      const double k = (row == 17 ? 2.0 : 1.0) * gain(col, row);
+      sky.pixel(col, row)[0] = static_cast<float>(0.4 * k);
+      sky.pixel(col, row)[1] = static_cast<float>(0.5 * k);
+      sky.pixel(col, row)[2] = static_cast<float>(0.7 * k);
+    }
+  const PhotoAirlight a = photo_airlight(sky, cam, 2.5, kPi / 2, kHorizonBand);
+  ASSERT_EQ(a.sectors.size(), static_cast<std::size_t>(kHorizonSectors));
+  for (int s = 0; s < kHorizonSectors; ++s) {
+    const HorizonSector& sector = a.sectors[static_cast<std::size_t>(s)];
+    EXPECT_NEAR(sector.azimuth, (s + 0.5) * 2 * kPi / kHorizonSectors, kClosedFormRelTol);
+    // The brightest of the sector: the largest azimuth of row 17 within it.
+    double expected = 0.0;
+    for (int col = 0; col < 72; ++col) {
+      const double phi = angles_from_direction(*cam.pixel_direction(col, 17)).azimuth;
+      if (static_cast<int>(phi / (2 * kPi) * kHorizonSectors) == s)
+        expected = std::max(expected, 0.8 * gain(col, 17));
+    }
+    EXPECT_EQ(sector.pixels, 1u);
+    EXPECT_NEAR(sector.horizon[0], expected, kFloatTol) << "sector " << s;
+    EXPECT_NEAR(sector.theta_prime, kPi * 17.5 / 36.0, kClosedFormRelTol);
+  }
+  // The whole region's brightest 1 % (2 of 144): the two brightest sectors' pixels.
+  EXPECT_EQ(a.pixels, 2u);
+  EXPECT_GT(a.horizon[0], a.sectors.front().horizon[0]);
 }
 
 TEST(HazeImage, ZetaEquation13AndSkyModelAirlight) {
