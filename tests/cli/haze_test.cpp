@@ -389,6 +389,20 @@ TEST_F(HazeCameraCli, PerPixelAirlightOnTheGpuMatchesTheCpuPath) {
   ASSERT_EQ(a.data.size(), b.data.size());
   for (std::size_t i = 0; i < a.data.size(); ++i)
     EXPECT_NEAR(a.data[i], b.data[i], kFloatTol * (1.0 + std::abs(b.data[i]))) << i;
+  // The composite too (the scene as background and as object, hazed at its own depth).
+  const std::string comp = "haze composite --background " + p("scene.exr") + " --object " +
+                           p("scene.exr") + " --object-depth " + p("depth.exr") +
+                           " --turbidity 3 --camera canon-eos-5d --sky-model preetham --vfov 30 "
+                           "--heading 120 --pitch 5 ";
+  r = run(comp + "--gpu -o " + p("comp_gpu.exr"));
+  ASSERT_EQ(r.status, 0) << r.err;
+  r = run(comp + "-o " + p("comp_cpu.exr"));
+  ASSERT_EQ(r.status, 0) << r.err;
+  const io::ImageF c = io::read_image(dir_ / "comp_gpu.exr");
+  const io::ImageF d = io::read_image(dir_ / "comp_cpu.exr");
+  ASSERT_EQ(c.data.size(), d.data.size());
+  for (std::size_t i = 0; i < c.data.size(); ++i)
+    EXPECT_NEAR(c.data[i], d.data[i], kFloatTol * (1.0 + std::abs(d.data[i]))) << i;
 #else
   GTEST_SKIP() << "built without the GPU module";
 #endif

@@ -213,7 +213,7 @@ io::ImageF apply_haze(const io::ImageF& image, const io::ImageF& depth,
   return renderer.apply(image, depth, camera, settings, report);
 }
 
-std::string composite_fragment_source() {
+std::string composite_fragment_source(bool per_pixel_airlight) {
   std::string s(kGlslVersion);
   s += "// skylight: composite by pixel, eq. 10 and §6.2 step 3 (Morales et al. 2017; "
        "docs/HAZE.md).\n";
@@ -226,6 +226,7 @@ std::string composite_fragment_source() {
   s += "uniform int skylight_last;  // entries - 2\n";
   s += "uniform int skylight_table_rows;\n";
   s += "uniform vec3 skylight_airlight_t, skylight_scale;  // I^inf, 1\n";
+  if (per_pixel_airlight) s += "uniform sampler2D skylight_airlight_t_map;  // per-pixel I^inf\n";
   s += "out vec4 colour;\n";
   s += fmt::format(
       "vec3 skylight_lerp(sampler2D t, int i, float f) {{\n"
@@ -242,9 +243,10 @@ std::string composite_fragment_source() {
        "  float pos = s * skylight_inv_step;\n"
        "  int i = min(int(pos), skylight_last);\n"
        "  float f = pos - float(i);\n"
-       "  vec3 ratio = skylight_lerp(skylight_gamma_t, i, f);\n"
-       "  vec3 hazed = max(v * skylight_scale * ratio + skylight_airlight_t * (1.0 - ratio), "
-       "vec3(0.0));\n"
+       "  vec3 ratio = skylight_lerp(skylight_gamma_t, i, f);\n";
+  s += per_pixel_airlight ? "  vec3 a_t = texelFetch(skylight_airlight_t_map, p, 0).rgb;\n"
+                          : "  vec3 a_t = skylight_airlight_t;\n";
+  s += "  vec3 hazed = max(v * skylight_scale * ratio + a_t * (1.0 - ratio), vec3(0.0));\n"
        "  vec3 bg = texelFetch(skylight_background, p, 0).rgb;\n"
        "  colour = vec4(a * hazed + (1.0 - a) * bg, 1.0);\n"
        "}\n";
@@ -255,17 +257,14 @@ io::ImageF composite(const io::ImageF& background, const io::ImageF& object,
                      const io::ImageF& alpha, const io::ImageF& object_depth_m,
                      const haze::CameraSensitivity& camera, const haze::HazeSettings& settings) {
   haze::check_composite_inputs(background, object, alpha);
-  if (settings.airlight_source_map)
-    throw InvalidArgument(
-        "the composite on GL takes one airlight per image; a per-pixel airlight (an image camera) "
-        "composites on the CPU");
   const int w = background.width, h = background.height;
+  const bool per_pixel = settings.airlight_source_map != nullptr;
   haze::HazeSettings add = settings;
   add.operation = haze::HazeOperation::add;
   const double far = checked_max_depth(object_depth_m, {}, w, h);
   const haze::HazeKernel k = haze::haze_kernel(far, camera, add);
   Context context;
-  Program p = Program::fullscreen(composite_fragment_source());
+  Program p = Program::fullscreen(composite_fragment_source(per_pixel));
   const Texture bg_tex(background), object_tex(object), alpha_tex(alpha), depth_tex(object_depth_m),
       table(table_image(k.target));
   p.bind("skylight_background", bg_tex, 0);
@@ -277,8 +276,17 @@ io::ImageF composite(const io::ImageF& background, const io::ImageF& object,
   p.set("skylight_last", static_cast<int>(k.entries) - 2);
   p.set("skylight_table_rows",
         static_cast<int>((k.entries + kTableRow - 1) / static_cast<std::size_t>(kTableRow)));
-  p.set("skylight_airlight_t", to_float(k.airlight_target));
+  p.set_if_active("skylight_airlight_t", to_float(k.airlight_target));
   p.set("skylight_scale", to_float(k.scale));
+  std::unique_ptr<Texture> map;
+  if (per_pixel) {
+    const io::ImageF& rgb = k.airlight_target_map->rgb();
+    if (rgb.width != w || rgb.height != h)
+      throw InvalidArgument(fmt::format("the per-pixel airlight is {}x{} but the image {}x{}",
+                                        rgb.width, rgb.height, w, h));
+    map = std::make_unique<Texture>(rgb);
+    p.bind("skylight_airlight_t_map", *map, 5);
+  }
   Target target(w, h);
   target.clear();
   target.draw_fullscreen(p);

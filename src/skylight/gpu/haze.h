@@ -57,12 +57,13 @@ io::ImageF apply_haze(const io::ImageF& image, const io::ImageF& depth,
 // The composite of haze::composite (Morales et al. 2017 eq. 10, §6.2 step 3) as a fragment shader:
 // the object's RGB hazed at the settings' turbidity (eq. 10 through the Gamma table of
 // haze::HazeKernel, add) and laid over the background, alpha I_VO,hazed + (1 - alpha) I_BG, in
-// the CPU path's float arithmetic.
-std::string composite_fragment_source();
+// the CPU path's float arithmetic. With `per_pixel_airlight` I^inf is read per pixel from a
+// texture (the AirlightMap of an image camera, §6.2 step 2, haze/airlight_field.h).
+std::string composite_fragment_source(bool per_pixel_airlight = false);
 
 // haze::composite computed by GL in a context of its own: the same inputs (object depth in
-// metres), checks and errors; InvalidArgument for a per-pixel airlight (settings'
-// airlight_source_map: the CPU path composites with it).
+// metres), checks and errors, a constant or a per-pixel airlight (settings' airlight_source_map,
+// of the image's size: InvalidArgument otherwise).
 io::ImageF composite(const io::ImageF& background, const io::ImageF& object,
                      const io::ImageF& alpha, const io::ImageF& object_depth_m,
                      const haze::CameraSensitivity& camera, const haze::HazeSettings& settings);

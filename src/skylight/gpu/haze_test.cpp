@@ -222,6 +222,23 @@ TEST_F(GpuTest, CompositeMatchesTheCpuComposite) {
     // Uncovered pixels are the background.
     for (int c = 0; c < 3; ++c) EXPECT_EQ(on_gl.pixel(2, 5)[c], background.pixel(2, 5)[c]);
   }
+  // Per-pixel airlight (eqs. 12-13 through a pinhole, haze/airlight_field.h) as a texture.
+  const haze::ImagePositioning camera(
+      haze::view_matrix(2.0, 0.02, 0.0),
+      haze::perspective_matrix(50.0 * kDegree, static_cast<double>(w) / h, 1.0, 1e4), w, h);
+  haze::PhotoAirlight horizon;
+  horizon.horizon = {0.7, 0.8, 0.95};
+  horizon.theta_prime = 82.0 * kDegree;
+  horizon.sectors = {haze::HorizonSector{1.5, {0.5, 0.7, 0.9}, 84.0 * kDegree, 1},
+                     haze::HorizonSector{2.5, {0.9, 0.8, 0.6}, 86.0 * kDegree, 1}};
+  haze::HazeSettings per_pixel = settings(haze::HazeOperation::add, 4.0);
+  per_pixel.airlight_source_map = haze::photo_airlight_map(camera, horizon, 4.0);
+  const io::ImageF cpu = haze::composite(background, object, alpha, depth, eos(), per_pixel);
+  const double worst =
+      worst_difference(gpu::composite(background, object, alpha, depth, eos(), per_pixel), cpu);
+  std::cout << "[ haze gpu ] composite, per-pixel airlight: worst |gpu - cpu| / (1 + |cpu|) = "
+            << worst << "\n";
+  EXPECT_LE(worst, kGpuHazeTolerance);
   // The CPU path's checks.
   io::ImageF bad_alpha = alpha;
   bad_alpha.pixel(30, 3)[0] = 1.5f;
