@@ -9,9 +9,14 @@
 #include <GL/glcorearb.h>
 #include <fmt/format.h>
 
+#include <dlfcn.h>
+#include <link.h>
+
 #include <algorithm>
 #include <cstring>
 #include <mutex>
+#include <string>
+#include <vector>
 
 namespace skylight::gpu {
 
@@ -40,6 +45,25 @@ bool has_extension(const char* list, std::string_view name) {
     pos = end + 1;
   }
   return false;
+}
+
+// Marks every shared object loaded now as never to be unloaded (RTLD_NODELETE). EGL loads Mesa's
+// driver (and LLVM) with dlopen and unloads it at exit, after the driver's code may have run on
+// the calling thread (vertex processing runs there): its dynamic TLS block then dangles, and
+// LeakSanitizer's exit-time scan of thread-local storage crashes on it. Objects that stay loaded
+// until the process ends are what a process that keeps its GL display does anyway.
+void pin_loaded_libraries() {
+  std::vector<std::string> names;
+  dl_iterate_phdr(
+      [](dl_phdr_info* info, std::size_t, void* out) {
+        if (info->dlpi_name != nullptr && info->dlpi_name[0] != '\0')
+          static_cast<std::vector<std::string>*>(out)->emplace_back(info->dlpi_name);
+        return 0;
+      },
+      &names);
+  for (const std::string& name : names)
+    // RTLD_NOLOAD: only a handle to an object already there (its count drops again below).
+    if (void* h = dlopen(name.c_str(), RTLD_LAZY | RTLD_NOLOAD | RTLD_NODELETE)) dlclose(h);
 }
 
 }  // namespace
@@ -83,6 +107,7 @@ EGLDisplay surfaceless_display() {
   if (d == EGL_NO_DISPLAY || !eglInitialize(d, &major, &minor))
     fail("cannot initialise the EGL surfaceless display (" + egl_error_text(eglGetError()) +
          "): is libgl1-mesa-dri installed?");
+  pin_loaded_libraries();
   display = d;
   return display;
 }
@@ -119,6 +144,9 @@ Context::Context() : impl_(std::make_unique<Impl>()) {
     eglDestroyContext(m.display, m.context);
     fail("cannot make the OpenGL context current without a surface (" + egl_error_text(e) + ")");
   }
+  // The driver may load more at the first context (surfaceless_display pins what it loaded).
+  static std::once_flag pinned;
+  std::call_once(pinned, pin_loaded_libraries);
   // Core profile draws need a vertex array object, even without attributes.
   glGenVertexArrays(1, &m.vao);
   glBindVertexArray(m.vao);
