@@ -61,6 +61,32 @@ double checked_max_depth(const io::ImageF& depth, const haze::DepthEncoding& e, 
   return static_cast<float>(haze::depth_from_normalised(m, *e.near_m, *e.far_m));
 }
 
+// The Gamma tables' uniforms and their linear interpolation (haze::HazeKernel's rule) in GLSL:
+// table entry i lies at (i % kTableRow, rows - 1 - i / kTableRow) of its texture.
+std::string table_uniforms_source() {
+  return "uniform float skylight_inv_step;  // 1 / table step [1/m]\n"
+         "uniform int skylight_last;  // entries - 2\n"
+         "uniform int skylight_table_rows;\n";
+}
+
+std::string table_lerp_source() {
+  return fmt::format(
+      "vec3 skylight_lerp(sampler2D t, int i, float f) {{\n"
+      "  ivec2 a = ivec2(i % {0}, skylight_table_rows - 1 - i / {0});\n"
+      "  ivec2 b = ivec2((i + 1) % {0}, skylight_table_rows - 1 - (i + 1) / {0});\n"
+      "  vec3 g0 = texelFetch(t, a, 0).rgb;\n"
+      "  return g0 + f * (texelFetch(t, b, 0).rgb - g0);\n"
+      "}}\n",
+      kTableRow);
+}
+
+void set_table_uniforms(Program& p, const haze::HazeKernel& k) {
+  p.set("skylight_inv_step", static_cast<float>(1.0 / k.step_m));
+  p.set("skylight_last", static_cast<int>(k.entries) - 2);
+  p.set("skylight_table_rows",
+        static_cast<int>((k.entries + kTableRow - 1) / static_cast<std::size_t>(kTableRow)));
+}
+
 std::array<float, 3> to_float(const haze::Rgb3& v) {
   return {static_cast<float>(v[0]), static_cast<float>(v[1]), static_cast<float>(v[2])};
 }
@@ -76,9 +102,7 @@ std::string haze_fragment_source(haze::HazeOperation operation, bool normalised,
   s += "uniform sampler2D skylight_depth;  // r: depth\n";
   if (source) s += "uniform sampler2D skylight_gamma_s;  // Gamma_s table, RGB\n";
   if (target) s += "uniform sampler2D skylight_gamma_t;  // Gamma_t table, RGB\n";
-  s += "uniform float skylight_inv_step;  // 1 / table step [1/m]\n";
-  s += "uniform int skylight_last;  // entries - 2\n";
-  s += "uniform int skylight_table_rows;\n";
+  s += table_uniforms_source();
   s += "uniform float skylight_min_t;  // floor of Gamma_s\n";
   s += "uniform vec3 skylight_airlight_t, skylight_scale;  // I^inf_t, I^inf_t / I^inf_s\n";
   if (normalised) s += "uniform float skylight_near_m, skylight_near_over_far;\n";
@@ -87,14 +111,7 @@ std::string haze_fragment_source(haze::HazeOperation operation, bool normalised,
     if (source && target) s += "uniform sampler2D skylight_airlight_s_map;  // per-pixel I^inf_s\n";
   }
   s += "out vec4 colour;\n";
-  s += fmt::format(
-      "vec3 skylight_lerp(sampler2D t, int i, float f) {{\n"
-      "  ivec2 a = ivec2(i % {0}, skylight_table_rows - 1 - i / {0});\n"
-      "  ivec2 b = ivec2((i + 1) % {0}, skylight_table_rows - 1 - (i + 1) / {0});\n"
-      "  vec3 g0 = texelFetch(t, a, 0).rgb;\n"
-      "  return g0 + f * (texelFetch(t, b, 0).rgb - g0);\n"
-      "}}\n",
-      kTableRow);
+  s += table_lerp_source();
   s += "void main() {\n  ivec2 p = ivec2(gl_FragCoord.xy);\n";
   s += "  vec3 v = texelFetch(skylight_image, p, 0).rgb;\n";
   s += "  float s = texelFetch(skylight_depth, p, 0).r;\n";
@@ -163,10 +180,7 @@ io::ImageF HazeRenderer::apply(const io::ImageF& image, const io::ImageF& depth,
     gt = std::make_unique<Texture>(table_image(k.target));
     p.bind("skylight_gamma_t", *gt, 3);
   }
-  p.set("skylight_inv_step", static_cast<float>(1.0 / k.step_m));
-  p.set("skylight_last", static_cast<int>(k.entries) - 2);
-  p.set("skylight_table_rows",
-        static_cast<int>((k.entries + kTableRow - 1) / static_cast<std::size_t>(kTableRow)));
+  set_table_uniforms(p, k);
   p.set_if_active("skylight_min_t", static_cast<float>(k.min_transmission));
   std::unique_ptr<Texture> at_map, as_map;
   if (per_pixel_) {
@@ -222,20 +236,11 @@ std::string composite_fragment_source(bool per_pixel_airlight) {
   s += "uniform sampler2D skylight_alpha;  // r: coverage in [0, 1]\n";
   s += "uniform sampler2D skylight_depth;  // r: the object's depth [m]\n";
   s += "uniform sampler2D skylight_gamma_t;  // Gamma table, RGB\n";
-  s += "uniform float skylight_inv_step;  // 1 / table step [1/m]\n";
-  s += "uniform int skylight_last;  // entries - 2\n";
-  s += "uniform int skylight_table_rows;\n";
+  s += table_uniforms_source();
   s += "uniform vec3 skylight_airlight_t, skylight_scale;  // I^inf, 1\n";
   if (per_pixel_airlight) s += "uniform sampler2D skylight_airlight_t_map;  // per-pixel I^inf\n";
   s += "out vec4 colour;\n";
-  s += fmt::format(
-      "vec3 skylight_lerp(sampler2D t, int i, float f) {{\n"
-      "  ivec2 a = ivec2(i % {0}, skylight_table_rows - 1 - i / {0});\n"
-      "  ivec2 b = ivec2((i + 1) % {0}, skylight_table_rows - 1 - (i + 1) / {0});\n"
-      "  vec3 g0 = texelFetch(t, a, 0).rgb;\n"
-      "  return g0 + f * (texelFetch(t, b, 0).rgb - g0);\n"
-      "}}\n",
-      kTableRow);
+  s += table_lerp_source();
   s += "void main() {\n  ivec2 p = ivec2(gl_FragCoord.xy);\n"
        "  vec3 v = texelFetch(skylight_object, p, 0).rgb;\n"
        "  float s = texelFetch(skylight_depth, p, 0).r;\n"
@@ -272,10 +277,7 @@ io::ImageF composite(const io::ImageF& background, const io::ImageF& object,
   p.bind("skylight_alpha", alpha_tex, 2);
   p.bind("skylight_depth", depth_tex, 3);
   p.bind("skylight_gamma_t", table, 4);
-  p.set("skylight_inv_step", static_cast<float>(1.0 / k.step_m));
-  p.set("skylight_last", static_cast<int>(k.entries) - 2);
-  p.set("skylight_table_rows",
-        static_cast<int>((k.entries + kTableRow - 1) / static_cast<std::size_t>(kTableRow)));
+  set_table_uniforms(p, k);
   p.set_if_active("skylight_airlight_t", to_float(k.airlight_target));
   p.set("skylight_scale", to_float(k.scale));
   std::unique_ptr<Texture> map;
