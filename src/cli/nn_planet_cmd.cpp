@@ -40,11 +40,20 @@ struct PlanetFlags {
   int width = 640, height = 480;
 };
 
+#ifdef SKYLIGHT_HAVE_GPU
 double seconds_since(std::chrono::steady_clock::time_point t) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
 }
+#endif
 
 int run_planet(const PlanetFlags& f) {
+#ifndef SKYLIGHT_HAVE_GPU
+  // Said before any input is read.
+  (void)f;
+  throw std::runtime_error(
+      "nn planet: this skylight was built without the GPU module (SKYLIGHT_GPU=OFF: EGL and "
+      "OpenGL were not found when configuring; docs/GPU.md)");
+#else
   (void)io::format_from_path(f.output);
   const std::string text = io::read_text_file(f.weights);
   if (!nn::is_pietras_json(text))
@@ -55,7 +64,6 @@ int run_planet(const PlanetFlags& f) {
   const nn::PietrasNetwork net = nn::pietras_from_json(text, f.weights);
   const NishitaParameters planet = nishita_parameters_of(net);
   const SunPosition sun = sun_from_degrees(f.sun_zenith_deg, f.sun_azimuth_deg);
-#ifdef SKYLIGHT_HAVE_GPU
   const bool orbit = f.view == "orbit";
   const double altitude = f.altitude_m.value_or(orbit ? kOrbitAltitudeRadii * planet.ground_radius_m
                                                       : kGroundAltitudeM);
@@ -101,11 +109,6 @@ int run_planet(const PlanetFlags& f) {
       nn::to_string(net.kind), f.view, altitude, f.sun_zenith_deg, f.subdivisions,
       mesh.vertices.size(), mesh.indices.size() / 3, mesh_s, gl_s, context.renderer(), f.output));
   return kExitOk;
-#else
-  (void)sun;
-  throw std::runtime_error(
-      "nn planet: this skylight was built without the GPU module (SKYLIGHT_GPU=OFF: EGL and "
-      "OpenGL were not found when configuring; docs/GPU.md)");
 #endif
 }
 
