@@ -66,6 +66,26 @@ class HazeCli : public Cli {
     quoted += '\'';
     return quoted;
   }
+  // Runs `flags` with `--gpu` and without, writing <stem>_gpu.exr and <stem>_cpu.exr: with the
+  // GPU module both succeed and agree to float rounding; without it the `--gpu` run exits 1 and
+  // says so.
+  void expect_gpu_matches_cpu(const std::string& flags, const std::string& stem) {
+    auto r = run(flags + "--gpu -o " + p(stem + "_gpu.exr"));
+#ifdef SKYLIGHT_HAVE_GPU
+    ASSERT_EQ(r.status, 0) << r.err;
+    r = run(flags + "-o " + p(stem + "_cpu.exr"));
+    ASSERT_EQ(r.status, 0) << r.err;
+    const io::ImageF a = io::read_image(dir_ / (stem + "_gpu.exr"));
+    const io::ImageF b = io::read_image(dir_ / (stem + "_cpu.exr"));
+    ASSERT_EQ(a.data.size(), b.data.size());
+    for (std::size_t i = 0; i < a.data.size(); ++i)
+      EXPECT_NEAR(a.data[i], b.data[i], kFloatTol * (1.0 + std::abs(b.data[i])))
+          << stem << " " << i;
+#else
+    EXPECT_EQ(r.status, 1);
+    EXPECT_NE(r.err.find("built without the GPU module"), std::string::npos) << r.err;
+#endif
+  }
   io::ImageF scene_;
 };
 
@@ -159,19 +179,7 @@ TEST_F(HazeCli, RetargetOnTheGpuMatchesTheCpuPath) {
                              p("depth.exr") +
                              " --turbidity 5 --target-turbidity 2 --camera canon-eos-5d "
                              "--airlight 0.8,0.85,0.9 ";
-  auto r = run(common + "--gpu -o " + p("gpu.exr"));
-#ifdef SKYLIGHT_HAVE_GPU
-  ASSERT_EQ(r.status, 0) << r.err;
-  r = run(common + "-o " + p("cpu.exr"));
-  ASSERT_EQ(r.status, 0) << r.err;
-  const io::ImageF a = io::read_image(dir_ / "gpu.exr"), b = io::read_image(dir_ / "cpu.exr");
-  ASSERT_EQ(a.data.size(), b.data.size());
-  for (std::size_t i = 0; i < a.data.size(); ++i)
-    EXPECT_NEAR(a.data[i], b.data[i], kFloatTol * (1.0 + std::abs(b.data[i]))) << i;
-#else
-  EXPECT_EQ(r.status, 1);
-  EXPECT_NE(r.err.find("built without the GPU module"), std::string::npos) << r.err;
-#endif
+  expect_gpu_matches_cpu(common, "retarget");
 }
 
 TEST_F(HazeCli, NormalisedDepthWithNearAndFar) {
@@ -375,37 +383,18 @@ TEST_F(HazeCameraCli, RawMatricesEqualThePinholeFlags) {
 
 // `--gpu` with an image camera: the per-pixel airlights as textures (gpu/haze.h).
 TEST_F(HazeCameraCli, PerPixelAirlightOnTheGpuMatchesTheCpuPath) {
-#ifdef SKYLIGHT_HAVE_GPU
   write_scene();
   const std::string common = "haze retarget --image " + p("scene.exr") + " --depth " +
                              p("depth.exr") +
                              " --turbidity 5 --target-turbidity 2 --camera canon-eos-5d "
                              "--sky-model preetham --vfov 30 --heading 120 --pitch 5 ";
-  auto r = run(common + "--gpu -o " + p("gpu.exr"));
-  ASSERT_EQ(r.status, 0) << r.err;
-  r = run(common + "-o " + p("cpu.exr"));
-  ASSERT_EQ(r.status, 0) << r.err;
-  const io::ImageF a = io::read_image(dir_ / "gpu.exr"), b = io::read_image(dir_ / "cpu.exr");
-  ASSERT_EQ(a.data.size(), b.data.size());
-  for (std::size_t i = 0; i < a.data.size(); ++i)
-    EXPECT_NEAR(a.data[i], b.data[i], kFloatTol * (1.0 + std::abs(b.data[i]))) << i;
+  expect_gpu_matches_cpu(common, "retarget");
   // The composite too (the scene as background and as object, hazed at its own depth).
   const std::string comp = "haze composite --background " + p("scene.exr") + " --object " +
                            p("scene.exr") + " --object-depth " + p("depth.exr") +
                            " --turbidity 3 --camera canon-eos-5d --sky-model preetham --vfov 30 "
                            "--heading 120 --pitch 5 ";
-  r = run(comp + "--gpu -o " + p("comp_gpu.exr"));
-  ASSERT_EQ(r.status, 0) << r.err;
-  r = run(comp + "-o " + p("comp_cpu.exr"));
-  ASSERT_EQ(r.status, 0) << r.err;
-  const io::ImageF c = io::read_image(dir_ / "comp_gpu.exr");
-  const io::ImageF d = io::read_image(dir_ / "comp_cpu.exr");
-  ASSERT_EQ(c.data.size(), d.data.size());
-  for (std::size_t i = 0; i < c.data.size(); ++i)
-    EXPECT_NEAR(c.data[i], d.data[i], kFloatTol * (1.0 + std::abs(d.data[i]))) << i;
-#else
-  GTEST_SKIP() << "built without the GPU module";
-#endif
+  expect_gpu_matches_cpu(comp, "composite");
 }
 
 TEST_F(HazeCameraCli, IncompleteOrConflictingCamerasAreErrors) {
@@ -510,20 +499,11 @@ TEST_F(HazeCli, CompositeOnTheGpuMatchesTheCpuPath) {
                              p("obj.exr") + " --object-depth " + p("od.exr") + " --object-alpha " +
                              p("alpha.pfm") +
                              " --turbidity 4 --camera canon-eos-5d --airlight 0.8,0.85,0.9 ";
-  auto r = run(common + "--gpu -o " + p("gpu.exr"));
-#ifdef SKYLIGHT_HAVE_GPU
-  ASSERT_EQ(r.status, 0) << r.err;
-  r = run(common + "-o " + p("cpu.exr"));
-  ASSERT_EQ(r.status, 0) << r.err;
-  const io::ImageF a = io::read_image(dir_ / "gpu.exr"), b = io::read_image(dir_ / "cpu.exr");
-  ASSERT_EQ(a.data.size(), b.data.size());
-  for (std::size_t i = 0; i < a.data.size(); ++i)
-    EXPECT_NEAR(a.data[i], b.data[i], kFloatTol * (1.0 + std::abs(b.data[i]))) << i;
-#else
-  EXPECT_EQ(r.status, 1);
-  EXPECT_NE(r.err.find("built without the GPU module"), std::string::npos) << r.err;
+  expect_gpu_matches_cpu(common, "composite");
+#ifndef SKYLIGHT_HAVE_GPU
   for (const char* op : {"add", "remove"}) {
-    r = run(std::string("haze ") + op + " --image " + p("missing.exr") + " --depth " +
+    const auto r =
+        run(std::string("haze ") + op + " --image " + p("missing.exr") + " --depth " +
             p("missing.pfm") + " --turbidity 3 --camera canon-eos-5d --airlight 1,1,1 --gpu -o " +
             p("out.exr"));
     EXPECT_EQ(r.status, 1);
