@@ -131,6 +131,7 @@ int run_pietras_validate(const std::string& weights, const std::string& text, bo
     j["night_samples"] = v.night_count;
     j["night_reference_dark"] = v.night_reference_dark;
     j["night_network_not_dark"] = v.night_nonzero;
+    j["night_network_not_dark_without_shadow_test"] = v.night_ungated_nonzero;
     write_stdout(j.dump(2) + "\n");
     return kExitOk;
   }
@@ -141,8 +142,8 @@ int run_pietras_validate(const std::string& weights, const std::string& text, bo
   out += errors_line("twilight", v.twilight);
   out += fmt::format(
       "night     {:>7} samples (sun zenith 96-180 deg): nishita dark in {}, the network not dark "
-      "in {} of those\n",
-      v.night_count, v.night_reference_dark, v.night_nonzero);
+      "in {} of those ({} without the shadow test)\n",
+      v.night_count, v.night_reference_dark, v.night_nonzero, v.night_ungated_nonzero);
   out += "(day: sun zenith <= 85 deg; twilight: 85-96 deg; chromaticity: |dxy| in CIE 1931 xy)\n";
   write_stdout(out);
   return kExitOk;

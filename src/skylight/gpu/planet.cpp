@@ -168,19 +168,19 @@ PlanetMesh planet_mesh(const nn::PietrasNetwork& net, const NishitaSampler& atmo
       if (!ground) {
         const double ct = dot(view.sun, local.z);
         v.observer = {dot(dir, local.z), dot(dir, view.sun), ct, net.density(h)};
-        v.observer_weight = ct > net.night_cos_sun_zenith(h) ? 1.0 : 0.0;
+        v.observer_weight = net.lit(h, v.observer.cos_view_zenith, v.observer.cos_view_sun, ct);
         continue;
       }
       const PietrasSurfaceTerms t =
           pietras_surface_terms(atmosphere, h, local(dir), remaining, view.albedo, local(view.sun));
       v.observer = {t.observer_cos_view_zenith, t.cos_view_sun, t.observer_cos_sun_zenith,
                     net.density(t.observer_altitude_m)};
-      v.observer_weight =
-          t.observer_cos_sun_zenith > net.night_cos_sun_zenith(t.observer_altitude_m) ? 1.0 : 0.0;
+      v.observer_weight = net.lit(t.observer_altitude_m, t.observer_cos_view_zenith, t.cos_view_sun,
+                                  t.observer_cos_sun_zenith);
       v.probe = {t.probe_cos_view_zenith, t.cos_view_sun, t.probe_cos_sun_zenith,
                  net.density(t.probe_altitude_m)};
-      v.probe_weight =
-          t.probe_cos_sun_zenith > net.night_cos_sun_zenith(t.probe_altitude_m) ? 1.0 : 0.0;
+      v.probe_weight = net.lit(t.probe_altitude_m, t.probe_cos_view_zenith, t.cos_view_sun,
+                               t.probe_cos_sun_zenith);
       v.transmittance = t.transmittance;
       v.reflected = t.reflected;
     }
@@ -212,7 +212,8 @@ std::string planet_vertex_shader(const nn::PietrasNetwork& net, bool flat) {
   s += "\nlayout(location = 0) in vec4 skylight_clip;\n"
        "layout(location = 1) in vec4 skylight_observer;  // network input at the observer / E\n"
        "layout(location = 2) in vec4 skylight_probe;     // network input at the surface point\n"
-       "layout(location = 3) in vec2 skylight_weights;   // 1, or 0 past the night bound\n"
+       "layout(location = 3) in vec2 skylight_weights;   // 1, or 0 where the view ray is in "
+       "shadow\n"
        "layout(location = 4) in vec3 skylight_transmittance;\n"
        "layout(location = 5) in vec3 skylight_reflected;\n";
   s += flat ? "flat out vec3 skylight_colour;\n" : "out vec3 skylight_colour;\n";

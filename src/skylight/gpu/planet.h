@@ -48,7 +48,8 @@ PlanetView ground_view(const NishitaParameters& planet, double altitude_m, doubl
                        double sun_azimuth, double look_elevation = 10.0 * kDegree);
 
 // One vertex's network inputs and §IV terms: colour = w_o rgb(observer) - T * w_p rgb(probe) +
-// reflected, with w = 0 past the night bound (PietrasNetwork::rgb_at) and rgb = rgb(input).
+// reflected, with w = 0 where the view ray is in shadow (PietrasNetwork::lit, as rgb_at) and
+// rgb = rgb(input).
 struct PlanetVertex {
   nn::PietrasInput observer, probe;
   double observer_weight = 0, probe_weight = 0;

@@ -256,8 +256,10 @@ nn::PietrasNetwork train_pietras(const PietrasTraining& t) {
       ++day;
     }
   }
-  // Targets per sub-network: the "all samples" one (M, l) and the day-only ones (R, G, B; r, b).
-  const std::size_t k_all = paper ? 3 : 0;
+  // Targets per sub-network: M on all samples (§III: M = 0 at night), the others (R, G, B; l, r,
+  // b) on the lit ones only. log3 leaves the dark samples to the shadow test (lit(), exact where
+  // nishita is 0), so its l spends no weights on the step at the shadow's edge.
+  const std::size_t k_all = paper ? 3 : layouts.size();
   std::vector<std::vector<double>> targets(layouts.size());
   for (std::size_t i = 0; i < n; ++i) {
     const Rgb& c = s.rgb[i];
@@ -266,11 +268,9 @@ nn::PietrasNetwork train_pietras(const PietrasTraining& t) {
       targets[3].push_back(
           v > 0.0 ? std::min(nn::kPietrasMScale * v / max_value + nn::kPietrasMOffset, 0.999)
                   : 0.0);
-    } else {
-      targets[0].push_back(v > 0.0 ? std::log(v / max_value + nn::kLog3Epsilon)
-                                   : std::log(nn::kLog3Epsilon) - 1.0);
     }
     if (!(v > 0.0)) continue;
+    if (!paper) targets[0].push_back(std::log(v / max_value + nn::kLog3Epsilon));
     if (paper) {
       targets[0].push_back(std::clamp(c.r / v, 0.0, 1.0));
       targets[1].push_back(std::clamp(c.g / v, 0.0, 1.0));
@@ -357,6 +357,8 @@ PietrasValidation validate_pietras(const nn::PietrasNetwork& net, std::size_t sa
     const Rgb c =
         net.rgb_at(night.altitude_m[i], x.cos_view_zenith, x.cos_view_sun, x.cos_sun_zenith);
     if (c.r != 0.0 || c.g != 0.0 || c.b != 0.0) ++v.night_nonzero;
+    const Rgb u = net.rgb(x);
+    if (u.r != 0.0 || u.g != 0.0 || u.b != 0.0) ++v.night_ungated_nonzero;
   }
   return v;
 }

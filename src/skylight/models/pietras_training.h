@@ -137,6 +137,9 @@ struct PietrasValidation {
   std::size_t night_count = 0;           // night samples (sun zenith 96-180 deg)
   std::size_t night_reference_dark = 0;  // night samples where nishita is 0
   std::size_t night_nonzero = 0;         // night samples where nishita is 0 and the network is not
+  // Of those where nishita is 0: the sub-networks' own decoded output (rgb(), without the shadow
+  // test of rgb_at) is not 0. What the shadow test contributes to night_nonzero = 0.
+  std::size_t night_ungated_nonzero = 0;
 };
 PietrasErrors pietras_errors(const nn::PietrasNetwork& net, const PietrasSamples& s);
 PietrasValidation validate_pietras(const nn::PietrasNetwork& net, std::size_t samples,

@@ -97,6 +97,33 @@ TEST(PietrasTraining, TrainingSamplesAreConsistentGeometry) {
   }
 }
 
+// PietrasNetwork::lit is exactly where nishita is not 0: nishita cuts its view rays at the shadow
+// boundaries, so a ray is dark there iff every piece is in shadow. Over every geometry the
+// training draws (altitudes to the top, views into the ground) and the night set.
+TEST(PietrasTraining, LitIsWhereNishitaIsNotDark) {
+  const NishitaSampler sampler(NishitaParameters{});
+  const nn::PietrasNetwork net = nn::initial_pietras_network(nn::PietrasKind::pietras, 1);
+  ASSERT_EQ(net.ground_radius_m, sampler.parameters().ground_radius_m);
+  ASSERT_EQ(net.top_altitude_m,
+            sampler.parameters().top_radius() - sampler.parameters().ground_radius_m);
+  for (PietrasSampling set : {PietrasSampling::training, PietrasSampling::night}) {
+    const PietrasSamples s = sample_nishita(sampler, set, 20000, 11);
+    std::size_t dark = 0, wrong = 0;
+    for (std::size_t i = 0; i < s.size(); ++i) {
+      const nn::PietrasInput& x = s.inputs[i];
+      const bool reference = s.rgb[i].r > 0 || s.rgb[i].g > 0 || s.rgb[i].b > 0;
+      dark += !reference;
+      wrong += net.lit(s.altitude_m[i], x.cos_view_zenith, x.cos_view_sun, x.cos_sun_zenith) !=
+               reference;
+    }
+    EXPECT_GT(dark, s.size() / 3);  // both sets are dark in large part
+    EXPECT_EQ(wrong, 0u);
+  }
+  // An observer above the top looking away from the planet sees no atmosphere.
+  EXPECT_FALSE(net.lit(100e3, 0.5, 0.9, 0.9));
+  EXPECT_TRUE(net.lit(100e3, -0.99, 0.1, 0.9));
+}
+
 TEST(PietrasTraining, SmallPaperNetworkBeatsStatedErrors) {
   // 20 000 samples and 60 LM iterations per sub-network (the full-size run: docs/PIETRAS.md).
   const nn::PietrasNetwork& net = small_pietras();

@@ -65,6 +65,39 @@ double PietrasNetwork::night_cos_sun_zenith(double altitude_m) const {
   return theta >= kPi ? -2.0 : std::cos(theta);
 }
 
+bool view_ray_lit(double ground_radius_m, double top_altitude_m, double altitude_m,
+                  double cos_view_zenith, double cos_view_sun, double cos_sun_zenith) {
+  const double r0 = ground_radius_m, rt = r0 + top_altitude_m;
+  const double r = r0 + std::max(altitude_m, 0.0);
+  // The ray x(t) = P + t view, |P| = r: |x|^2 = r^2 + 2 t r cos_view_zenith + t^2,
+  // x.sun = r cos_sun_zenith + t cos_view_sun. Its part in the atmosphere: t in [t0, t1].
+  const double b = r * cos_view_zenith;
+  const double top = b * b - (r * r - rt * rt);
+  if (top <= 0.0) return false;  // misses the atmosphere (or grazes it)
+  double t1 = -b + std::sqrt(top);
+  if (t1 <= 0.0) return false;  // above the top, looking away from it
+  const double t0 = std::max(0.0, -b - std::sqrt(top));
+  bool ground = false;
+  const double g = b * b - (r * r - r0 * r0);
+  if (g > 0.0 && -b - std::sqrt(g) >= 0.0) {
+    t1 = std::min(t1, -b - std::sqrt(g));
+    ground = true;
+  }
+  auto shadowed = [&](double t, bool on_ground) {
+    const double d = r * cos_sun_zenith + t * cos_view_sun;
+    if (!(d < 0.0)) return false;
+    if (on_ground) return true;  // |x| = R0 and x.sun < 0
+    return r * r + 2.0 * t * b + t * t - d * d < r0 * r0;
+  };
+  return !(shadowed(t0, false) && shadowed(t1, ground));
+}
+
+bool PietrasNetwork::lit(double altitude_m, double cos_view_zenith, double cos_view_sun,
+                         double cos_sun_zenith) const {
+  return view_ray_lit(ground_radius_m, top_altitude_m, altitude_m, cos_view_zenith, cos_view_sun,
+                      cos_sun_zenith);
+}
+
 std::vector<double> PietrasNetwork::outputs(const PietrasInput& in) const {
   const double v[4] = {in.cos_view_zenith, in.cos_view_sun, in.cos_sun_zenith, in.density};
   std::vector<double> out(subnets.size());
@@ -94,7 +127,7 @@ Rgb PietrasNetwork::rgb(const PietrasInput& in) const {
 
 Rgb PietrasNetwork::rgb_at(double altitude_m, double cos_view_zenith, double cos_view_sun,
                            double cos_sun_zenith) const {
-  if (cos_sun_zenith <= night_cos_sun_zenith(altitude_m)) return {};
+  if (!lit(altitude_m, cos_view_zenith, cos_view_sun, cos_sun_zenith)) return {};
   return rgb({cos_view_zenith, cos_view_sun, cos_sun_zenith, density(altitude_m)});
 }
 
@@ -249,6 +282,9 @@ PietrasBatch::PietrasBatch(const PietrasNetwork& net, double altitude_m, double 
     : kind_(net.kind),
       max_value_(net.max_value),
       night_(cos_sun_zenith <= net.night_cos_sun_zenith(altitude_m)),
+      ground_radius_m_(net.ground_radius_m),
+      top_altitude_m_(net.top_altitude_m),
+      altitude_m_(altitude_m),
       cos_sun_zenith_(static_cast<float>(cos_sun_zenith)),
       density_(static_cast<float>(net.density(altitude_m))) {
   for (const Mlp& m : net.subnets) subnets_.emplace_back(m);
@@ -272,7 +308,10 @@ void PietrasBatch::rgb(const float* cos_view_zenith, const float* cos_view_sun, 
   std::array<double, 4> o{};
   for (std::size_t i = 0; i < n; ++i) {
     for (std::size_t s = 0; s < k; ++s) o[s] = out[s * n + i];
-    const Rgb c = decode_pietras(kind_, max_value_, o.data());
+    const Rgb c = view_ray_lit(ground_radius_m_, top_altitude_m_, altitude_m_, cos_view_zenith[i],
+                               cos_view_sun[i], cos_sun_zenith_)
+                      ? decode_pietras(kind_, max_value_, o.data())
+                      : Rgb{};
     r[i] = static_cast<float>(c.r);
     g[i] = static_cast<float>(c.g);
     b[i] = static_cast<float>(c.b);

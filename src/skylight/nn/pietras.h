@@ -9,7 +9,7 @@
 //    layer, 324 weights. Outputs R = I_r/N, G = I_g/N, B = I_b/N with N = max(I_r, I_g, I_b) and
 //    M = 0.9 N / max N + 0.05 (night: M = 0). Decoded N = max N (M - 0.05) / 0.9, 0 when M < 0.05.
 //  * log3: three sub-networks 4-16-16-1 (pietras hidden, identity output), 1,107 weights:
-//    l = ln(Y / Y_max + eps) (night: ln eps - 1) and the chromaticities r = R/S, b = B/S, S =
+//    l = ln(Y / Y_max + eps) (lit samples only) and the chromaticities r = R/S, b = B/S, S =
 //    R+G+B. Decoded Y = Y_max max(0, e^l - eps), S = Y / (0.2126 r + 0.7152 (1 - r - b) + 0.0722
 //    b).
 // Output: linear sRGB on the photometric scale of the source model (Y in cd/m^2 for nishita).
@@ -38,8 +38,8 @@ std::vector<MlpLayout> pietras_layouts(PietrasKind k);
 // M's affine map of §III: M = kPietrasMScale N / max N + kPietrasMOffset.
 inline constexpr double kPietrasMScale = 0.9;
 inline constexpr double kPietrasMOffset = 0.05;
-// log3: l = ln(Y / Y_max + kLog3Epsilon); night is trained at ln(kLog3Epsilon) - 1, so that an
-// output error below 1 still decodes to exactly 0.
+// log3: l = ln(Y / Y_max + kLog3Epsilon), trained on lit samples only (night is the shadow test's,
+// PietrasNetwork::lit).
 inline constexpr double kLog3Epsilon = 1e-6;
 
 // One network input vector.
@@ -80,16 +80,28 @@ struct PietrasNetwork {
   // The sun zenith cosine below which single scattering seen from altitude h is exactly 0: every
   // point of the atmosphere visible from the observer is in the planet's shadow (docs/PIETRAS.md).
   double night_cos_sun_zenith(double altitude_m) const;
+  // False when every point of the view ray from altitude h that lies in the atmosphere (up to the
+  // top, or to the ground where the ray meets it) is in the planet's shadow, or when the ray
+  // misses the atmosphere: single scattering along it is then exactly 0 (nishita cuts its view
+  // rays at the shadow boundaries, so its value is 0 there too). The shadow, the points x with
+  // x.sun < 0 and |x - (x.sun) sun| < R0, is convex, so the test is of the segment's two ends.
+  // Exact for any view, where night_cos_sun_zenith is a bound for all views at once.
+  bool lit(double altitude_m, double cos_view_zenith, double cos_view_sun,
+           double cos_sun_zenith) const;
   // Raw sub-network outputs (double reference path).
   std::vector<double> outputs(const PietrasInput& in) const;
-  // Decoded linear sRGB (never negative luminance; 0 at night). The geometric night bound is
-  // applied by the callers that know the altitude (rgb_at).
+  // Decoded linear sRGB (never negative luminance; 0 at night). The geometric shadow test (lit())
+  // is applied by the callers that know the altitude (rgb_at).
   Rgb rgb(const PietrasInput& in) const;
-  // For an observer at altitude h, a view and a sun given by their cosines: 0 beyond the night
-  // bound, else rgb().
+  // For an observer at altitude h, a view and a sun given by their cosines: 0 where the view ray
+  // is not lit(), else rgb().
   Rgb rgb_at(double altitude_m, double cos_view_zenith, double cos_view_sun,
              double cos_sun_zenith) const;
 };
+
+// PietrasNetwork::lit for a planet of ground radius R0 and an atmosphere top_altitude_m thick.
+bool view_ray_lit(double ground_radius_m, double top_altitude_m, double altitude_m,
+                  double cos_view_zenith, double cos_view_sun, double cos_sun_zenith);
 
 // A network of kind k with the trainer's initial weights (train.h initial_network, Rng(seed)) and
 // max_value 1: the evaluation cost of a trained one (benchmarks, tests).
@@ -121,6 +133,7 @@ class PietrasBatch {
   PietrasKind kind_;
   double max_value_;
   bool night_;
+  double ground_radius_m_, top_altitude_m_, altitude_m_;
   float cos_sun_zenith_, density_;
   std::vector<MlpBatch> subnets_;
 };
