@@ -7,7 +7,7 @@
 // disc (sun detection, automatic mask, 100 samples, RANSAC, bootstrap), on the calling thread.
 // GpuNnFrame* (with SKYLIGHT_GPU): the `nn` model's fragment-shader frame, 1024x512 equirect, on
 // the headless GL context (Mesa llvmpipe without a GPU; docs/GPU.md), with glFinish, without and
-// with the float readback.
+// with the float readback. GpuPlanetFrame* / PlanetTerms: the Pietras planet (gpu/planet.h).
 // HazeRetarget1080p: re-target a 1920 x 1080 image + depth in place (Morales 2017 eq. 26, Gamma
 // tables, all threads); HazeRetargetExact: the exact per-pixel spectral integral (eq. 11) on 1920 x
 // 54, one thread (x 20 for a frame). HazeRetarget1080pPerPixel: the same with a per-pixel airlight
@@ -30,6 +30,7 @@
 #include "skylight/render/sky_render.h"
 #include "skylight/sh/polynomial.h"
 #ifdef SKYLIGHT_HAVE_GPU
+#include "skylight/gpu/planet.h"
 #include "skylight/gpu/sky_render.h"
 #endif
 
@@ -219,6 +220,40 @@ BENCHMARK_CAPTURE(GpuNnFrame, draw, false)->Unit(benchmark::kMillisecond)->UseRe
 BENCHMARK_CAPTURE(GpuNnFrame, draw_and_readback, true)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
+
+// The Pietras vertex shader's planet from orbit at the `nn planet` defaults (paper network,
+// trainer's initial weights: the same cost), the program compiled once: per frame the vertex
+// attributes' upload and the draw, with glFinish or the float readback. PlanetTerms: the vertex
+// terms on the CPU (all threads), which a moving camera needs per frame as well.
+struct PlanetScene {
+  nn::PietrasNetwork net = nn::initial_pietras_network(nn::PietrasKind::pietras, 1);
+  NishitaParameters earth;
+  NishitaSampler atmosphere{earth};
+  gpu::PlanetView view = gpu::orbit_view(earth, 2.0 * earth.ground_radius_m, 0.5);
+};
+void GpuPlanetFrame(benchmark::State& state, bool readback) {
+  gpu::Context context;
+  const PlanetScene scene;
+  const gpu::PlanetMesh mesh = gpu::planet_mesh(scene.net, scene.atmosphere, scene.view);
+  gpu::PlanetRenderer r(scene.net, scene.view.width, scene.view.height);
+  for (auto _ : state) {
+    r.draw(mesh);
+    if (readback)
+      benchmark::DoNotOptimize(r.read().data.data());
+    else
+      context.finish();
+  }
+}
+BENCHMARK_CAPTURE(GpuPlanetFrame, draw, false)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK_CAPTURE(GpuPlanetFrame, draw_and_readback, true)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+void PlanetTerms(benchmark::State& state) {
+  const PlanetScene scene;
+  for (auto _ : state)
+    benchmark::DoNotOptimize(gpu::planet_mesh(scene.net, scene.atmosphere, scene.view));
+}
+BENCHMARK(PlanetTerms)->Unit(benchmark::kMillisecond)->UseRealTime();
 #endif
 // A 1920 x 1080 frame with a depth ramp (100 m .. 20 km).
 struct HazeFrame {

@@ -236,11 +236,27 @@ std::string planet_fragment_shader(bool flat) {
   return s;
 }
 
-io::ImageF render_planet(const nn::PietrasNetwork& net, const PlanetMesh& mesh, int width,
-                         int height) {
+PlanetRenderer::PlanetRenderer(const nn::PietrasNetwork& net, int width, int height)
+    : program_(planet_vertex_shader(net, false), planet_fragment_shader(false)),
+      target_(width, height) {}
+
+void PlanetRenderer::draw(const PlanetMesh& mesh) {
   Attributes a;
   for (std::size_t i = 0; i < mesh.vertices.size(); ++i) a.add(mesh.clip[i], mesh.vertices[i]);
-  return draw(net, a, mesh.indices, width, height, false);
+  target_.clear();
+  const auto spans = a.spans();
+  target_.draw_mesh(program_, spans, mesh.indices);
+}
+
+io::ImageF PlanetRenderer::read() const {
+  return target_.read(4);
+}
+
+io::ImageF render_planet(const nn::PietrasNetwork& net, const PlanetMesh& mesh, int width,
+                         int height) {
+  PlanetRenderer r(net, width, height);
+  r.draw(mesh);
+  return r.read();
 }
 
 std::vector<float> shade_planet_vertices_gpu(const nn::PietrasNetwork& net,

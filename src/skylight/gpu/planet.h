@@ -20,6 +20,7 @@
 
 #include "skylight/core/colorimetry.h"
 #include "skylight/core/frame.h"
+#include "skylight/gpu/context.h"
 #include "skylight/io/image.h"
 #include "skylight/models/pietras_training.h"
 #include "skylight/nn/pietras.h"
@@ -75,6 +76,22 @@ Rgb shade_planet_vertex(const nn::PietrasNetwork& net, const PlanetVertex& v);
 // vertex's colour exactly), for the per-vertex comparison.
 std::string planet_vertex_shader(const nn::PietrasNetwork& net, bool flat);
 std::string planet_fragment_shader(bool flat);
+
+// Frames of one network at one size: the program compiled and the target made once, so a frame
+// costs the attribute upload and the draw (and the readback when read). Needs a current Context,
+// which it must not outlive.
+class PlanetRenderer {
+ public:
+  PlanetRenderer(const nn::PietrasNetwork& net, int width, int height);
+  // Uploads the mesh's vertex attributes and draws it (no readback; Context::finish to wait).
+  void draw(const PlanetMesh& mesh);
+  // The last frame, as render_planet returns it.
+  io::ImageF read() const;
+
+ private:
+  Program program_;
+  Target target_;
+};
 
 // The frame: linear sRGB in r, g, b, alpha 1 where a triangle was drawn, 0 elsewhere (space).
 // Needs a current Context.
