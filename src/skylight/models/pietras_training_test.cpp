@@ -27,25 +27,31 @@ constexpr double kSameInputs = 1e-12;
 // them by far less); an untrained network is off by ~100 %.
 constexpr std::size_t kCommittedSamples = 2000;
 constexpr std::uint64_t kCommittedSeed = 1000003;
+// Upper bounds on nn validate's day luminance median and p95, day chromaticity median and
+// twilight luminance median.
+struct CommittedBounds {
+  double day_median, day_p95, day_chromaticity, twilight_median;
+};
 // pietras.json, measured: day median 8.77 %, p95 30.6 %, chromaticity median 0.0012; twilight
 // median 40.8 %.
-constexpr double kPietrasDayMedian = 0.097;
-constexpr double kPietrasDayP95 = 0.34;
-constexpr double kPietrasDayChromaticity = 0.0014;
-constexpr double kPietrasTwilightMedian = 0.45;
-
+constexpr CommittedBounds kPietrasBounds{0.097, 0.34, 0.0014, 0.45};
 // log3.json, measured: day median 1.48 %, p95 4.91 %, chromaticity median 0.00066; twilight
 // median 3.34 %. Night: no dark sample lit (the shadow test; 0 also without it).
-constexpr double kLog3DayMedian = 0.0163;
-constexpr double kLog3DayP95 = 0.054;
-constexpr double kLog3DayChromaticity = 0.00073;
-constexpr double kLog3TwilightMedian = 0.037;
+constexpr CommittedBounds kLog3Bounds{0.0163, 0.054, 0.00073, 0.037};
 
-PietrasValidation validate_committed(const std::string& name, nn::PietrasKind kind) {
+// Validates data/nn/<name> and checks it against the bounds; night must be exactly dark.
+void expect_committed_within(const std::string& name, nn::PietrasKind kind,
+                             const CommittedBounds& b) {
   const std::string path = std::string(SKYLIGHT_TEST_DATA_DIR) + "/nn/" + name;
   const nn::PietrasNetwork net = nn::pietras_from_json(io::read_text_file(path), path);
   EXPECT_EQ(net.kind, kind);
-  return validate_pietras(net, kCommittedSamples, kCommittedSeed);
+  const PietrasValidation v = validate_pietras(net, kCommittedSamples, kCommittedSeed);
+  EXPECT_LT(v.day.luminance_median, b.day_median);
+  EXPECT_LT(v.day.luminance_p95, b.day_p95);
+  EXPECT_LT(v.day.chromaticity_median, b.day_chromaticity);
+  EXPECT_LT(v.twilight.luminance_median, b.twilight_median);
+  EXPECT_GT(v.night_reference_dark, 0u);
+  EXPECT_EQ(v.night_nonzero, 0u);  // night exactly dark
 }
 
 // The reduced training of the tests: 20 000 samples, at most 60 LM iterations per sub-network.
@@ -140,23 +146,11 @@ TEST(PietrasTraining, SmallPaperNetworkBeatsStatedErrors) {
 }
 
 TEST(PietrasTraining, CommittedPaperNetworkErrors) {
-  const PietrasValidation v = validate_committed("pietras.json", nn::PietrasKind::pietras);
-  EXPECT_LT(v.day.luminance_median, kPietrasDayMedian);
-  EXPECT_LT(v.day.luminance_p95, kPietrasDayP95);
-  EXPECT_LT(v.day.chromaticity_median, kPietrasDayChromaticity);
-  EXPECT_LT(v.twilight.luminance_median, kPietrasTwilightMedian);
-  EXPECT_GT(v.night_reference_dark, 0u);
-  EXPECT_EQ(v.night_nonzero, 0u);  // night exactly dark
+  expect_committed_within("pietras.json", nn::PietrasKind::pietras, kPietrasBounds);
 }
 
 TEST(PietrasTraining, CommittedLog3NetworkErrors) {
-  const PietrasValidation v = validate_committed("log3.json", nn::PietrasKind::log3);
-  EXPECT_LT(v.day.luminance_median, kLog3DayMedian);
-  EXPECT_LT(v.day.luminance_p95, kLog3DayP95);
-  EXPECT_LT(v.day.chromaticity_median, kLog3DayChromaticity);
-  EXPECT_LT(v.twilight.luminance_median, kLog3TwilightMedian);
-  EXPECT_GT(v.night_reference_dark, 0u);
-  EXPECT_EQ(v.night_nonzero, 0u);  // night exactly dark
+  expect_committed_within("log3.json", nn::PietrasKind::log3, kLog3Bounds);
 }
 
 TEST(PietrasTraining, NeuralSkyModelEvaluatesPietrasNetworks) {
