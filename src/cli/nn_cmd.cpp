@@ -49,6 +49,7 @@ struct TrainFlags {
   std::string network;  // pietras, log3 (nn_pietras.h); empty: the Satilmis sky network
   int samples = 0;      // 0: the default of the mode (kPietrasSamples, kImageSamples)
   std::map<std::string, std::optional<double>> planet;  // --network: nishita's planet
+  std::string init;  // --network: a weights file to continue from
 };
 
 struct ValidateFlags {
@@ -87,11 +88,12 @@ int run_train(const TrainFlags& f, const ImageTrainFlags& images) {
          f.trainer.empty() ? std::string(nn::to_string(kPietrasTrainer)) : f.trainer,
          f.samples > 0 ? f.samples : kPietrasSamples, f.seed,
          f.iterations > 0 ? f.iterations : kPietrasIterations,
-         f.time_limit_s.value_or(kPietrasTimeLimitS), f.output, f.planet},
+         f.time_limit_s.value_or(kPietrasTimeLimitS), f.output, f.planet, f.init},
         utc_now_iso8601(), std::string("skylight ") + SKYLIGHT_VERSION);
   }
   if (planet_given(f.planet))
     throw InvalidArgument("the planet flags (--ground-radius, ...) need --network pietras|log3");
+  if (!f.init.empty()) throw InvalidArgument("--init needs --network pietras|log3");
   const auto trainer = nn::parse_trainer(f.trainer.empty() ? kSkyTrainer : f.trainer);
   if (!trainer) {
     throw InvalidArgument(
@@ -295,6 +297,9 @@ void add_nn_command(CLI::App& app, Commands& commands) {
   train->add_option("--network", tf->network,
                     "pietras (Pietras's 4 x 4-8-4-1 per-vertex network) or log3 (3 x 4-16-16-1, "
                     "log luminance and chromaticity): learn --source nishita (docs/PIETRAS.md)");
+  train->add_option("--init", tf->init,
+                    "--network: continue training from this weights file (its network kind, "
+                    "planet and max value; iterations and seconds add up in the provenance)");
   add_integer(*train,
               {"samples", "1", ParameterKind::integer, 16, 100000000, 1,
                Absent{fmt::format("{} with --network, {} per image with --images", kPietrasSamples,

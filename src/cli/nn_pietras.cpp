@@ -4,6 +4,8 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <filesystem>
+#include <optional>
 
 #include "common.h"
 #include "nn_parts.h"
@@ -73,10 +75,26 @@ int run_pietras_train(const PietrasTrainArgs& a, const std::string& date,
         fmt::format("--trainer: '{}' is not lm, backprop, adam or lbfgs", excerpt(a.trainer)));
   PietrasTraining t;
   t.kind = *kind;
-  ParameterValues planet;
-  for (const auto& [name, value] : a.planet)
-    if (value) planet.set(name, *value);
-  NishitaParameters::schema().bind(planet, t.atmosphere, "nn train --source nishita");
+  std::optional<nn::PietrasNetwork> initial;
+  if (!a.init.empty()) {
+    std::error_code ec;
+    if (a.init == a.output || std::filesystem::equivalent(a.init, a.output, ec))
+      throw InvalidArgument(
+          fmt::format("-o '{}' is also the --init file; write to another file", excerpt(a.output)));
+    if (planet_given(a.planet))
+      throw InvalidArgument("--init: the planet is the file's; drop --ground-radius etc.");
+    initial = nn::pietras_from_json(io::read_text_file(a.init), a.init);
+    if (initial->kind != *kind)
+      throw InvalidArgument(fmt::format("--init {}: a {} network, not --network {}",
+                                        excerpt(a.init), nn::to_string(initial->kind), a.network));
+    t.atmosphere = nishita_parameters_of(*initial);
+    t.initial = &*initial;
+  } else {
+    ParameterValues planet;
+    for (const auto& [name, value] : a.planet)
+      if (value) planet.set(name, *value);
+    NishitaParameters::schema().bind(planet, t.atmosphere, "nn train --source nishita");
+  }
   if (!(t.atmosphere.top_radius() > t.atmosphere.ground_radius_m))
     throw InvalidArgument(fmt::format("--top-radius {} m is not above --ground-radius {} m",
                                       t.atmosphere.top_radius(), t.atmosphere.ground_radius_m));

@@ -21,6 +21,7 @@ struct PietrasTrainArgs {
   std::string output;
   // The nishita planet and atmosphere (add_planet_flags): given values over Earth's defaults.
   std::map<std::string, std::optional<double>> planet;
+  std::string init;  // --init: a weights file to continue from (its planet); empty: none
 };
 // The nishita schema's planet and atmosphere parameters (ground-radius, top-radius, scale
 // heights, mie-g, ozone, solar-irradiance) as flags of `nn train`, into `values` by name.

@@ -292,6 +292,33 @@ TEST_F(Cli, NnTrainPietrasOnAnotherPlanet) {
   r = run("nn train --source preetham --ground-radius 3389500 -o '" + w + "'");
   EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.err.find("need --network"), std::string::npos) << r.err;
+
+  // --init continues from the Mars file: its planet, iterations adding up.
+  const std::string more = (dir_ / "mars2.json").string();
+  r = run("nn train --source nishita --network log3 --samples 2000 --iterations 3 --init '" + w +
+          "' -o '" + more + "'");
+  ASSERT_EQ(r.status, 0) << r.err;
+  std::ifstream in2(more);
+  const auto j2 = nlohmann::json::parse(in2);
+  EXPECT_EQ(j2["ground_radius_m"].get<double>(), 3389500.0);
+  EXPECT_EQ(j2["max_value"].get<double>(), j["max_value"].get<double>());
+  EXPECT_EQ(j2["provenance"]["iterations"][0].get<int>(),
+            j["provenance"]["iterations"][0].get<int>() + 3);
+  r = run("nn train --source nishita --network pietras --samples 2000 --init '" + w + "' -o '" +
+          more + "'");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("a log3 network"), std::string::npos) << r.err;
+  r = run("nn train --source nishita --network log3 --samples 2000 --init '" + w + "' -o '" + w +
+          "'");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("also the --init file"), std::string::npos) << r.err;
+  r = run("nn train --source nishita --network log3 --samples 2000 --mie-g 0.7 --init '" + w +
+          "' -o '" + more + "'");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("the planet is the file's"), std::string::npos) << r.err;
+  r = run("nn train --source preetham --init '" + w + "' -o '" + more + "'");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("--init needs --network"), std::string::npos) << r.err;
 }
 
 // `nn planet`: the GL vertex shader's frame from orbit and from the ground (gpu/planet_test.cpp

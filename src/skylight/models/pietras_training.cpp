@@ -1,6 +1,7 @@
 #include "skylight/models/pietras_training.h"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <algorithm>
 #include <chrono>
@@ -242,9 +243,21 @@ nn::PietrasNetwork train_pietras(const PietrasTraining& t) {
   for (std::size_t i = 0; i < std::min(n, kMaxNSamples); ++i)
     max_value = std::max(max_value, value(s.rgb[i]));
   if (!(max_value > 0.0)) throw InvalidArgument("nn train: every sample of nishita is dark");
+  const auto layouts = nn::pietras_layouts(t.kind);
+  if (t.initial != nullptr) {
+    if (t.initial->kind != t.kind || t.initial->subnets.size() != layouts.size())
+      throw InvalidArgument(fmt::format("nn train: the initial network is {}, not {}",
+                                        nn::to_string(t.initial->kind), nn::to_string(t.kind)));
+    auto given = t.initial->provenance.source_parameters, here = recorded(p);
+    std::sort(given.begin(), given.end());
+    std::sort(here.begin(), here.end());
+    if (given != here)
+      throw InvalidArgument(
+          "nn train: the initial network was trained on another planet or atmosphere");
+    max_value = t.initial->max_value;
+  }
   net.max_value = max_value;
 
-  const auto layouts = nn::pietras_layouts(t.kind);
   std::vector<double> all_in(4 * n), day_in;
   std::size_t day = 0;
   for (std::size_t i = 0; i < n; ++i) {
@@ -289,6 +302,7 @@ nn::PietrasNetwork train_pietras(const PietrasTraining& t) {
     nn::TrainOptions o = t.options;
     o.seed = t.options.seed + k;
     o.init_output_from_targets = paper;
+    if (t.initial != nullptr) o.initial = &t.initial->subnets[k];
     if (t.progress) {
       o.progress = [&, k](const nn::TrainLogEntry& e) {
         return t.progress(static_cast<int>(k), e);
@@ -296,7 +310,10 @@ nn::PietrasNetwork train_pietras(const PietrasTraining& t) {
     }
     nn::TrainResult r = nn::train(layouts[k], ex, o);
     net.subnets.push_back(std::move(r.net));
-    net.provenance.iterations.push_back(r.iterations);
+    const int before = t.initial != nullptr && k < t.initial->provenance.iterations.size()
+                           ? t.initial->provenance.iterations[k]
+                           : 0;
+    net.provenance.iterations.push_back(before + r.iterations);
   }
   net.provenance.source = "nishita";
   net.provenance.colour =
@@ -312,6 +329,12 @@ nn::PietrasNetwork train_pietras(const PietrasTraining& t) {
   net.provenance.trainer = std::string(nn::to_string(t.options.trainer));
   net.provenance.training_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (t.initial != nullptr) {
+    net.provenance.training_seconds += t.initial->provenance.training_seconds;
+    net.provenance.trainer +=
+        fmt::format(", continued from a {} network of {} iterations", t.initial->provenance.trainer,
+                    fmt::join(t.initial->provenance.iterations, "/"));
+  }
   return net;
 }
 

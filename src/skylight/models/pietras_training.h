@@ -119,6 +119,11 @@ struct PietrasTraining {
   std::size_t samples = 800000;
   // Per sub-network; seed is also the sampling seed.
   nn::TrainOptions options = pietras_train_options();
+  // Warm start (nn train --init): every sub-network continues from this network's. It must be of
+  // `kind`; its max_value is kept (the targets stay those its weights learnt) and the
+  // atmosphere should be its own (nishita_parameters_of). The iterations and seconds recorded
+  // in the result's provenance are the totals, the initial network's included.
+  const nn::PietrasNetwork* initial = nullptr;
   // progress(sub-network index, entry) after every iteration; return false to stop.
   std::function<bool(int, const nn::TrainLogEntry&)> progress;
 };

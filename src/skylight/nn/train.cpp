@@ -583,7 +583,25 @@ TrainResult train(const MlpLayout& layout, const Examples& ex, const TrainOption
 
   Mlp net;
   const int last = std::max(1, opt.max_iterations);
-  if (opt.restarts > 1) {
+  if (opt.initial != nullptr) {
+    const MlpLayout& given = opt.initial->layout();
+    if (given.widths != layout.widths || given.activations != layout.activations)
+      throw InvalidArgument("train: the initial network " + given.describe() +
+                            " is not the layout trained, " + layout.describe());
+    // The standardisation unfolded (the inverse of the fold below): w~_ji = w_ji std_i,
+    // w~_j0 = w_j0 + sum_i w_ji mean_i.
+    net = *opt.initial;
+    auto p = net.parameters();
+    double* W = p.data() + layout.weight_offset(1);
+    double* b = p.data() + layout.bias_offset(1);
+    for (int j = 0; j < layout.widths[1]; ++j) {
+      for (int i = 0; i < n_in; ++i) {
+        double& w = W[static_cast<std::size_t>(j) * n_in + i];
+        b[j] += w * mean[i];
+        w *= stdev[i];
+      }
+    }
+  } else if (opt.restarts > 1) {
     double best = std::numeric_limits<double>::infinity();
     std::vector<TrainLogEntry> kept;
     for (int r = 0; r < opt.restarts; ++r) {

@@ -79,6 +79,10 @@ struct TrainOptions {
   int patience = -1;
   double min_improvement = 1e-3;
   bool standardise_inputs = true;
+  // Warm start: training continues from this network (raw inputs, as train() returns it; its
+  // layout must equal the layout trained) instead of random weights; restarts, init_gain and
+  // init_output_from_targets are then unused.
+  const Mlp* initial = nullptr;
   // Independent initialisations, each trained for restart_iterations; the best continues.
   int restarts = 1;
   int restart_iterations = 20;

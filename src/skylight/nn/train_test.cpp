@@ -96,6 +96,38 @@ TEST(Train, StandardisationIsFoldedIntoTheFirstLayer) {
   EXPECT_NEAR(r.mse, r.log.back().mse, 1e-9 * r.mse);
 }
 
+// Warm start: the initial network's standardisation is unfolded and folded back. With Adam at
+// learning rate 0 the parameters do not move, so the result is the initial network up to that
+// round trip's round-off (inputs offset and scaled as above: |mean| ~ 60, std ~ 6).
+constexpr double kWarmStartRoundTrip = 1e-12;  // relative to the largest parameter
+TEST(Train, WarmStartContinuesFromTheInitialNetwork) {
+  Toy t = toy(200, 3);
+  for (std::size_t i = 0; i < t.n; ++i) t.x[2 * i + 1] = 50.0 + 10.0 * t.x[2 * i + 1];
+  const TrainResult first = run(Trainer::levenberg_marquardt, 10, 1, t);
+  TrainOptions o;
+  o.trainer = Trainer::adam;
+  o.adam_learning_rate = o.adam_final_learning_rate = 0.0;
+  o.max_iterations = 2;
+  o.initial = &first.net;
+  const TrainResult same = train(kToyLayout, t.examples(), o);
+  double scale = 0.0;
+  for (double v : first.net.parameters()) scale = std::max(scale, std::abs(v));
+  for (std::size_t i = 0; i < first.net.parameters().size(); ++i)
+    EXPECT_NEAR(same.net.parameters()[i], first.net.parameters()[i], kWarmStartRoundTrip * scale);
+  // Continuing with LM lowers the error from where the first run stopped.
+  o.trainer = Trainer::levenberg_marquardt;
+  o.max_iterations = 20;
+  const TrainResult more = train(kToyLayout, t.examples(), o);
+  EXPECT_LT(more.mse, first.mse);
+  EXPECT_LE(more.log.front().mse, first.mse * (1.0 + 1e-9));
+  // Another layout is refused.
+  Rng rng(1);
+  const Mlp other =
+      initial_network(MlpLayout::make(2, {4}, 2, Activation::satilmis, Activation::satilmis), rng);
+  o.initial = &other;
+  EXPECT_THROW(train(kToyLayout, t.examples(), o), InvalidArgument);
+}
+
 TEST(Train, RestartsKeepTheBestAndLogEveryRestart) {
   TrainOptions o;
   o.restarts = 3;
