@@ -581,6 +581,14 @@ TrainResult train(const MlpLayout& layout, const Examples& ex, const TrainOption
     return net;
   };
 
+  // f(w_ji, w_j0, i) for every weight of layer 1 (the standardisation's fold and unfold).
+  auto first_layer = [&](Mlp& m, const auto& f) {
+    auto p = m.parameters();
+    double* W = p.data() + layout.weight_offset(1);
+    double* bias = p.data() + layout.bias_offset(1);
+    for (int j = 0; j < layout.widths[1]; ++j)
+      for (int i = 0; i < n_in; ++i) f(W[static_cast<std::size_t>(j) * n_in + i], bias[j], i);
+  };
   Mlp net;
   const int last = std::max(1, opt.max_iterations);
   if (opt.initial != nullptr) {
@@ -591,16 +599,10 @@ TrainResult train(const MlpLayout& layout, const Examples& ex, const TrainOption
     // The standardisation unfolded (the inverse of the fold below): w~_ji = w_ji std_i,
     // w~_j0 = w_j0 + sum_i w_ji mean_i.
     net = *opt.initial;
-    auto p = net.parameters();
-    double* W = p.data() + layout.weight_offset(1);
-    double* b = p.data() + layout.bias_offset(1);
-    for (int j = 0; j < layout.widths[1]; ++j) {
-      for (int i = 0; i < n_in; ++i) {
-        double& w = W[static_cast<std::size_t>(j) * n_in + i];
-        b[j] += w * mean[i];
-        w *= stdev[i];
-      }
-    }
+    first_layer(net, [&](double& w, double& bias, int i) {
+      bias += w * mean[i];
+      w *= stdev[i];
+    });
   } else if (opt.restarts > 1) {
     double best = std::numeric_limits<double>::infinity();
     std::vector<TrainLogEntry> kept;
@@ -636,16 +638,10 @@ TrainResult train(const MlpLayout& layout, const Examples& ex, const TrainOption
 
   // Fold the standardisation into layer 1: w_ji <- w~_ji / std_i,
   // w_j0 <- w~_j0 - sum_i w~_ji mean_i / std_i.
-  auto p = net.parameters();
-  double* W = p.data() + layout.weight_offset(1);
-  double* b = p.data() + layout.bias_offset(1);
-  for (int j = 0; j < layout.widths[1]; ++j) {
-    for (int i = 0; i < n_in; ++i) {
-      double& w = W[static_cast<std::size_t>(j) * n_in + i];
-      w /= stdev[i];
-      b[j] -= w * mean[i];
-    }
-  }
+  first_layer(net, [&](double& w, double& bias, int i) {
+    w /= stdev[i];
+    bias -= w * mean[i];
+  });
   result.net = std::move(net);
   result.seconds = ctx.seconds();
   result.mse = mean_squared_error(result.net, ex);
