@@ -282,6 +282,7 @@ PietrasBatch::PietrasBatch(const PietrasNetwork& net, double altitude_m, double 
     : kind_(net.kind),
       max_value_(net.max_value),
       night_(cos_sun_zenith <= net.night_cos_sun_zenith(altitude_m)),
+      observer_lit_(altitude_m >= 0.0 && altitude_m <= net.top_altitude_m && cos_sun_zenith > 0.0),
       ground_radius_m_(net.ground_radius_m),
       top_altitude_m_(net.top_altitude_m),
       altitude_m_(altitude_m),
@@ -308,10 +309,11 @@ void PietrasBatch::rgb(const float* cos_view_zenith, const float* cos_view_sun, 
   std::array<double, 4> o{};
   for (std::size_t i = 0; i < n; ++i) {
     for (std::size_t s = 0; s < k; ++s) o[s] = out[s * n + i];
-    const Rgb c = view_ray_lit(ground_radius_m_, top_altitude_m_, altitude_m_, cos_view_zenith[i],
-                               cos_view_sun[i], cos_sun_zenith_)
-                      ? decode_pietras(kind_, max_value_, o.data())
-                      : Rgb{};
+    const Rgb c =
+        observer_lit_ || view_ray_lit(ground_radius_m_, top_altitude_m_, altitude_m_,
+                                      cos_view_zenith[i], cos_view_sun[i], cos_sun_zenith_)
+            ? decode_pietras(kind_, max_value_, o.data())
+            : Rgb{};
     r[i] = static_cast<float>(c.r);
     g[i] = static_cast<float>(c.g);
     b[i] = static_cast<float>(c.b);

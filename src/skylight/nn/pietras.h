@@ -133,6 +133,7 @@ class PietrasBatch {
   PietrasKind kind_;
   double max_value_;
   bool night_;
+  bool observer_lit_;  // the observer is in the atmosphere and sunlit: every view ray is lit
   double ground_radius_m_, top_altitude_m_, altitude_m_;
   float cos_sun_zenith_, density_;
   std::vector<MlpBatch> subnets_;
