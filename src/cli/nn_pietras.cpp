@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <optional>
+#include <string_view>
 
 #include "common.h"
 #include "nn_parts.h"
@@ -131,6 +132,15 @@ int run_pietras_train(const PietrasTrainArgs& a, const std::string& date,
   return kExitOk;
 }
 
+// Why the paper network's luminance error is what it is (docs/PIETRAS.md, "What limits the
+// accuracy"): printed with its errors, so the number is not read without its cause.
+constexpr std::string_view kPaperNetworkNote =
+    "the paper network's luminance error is its M output's: N = max N (M - 0.05) / 0.9, so a "
+    "given error of M is a relative error of N inversely proportional to N / max N (median 0.04 on "
+    "the day side, max N being the sun's aureole); this trainer's M stops at an MSE of about 7e-5 "
+    "(an independent experiment reported a 2 % day median, not reproduced here); the log3 network "
+    "learns log-luminance instead (docs/PIETRAS.md)";
+
 int run_pietras_validate(const std::string& weights, const std::string& text, bool json,
                          int samples) {
   const nn::PietrasNetwork net = nn::pietras_from_json(text, weights);
@@ -150,6 +160,7 @@ int run_pietras_validate(const std::string& weights, const std::string& text, bo
     j["night_reference_dark"] = v.night_reference_dark;
     j["night_network_not_dark"] = v.night_nonzero;
     j["night_network_not_dark_without_shadow_test"] = v.night_ungated_nonzero;
+    if (net.kind == nn::PietrasKind::pietras) j["note"] = kPaperNetworkNote;
     write_stdout(j.dump(2) + "\n");
     return kExitOk;
   }
@@ -163,6 +174,7 @@ int run_pietras_validate(const std::string& weights, const std::string& text, bo
       "in {} of those ({} without the shadow test)\n",
       v.night_count, v.night_reference_dark, v.night_nonzero, v.night_ungated_nonzero);
   out += "(day: sun zenith <= 85 deg; twilight: 85-96 deg; chromaticity: |dxy| in CIE 1931 xy)\n";
+  if (net.kind == nn::PietrasKind::pietras) out += fmt::format("note: {}\n", kPaperNetworkNote);
   write_stdout(out);
   return kExitOk;
 }

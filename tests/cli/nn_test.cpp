@@ -237,6 +237,13 @@ TEST_F(Cli, NnTrainValidateEvalPietras) {
   EXPECT_EQ(j["weights_count"].get<int>(), 324);
   EXPECT_EQ(j["day"]["samples"].get<int>(), 300);
   EXPECT_EQ(j["night_network_not_dark"].get<int>() <= j["night_reference_dark"].get<int>(), true);
+  // The paper network's errors come with their cause (M's floor), in JSON and in text.
+  EXPECT_NE(j["note"].get<std::string>().find("M output"), std::string::npos) << r.out;
+  r = run("nn validate --weights '" + w + "' --samples 300");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("\nnote: the paper network's luminance error is its M output's"),
+            std::string::npos)
+      << r.out;
 
   // eval --model nn on a Pietras file is the network's forward pass (the library's rgb_at).
   r = run("eval --model nn --weights '" + w +
@@ -304,6 +311,11 @@ TEST_F(Cli, NnTrainPietrasOnAnotherPlanet) {
   EXPECT_EQ(j2["max_value"].get<double>(), j["max_value"].get<double>());
   EXPECT_EQ(j2["provenance"]["iterations"][0].get<int>(),
             j["provenance"]["iterations"][0].get<int>() + 3);
+  const auto& its = j["provenance"]["iterations"];
+  EXPECT_EQ(j2["provenance"]["trainer"].get<std::string>(),
+            fmt::format("{} (to {}/{}/{} iterations), then lbfgs",
+                        j["provenance"]["trainer"].get<std::string>(), its[0].get<int>(),
+                        its[1].get<int>(), its[2].get<int>()));
   r = run("nn train --source nishita --network pietras --samples 2000 --init '" + w + "' -o '" +
           more + "'");
   EXPECT_EQ(r.status, 2);

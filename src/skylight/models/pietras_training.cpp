@@ -331,9 +331,11 @@ nn::PietrasNetwork train_pietras(const PietrasTraining& t) {
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (t.initial != nullptr) {
     net.provenance.training_seconds += t.initial->provenance.training_seconds;
-    net.provenance.trainer +=
-        fmt::format(", continued from a {} network of {} iterations", t.initial->provenance.trainer,
-                    fmt::join(t.initial->provenance.iterations, "/"));
+    // Oldest first, so repeated continuations read as one chain: "lbfgs (to 100/90/80
+    // iterations), then lbfgs (to 150/130/120 iterations), then lbfgs".
+    net.provenance.trainer =
+        fmt::format("{} (to {} iterations), then {}", t.initial->provenance.trainer,
+                    fmt::join(t.initial->provenance.iterations, "/"), net.provenance.trainer);
   }
   return net;
 }
