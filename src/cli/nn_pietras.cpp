@@ -6,7 +6,6 @@
 #include <algorithm>
 #include <filesystem>
 #include <optional>
-#include <string_view>
 
 #include "common.h"
 #include "nn_parts.h"
@@ -30,6 +29,7 @@ nlohmann::ordered_json errors_json(const PietrasErrors& e) {
   j["luminance_relative_max"] = e.luminance_max;
   j["chromaticity_xy_median"] = e.chromaticity_median;
   j["chromaticity_xy_p95"] = e.chromaticity_p95;
+  j["reference_scaled_median"] = e.scaled_median;
   return j;
 }
 
@@ -133,13 +133,21 @@ int run_pietras_train(const PietrasTrainArgs& a, const std::string& date,
 }
 
 // Why the paper network's luminance error is what it is (docs/PIETRAS.md, "What limits the
-// accuracy"): printed with its errors, so the number is not read without its cause.
-constexpr std::string_view kPaperNetworkNote =
-    "the paper network's luminance error is its M output's: N = max N (M - 0.05) / 0.9, so a "
-    "given error of M is a relative error of N inversely proportional to N / max N (median 0.04 on "
-    "the day side, max N being the sun's aureole); this trainer's M stops at an MSE of about 7e-5 "
-    "(an independent experiment reported a 2 % day median, not reproduced here); the log3 network "
-    "learns log-luminance instead (docs/PIETRAS.md)";
+// accuracy"), with the day set's own N / max N: printed with its errors, so the number is not read
+// without its cause.
+std::string paper_network_note(const PietrasErrors& day) {
+  const std::string per_milli =
+      day.scaled_median > 0.0
+          ? fmt::format("{:.1f} %", 100.0 * 0.001 / (nn::kPietrasMScale * day.scaled_median))
+          : std::string("unbounded");
+  return fmt::format(
+      "the paper network's luminance error is its M output's: N = max N (M - 0.05) / 0.9, so an "
+      "error dM is a relative error dM / (0.9 N / max N) of N; N / max N has median {:.3f} on the "
+      "day set (max N: the brightest of the training samples), so dM = 0.001 is {} there. "
+      "On Earth no trainer tried brought M's MSE below 6e-5 (an independent experiment's 2 % day "
+      "median is not reproduced); the log3 network learns log-luminance instead (docs/PIETRAS.md)",
+      day.scaled_median, per_milli);
+}
 
 int run_pietras_validate(const std::string& weights, const std::string& text, bool json,
                          int samples) {
@@ -160,7 +168,7 @@ int run_pietras_validate(const std::string& weights, const std::string& text, bo
     j["night_reference_dark"] = v.night_reference_dark;
     j["night_network_not_dark"] = v.night_nonzero;
     j["night_network_not_dark_without_shadow_test"] = v.night_ungated_nonzero;
-    if (net.kind == nn::PietrasKind::pietras) j["note"] = kPaperNetworkNote;
+    if (net.kind == nn::PietrasKind::pietras) j["note"] = paper_network_note(v.day);
     write_stdout(j.dump(2) + "\n");
     return kExitOk;
   }
@@ -174,7 +182,7 @@ int run_pietras_validate(const std::string& weights, const std::string& text, bo
       "in {} of those ({} without the shadow test)\n",
       v.night_count, v.night_reference_dark, v.night_nonzero, v.night_ungated_nonzero);
   out += "(day: sun zenith <= 85 deg; twilight: 85-96 deg; chromaticity: |dxy| in CIE 1931 xy)\n";
-  if (net.kind == nn::PietrasKind::pietras) out += fmt::format("note: {}\n", kPaperNetworkNote);
+  if (net.kind == nn::PietrasKind::pietras) out += "note: " + paper_network_note(v.day) + "\n";
   write_stdout(out);
   return kExitOk;
 }

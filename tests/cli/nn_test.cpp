@@ -239,6 +239,12 @@ TEST_F(Cli, NnTrainValidateEvalPietras) {
   EXPECT_EQ(j["night_network_not_dark"].get<int>() <= j["night_reference_dark"].get<int>(), true);
   // The paper network's errors come with their cause (M's floor), in JSON and in text.
   EXPECT_NE(j["note"].get<std::string>().find("M output"), std::string::npos) << r.out;
+  const double scaled = j["day"]["reference_scaled_median"].get<double>();  // N / max N
+  EXPECT_GT(scaled, 0.0);
+  EXPECT_LT(scaled, 1.0);
+  EXPECT_NE(j["note"].get<std::string>().find(fmt::format("median {:.3f} on the day set", scaled)),
+            std::string::npos)
+      << r.out;
   r = run("nn validate --weights '" + w + "' --samples 300");
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_NE(r.out.find("\nnote: the paper network's luminance error is its M output's"),

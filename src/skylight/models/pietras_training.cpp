@@ -343,7 +343,7 @@ nn::PietrasNetwork train_pietras(const PietrasTraining& t) {
 PietrasErrors pietras_errors(const nn::PietrasNetwork& net, const PietrasSamples& s) {
   PietrasErrors e;
   e.count = s.size();
-  std::vector<double> lum, chroma;
+  std::vector<double> lum, chroma, scaled;
   for (std::size_t i = 0; i < s.size(); ++i) {
     const nn::PietrasInput& x = s.inputs[i];
     const Rgb c = net.rgb_at(s.altitude_m[i], x.cos_view_zenith, x.cos_view_sun, x.cos_sun_zenith);
@@ -353,6 +353,9 @@ PietrasErrors pietras_errors(const nn::PietrasNetwork& net, const PietrasSamples
       continue;
     }
     lum.push_back(std::abs(luminance(c) - y) / y);
+    const Rgb& r = s.rgb[i];
+    scaled.push_back((net.kind == nn::PietrasKind::pietras ? std::max({r.r, r.g, r.b}) : y) /
+                     net.max_value);
     const Chromaticity a = chromaticity(linear_srgb_to_xyz(c));
     const Chromaticity b = chromaticity(linear_srgb_to_xyz(s.rgb[i]));
     chroma.push_back(std::hypot(a.x - b.x, a.y - b.y));
@@ -363,6 +366,7 @@ PietrasErrors pietras_errors(const nn::PietrasNetwork& net, const PietrasSamples
   e.luminance_p95 = nn::percentile(lum, 0.95);
   e.chromaticity_median = nn::percentile(chroma, 0.5);
   e.chromaticity_p95 = nn::percentile(chroma, 0.95);
+  e.scaled_median = nn::percentile(scaled, 0.5);
   return e;
 }
 

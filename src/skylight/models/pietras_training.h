@@ -136,6 +136,10 @@ struct PietrasErrors {
   std::size_t count = 0, excluded = 0;  // excluded: nishita's Y = 0
   double luminance_median = 0, luminance_p95 = 0, luminance_max = 0;
   double chromaticity_median = 0, chromaticity_p95 = 0;
+  // Median of nishita's value in the network's own scale over the same samples: N / max N
+  // (N = max(r, g, b)) for pietras, Y / Y_max for log3. For pietras an error dM of M is a relative
+  // error dM / (0.9 N / max N) of N (§III), so this is what turns M's error into N's.
+  double scaled_median = 0;
 };
 struct PietrasValidation {
   PietrasErrors day, twilight;

@@ -153,6 +153,27 @@ TEST(PietrasTraining, CommittedLog3NetworkErrors) {
   expect_committed_within("log3.json", nn::PietrasKind::log3, kLog3Bounds);
 }
 
+// reference_scaled_median: nishita's value in the network's own scale, N / max N (pietras) or
+// Y / Y_max (log3), median over the samples with Y > 0 (nearest rank of three values here).
+TEST(PietrasTraining, ScaledMedianIsTheReferenceInTheNetworksScale) {
+  PietrasSamples s;
+  for (const Rgb& c : {Rgb{1, 2, 3}, Rgb{4, 1, 1}, Rgb{0.5, 0.5, 2}, Rgb{0, 0, 0}}) {
+    s.inputs.push_back({0.5, 0.5, 0.5, 1.0});
+    s.altitude_m.push_back(0.0);
+    s.rgb.push_back(c);
+  }
+  nn::PietrasNetwork net = nn::initial_pietras_network(nn::PietrasKind::pietras, 3);
+  net.max_value = 8.0;
+  PietrasErrors e = pietras_errors(net, s);
+  EXPECT_EQ(e.excluded, 1u);
+  EXPECT_DOUBLE_EQ(e.scaled_median, 3.0 / 8.0);  // N = 3, 4, 2
+  net = nn::initial_pietras_network(nn::PietrasKind::log3, 3);
+  net.max_value = 8.0;
+  e = pietras_errors(net, s);
+  // sRGB luminance Y = 0.2126 r + 0.7152 g + 0.0722 b: 1.8596, 1.6378, 0.6083; the middle one.
+  EXPECT_DOUBLE_EQ(e.scaled_median, (0.2126 * 4.0 + 0.7152 + 0.0722) / 8.0);
+}
+
 TEST(PietrasTraining, NeuralSkyModelEvaluatesPietrasNetworks) {
   const nn::PietrasNetwork& net = small_pietras();
   NeuralSkyParameters p;
