@@ -233,6 +233,13 @@ int run_validate(const ValidateFlags& f) {
 }
 
 int run_export(const ExportFlags& f) {
+  if (!f.weights.empty()) {
+    if (const std::string text = io::read_text_file(f.weights); nn::is_pietras_json(text)) {
+      io::write_text_file(f.glsl,
+                          nn::glsl_pietras_network_file(nn::pietras_from_json(text, f.weights)));
+      return kExitOk;
+    }
+  }
   const nn::SkyNetwork sky =
       f.weights.empty() ? embedded_sky_network() : load_sky_network_file(f.weights);
   io::write_text_file(f.glsl, nn::glsl_sky_network_file(sky));
@@ -333,7 +340,9 @@ void add_nn_command(CLI::App& app, Commands& commands) {
       "export", "write a network as a GLSL function with its weights baked in (docs/GPU.md)");
   exp->add_option("--weights", ef->weights, "weights file (JSON); default: the embedded network");
   exp->add_option("--glsl", ef->glsl,
-                  "GLSL file to write: vec3 skylight_sky(vec3 view, vec3 sun, float turbidity)")
+                  "GLSL file to write: vec3 skylight_sky(vec3 view, vec3 sun, float turbidity); "
+                  "for a Pietras file vec3 skylight_pietras_at(float altitude, vec3 view, vec3 "
+                  "sun)")
       ->required();
   commands.push_back({exp, [ef] { return run_export(*ef); }});
   add_nn_animate_command(*nn_cmd, commands);

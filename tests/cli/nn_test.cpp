@@ -106,6 +106,24 @@ TEST_F(Cli, NnExportGlslIsValidAndAtomic) {
   const auto v =
       testing_support::run_glslang("-S frag '" + embedded.string() + "'", dir_ / "glslang.log");
   EXPECT_EQ(v.status, 0) << v.output;
+  // A Pietras file (both kinds): the network, its shadow test and rgb_at (nn/glsl.h), valid as a
+  // fragment and as a vertex shader.
+  for (const char* name : {"pietras.json", "log3.json"}) {
+    const fs::path glsl = dir_ / (std::string(name) + ".glsl");
+    r = run("nn export --weights '" + std::string(SKYLIGHT_TEST_DATA_DIR) + "/nn/" + name +
+            "' --glsl '" + glsl.string() + "'");
+    ASSERT_EQ(r.status, 0) << r.err;
+    const std::string p = testing_support::slurp(glsl);
+    EXPECT_EQ(p.rfind("#version 330 core\n", 0), 0u);
+    EXPECT_NE(p.find("vec3 skylight_pietras_at(float altitude, vec3 view, vec3 sun)"),
+              std::string::npos);
+    EXPECT_NE(p.find("bool skylight_pietras_lit("), std::string::npos);
+    for (const char* stage : {"frag", "vert"}) {
+      const auto g = testing_support::run_glslang(
+          std::string("-S ") + stage + " '" + glsl.string() + "'", dir_ / "glslang.log");
+      EXPECT_EQ(g.status, 0) << name << ' ' << stage << ": " << g.output;
+    }
+  }
   // A bad weights file: exit 2, nothing written.
   const fs::path bad = dir_ / "bad.json", out = dir_ / "bad.glsl";
   std::ofstream(bad) << "{\"format\": \"skylight-nn-sky\", \"version\": 9}\n";

@@ -3,7 +3,8 @@
 # directory, as a new user would, and checks what the docs say about the results.
 #
 # * Each command (continuation lines joined) runs with `bash -c` in the scratch directory, where
-#   build/skylight and build/skylight_bench are the built programs (and build/ is on PATH);
+#   build/skylight and build/skylight_bench are the built programs (and build/ is on PATH) and
+#   data/ is the repository's;
 #   every `/tmp/` in a command is replaced by the scratch directory's tmp/, so runs never collide.
 # * A command must exit 0, or with N where it ends in the comment `# exit N`.
 # * A comment line right after a command that quotes output (`# "key": 1.23..., "other": "x", ...`)
@@ -27,6 +28,9 @@ scratch="$(mktemp -d "${TMPDIR:-/tmp}/skylight_docs.XXXXXX")"
 trap 'rm -rf "$scratch"' EXIT
 mkdir -p "$scratch/build" "$scratch/tmp" "$scratch/parsed"
 ln -s "$cli" "$scratch/build/skylight"
+# The repository's data/ (committed weights files, tables), read-only for the commands, as in a
+# checkout.
+ln -s "$src/data" "$scratch/data"
 [ -n "$bench" ] && [ -x "$bench" ] && ln -s "$bench" "$scratch/build/skylight_bench"
 
 # Split each Markdown file into numbered records under parsed/:

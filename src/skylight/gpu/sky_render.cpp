@@ -176,14 +176,20 @@ SkyRenderer::SkyRenderer(const NeuralSkyModel& model, const render::RenderSettin
                          DirectionSource directions)
     : model_(model), settings_(s) {
   render::validate(s);
+  // A Pietras network (nn/pietras.h) is evaluated per pixel like the sky network, with its shadow
+  // test: NeuralSkyModel::rgb of the view, every view (those meeting the ground included).
+  const nn::PietrasNetwork* pietras = model.pietras();
   source_ = std::string(kGlslVersion);
   source_ += "// skylight: the `nn` sky model by pixel (docs/GPU.md).\n";
-  source_ += nn::glsl_sky_network(model.network());
+  source_ +=
+      pietras != nullptr ? nn::glsl_pietras_sky(*pietras) : nn::glsl_sky_network(model.network());
   source_ += '\n';
   source_ += glsl_pixel_direction(s);
   source_ +=
-      "\nuniform float skylight_sun_zenith, skylight_sun_azimuth, skylight_turbidity;\n"
-      "uniform int skylight_sun_up;\n";
+      pietras != nullptr
+          ? "\nuniform vec3 skylight_sun;  // unit vector, z up\nuniform float skylight_altitude;\n"
+          : "\nuniform float skylight_sun_zenith, skylight_sun_azimuth, skylight_turbidity;\n"
+            "uniform int skylight_sun_up;\n";
   if (directions == DirectionSource::texture)
     source_ += "uniform sampler2D skylight_directions;  // xyz, valid in w\n";
   source_ += "out vec4 colour;\nvoid main() {\n";
@@ -195,22 +201,33 @@ SkyRenderer::SkyRenderer(const NeuralSkyModel& model, const render::RenderSettin
         "  bool valid = d.w != 0.0;\n";
   else
     source_ += "  vec3 dir;\n  bool valid = skylight_pixel_direction(pixel, dir);\n";
+  source_ += pietras != nullptr
+                 ? "  vec3 rgb = valid ? skylight_pietras_at(skylight_altitude, dir, skylight_sun) "
+                   ": vec3(0.0);\n"
+                 : "  vec3 rgb = (valid && skylight_sun_up != 0)\n"
+                   "      ? skylight_sky_state(dir, skylight_sun_zenith, skylight_sun_azimuth, "
+                   "skylight_turbidity)\n"
+                   "      : vec3(0.0);\n";
   source_ +=
-      "  vec3 rgb = (valid && skylight_sun_up != 0)\n"
-      "      ? skylight_sky_state(dir, skylight_sun_zenith, skylight_sun_azimuth, "
-      "skylight_turbidity)\n"
-      "      : vec3(0.0);\n"
       "  colour = vec4(rgb, valid ? 1.0 : 0.0);\n"
       "}\n";
   program_ = std::make_unique<Program>(Program::fullscreen(source_));
   Program& p = *program_;
   set_layout_uniforms(p, s);
-  const nn::SkyState& st = model.state();
-  p.set_if_active("skylight_sun_zenith", static_cast<float>(st.sun_zenith));
-  p.set_if_active("skylight_sun_azimuth", static_cast<float>(st.sun_azimuth));
-  p.set_if_active("skylight_turbidity", static_cast<float>(st.turbidity));
-  // NeuralSkyModel returns 0 for a sun below the horizon (models/neural_sky.h).
-  p.set_if_active("skylight_sun_up", st.sun_zenith <= kPi / 2 ? 1 : 0);
+  if (pietras != nullptr) {
+    const Vec3 sun = model.sun().direction();
+    p.set_if_active("skylight_sun",
+                    std::array<float, 3>{static_cast<float>(sun.x), static_cast<float>(sun.y),
+                                         static_cast<float>(sun.z)});
+    p.set_if_active("skylight_altitude", static_cast<float>(model.observer_altitude_m()));
+  } else {
+    const nn::SkyState& st = model.state();
+    p.set_if_active("skylight_sun_zenith", static_cast<float>(st.sun_zenith));
+    p.set_if_active("skylight_sun_azimuth", static_cast<float>(st.sun_azimuth));
+    p.set_if_active("skylight_turbidity", static_cast<float>(st.turbidity));
+    // NeuralSkyModel returns 0 for a sun below the horizon (models/neural_sky.h).
+    p.set_if_active("skylight_sun_up", st.sun_zenith <= kPi / 2 ? 1 : 0);
+  }
   if (directions == DirectionSource::texture) {
     const render::PixelDirections d = render::pixel_directions(s);
     io::ImageF img(s.width, s.height, 4);

@@ -63,6 +63,7 @@ class NeuralSkyModel final : public SkyModel {
   const nn::SkyNetwork& network() const { return network_; }
   const nn::SkyState& state() const { return state_; }
   const nn::PietrasNetwork* pietras() const { return pietras_.get(); }
+  double observer_altitude_m() const { return params_.observer_altitude_m; }
 
  private:
   void init_sky();

@@ -152,6 +152,70 @@ std::string glsl_pietras_network(const PietrasNetwork& net) {
   return s;
 }
 
+std::string glsl_pietras_sky(const PietrasNetwork& net) {
+  std::string s = glsl_pietras_network(net);
+  const std::string r0 = literal(net.ground_radius_m), top = literal(net.top_altitude_m);
+  s += fmt::format(
+      "// PietrasNetwork::lit (nn/pietras.h, view_ray_lit) in altitudes: R0 = {0} m, the top {1} "
+      "m\n"
+      "// above it.\n"
+      "bool skylight_pietras_shadowed(float h, float b, float cs, float cb, float t, bool ground) "
+      "{{\n"
+      "  float d = ({0} + h) * cs + t * cb;  // x . sun\n"
+      "  if (!(d < 0.0)) return false;\n"
+      "  if (ground) return true;\n"
+      "  return h * (2.0 * {0} + h) + 2.0 * t * b + t * t - d * d < 0.0;  // |x|^2 - d^2 < R0^2\n"
+      "}}\n"
+      "bool skylight_pietras_lit(float altitude, float cos_view_zenith, float cos_view_sun,\n"
+      "                          float cos_sun_zenith) {{\n"
+      "  float h = max(altitude, 0.0);\n"
+      "  float b = ({0} + h) * cos_view_zenith;\n"
+      "  float top = b * b - (h - {1}) * (2.0 * {0} + h + {1});\n"
+      "  if (top <= 0.0) return false;\n"
+      "  float t1 = -b + sqrt(top);\n"
+      "  if (t1 <= 0.0) return false;\n"
+      "  float t0 = max(0.0, -b - sqrt(top));\n"
+      "  bool ground = false;\n"
+      "  float g = b * b - h * (2.0 * {0} + h);\n"
+      "  if (g > 0.0 && -b - sqrt(g) >= 0.0) {{\n"
+      "    t1 = min(t1, -b - sqrt(g));\n"
+      "    ground = true;\n"
+      "  }}\n"
+      "  return !(skylight_pietras_shadowed(h, b, cos_sun_zenith, cos_view_sun, t0, false) &&\n"
+      "           skylight_pietras_shadowed(h, b, cos_sun_zenith, cos_view_sun, t1, ground));\n"
+      "}}\n",
+      r0, top);
+  s += fmt::format(
+      "// PietrasNetwork::rgb_at: 0 where the view ray is not lit, else the network at\n"
+      "// rho0 = exp(-h / H0), h clamped to [0, top], H0 = {1} m.\n"
+      "vec3 skylight_pietras_at(float altitude, vec3 view, vec3 sun) {{\n"
+      "  float cv = view.z, cb = dot(view, sun), cs = sun.z;\n"
+      "  if (!skylight_pietras_lit(altitude, cv, cb, cs)) return vec3(0.0);\n"
+      "  float rho = exp(-clamp(altitude, 0.0, {0}) / {1});\n"
+      "  return skylight_pietras(vec4(cv, cb, cs, rho));\n"
+      "}}\n",
+      top, literal(net.scale_height_m));
+  return s;
+}
+
+std::string glsl_pietras_network_file(const PietrasNetwork& net) {
+  const PietrasProvenance& pv = net.provenance;
+  std::string s = "#version 330 core\n";
+  s += "// A Pietras network exported by skylight (`skylight nn export --glsl`, docs/GPU.md).\n";
+  s += fmt::format("// Network: {} ({} weights, {} sub-networks); max value {}.\n",
+                   to_string(net.kind), net.parameter_count(), net.subnets.size(),
+                   literal(net.max_value));
+  s += fmt::format("// Trained on: {} ({}), {} samples, trainer {}, {}, {}.\n",
+                   comment_text(pv.source), comment_text(pv.colour), pv.samples,
+                   comment_text(pv.trainer), comment_text(pv.date), comment_text(pv.software));
+  s += "// Entry points: vec3 skylight_pietras_at(float altitude, vec3 view, vec3 sun): linear\n"
+       "// sRGB in the source's units, altitude in m, view and sun unit vectors (z up); and\n"
+       "// vec3 skylight_pietras(vec4 x), x = (cos alpha0, cos beta0, cos theta0, rho0), without\n"
+       "// the shadow test (docs/PIETRAS.md).\n\n";
+  s += glsl_pietras_sky(net);
+  return s;
+}
+
 namespace {
 
 std::string input_expression(Input in) {

@@ -37,6 +37,18 @@ std::string glsl_mlp(const Mlp& net, std::string_view name);
 // = PietrasNetwork::rgb for x = (cos alpha0, cos beta0, cos theta0, rho0): the decoding of
 // decode_pietras in single precision. The night bound of rgb_at is the caller's (gpu/planet.h).
 std::string glsl_pietras_network(const PietrasNetwork& net);
+// glsl_pietras_network, then PietrasNetwork::lit and rgb_at in GLSL (no #version line), the
+// network's planet (R0, the atmosphere's top, H0) baked in:
+//   bool skylight_pietras_lit(float altitude, float cos_view_zenith, float cos_view_sun,
+//                             float cos_sun_zenith)
+//   vec3 skylight_pietras_at(float altitude, vec3 view, vec3 sun)
+// (altitude in m; view and sun unit vectors in the observer's frame, z up). The shadow test is
+// view_ray_lit's, written in altitudes (r^2 - R0^2 = h (2 R0 + h)) so that single precision
+// does not cancel: its decisions move by under a metre of the shadow's edge.
+std::string glsl_pietras_sky(const PietrasNetwork& net);
+// A complete GLSL compilation unit for `skylight nn export --glsl` of a Pietras file: a comment
+// naming the network, "#version 330 core" and glsl_pietras_sky.
+std::string glsl_pietras_network_file(const PietrasNetwork& net);
 
 // A sky network as GLSL (no #version line; glsl_sky_network_file adds it):
 //   vec3 skylight_sky_state(vec3 view, float sun_zenith, float sun_azimuth, float turbidity)
