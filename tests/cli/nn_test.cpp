@@ -208,6 +208,14 @@ TEST_F(Cli, NnTrainImagesKfoldAndAnimate) {
   r = run("nn animate --weights '" + w + "' --from 30,100 --to 70,200 -o '" + dir_.string() +
           "/nohash.exr'");
   EXPECT_EQ(r.status, 2) << r.err;
+  // A Pietras file is not a sky network: one line that says so, nothing written.
+  r = run("nn animate --weights '" + std::string(SKYLIGHT_TEST_DATA_DIR) +
+          "/nn/log3.json' --from 30,100 --to 70,200 --frames 2 -o '" + dir_.string() + "/p_#.exr'");
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_NE(r.err.find("a Pietras network (skylight-nn-pietras), not a sky network"),
+            std::string::npos)
+      << r.err;
+  EXPECT_FALSE(fs::exists(dir_ / "p_0.exr"));
 }
 
 TEST_F(Cli, NnTrainImagesListErrorsNameTheRow) {

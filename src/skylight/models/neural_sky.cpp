@@ -35,7 +35,13 @@ const ParameterSchema<NeuralSkyParameters>& NeuralSkyParameters::schema() {
 }
 
 nn::SkyNetwork load_sky_network_file(const std::filesystem::path& path) {
-  return nn::sky_network_from_json(io::read_text_file(path), path.string());
+  const std::string text = io::read_text_file(path);
+  if (nn::is_pietras_json(text))
+    throw InvalidArgument(fmt::format(
+        "{}: a Pietras network ({}), not a sky network ({}): here only sky networks are read "
+        "(eval, render and nn export take both)",
+        path.string(), nn::kPietrasFormat, nn::kSkyNetworkFormat));
+  return nn::sky_network_from_json(text, path.string());
 }
 
 const nn::SkyNetwork& embedded_sky_network() {

@@ -34,7 +34,8 @@ struct NeuralSkyParameters {
 };
 
 // Reads and checks a weights file: IoError when it cannot be read, InvalidArgument (naming the
-// file and the field) when its content is malformed or inconsistent (nn::sky_network_from_json).
+// file and the field) when its content is malformed or inconsistent (nn::sky_network_from_json),
+// or when it is a Pietras network (nn/pietras.h), which this loader does not read.
 nn::SkyNetwork load_sky_network_file(const std::filesystem::path& path);
 // The embedded network (parsed once).
 const nn::SkyNetwork& embedded_sky_network();
