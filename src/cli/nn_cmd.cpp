@@ -157,9 +157,10 @@ int run_train(const TrainFlags& f, const ImageTrainFlags& images) {
 }
 
 int run_validate(const ValidateFlags& f) {
-  if (const std::string text = io::read_text_file(f.weights); nn::is_pietras_json(text))
-    return run_pietras_validate(f.weights, text, f.json, f.samples);
-  const nn::SkyNetwork sky = load_sky_network_file(f.weights);
+  // Read once: a Pietras file or a sky network (load_sky_network_file's checks, on this text).
+  const std::string text = io::read_text_file(f.weights);
+  if (nn::is_pietras_json(text)) return run_pietras_validate(f.weights, text, f.json, f.samples);
+  const nn::SkyNetwork sky = nn::sky_network_from_json(text, f.weights);
   if (sky.provenance.source == "images")
     throw InvalidArgument(
         fmt::format("{}: trained on images, not on a sky model: nn validate "
@@ -233,16 +234,16 @@ int run_validate(const ValidateFlags& f) {
 }
 
 int run_export(const ExportFlags& f) {
-  if (!f.weights.empty()) {
-    if (const std::string text = io::read_text_file(f.weights); nn::is_pietras_json(text)) {
-      io::write_text_file(f.glsl,
-                          nn::glsl_pietras_network_file(nn::pietras_from_json(text, f.weights)));
-      return kExitOk;
-    }
+  if (f.weights.empty()) {
+    io::write_text_file(f.glsl, nn::glsl_sky_network_file(embedded_sky_network()));
+    return kExitOk;
   }
-  const nn::SkyNetwork sky =
-      f.weights.empty() ? embedded_sky_network() : load_sky_network_file(f.weights);
-  io::write_text_file(f.glsl, nn::glsl_sky_network_file(sky));
+  // Read once: a Pietras file or a sky network.
+  const std::string text = io::read_text_file(f.weights);
+  io::write_text_file(f.glsl,
+                      nn::is_pietras_json(text)
+                          ? nn::glsl_pietras_network_file(nn::pietras_from_json(text, f.weights))
+                          : nn::glsl_sky_network_file(nn::sky_network_from_json(text, f.weights)));
   return kExitOk;
 }
 
