@@ -133,36 +133,47 @@ void bench_sh(int repeats, const std::string& table_path) {
 void bench_gpu(int width, int height, int repeats) {
 #ifdef SKYLIGHT_HAVE_GPU
   gpu::Context context;
+  render::RenderSettings s;
+  s.width = width;
+  s.height = height;
+  const auto dirs = render::pixel_directions(s);
+  const std::size_t n = dirs.x.size();
+  std::vector<float> X(n), Y(n), Z(n);
+  // One network's fragment-shader frame against its CPU batch path.
+  const auto frame_vs_cpu = [&](const NeuralSkyModel& model, const std::string& what) {
+    gpu::SkyRenderer r(model, s);
+    r.draw();  // compile and first-use costs outside the timing
+    context.finish();
+    const double draw = median_seconds(repeats, [&] {
+      r.draw();
+      context.finish();
+    });
+    const double readback = median_seconds(repeats, [&] {
+      r.draw();
+      (void)r.read();
+    });
+    const double cpu = median_seconds(repeats, [&] {
+      tristimulus_parallel(model, {dirs.x, dirs.y, dirs.z}, {X, Y, Z});
+    });
+    write_stdout(fmt::format(
+        "gpu: {} {}x{} equirect on '{}': frame {:.2f} ms (draw + glFinish), {:.2f} ms with the "
+        "float readback; CPU batch path ({} threads) {:.2f} ms; GL frame / CPU {:.1f}x, with the "
+        "readback {:.1f}x\n",
+        what, width, height, context.renderer(), 1e3 * draw, 1e3 * readback, thread_count(),
+        1e3 * cpu, draw / cpu, readback / cpu));
+  };
   SkyParameters p;
   p.values = find_model("nn")->example;
   const auto model = find_model("nn")->make(p);
   const auto& nn = dynamic_cast<const NeuralSkyModel&>(*model);
-  render::RenderSettings s;
-  s.width = width;
-  s.height = height;
-  gpu::SkyRenderer r(nn, s);
-  r.draw();  // compile and first-use costs outside the timing
-  context.finish();
-  const double draw = median_seconds(repeats, [&] {
-    r.draw();
-    context.finish();
-  });
-  const double readback = median_seconds(repeats, [&] {
-    r.draw();
-    (void)r.read();
-  });
-  const auto dirs = render::pixel_directions(s);
-  const std::size_t n = dirs.x.size();
-  std::vector<float> X(n), Y(n), Z(n);
-  const double cpu = median_seconds(repeats, [&] {
-    tristimulus_parallel(nn, {dirs.x, dirs.y, dirs.z}, {X, Y, Z});
-  });
-  write_stdout(fmt::format(
-      "gpu: nn ({}) {}x{} equirect on '{}': frame {:.2f} ms (draw + glFinish), {:.2f} ms with the "
-      "float readback; CPU batch path ({} threads) {:.2f} ms; GL frame / CPU {:.1f}x, with the "
-      "readback {:.1f}x\n",
-      nn.network().net.layout().describe(), width, height, context.renderer(), 1e3 * draw,
-      1e3 * readback, thread_count(), 1e3 * cpu, draw / cpu, readback / cpu));
+  frame_vs_cpu(nn, fmt::format("nn ({})", nn.network().net.layout().describe()));
+  // A Pietras network per pixel (log3: the network and its exact shadow test of the view ray;
+  // untrained weights, the same cost as data/nn/log3.json) from 1 km with the sun at 60 degrees.
+  NeuralSkyParameters pp;
+  pp.sun = sun_from_degrees(60.0, 180.0);
+  pp.observer_altitude_m = 1000.0;
+  const NeuralSkyModel log3(pp, nn::initial_pietras_network(nn::PietrasKind::log3, 1));
+  frame_vs_cpu(log3, "Pietras log3 network (untrained weights, the same cost) per pixel from 1 km");
   // The Pietras vertex shader's planet from orbit (gpu/planet.h) at the `nn planet` default mesh:
   // the paper's network (untrained weights: the same cost): the vertex terms on the CPU, the
   // shader's compile with the first frame, then per frame the upload + draw (glFinish), and with

@@ -65,6 +65,10 @@ TEST_F(Cli, BenchTimesTheGlFrameOfTheNetwork) {
   EXPECT_NE(r.out.find("gpu: nn (6-12-3 satilmis/satilmis) 16x8 equirect on '"), std::string::npos)
       << r.out;
   EXPECT_NE(r.out.find("with the readback"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("gpu: Pietras log3 network (untrained weights, the same cost) per pixel "
+                       "from 1 km 16x8 equirect on '"),
+            std::string::npos)
+      << r.out;
   EXPECT_NE(r.out.find("gpu: Pietras planet from orbit, icosphere level 6 (81924 vertices, "
                        "163840 triangles) 16x8 on '"),
             std::string::npos)
