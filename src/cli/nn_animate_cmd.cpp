@@ -1,17 +1,20 @@
-// `skylight nn animate`: an environment-map sequence from a neural sky model (docs/NN.md): the sun
-// moved from --from to --to (angles interpolated, the azimuth the short way round) or from
-// --from-time to --to-time (times interpolated, the SPA at --lat/--lon), one image per frame
-// through the render projections, each written atomically; --strip puts every frame side by side
-// in one PNG with one exposure.
+// `skylight nn animate`: an environment-map sequence from a neural sky model (docs/NN.md) or a
+// Pietras network (docs/PIETRAS.md: twilight included, from --observer-altitude): the sun moved
+// from --from to --to (angles interpolated, the azimuth the short way round) or from --from-time
+// to --to-time (times interpolated, the SPA at --lat/--lon), one image per frame through the
+// render projections, each written atomically; --strip puts every frame side by side in one PNG
+// with one exposure.
 #include <fmt/format.h>
 
 #include <cmath>
+#include <optional>
 
 #include "common.h"
 #include "nn_parts.h"
 #include "skylight/core/error.h"
 #include "skylight/core/math.h"
 #include "skylight/core/numbers.h"
+#include "skylight/io/file.h"
 #include "skylight/io/image.h"
 #include "skylight/models/neural_sky.h"
 #include "skylight/render/sky_render.h"
@@ -24,7 +27,8 @@ namespace {
 
 struct AnimateFlags {
   std::string weights, output, strip;
-  double turbidity = 3.0;
+  // Sky networks only (the sqrt(T) input), Pietras networks only (the density input).
+  std::optional<double> turbidity, observer_altitude_m;
   std::vector<double> from, to;
   std::string from_time, to_time;
   std::optional<double> lat_deg, lon_deg;
@@ -87,7 +91,25 @@ int run_animate(const AnimateFlags& f) {
   s.height = f.height;
   s.fisheye = f.fisheye.layout(kFisheyeFovDeg);
   render::validate(s);
-  const nn::SkyNetwork network = load_sky_network_file(f.weights);
+  // A sky network or a Pietras network (read once; load_sky_network_file's checks on this text).
+  const std::string text = io::read_text_file(f.weights);
+  std::optional<nn::PietrasNetwork> pietras;
+  nn::SkyNetwork network;
+  if (nn::is_pietras_json(text)) {
+    pietras = nn::pietras_from_json(text, f.weights);
+    if (f.turbidity)
+      throw InvalidArgument(fmt::format(
+          "--turbidity: '{}' is a Pietras network, which has no turbidity input (its atmosphere "
+          "is the training planet's)",
+          excerpt(f.weights)));
+  } else {
+    network = nn::sky_network_from_json(text, f.weights);
+    if (f.observer_altitude_m)
+      throw InvalidArgument(
+          fmt::format("--observer-altitude: '{}' is a sky network, which has no altitude input "
+                      "(only Pietras networks take it)",
+                      excerpt(f.weights)));
+  }
   std::vector<SunPosition> suns;
   for (int k = 0; k < f.frames; ++k) suns.push_back(frame_sun(f, k, f.frames));
 
@@ -100,13 +122,16 @@ int run_animate(const AnimateFlags& f) {
     NeuralSkyParameters p;
     p.sun = suns[k];
     p.weights = f.weights;
-    p.turbidity = f.turbidity;
-    const NeuralSkyModel model(p, network);
+    if (f.turbidity) p.turbidity = *f.turbidity;
+    if (f.observer_altitude_m) p.observer_altitude_m = *f.observer_altitude_m;
+    const NeuralSkyModel model = pietras ? NeuralSkyModel(p, *pietras) : NeuralSkyModel(p, network);
     const render::SkyImage img = render::render_sky(model, s);
     for (float v : img.rgb.data)
       if (!std::isfinite(v))
         throw InvalidArgument(fmt::format("frame {}: the network gives a non-finite value", k));
-    if (p.sun.zenith > kPi / 2) ++dark;
+    // A sky network was trained for suns above the horizon; a Pietras network covers twilight
+    // and night (its shadow test).
+    if (!pietras && p.sun.zenith > kPi / 2) ++dark;
     auto md = model_metadata(model, "sky");
     md.emplace_back("skylight:projection", f.projection);
     md.emplace_back("skylight:frame", fmt::format("{} of {}", k, f.frames));
@@ -142,11 +167,18 @@ void add_nn_animate_command(CLI::App& nn, Commands& commands) {
   auto f = std::make_shared<AnimateFlags>();
   auto* cmd = nn.add_subcommand(
       "animate",
-      "an environment-map sequence of a neural sky with the sun moving between two "
-      "positions or times");
-  cmd->add_option("--weights", f->weights, "weights file (JSON)")->required();
+      "an environment-map sequence of a neural sky or a Pietras network with the sun moving "
+      "between two positions or times");
+  cmd->add_option("--weights", f->weights,
+                  "weights file (JSON): a sky network or a Pietras network")
+      ->required();
   ParameterSpec turbidity = *NeuralSkyParameters::schema().find("turbidity");
+  turbidity.default_value = Absent{"3; sky networks only"};
   add_number(*cmd, turbidity, f->turbidity);
+  ParameterSpec altitude = *NeuralSkyParameters::schema().find("observer-altitude");
+  altitude.default_value = Absent{"0; Pietras networks only"};
+  altitude.description = "observer above the ground, a Pietras network's density input";
+  add_number(*cmd, altitude, f->observer_altitude_m);
   add_numbers(*cmd,
               {"from", "deg", ParameterKind::numbers, -360.0, 360.0, 2, Absent{"--from-time"},
                "the first frame's sun: zenith,azimuth"},

@@ -11,6 +11,7 @@
 #include "skylight/io/image.h"
 #include "skylight/models/neural_sky.h"
 #include "skylight/models/sky_model.h"
+#include "skylight/render/sky_render.h"
 #include "skylight/sun/spa.h"
 #include "skylight/sun/time.h"
 #include "support/cli_run.h"
@@ -208,14 +209,58 @@ TEST_F(Cli, NnTrainImagesKfoldAndAnimate) {
   r = run("nn animate --weights '" + w + "' --from 30,100 --to 70,200 -o '" + dir_.string() +
           "/nohash.exr'");
   EXPECT_EQ(r.status, 2) << r.err;
-  // A Pietras file is not a sky network: one line that says so, nothing written.
-  r = run("nn animate --weights '" + std::string(SKYLIGHT_TEST_DATA_DIR) +
-          "/nn/log3.json' --from 30,100 --to 70,200 --frames 2 -o '" + dir_.string() + "/p_#.exr'");
+  // --observer-altitude is a Pietras network's input: refused for a sky network, nothing written.
+  r = run("nn animate --weights '" + w +
+          "' --observer-altitude 500 --from 30,100 --to 70,200 -o '" + dir_.string() + "/a_#.exr'");
   EXPECT_EQ(r.status, 2) << r.err;
-  EXPECT_NE(r.err.find("a Pietras network (skylight-nn-pietras), not a sky network"),
-            std::string::npos)
+  EXPECT_NE(r.err.find("' is a sky network, which has no altitude input"), std::string::npos)
       << r.err;
-  EXPECT_FALSE(fs::exists(dir_ / "p_0.exr"));
+  EXPECT_FALSE(fs::exists(dir_ / "a_0.exr"));
+}
+
+// A Pietras network animates through sunset into the night from an altitude: every frame is the
+// library's render of the network for that sun (float EXR: the same floats), the night frame dark
+// (the shadow test), and no warning about suns below the horizon (twilight is the network's).
+TEST_F(Cli, NnAnimatePietrasThroughTwilight) {
+  const std::string w = std::string(SKYLIGHT_TEST_DATA_DIR) + "/nn/log3.json";
+  testing_support::CliResult r =
+      run("nn animate --weights '" + w +
+          "' --observer-altitude 1000 --from 80,250 --to 110,270 --frames 3 --width 32 "
+          "--height 16 -o '" +
+          dir_.string() + "/p_#.exr'");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(r.err.find("below the horizon"), std::string::npos) << r.err;
+  EXPECT_NE(r.out.find("    1          95.000          260.000"), std::string::npos) << r.out;
+  render::RenderSettings s;
+  s.width = 32;
+  s.height = 16;
+  double peak[3] = {};
+  for (int k = 0; k < 3; ++k) {
+    const io::ImageF frame = io::read_image(dir_ / fmt::format("p_{}.exr", k));
+    NeuralSkyParameters p;
+    p.sun = sun_from_degrees(80.0 + 15.0 * k, 250.0 + 10.0 * k);
+    p.weights = w;
+    p.observer_altitude_m = 1000.0;
+    const render::SkyImage ref = render::render_sky(NeuralSkyModel(p), s);
+    ASSERT_EQ(frame.data.size(), ref.rgb.data.size()) << k;
+    for (std::size_t i = 0; i < ref.rgb.data.size(); ++i) {
+      ASSERT_EQ(frame.data[i], ref.rgb.data[i]) << "frame " << k << " value " << i;
+      peak[k] = std::max(peak[k], static_cast<double>(frame.data[i]));
+    }
+  }
+  // Day at 80 degrees, twilight at 95 (the upper sky still lit), night at 110 (the sun 20 degrees
+  // down: the shadow covers every view from 1 km).
+  EXPECT_GT(peak[0], peak[1]);
+  EXPECT_GT(peak[1], 0.0);
+  EXPECT_EQ(peak[2], 0.0);
+  // --turbidity is a sky network's input: refused for a Pietras network, nothing written.
+  r = run("nn animate --weights '" + w +
+          "' --turbidity 4 --from 30,100 --to 70,200 --frames 2 -o '" + dir_.string() +
+          "/t_#.exr'");
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_NE(r.err.find("' is a Pietras network, which has no turbidity input"), std::string::npos)
+      << r.err;
+  EXPECT_FALSE(fs::exists(dir_ / "t_0.exr"));
 }
 
 TEST_F(Cli, NnTrainImagesListErrorsNameTheRow) {
