@@ -38,8 +38,8 @@ nn::SkyNetwork load_sky_network_file(const std::filesystem::path& path) {
   const std::string text = io::read_text_file(path);
   if (nn::is_pietras_json(text))
     throw InvalidArgument(fmt::format(
-        "{}: a Pietras network ({}), not a sky network ({}): here only sky networks are read "
-        "(eval, render and nn export take both)",
+        "{}: a Pietras network ({}), not a sky network ({}): this loader reads sky networks "
+        "only (the model nn, eval, render and the nn commands take both)",
         path.string(), nn::kPietrasFormat, nn::kSkyNetworkFormat));
   return nn::sky_network_from_json(text, path.string());
 }

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <random>
@@ -89,6 +90,22 @@ TEST(NeuralSky, WeightsFilesAreCheckedWhenLoaded) {
   const Vec3 v = direction_from_angles(0.9, 1.0);
   EXPECT_EQ(nn_model(3.0, 30.0, 180.0, copy)->tristimulus(v).Y,
             nn_model(3.0, 30.0, 180.0)->tristimulus(v).Y);
+  const nn::SkyNetwork loaded = load_sky_network_file(copy);
+  const auto a = loaded.net.parameters(), b = embedded_sky_network().net.parameters();
+  EXPECT_TRUE(std::equal(a.begin(), a.end(), b.begin(), b.end()));
+  // load_sky_network_file reads sky networks only: a Pietras file is refused saying what it is
+  // (the model itself takes both).
+  const std::string pietras = std::string(SKYLIGHT_TEST_DATA_DIR) + "/nn/log3.json";
+  try {
+    (void)load_sky_network_file(pietras);
+    ADD_FAILURE() << "a Pietras file was read as a sky network";
+  } catch (const InvalidArgument& e) {
+    EXPECT_NE(std::string(e.what()).find(pietras + ": a Pietras network (skylight-nn-pietras), "
+                                                   "not a sky network (skylight-nn-sky)"),
+              std::string::npos)
+        << e.what();
+  }
+  EXPECT_GT(nn_model(3.0, 30.0, 180.0, pietras)->tristimulus(v).Y, 0.0);
 }
 
 }  // namespace
