@@ -1,8 +1,9 @@
 // `skylight bench`: the batch path of each model timed against an in-run baseline (the plain
 // scalar loop of the same model), medians of repeated runs, printed as ratios; the neural sky
 // (`nn`, the embedded 6-12-3 network) also against the Hosek-Wilkie batch path (docs/NN.md);
-// `--models gpu` times the same network's fragment-shader frame (gpu/, docs/GPU.md) against its
-// CPU batch path; `--models pietras` the Pietras networks against nishita's fast path
+// `--models gpu` times the same network's fragment-shader frame (gpu/, docs/GPU.md), and a log3
+// Pietras network's per-pixel frame, each against its CPU batch path, and the Pietras planet's
+// vertex-shader frame; `--models pietras` the Pietras networks against nishita's fast path
 // (docs/PIETRAS.md).
 #include <fmt/format.h>
 #include <time.h>
@@ -127,9 +128,10 @@ void bench_sh(int repeats, const std::string& table_path) {
                   1e6 * per_eval, 1e3 * project, thread_count(), project / per_eval));
 }
 
-// The embedded network (`nn` at the bench's defaults) as a fragment shader on the headless GL
-// context, one width x height equirect frame: draw (glFinish) and draw + float readback, against
-// the CPU batch path over the same directions on all threads.
+// The embedded network (`nn` at the bench's defaults) and a log3 Pietras network as fragment
+// shaders on the headless GL context, one width x height equirect frame each: draw (glFinish) and
+// draw + float readback, against the CPU batch path over the same directions on all threads; then
+// the Pietras planet by vertex shader.
 void bench_gpu(int width, int height, int repeats) {
 #ifdef SKYLIGHT_HAVE_GPU
   gpu::Context context;
