@@ -21,6 +21,7 @@
 #include "estimate_fixture.h"
 #include "skylight/core/parallel.h"
 #include "skylight/estimate/turbidity.h"
+#include "skylight/fit/sh_fit.h"
 #include "skylight/haze/airlight_field.h"
 #include "skylight/haze/image_haze.h"
 #include "skylight/models/neural_sky.h"
@@ -196,7 +197,7 @@ void ShProjectPreetham(benchmark::State& state) {
   p.sun = {deg_to_rad(45.0), 0.5};
   p.values.set("turbidity", 3.0);
   const auto m = make_sky_model("preetham", p);
-  for (auto _ : state) benchmark::DoNotOptimize(sh::project_model(*m, sh::Channels::xyz, 7));
+  for (auto _ : state) benchmark::DoNotOptimize(fit::project_model(*m, sh::Channels::xyz, 7));
 }
 
 BENCHMARK(ShEvaluateTable)->Unit(benchmark::kMicrosecond);

@@ -17,7 +17,9 @@
 #include "common.h"
 #include "skylight/core/error.h"
 #include "skylight/core/parallel.h"
+#include "skylight/core/statistics.h"
 #include "skylight/estimate/turbidity.h"
+#include "skylight/fit/sh_fit.h"
 #include "skylight/haze/airlight_field.h"
 #include "skylight/haze/image_haze.h"
 #include "skylight/models/neural_sky.h"
@@ -43,12 +45,6 @@ struct BenchFlags {
   bool haze = false;
   std::string sh_table;  // empty: the embedded default
 };
-
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  const std::size_t n = v.size();
-  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
 
 // This thread's CPU time [s].
 double thread_cpu_s() {
@@ -117,7 +113,7 @@ void bench_sh(int repeats, const std::string& table_path) {
   p.values.set("turbidity", 3.0);
   const auto preetham = make_sky_model("preetham", p);
   const double project = median_seconds(std::min(repeats, 3), [&] {
-    sink = sh::project_model(*preetham, sh::Channels::xyz, 7).coefficients.c[4][1];
+    sink = fit::project_model(*preetham, sh::Channels::xyz, 7).coefficients.c[4][1];
   });
   (void)sink;
   write_stdout(

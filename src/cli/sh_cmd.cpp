@@ -9,13 +9,15 @@
 #include "common.h"
 #include "skylight/core/error.h"
 #include "skylight/core/numbers.h"
+#include "skylight/core/statistics.h"
+#include "skylight/fit/sh_fit.h"
 #include "skylight/io/file.h"
 #include "skylight/io/image.h"
 #include "skylight/models/sh.h"
 #include "skylight/render/sky_render.h"
 #include "skylight/render/tonemap.h"
+#include "skylight/sh/approximation_error.h"
 #include "skylight/sh/basis.h"
-#include "skylight/sh/error.h"
 #include "skylight/sh/irradiance.h"
 #include "skylight/sh/rotation.h"
 
@@ -75,18 +77,19 @@ int run_fit(const FitFlags& f) {
       if (s.name == name) return &s;
     return nullptr;
   };
-  sh::PolynomialFitSettings s;
+  fit::ShFitSettings s;
   s.model = info->name;
   // The varying parameter: from the model's schema; turbidity where the model has it.
   if (f.parameter.empty()) {
-    s.parameter = spec_of("turbidity") ? "turbidity" : "";
+    s.polynomial.parameter = spec_of("turbidity") ? "turbidity" : "";
   } else {
-    s.parameter = f.parameter == "none" ? "" : f.parameter;
+    s.polynomial.parameter = f.parameter == "none" ? "" : f.parameter;
   }
-  const ParameterSpec* tau = s.parameter.empty() ? nullptr : spec_of(s.parameter);
-  if (!s.parameter.empty() && (!tau || tau->kind != ParameterKind::number)) {
+  const ParameterSpec* tau =
+      s.polynomial.parameter.empty() ? nullptr : spec_of(s.polynomial.parameter);
+  if (!s.polynomial.parameter.empty() && (!tau || tau->kind != ParameterKind::number)) {
     throw InvalidArgument(fmt::format("--parameter: '{}' is not a number parameter of model '{}'",
-                                      excerpt(s.parameter), info->name));
+                                      excerpt(s.polynomial.parameter), info->name));
   }
   for (const auto& kv : f.set) {
     const auto eq = kv.find('=');
@@ -100,60 +103,62 @@ int run_fit(const FitFlags& f) {
     spec->check(v, model_context(info->name));
     s.fixed.set(spec->name, v);
   }
-  s.channels = f.channels == "xyz" ? sh::Channels::xyz : sh::Channels::linear_srgb;
-  s.bands = f.bands;
-  s.degree_theta = static_cast<int>(f.degrees[0]);
-  s.degree_tau = tau ? static_cast<int>(f.degrees[1]) : 0;
+  s.polynomial.channels = f.channels == "xyz" ? sh::Channels::xyz : sh::Channels::linear_srgb;
+  s.polynomial.bands = f.bands;
+  s.polynomial.degree_theta = static_cast<int>(f.degrees[0]);
+  s.polynomial.degree_tau = tau ? static_cast<int>(f.degrees[1]) : 0;
   if (!tau && f.degrees_given && f.degrees[1] != 0.0) {
     throw InvalidArgument("--degrees I,J: J must be 0 for a fit in the sun zenith only");
   }
   if (f.degrees[0] != std::floor(f.degrees[0]) || f.degrees[1] != std::floor(f.degrees[1]))
     throw InvalidArgument("--degrees I,J: whole numbers expected");
-  s.theta_min = deg_to_rad(f.theta_range_deg[0]);
-  s.theta_max = deg_to_rad(f.theta_range_deg[1]);
+  s.polynomial.theta_min = deg_to_rad(f.theta_range_deg[0]);
+  s.polynomial.theta_max = deg_to_rad(f.theta_range_deg[1]);
   if (!(f.theta_range_deg[0] < f.theta_range_deg[1]))
     throw InvalidArgument("--theta-range LO,HI: LO must be below HI");
   if (tau) {
     if (!f.range.empty()) {
-      s.tau_min = f.range[0];
-      s.tau_max = f.range[1];
-    } else if (info->name == "preetham" && s.parameter == "turbidity") {
-      s.tau_min = kPreethamTauMin;
-      s.tau_max = kPreethamTauMax;
+      s.polynomial.tau_min = f.range[0];
+      s.polynomial.tau_max = f.range[1];
+    } else if (info->name == "preetham" && s.polynomial.parameter == "turbidity") {
+      s.polynomial.tau_min = kPreethamTauMin;
+      s.polynomial.tau_max = kPreethamTauMax;
     } else {
-      s.tau_min = tau->min;
-      s.tau_max = tau->max;
+      s.polynomial.tau_min = tau->min;
+      s.polynomial.tau_max = tau->max;
     }
-    if (!(s.tau_min < s.tau_max)) throw InvalidArgument("--range LO,HI: LO must be below HI");
-    tau->check(s.tau_min, "--range");
-    tau->check(s.tau_max, "--range");
+    if (!(s.polynomial.tau_min < s.polynomial.tau_max))
+      throw InvalidArgument("--range LO,HI: LO must be below HI");
+    tau->check(s.polynomial.tau_min, "--range");
+    tau->check(s.polynomial.tau_max, "--range");
   }
   if (!f.grid.empty()) {
-    s.grid_theta = static_cast<int>(f.grid[0]);
-    s.grid_tau = static_cast<int>(f.grid[1]);
+    s.polynomial.grid_theta = static_cast<int>(f.grid[0]);
+    s.polynomial.grid_tau = static_cast<int>(f.grid[1]);
   }
-  const bool hosek_form = info->name == "hosek" && s.parameter == "turbidity";
-  s.theta_axis =
+  const bool hosek_form = info->name == "hosek" && s.polynomial.parameter == "turbidity";
+  s.polynomial.theta_axis =
       f.theta_axis == "elevation-cbrt" ? sh::ThetaAxis::elevation_cbrt : sh::ThetaAxis::theta;
-  s.tau_pieces = f.tau_pieces > 0 ? f.tau_pieces : 1;
+  s.polynomial.tau_pieces = f.tau_pieces > 0 ? f.tau_pieces : 1;
   if (hosek_form && tau) {
-    if (f.theta_axis.empty()) s.theta_axis = kHosekThetaAxis;
-    if (f.tau_pieces == 0) s.tau_pieces = integer_intervals(s.tau_min, s.tau_max);
+    if (f.theta_axis.empty()) s.polynomial.theta_axis = kHosekThetaAxis;
+    if (f.tau_pieces == 0)
+      s.polynomial.tau_pieces = integer_intervals(s.polynomial.tau_min, s.polynomial.tau_max);
     if (!f.degrees_given) {
-      s.degree_theta = kHosekDegreeTheta;
-      s.degree_tau = kHosekDegreeTau;
+      s.polynomial.degree_theta = kHosekDegreeTheta;
+      s.polynomial.degree_tau = kHosekDegreeTau;
     }
-    if (f.grid.empty() && s.tau_pieces > 1) s.grid_tau = kHosekGridTau;
+    if (f.grid.empty() && s.polynomial.tau_pieces > 1) s.polynomial.grid_tau = kHosekGridTau;
   }
-  if (!tau && s.tau_pieces != 1)
+  if (!tau && s.polynomial.tau_pieces != 1)
     throw InvalidArgument("--tau-pieces: a fit in the sun zenith only has one piece");
   s.projection.tolerance = f.tolerance;
   s.projection.ground_albedo = f.ground_albedo;
   Progress progress("sh fit");
-  s.progress = [&](int done, int total) {
+  s.polynomial.progress = [&](int done, int total) {
     progress(done, total, fmt::format("projections of '{}'", info->name));
   };
-  const sh::PolynomialTable t = sh::fit_polynomial(s);
+  const sh::PolynomialTable t = fit::fit_sh_table(s);
   io::write_text_file(f.output, sh::table_to_json(t));
   std::cerr << fmt::format(
       "skylight sh fit: {} bands, degrees ({}, {}), {} coefficients in float = {} bytes, {:.1f} "
@@ -319,12 +324,6 @@ struct ErrorFlags {
   bool json = false;
 };
 
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  const std::size_t n = v.size();
-  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
-
 // Habel 2008 §3.2, Fig. 3: E_max (eq. 2) and E_mean (eq. 3) of the table against converged
 // projections of its model, at the cell midpoints of a (theta, tau) grid over the fitted range,
 // per band count N and channel; worst and median over the points.
@@ -341,14 +340,14 @@ int run_error(const ErrorFlags& f) {
     for (int iv = 0; iv < nv; ++iv) {
       const double theta = t.theta_min + (t.theta_max - t.theta_min) * (it + 0.5) / nt;
       const double tau = t.tau_min + (t.tau_max - t.tau_min) * (iv + 0.5) / nv;
-      const sh::Projection ref = sh::project_reference(t, theta, tau, 0.0, n_bands);
+      const sh::Projection ref = fit::project_reference(t, theta, tau, 0.0, n_bands);
       const sh::Coefficients rec = sh::evaluate_table(t, theta, tau, 0.0, n_bands, false);
       SkyParameters sp;
       sp.sun = {theta, 0.0};
       sp.values = t.fixed;
       if (!t.parameter.empty()) sp.values.set(t.parameter, tau);
       const auto model = make_sky_model(t.model, sp);
-      const sh::Triple l_min = sh::minimum_over_sky(*model, t.channels);
+      const sh::Triple l_min = fit::minimum_over_sky(*model, t.channels);
       for (int n = 1; n <= n_bands; ++n) {
         const sh::ErrorMeasures m = sh::error_measures(ref.coefficients, rec, n, l_min);
         for (std::size_t ch = 0; ch < 3; ++ch) {

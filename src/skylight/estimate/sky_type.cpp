@@ -8,6 +8,7 @@
 #include <limits>
 
 #include "skylight/core/error.h"
+#include "skylight/core/statistics.h"
 #include "skylight/models/cie_sky.h"
 
 namespace skylight::estimate {
@@ -15,13 +16,6 @@ namespace {
 
 // The standard types of CIE S 011 (type 16, the traditional overcast sky, is not one of them).
 constexpr int kStandardTypes = 15;
-
-double median(std::vector<double> v) {
-  const auto mid = v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2);
-  std::nth_element(v.begin(), mid, v.end());
-  if (v.size() % 2) return *mid;
-  return 0.5 * (*mid + *std::max_element(v.begin(), mid));
-}
 
 }  // namespace
 

@@ -12,6 +12,7 @@
 #include <queue>
 
 #include "skylight/core/error.h"
+#include "skylight/core/statistics.h"
 
 namespace skylight::haze {
 namespace {
@@ -75,12 +76,6 @@ std::vector<float> box_mean(const std::vector<float>& f, const std::vector<std::
   return out;
 }
 
-double median(std::vector<double> v) {
-  const auto mid = v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2);
-  std::nth_element(v.begin(), mid, v.end());
-  return *mid;
-}
-
 }  // namespace
 
 void validate(const SegmentationSettings& s) {
@@ -140,7 +135,8 @@ estimate::SkyMask segment_sky(const io::ImageF& photo, const estimate::SkyCamera
     throw InvalidArgument(fmt::format(
         "sky segmentation: no smooth pixel {} deg or more above the horizon to seed the sky",
         rad_to_deg(settings.sky_seed_elevation)));
-  const double bright = settings.sky_seed_brightness * median(smooth_top);
+  const double bright =
+      settings.sky_seed_brightness * kth_smallest(smooth_top, smooth_top.size() / 2);
   std::vector<double> seed_lum;
   for (std::size_t c = 0; c < n; ++c) {
     if (!imaged[c]) {

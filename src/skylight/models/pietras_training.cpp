@@ -11,6 +11,7 @@
 #include "skylight/core/math.h"
 #include "skylight/core/numbers.h"
 #include "skylight/core/parallel.h"
+#include "skylight/core/statistics.h"
 #include "skylight/nn/metrics.h"
 #include "skylight/nn/random.h"
 
@@ -362,11 +363,11 @@ PietrasErrors pietras_errors(const nn::PietrasNetwork& net, const PietrasSamples
   }
   if (lum.empty()) return e;
   e.luminance_max = *std::max_element(lum.begin(), lum.end());
-  e.luminance_median = nn::percentile(lum, 0.5);
-  e.luminance_p95 = nn::percentile(lum, 0.95);
-  e.chromaticity_median = nn::percentile(chroma, 0.5);
-  e.chromaticity_p95 = nn::percentile(chroma, 0.95);
-  e.scaled_median = nn::percentile(scaled, 0.5);
+  e.luminance_median = nearest_rank_percentile(lum, 0.5);
+  e.luminance_p95 = nearest_rank_percentile(lum, 0.95);
+  e.chromaticity_median = nearest_rank_percentile(chroma, 0.5);
+  e.chromaticity_p95 = nearest_rank_percentile(chroma, 0.95);
+  e.scaled_median = nearest_rank_percentile(scaled, 0.5);
   return e;
 }
 

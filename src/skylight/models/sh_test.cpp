@@ -6,6 +6,7 @@
 #include <memory>
 
 #include "skylight/core/error.h"
+#include "skylight/fit/sh_fit.h"
 #include "skylight/sh/basis.h"
 #include "skylight/sh/projection.h"
 #include "skylight/sh/rotation.h"
@@ -104,7 +105,7 @@ TEST(ShModel, EmbeddedDefaultTableReproducesPreetham) {
   pp.sun = sp.sun;
   pp.values.set("turbidity", 3.0);
   const auto preetham = make_sky_model("preetham", pp);
-  const sh::Projection ref = sh::project_model(*preetham, sh::Channels::xyz, 7);
+  const sh::Projection ref = fit::project_model(*preetham, sh::Channels::xyz, 7);
   const double c00 = ref.coefficients.c[0][1];
   for (std::size_t i = 0; i < ref.coefficients.c.size(); ++i)
     for (std::size_t ch = 0; ch < 3; ++ch)

@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "skylight/core/error.h"
+#include "skylight/core/statistics.h"
 
 namespace skylight::nn {
 
@@ -18,7 +19,7 @@ double image_target_scale(const std::vector<ImageSamples>& images) {
       values.push_back(c.b);
     }
   if (values.empty()) throw InvalidArgument("images: no sky samples");
-  const double median = percentile(values, 0.5);
+  const double median = nearest_rank_percentile(values, 0.5);
   if (!(median > 0.0) || !std::isfinite(median))
     throw InvalidArgument(
         fmt::format("images: the median sky pixel value is {}, not positive", median));

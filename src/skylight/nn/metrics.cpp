@@ -5,16 +5,9 @@
 
 #include "skylight/core/error.h"
 #include "skylight/core/parallel.h"
+#include "skylight/core/statistics.h"
 
 namespace skylight::nn {
-
-double percentile(std::vector<double>& v, double q) {
-  SKYLIGHT_CHECK(!v.empty(), "percentile of an empty set");
-  const double rank = std::ceil(std::clamp(q, 0.0, 1.0) * static_cast<double>(v.size()));
-  const std::size_t k = std::max<std::size_t>(1, static_cast<std::size_t>(rank)) - 1;
-  std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(k), v.end());
-  return v[k];
-}
 
 ErrorStats evaluate_errors(const SkyNetwork& sky, const Dataset& ds) {
   const std::size_t n = ds.size();
@@ -52,8 +45,8 @@ ErrorStats evaluate_errors(const SkyNetwork& sky, const Dataset& ds) {
   s.relative_count = rel.size();
   if (!rel.empty()) {
     s.relative_mean = rel_sum / static_cast<double>(rel.size());
-    s.relative_median = percentile(rel, 0.5);
-    s.relative_p95 = percentile(rel, 0.95);
+    s.relative_median = nearest_rank_percentile(rel, 0.5);
+    s.relative_p95 = nearest_rank_percentile(rel, 0.95);
   }
   return s;
 }

@@ -57,7 +57,4 @@ ErrorStats evaluate_errors(const SkyNetwork& sky, const Dataset& ds);
 IrradianceStats evaluate_irradiance(const SkyNetwork& sky, const Dataset& ds,
                                     const SkySource& source, int n_theta = 32, int n_phi = 64);
 
-// Nearest-rank percentile q in [0, 1] of v (v is reordered).
-double percentile(std::vector<double>& v, double q);
-
 }  // namespace skylight::nn

@@ -34,13 +34,6 @@ Dataset small_set() {
   return build_dataset(spec, satilmis_inputs(), testing_support::analytic_sky_source(683.0));
 }
 
-TEST(Metrics, PercentileIsNearestRank) {
-  std::vector<double> v = {5, 1, 4, 2, 3, 6, 8, 7, 10, 9};
-  EXPECT_EQ(percentile(v, 0.5), 5.0);
-  EXPECT_EQ(percentile(v, 0.95), 10.0);
-  EXPECT_EQ(percentile(v, 0.0), 1.0);
-}
-
 TEST(Metrics, ErrorsOfAConstantNetwork) {
   const Dataset ds = small_set();
   const double y0 = 0.1;  // L_s(0.1) = 4.5

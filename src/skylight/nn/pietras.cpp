@@ -6,9 +6,9 @@
 #include <limits>
 #include <nlohmann/json.hpp>
 
+#include "skylight/core/detail/json_reader.h"
 #include "skylight/core/error.h"
 #include "skylight/core/math.h"
-#include "skylight/nn/detail/json_fields.h"
 #include "skylight/nn/mlp_kernel.h"
 #include "skylight/nn/random.h"
 #include "skylight/nn/train.h"
@@ -135,14 +135,14 @@ Rgb PietrasNetwork::rgb_at(double altitude_m, double cos_view_zenith, double cos
 
 namespace {
 
-using detail::array;
-using detail::bad;
-using detail::field;
-using detail::integer;
-using detail::number;
-using detail::numbers;
-using detail::positive;
-using detail::text;
+using skylight::detail::json::array;
+using skylight::detail::json::bad;
+using skylight::detail::json::field;
+using skylight::detail::json::integer;
+using skylight::detail::json::number;
+using skylight::detail::json::numbers;
+using skylight::detail::json::positive;
+using skylight::detail::json::text;
 
 // Bounds of the weights file's integers (a corrupt file stops at the loader).
 constexpr long long kMaxVersion = 1000000, kMaxSamples = 1LL << 53, kMaxIterations = 1LL << 31;
@@ -202,12 +202,7 @@ bool is_pietras_json(std::string_view text) {
 }
 
 PietrasNetwork pietras_from_json(std::string_view s, const std::string& where) {
-  nlohmann::json j;
-  try {
-    j = nlohmann::json::parse(s);
-  } catch (const nlohmann::json::exception& e) {
-    throw InvalidArgument(where + ": not valid JSON (" + e.what() + ")");
-  }
+  const nlohmann::json j = skylight::detail::json::parse_object(s, where);
   if (text(field(j, where, "format"), where, "format") != kPietrasFormat)
     bad(where, "format", "is not \"" + std::string(kPietrasFormat) + "\"");
   if (integer(field(j, where, "version"), where, "version", 0, kMaxVersion) != kPietrasVersion)

@@ -5,9 +5,9 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "skylight/core/detail/json_reader.h"
 #include "skylight/core/error.h"
 #include "skylight/core/numbers.h"
-#include "skylight/nn/detail/json_fields.h"
 
 namespace skylight::nn {
 
@@ -29,13 +29,13 @@ Rgb SkyNetwork::rgb(const SkyState& state, Vec3 view) const {
 
 namespace {
 
-using detail::array;
-using detail::bad;
-using detail::field;
-using detail::integer;
-using detail::number;
-using detail::numbers;
-using detail::text;
+using skylight::detail::json::array;
+using skylight::detail::json::bad;
+using skylight::detail::json::field;
+using skylight::detail::json::integer;
+using skylight::detail::json::number;
+using skylight::detail::json::numbers;
+using skylight::detail::json::text;
 
 // The widest layer a weights file may describe: what the batch kernels accept (this also guards
 // the allocation of a corrupt file).
@@ -96,13 +96,7 @@ std::string to_json(const SkyNetwork& sky) {
 }
 
 SkyNetwork sky_network_from_json(std::string_view s, const std::string& where) {
-  nlohmann::json j;
-  try {
-    j = nlohmann::json::parse(s);
-  } catch (const nlohmann::json::exception& e) {  // parse_error, and out_of_range for 1e400
-    throw InvalidArgument(where + ": not valid JSON (" + excerpt(e.what()) + ")");
-  }
-  if (!j.is_object()) throw InvalidArgument(where + ": not a JSON object");
+  const nlohmann::json j = skylight::detail::json::parse_object(s, where);
   if (text(field(j, where, "format"), where, "format") != kSkyNetworkFormat)
     bad(where, "format", "is not '" + std::string(kSkyNetworkFormat) + "'");
   if (integer(field(j, where, "version"), where, "version", 0, 1000000) != kSkyNetworkVersion)

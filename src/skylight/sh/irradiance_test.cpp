@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "skylight/core/math.h"
+#include "skylight/fit/sh_fit.h"
 #include "skylight/models/sky_model.h"
 #include "skylight/sh/basis.h"
 
@@ -54,7 +55,7 @@ Triple direct_irradiance(const SkyModel& model, Vec3 n) {
       const Vec3 d = direction_from_angles(theta, (j + 0.5) * 2 * kPi / n_phi);
       const double c = std::max(0.0, n.x * d.x + n.y * d.y + n.z * d.z);
       if (c == 0.0) continue;
-      const Triple v = model_value(model, Channels::xyz, d);
+      const Triple v = fit::model_value(model, Channels::xyz, d);
       for (int ch = 0; ch < 3; ++ch) e[ch] += w[r] * (2 * kPi / n_phi) * c * v[ch];
     }
   }
@@ -72,7 +73,7 @@ TEST(ShIrradiance, MatchesDirectIntegrationOfPreetham) {
   sp.sun = {50.0 * kDegree, 2.0};
   sp.values.set("turbidity", 3.0);
   const auto model = make_sky_model("preetham", sp);
-  const Projection p = project_model(*model, Channels::xyz, 9);
+  const Projection p = fit::project_model(*model, Channels::xyz, 9);
   double worst = 0.0;
   for (double nt : {0.0, 30.0, 60.0, 90.0, 120.0}) {
     for (double np : {0.0, 90.0, 115.0, 200.0}) {

@@ -34,16 +34,6 @@ double scaled(double x, double lo, double hi) {
   return hi > lo ? (2.0 * x - (lo + hi)) / (hi - lo) : 0.0;
 }
 
-std::unique_ptr<SkyModel> make_model(const std::string& model, const std::string& parameter,
-                                     const ParameterValues& fixed, double theta, double tau,
-                                     double phi) {
-  SkyParameters sp;
-  sp.sun = SunPosition{theta, phi};
-  sp.values = fixed;
-  if (!parameter.empty()) sp.values.set(parameter, tau);
-  return make_sky_model(model, sp);
-}
-
 // The theta axis' coordinate of a sun zenith angle (ThetaAxis).
 double axis_coordinate(ThetaAxis axis, double theta) {
   if (axis == ThetaAxis::theta) return theta;
@@ -81,7 +71,7 @@ void check_range(const char* name, double x, double lo, double hi) {
 
 }  // namespace
 
-PolynomialTable fit_polynomial(const PolynomialFitSettings& s) {
+PolynomialTable fit_polynomial(const PolynomialFitSettings& s, const GridProjection& project) {
   check_bands(s.bands);
   if (s.degree_theta < 0 || s.degree_tau < 0 || s.degree_theta > kMaxDegree ||
       s.degree_tau > kMaxDegree) {
@@ -100,18 +90,13 @@ PolynomialTable fit_polynomial(const PolynomialFitSettings& s) {
   if (!(s.theta_max >= s.theta_min) || (!theta_only && !(s.tau_max >= s.tau_min))) {
     throw InvalidArgument("the fitted parameter ranges must not be empty");
   }
-  if (s.fixed.has(s.parameter)) {
-    throw InvalidArgument("parameter '" + s.parameter + "' is both varied and fixed");
-  }
   const int gt = s.grid_theta > 0 ? s.grid_theta : 2 * (s.degree_theta + 1) + 1;
   const int gv = theta_only ? 1 : s.grid_tau > 0 ? s.grid_tau : 2 * (s.degree_tau + 1) + 1;
   if (gt < s.degree_theta + 1 || gv < s.degree_tau + 1 || (s.tau_pieces > 1 && gv < 2)) {
     throw InvalidArgument("the fitting grid needs at least degree + 1 points per parameter");
   }
   PolynomialTable table;
-  table.model = s.model;
   table.parameter = s.parameter;
-  table.fixed = s.fixed;
   table.channels = s.channels;
   table.bands = s.bands;
   table.degree_theta = s.degree_theta;
@@ -122,7 +107,6 @@ PolynomialTable fit_polynomial(const PolynomialFitSettings& s) {
   table.tau_max = theta_only ? 0.0 : s.tau_max;
   table.theta_axis = s.theta_axis;
   table.tau_pieces = s.tau_pieces;
-  table.ground_albedo = s.projection.ground_albedo;
   const int terms = table.terms();
   const int stored = stored_count(s.bands);
   // The grid: uniform in the theta axis' coordinate; in tau, gv points per piece with the ends
@@ -146,14 +130,14 @@ PolynomialTable fit_polynomial(const PolynomialFitSettings& s) {
   for (int p = 0; p < gt * n_tau; ++p) {
     const double theta = thetas[static_cast<std::size_t>(p / n_tau)];
     const double tau = taus[static_cast<std::size_t>(p % n_tau)];
-    const auto model = make_model(s.model, s.parameter, s.fixed, theta, tau, 0.0);
-    const auto proj = project_model(*model, s.channels, s.bands, s.projection);
+    const Coefficients proj = project(theta, tau);
+    SKYLIGHT_CHECK(proj.bands >= s.bands, "fit_polynomial: the projection has too few bands");
     if (s.progress) s.progress(p + 1, gt * n_tau);
     for (int l = 0; l < s.bands; ++l) {
       for (int m = 0; m <= l; ++m) {
         for (int ch = 0; ch < 3; ++ch) {
           proj_all(p, (l * (l + 1) / 2 + m) * 3 + ch) =
-              proj.coefficients.c[static_cast<std::size_t>(index(l, m))][ch];
+              proj.c[static_cast<std::size_t>(index(l, m))][ch];
         }
       }
     }
@@ -323,14 +307,6 @@ Coefficients evaluate_table_reference(const PolynomialTable& table, double theta
   }
   c = rotate_about_zenith(c, phi);
   return filter ? ringing_filter(c) : c;
-}
-
-Projection project_reference(const PolynomialTable& table, double theta, double tau, double phi,
-                             int bands, const ProjectionOptions& options) {
-  const auto model = make_model(table.model, table.parameter, table.fixed, theta, tau, phi);
-  ProjectionOptions o = options;
-  o.ground_albedo = table.ground_albedo;
-  return project_model(*model, table.channels, bands, o);
 }
 
 }  // namespace skylight::sh

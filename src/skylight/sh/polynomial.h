@@ -32,14 +32,12 @@ enum class ThetaAxis { theta, elevation_cbrt };
 // Largest number of tau pieces of a table.
 inline constexpr int kMaxTauPieces = 64;
 
+// The polynomial of eq. 1 and the grid it is fitted on; the projections at the grid points come
+// from the caller (fit/sh_fit.h projects a sky model's).
 struct PolynomialFitSettings {
-  std::string model = "preetham";
-  // tau: the model's second varying parameter, a number of its schema; empty: theta only (then
-  // degree_tau must be 0 and the tau range is ignored, e.g. a CIE type).
+  // tau: the name of the second varying parameter (recorded in the table); empty: theta only
+  // (then degree_tau must be 0 and the tau range is ignored, e.g. a CIE type).
   std::string parameter = "turbidity";
-  // The model's other parameters: held at these values (e.g. hosek's albedo, cie's type), the
-  // rest at their defaults.
-  ParameterValues fixed;
   Channels channels = Channels::xyz;
   int bands = 7;  // N
   // (d_i, d_j): Habel's (13, 7) reaches a worst E_mean of ~0.16 % at 5 bands, limited by the
@@ -55,7 +53,6 @@ struct PolynomialFitSettings {
   int tau_pieces = 1;
   int grid_theta = 0;  // grid points, uniform in the theta axis' coordinate; 0 = 2 (d_i + 1) + 1
   int grid_tau = 0;    // per piece, both ends included (shared); 0 = 2 (d_j + 1) + 1
-  ProjectionOptions projection{};
   // Called after each grid point's projection with (done, total); may be empty.
   std::function<void(int, int)> progress;
 };
@@ -64,8 +61,10 @@ struct PolynomialFitSettings {
 // coefficients of T_i(u) T_j(v), in float (the fit is in double). u: the theta axis' coordinate
 // mapped from its range onto [-1, 1]; v: tau mapped from its piece onto [-1, 1].
 struct PolynomialTable {
-  std::string model, parameter;  // parameter empty: theta only
-  ParameterValues fixed;         // the model's parameters held fixed in the fit
+  // What was fitted: a registry model's name, its tau parameter (empty: theta only) and the
+  // parameters held fixed (fit/sh_fit.h fills them; sh/ only records them).
+  std::string model, parameter;
+  ParameterValues fixed;
   Channels channels = Channels::xyz;
   int bands = 0, degree_theta = 0, degree_tau = 0;
   double theta_min = 0.0, theta_max = 0.0, tau_min = 0.0, tau_max = 0.0;
@@ -82,9 +81,14 @@ struct PolynomialTable {
   std::size_t bytes() const { return coefficients.size() * sizeof(float); }
 };
 
-// Projects the model at each grid point (sun at azimuth 0) and fits (Eigen, column-pivoting QR).
-// Throws InvalidArgument for bad settings (unknown model or parameter, degrees < 0, empty range).
-PolynomialTable fit_polynomial(const PolynomialFitSettings& settings);
+// The SH coefficients (at least settings.bands bands, in settings.channels) of the function at
+// (theta, tau), sun at azimuth 0.
+using GridProjection = std::function<Coefficients(double theta, double tau)>;
+// Calls `project` at each grid point and fits eq. 1 by least squares (Eigen, column-pivoting QR).
+// Throws InvalidArgument for bad settings (degrees < 0, empty range, too few grid points). The
+// table's model, fixed parameters and ground albedo are left for the caller to record.
+PolynomialTable fit_polynomial(const PolynomialFitSettings& settings,
+                               const GridProjection& project);
 
 // Eq. 1 at (theta, tau), then eq. 4 (rotation to azimuth phi) and, if asked, eq. 5 (ringing
 // filter for `bands` bands): the first `bands` <= table.bands bands. theta and tau outside the
@@ -111,12 +115,6 @@ std::vector<double> monomial_coefficients(const PolynomialTable& table);
 // a float array `<name>_chebyshev` in the table's layout and, with `monomial`, the published form
 // as a double array `<name>_monomial`. `name` must be a C identifier.
 std::string table_to_c_header(const PolynomialTable& table, const std::string& name, bool monomial);
-
-// The converged projection of the table's model at (theta, tau), sun at azimuth phi, with the
-// table's ground albedo (overriding options.ground_albedo): the reference that evaluate_table
-// approximates.
-Projection project_reference(const PolynomialTable& table, double theta, double tau, double phi,
-                             int bands, const ProjectionOptions& options = {});
 
 // JSON form (docs/SH.md); load validates every field and throws InvalidArgument naming it.
 std::string table_to_json(const PolynomialTable& table);

@@ -113,51 +113,11 @@ Projection project(const std::function<Triple(Vec3)>& f, int bands,
   return result;
 }
 
-Triple model_value(const SkyModel& model, Channels channels, Vec3 d) {
-  if (channels == Channels::xyz) {
-    const Xyz v = model.tristimulus(d);
-    return {v.X, v.Y, v.Z};
-  }
-  const Rgb v = model.rgb(d);
-  return {v.r, v.g, v.b};
-}
-
 Triple horizontal_irradiance(const Coefficients& c) {
   SKYLIGHT_CHECK(c.bands >= 2 && c.c.size() >= 4, "horizontal_irradiance: needs 2 bands");
   const double k = std::sqrt(4.0 * kPi / 3.0);
   const Triple& c10 = c.c[static_cast<std::size_t>(index(1, 0))];
   return {k * c10[0], k * c10[1], k * c10[2]};
-}
-
-Triple sun_horizontal_irradiance(const SkyModel& model, Channels channels) {
-  const double r = model.sun_angular_radius();
-  if (!model.has_sun() || !(r > 0.0)) return {};
-  const Vec3 s = direction_from_angles(model.sun().zenith, model.sun().azimuth);
-  // An orthonormal frame (s, a, b) about the sun's direction.
-  const Vec3 a = normalize(std::abs(s.z) < 0.9 ? cross(s, Vec3{0.0, 0.0, 1.0})
-                                               : cross(s, Vec3{1.0, 0.0, 0.0}));
-  const Vec3 b = cross(s, a);
-  constexpr int kRings = 8, kAzimuths = 32;  // ample for a smooth limb-darkened disc
-  std::vector<double> mu, w;
-  gauss_legendre(kRings, std::cos(r), 1.0, mu, w);
-  Triple e{};
-  for (int i = 0; i < kRings; ++i) {
-    const double ca = mu[static_cast<std::size_t>(i)], sa = std::sqrt(std::max(0.0, 1.0 - ca * ca));
-    for (int j = 0; j < kAzimuths; ++j) {
-      const double beta = 2.0 * kPi * (j + 0.5) / kAzimuths;
-      const Vec3 d = normalize(ca * s + (sa * std::cos(beta)) * a + (sa * std::sin(beta)) * b);
-      if (d.z <= 0.0) continue;
-      const Xyz v = model.sun_tristimulus(d);
-      Triple t{v.X, v.Y, v.Z};
-      if (channels == Channels::linear_srgb) {
-        const Rgb rgb = xyz_to_linear_srgb(v);
-        t = {rgb.r, rgb.g, rgb.b};
-      }
-      const double weight = w[static_cast<std::size_t>(i)] * (2.0 * kPi / kAzimuths) * d.z;
-      for (int ch = 0; ch < 3; ++ch) e[ch] += weight * t[ch];
-    }
-  }
-  return e;
 }
 
 void add_uniform_ground(Coefficients& c, const Triple& radiance) {
@@ -174,30 +134,6 @@ void add_uniform_ground(Coefficients& c, const Triple& radiance) {
         c.c[static_cast<std::size_t>(index(l, 0))][ch] += g * radiance[ch];
     }
   }
-}
-
-Projection project_model(const SkyModel& model, Channels channels, int bands,
-                         const ProjectionOptions& options) {
-  ProjectionOptions o = options;
-  o.region = Region::upper_hemisphere;
-  if (!o.ground_albedo) {
-    return project([&](Vec3 d) { return model_value(model, channels, d); }, bands, o);
-  }
-  const double rho = *o.ground_albedo;
-  if (!(rho >= 0.0 && rho <= 1.0)) {
-    throw InvalidArgument("ground albedo " + std::to_string(rho) + " is outside [0, 1]");
-  }
-  // The sky's irradiance needs c_10: project at least 2 bands, then keep the first `bands`.
-  Projection p =
-      project([&](Vec3 d) { return model_value(model, channels, d); }, std::max(bands, 2), o);
-  const Triple e_sky = horizontal_irradiance(p.coefficients);
-  const Triple e_sun = sun_horizontal_irradiance(model, channels);
-  p.coefficients.bands = bands;
-  p.coefficients.c.resize(static_cast<std::size_t>(coefficient_count(bands)));
-  Triple ground{};
-  for (int ch = 0; ch < 3; ++ch) ground[ch] = rho * (e_sky[ch] + e_sun[ch]) / kPi;
-  add_uniform_ground(p.coefficients, ground);
-  return p;
 }
 
 }  // namespace skylight::sh

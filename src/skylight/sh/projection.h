@@ -8,12 +8,11 @@
 #include <vector>
 
 #include "skylight/core/frame.h"
-#include "skylight/models/sky_model.h"
 
 namespace skylight::sh {
 
-// Which three channels are projected (docs/SH.md): CIE 1931 XYZ from SkyModel::tristimulus(), or
-// linear sRGB (D65) from SkyModel::rgb(); both on the model's photometric scale [cd/m^2].
+// Which three channels a set of coefficients holds (docs/SH.md): CIE 1931 XYZ, or linear sRGB
+// (D65); a sky's on its photometric scale [cd/m^2] (fit/sh_fit.h projects a model's).
 enum class Channels { xyz, linear_srgb };
 
 using Triple = std::array<double, 3>;
@@ -38,7 +37,7 @@ struct ProjectionOptions {
   double tolerance = 1e-6;
   int min_nodes = 16;    // Gauss-Legendre nodes in cos theta at the start (2x as many in phi)
   int max_nodes = 1024;  // refinement gives up beyond this (converged = false)
-  // project_model only: the lower hemisphere as a uniform Lambertian ground of this albedo rho,
+  // fit::project_model only: the lower hemisphere as a uniform Lambertian ground of albedo rho,
   // lit by the sky's own horizontal irradiance and the sun's: L_ground = rho (E_sky + E_sun) / pi
   // per channel (docs/SH.md, "Ground"); absent: the lower hemisphere is black.
   std::optional<double> ground_albedo;
@@ -62,23 +61,12 @@ void gauss_legendre(int n, double a, double b, std::vector<double>& nodes,
 // (deterministic).
 Projection project(const std::function<Triple(Vec3)>& f, int bands,
                    const ProjectionOptions& options = {});
-// The sky of `model` (tristimulus() or rgb(); the solar disc excluded) on the upper hemisphere.
-Projection project_model(const SkyModel& model, Channels channels, int bands,
-                         const ProjectionOptions& options = {});
-
 // The horizontal irradiance of the upper-hemisphere signal whose SH projection (lower hemisphere
 // black) is c: E = integral_upper f cos theta d omega = sqrt(4 pi / 3) c_10 exactly (cos theta =
 // sqrt(4 pi / 3) Y_10 is band-limited), per channel. Needs c.bands >= 2.
 Triple horizontal_irradiance(const Coefficients& c);
-// The sun's horizontal irradiance: the solar disc's radiance (SkyModel::sun_tristimulus, in the
-// chosen channels) integrated over the disc times cos theta (Gauss-Legendre in the cosine of the
-// angle from the disc's centre x uniform azimuths); 0 for models without a sun.
-Triple sun_horizontal_irradiance(const SkyModel& model, Channels channels);
 // Adds a uniform radiance on the lower hemisphere: c_l0 += L 2 pi K_l0 integral_-1^0 P_l(mu) d mu
 // (Gauss-Legendre, exact for the degree-l polynomial); the other coefficients are unchanged.
 void add_uniform_ground(Coefficients& c, const Triple& radiance);
-
-// The model's value in one direction, in the chosen channels.
-Triple model_value(const SkyModel& model, Channels channels, Vec3 d);
 
 }  // namespace skylight::sh

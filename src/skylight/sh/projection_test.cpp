@@ -5,7 +5,6 @@
 #include <cmath>
 
 #include "skylight/core/math.h"
-#include "skylight/models/preetham.h"
 #include "skylight/sh/basis.h"
 #include "skylight/sh/rotation.h"
 
@@ -74,97 +73,6 @@ TEST(ShProjection, AConstantSkyGivesTheClosedForm) {
       const auto& c = p.coefficients.c[static_cast<std::size_t>(index(l, m))];
       EXPECT_NEAR(c[0], expect, kExact) << "l=" << l << " m=" << m;
       EXPECT_NEAR(c[2], 3 * expect, 3 * kExact) << "l=" << l << " m=" << m;
-    }
-  }
-}
-
-// A sky of constant XYZ radiance (kL, 2 kL, 3 kL) and, optionally, a uniform solar disc of
-// radiance sun_l (all channels) and angular radius sun_r: closed forms for the ground.
-class ConstantSky final : public SkyModel {
- public:
-  ConstantSky(SunPosition sun, double l, double sun_l, double sun_r)
-      : SkyModel(sun), l_(l), sun_l_(sun_l), sun_r_(sun_r) {}
-  std::string_view name() const override { return "constant"; }
-  ParameterValues parameter_values() const override { return {}; }
-  Xyz tristimulus(Vec3 view) const override {
-    return view.z >= 0.0 ? Xyz{l_, 2 * l_, 3 * l_} : Xyz{};
-  }
-  bool has_sun() const override { return sun_l_ > 0.0; }
-  double sun_angular_radius() const override { return sun_r_; }
-  Xyz sun_tristimulus(Vec3 view) const override {
-    const bool in =
-        dot(view, direction_from_angles(sun().zenith, sun().azimuth)) >= std::cos(sun_r_) - 1e-15;
-    return in ? Xyz{sun_l_, sun_l_, sun_l_} : Xyz{};
-  }
-  Domain domain() const override { return {}; }
-
- private:
-  double l_, sun_l_, sun_r_;
-};
-
-// integral_a^b P_l(mu) d mu for [0, 1] and [-1, 0] from the closed form of the test above.
-double legendre_integral_upper(int l) {
-  return l == 0 ? 1.0 : (legendre_at_zero(l - 1) - legendre_at_zero(l + 1)) / (2.0 * l + 1.0);
-}
-double legendre_integral_lower(int l) {
-  return (l % 2 == 0 ? 1.0 : -1.0) * legendre_integral_upper(l);  // P_l(-mu) = (-1)^l P_l(mu)
-}
-
-TEST(ShProjection, AGroundOfAlbedoRhoUnderAConstantSkyIsRhoTimesTheSky) {
-  // E = pi L for a constant sky, so L_ground = rho E / pi = rho L: c_l0 = 2 pi K_l0 L
-  // (integral_0^1 P_l + rho integral_-1^0 P_l). With a uniform disc of radiance L_s, radius r at
-  // zenith angle theta_s: E_sun = L_s pi sin^2 r cos theta_s (the projected solid angle of a cap).
-  constexpr int kBands = 6;
-  constexpr double kL = 2.0, kRho = 0.3, kSunL = 1e4, kSunR = 0.05, kSunZenith = 0.7;
-  // The disc quadrature (Gauss in cos alpha on [cos r, 1], uniform azimuths about the centre)
-  // integrates the uniform disc's cos theta exactly: round-off only.
-  constexpr double kSunIrradianceTolerance = 1e-12;
-  ProjectionOptions o;
-  o.tolerance = 1e-12;
-  o.ground_albedo = kRho;
-  const ConstantSky no_sun({kSunZenith, 0.4}, kL, 0.0, 0.0);
-  const auto p = project_model(no_sun, Channels::xyz, kBands, o);
-  ASSERT_TRUE(p.converged);
-  for (int l = 0; l < kBands; ++l) {
-    const double expect = 2.0 * kPi * kL * normalisation(l, 0) *
-                          (legendre_integral_upper(l) + kRho * legendre_integral_lower(l));
-    EXPECT_NEAR(p.coefficients.c[static_cast<std::size_t>(index(l, 0))][0], expect, kExact) << l;
-    EXPECT_NEAR(p.coefficients.c[static_cast<std::size_t>(index(l, 0))][2], 3 * expect, 3 * kExact)
-        << l;
-  }
-  // Albedo 0: the black lower hemisphere.
-  o.ground_albedo = 0.0;
-  const auto black = project_model(no_sun, Channels::xyz, kBands, o);
-  o.ground_albedo.reset();
-  const auto none = project_model(no_sun, Channels::xyz, kBands, o);
-  for (std::size_t i = 0; i < none.coefficients.c.size(); ++i)
-    EXPECT_EQ(black.coefficients.c[i], none.coefficients.c[i]);
-  // The sun's irradiance.
-  const ConstantSky with_sun({kSunZenith, 0.4}, kL, kSunL, kSunR);
-  const double e_sun = kSunL * kPi * std::sin(kSunR) * std::sin(kSunR) * std::cos(kSunZenith);
-  const Triple e = sun_horizontal_irradiance(with_sun, Channels::xyz);
-  for (int ch = 0; ch < 3; ++ch) EXPECT_NEAR(e[ch], e_sun, kSunIrradianceTolerance * e_sun);
-  o.ground_albedo = kRho;
-  const auto lit = project_model(with_sun, Channels::xyz, kBands, o);
-  // Ground radiance rho (pi L + E_sun) / pi: c_00 gains rho E_sun / pi * 2 pi K_00 * 1.
-  const double extra = kRho * e_sun / kPi * 2.0 * kPi * normalisation(0, 0);
-  EXPECT_NEAR(lit.coefficients.c[0][1] - p.coefficients.c[0][1], extra, kExact * extra);
-}
-
-TEST(ShProjection, PreethamConvergesAndIsSymmetricAboutTheSolarMeridian) {
-  // With the sun at azimuth 0 the sky is even in phi: every sin (m < 0) coefficient vanishes.
-  const PreethamModel model(PreethamParameters{{deg_to_rad(60.0), 0.0}, 3.0});
-  ProjectionOptions o;
-  o.tolerance = kConvergedTolerance;
-  const auto p = project_model(model, Channels::xyz, 8, o);
-  ASSERT_TRUE(p.converged) << "last change " << p.last_change;
-  RecordProperty("nodes", p.nodes);
-  for (int l = 1; l < 8; ++l) {
-    for (int m = -l; m < 0; ++m) {
-      for (int ch = 0; ch < 3; ++ch) {
-        EXPECT_NEAR(p.coefficients.c[static_cast<std::size_t>(index(l, m))][ch], 0.0,
-                    10 * kConvergedTolerance * std::abs(p.coefficients.c[0][ch]));
-      }
     }
   }
 }

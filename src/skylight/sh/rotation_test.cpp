@@ -6,6 +6,7 @@
 #include <string>
 
 #include "skylight/core/math.h"
+#include "skylight/fit/sh_fit.h"
 #include "skylight/models/preetham.h"
 #include "skylight/sh/basis.h"
 
@@ -120,8 +121,8 @@ TEST(ShRotation, EquationFourMatchesReprojectionOfTheRotatedSky) {
   o.tolerance = kProjectionTolerance;
   const PreethamModel at0(PreethamParameters{{kSunZenith, 0.0}, 4.0});
   const PreethamModel atphi(PreethamParameters{{kSunZenith, kSunAzimuth}, 4.0});
-  const auto p0 = project_model(at0, Channels::linear_srgb, kBands, o);
-  const auto pphi = project_model(atphi, Channels::linear_srgb, kBands, o);
+  const auto p0 = fit::project_model(at0, Channels::linear_srgb, kBands, o);
+  const auto pphi = fit::project_model(atphi, Channels::linear_srgb, kBands, o);
   ASSERT_TRUE(p0.converged && pphi.converged);
   const auto rotated = rotate_about_zenith(p0.coefficients, kSunAzimuth);
   double worst = 0.0;
@@ -169,7 +170,7 @@ constexpr double kRingingFrom = 120.0 * kDegree;
 TEST(ShRingingFilter, ReducesTheRingingEnergyFarBelowTheHorizonOfPreetham) {
   const PreethamModel model(PreethamParameters{{deg_to_rad(30.0), 0.0}, 3.0});
   for (int bands : {7, 8}) {
-    const auto p = project_model(model, Channels::xyz, bands);
+    const auto p = fit::project_model(model, Channels::xyz, bands);
     const auto raw = energy_below(p.coefficients, kRingingFrom);
     const auto filtered = energy_below(ringing_filter(p.coefficients), kRingingFrom);
     const double factor = raw[1] / filtered[1];

@@ -4,6 +4,7 @@
 #include <string>
 #include <variant>
 
+#include "skylight/core/detail/json_reader.h"
 #include "skylight/core/error.h"
 #include "skylight/core/numbers.h"
 #include "skylight/sh/basis.h"
@@ -16,34 +17,23 @@ constexpr const char* kFormat = "skylight-sh-polynomial-table";
 // Version 2 added theta_axis and tau_pieces; version 1 files load as theta axis, one piece.
 constexpr int kVersion = 2;
 
-[[noreturn]] void bad(const std::string& where, const std::string& field, const std::string& why) {
-  throw InvalidArgument(where + ": field '" + field + "' " + why);
-}
+using skylight::detail::json::bad;
 
 const nlohmann::json& field(const nlohmann::json& j, const std::string& where, const char* name) {
-  if (!j.contains(name)) bad(where, name, "is missing");
-  return j.at(name);
+  return skylight::detail::json::field(j, where, name);
 }
 
 double number(const nlohmann::json& j, const std::string& where, const char* name) {
-  const auto& v = field(j, where, name);
-  if (!v.is_number() || !std::isfinite(v.get<double>())) bad(where, name, "is not a finite number");
-  return v.get<double>();
+  return skylight::detail::json::number(field(j, where, name), where, name);
 }
 
 int integer(const nlohmann::json& j, const std::string& where, const char* name, int lo, int hi) {
-  const auto& v = field(j, where, name);
-  if (!v.is_number_integer() || v.get<long long>() < lo || v.get<long long>() > hi) {
-    bad(where, name,
-        "is not an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
-  }
-  return v.get<int>();
+  return static_cast<int>(
+      skylight::detail::json::integer(field(j, where, name), where, name, lo, hi));
 }
 
 std::string text(const nlohmann::json& j, const std::string& where, const char* name) {
-  const auto& v = field(j, where, name);
-  if (!v.is_string()) bad(where, name, "is not a string");
-  return v.get<std::string>();
+  return skylight::detail::json::text(field(j, where, name), where, name);
 }
 
 }  // namespace
@@ -81,13 +71,7 @@ std::string table_to_json(const PolynomialTable& t) {
 }
 
 PolynomialTable table_from_json(const std::string& s, const std::string& where) {
-  nlohmann::json j;
-  try {
-    j = nlohmann::json::parse(s);
-  } catch (const nlohmann::json::exception& e) {  // parse_error, and out_of_range for 1e400
-    throw InvalidArgument(where + ": not valid JSON (" + excerpt(e.what()) + ")");
-  }
-  if (!j.is_object()) throw InvalidArgument(where + ": not a JSON object");
+  const nlohmann::json j = skylight::detail::json::parse_object(s, where);
   if (text(j, where, "format") != kFormat)
     bad(where, "format", "is not '" + std::string(kFormat) + "'");
   const int version = integer(j, where, "version", 0, 1000);

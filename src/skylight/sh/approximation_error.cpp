@@ -1,11 +1,10 @@
-#include "skylight/sh/error.h"
+#include "skylight/sh/approximation_error.h"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <string>
 
-#include "skylight/analysis/hemisphere.h"
 #include "skylight/core/error.h"
 #include "skylight/sh/basis.h"
 
@@ -30,25 +29,6 @@ ErrorMeasures error_measures(const Coefficients& reference, const Coefficients& 
     e.e_mean[ch] = std::sqrt(sum_sq) / l_min[ch];
   }
   return e;
-}
-
-Triple minimum_over_sky(const SkyModel& model, Channels channels, int n_theta) {
-  SKYLIGHT_CHECK(n_theta >= 1, "minimum_over_sky: n_theta >= 1");
-  const auto grid = analysis::hemisphere_grid(n_theta, 4 * n_theta);
-  Triple lo{std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity(),
-            std::numeric_limits<double>::infinity()};
-  for (const Vec3& d : grid.directions) {
-    const Triple v = model_value(model, channels, d);
-    for (int ch = 0; ch < 3; ++ch) lo[ch] = std::min(lo[ch], v[ch]);
-  }
-  for (int ch = 0; ch < 3; ++ch) {
-    if (!(lo[ch] > 0.0)) {
-      throw InvalidArgument("model '" + std::string(model.name()) + "': channel " +
-                            std::to_string(ch) + " has minimum " + std::to_string(lo[ch]) +
-                            " over the sky; the relative SH errors need L_min > 0");
-    }
-  }
-  return lo;
 }
 
 }  // namespace skylight::sh

@@ -1,16 +1,31 @@
-// The strict field readers of the networks' weights files (sky_network.cpp, pietras.cpp): every
-// failure is one skylight::InvalidArgument naming the file (`where`) and the field.
+// The one strict JSON reader of the library's files (the networks' weights files in nn/, the SH
+// tables in sh/): every failure is one skylight::InvalidArgument naming the file (`where`) and the
+// field. Header-only over nlohmann::json; a detail header (not installed).
 #pragma once
 
 #include <nlohmann/json.hpp>
 
 #include <cmath>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "skylight/core/error.h"
+#include "skylight/core/numbers.h"
 
-namespace skylight::nn::detail {
+namespace skylight::detail::json {
+
+// The text as a JSON object; "<where>: not valid JSON (...)" or "<where>: not a JSON object".
+inline nlohmann::json parse_object(std::string_view text, const std::string& where) {
+  nlohmann::json j;
+  try {
+    j = nlohmann::json::parse(text);
+  } catch (const nlohmann::json::exception& e) {  // parse_error, and out_of_range for 1e400
+    throw InvalidArgument(where + ": not valid JSON (" + excerpt(e.what()) + ")");
+  }
+  if (!j.is_object()) throw InvalidArgument(where + ": not a JSON object");
+  return j;
+}
 
 [[noreturn]] inline void bad(const std::string& where, const std::string& field,
                              const std::string& why) {
@@ -63,4 +78,4 @@ inline std::vector<double> numbers(const nlohmann::json& v, const std::string& w
   return out;
 }
 
-}  // namespace skylight::nn::detail
+}  // namespace skylight::detail::json
