@@ -15,9 +15,9 @@
 #include "skylight/core/error.h"
 #include "skylight/core/math.h"
 #include "skylight/core/numbers.h"
+#include "skylight/fit/neural_training.h"
 #include "skylight/io/file.h"
 #include "skylight/models/neural_sky.h"
-#include "skylight/models/neural_training.h"
 #include "skylight/models/pietras_training.h"
 #include "skylight/nn/glsl.h"
 #include "skylight/version.h"
@@ -104,7 +104,7 @@ int run_train(const TrainFlags& f, const ImageTrainFlags& images) {
     throw InvalidArgument(
         fmt::format("--encoding: '{}' is not satilmis, log, root4 or root8", excerpt(f.encoding)));
   }
-  NeuralTraining t;
+  fit::NeuralTraining t;
   t.source = f.source;
   t.inputs = nn::parse_inputs(f.inputs);
   t.encoding = *encoding;
@@ -130,7 +130,7 @@ int run_train(const TrainFlags& f, const ImageTrainFlags& images) {
     }
     return true;
   };
-  NeuralTrainingResult r = train_neural_sky(t);
+  fit::NeuralTrainingResult r = fit::train_neural_sky(t);
   r.network.provenance.date = utc_now_iso8601();
   r.network.provenance.software = std::string("skylight ") + SKYLIGHT_VERSION;
   io::write_text_file(f.output, nn::to_json(r.network));
@@ -166,7 +166,8 @@ int run_validate(const ValidateFlags& f) {
         fmt::format("{}: trained on images, not on a sky model: nn validate "
                     "needs a model source (use nn train --images --kfold)",
                     excerpt(f.weights)));
-  const NeuralValidation v = validate_neural_sky(sky, f.suns, f.view_zeniths, f.view_azimuths);
+  const fit::NeuralValidation v =
+      fit::validate_neural_sky(sky, f.suns, f.view_zeniths, f.view_azimuths);
   const nn::ErrorStats& e = v.errors;
   const nn::IrradianceStats& ir = v.irradiance;
   const double scale = sky.target_scale;

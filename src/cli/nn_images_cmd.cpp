@@ -134,8 +134,8 @@ std::optional<SunPosition> entry_sun(const ImageTrainFlags& f, const estimate::S
 
 }  // namespace
 
-int run_train_images(const ImageTrainFlags& f, const NeuralTraining& t, const std::string& output,
-                     const std::string& log, int samples_per_image) {
+int run_train_images(const ImageTrainFlags& f, const fit::NeuralTraining& t,
+                     const std::string& output, const std::string& log, int samples_per_image) {
   const std::filesystem::path list_path(f.list);
   const std::vector<char> text = io::read_file(list_path);
   const std::vector<estimate::SequenceEntry> entries =

@@ -10,7 +10,7 @@
 #include <string>
 
 #include "common.h"
-#include "skylight/models/neural_training.h"
+#include "skylight/fit/neural_training.h"
 
 namespace skylight::cli {
 
@@ -21,8 +21,8 @@ bool images_given(const ImageTrainFlags& f);
 // `nn train --images LIST`: the network of `t` (hidden, inputs, encoding, target scale, trainer
 // options) trained on the list's images; writes `output` and the training log `log` (when not
 // empty); `samples_per_image` sky pixels are drawn from each image (all when it has fewer).
-int run_train_images(const ImageTrainFlags& f, const NeuralTraining& t, const std::string& output,
-                     const std::string& log, int samples_per_image);
+int run_train_images(const ImageTrainFlags& f, const fit::NeuralTraining& t,
+                     const std::string& output, const std::string& log, int samples_per_image);
 
 void add_nn_animate_command(CLI::App& nn, Commands& commands);
 void add_nn_study_command(CLI::App& nn, Commands& commands);

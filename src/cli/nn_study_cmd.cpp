@@ -12,7 +12,7 @@
 #include "nn_parts.h"
 #include "skylight/core/error.h"
 #include "skylight/core/math.h"
-#include "skylight/models/neural_training.h"
+#include "skylight/fit/neural_training.h"
 #include "skylight/nn/sky_network.h"
 #include "skylight/render/sky_render.h"
 
@@ -60,7 +60,7 @@ int run_study(const StudyFlags& f) {
   for (std::size_t k = 0; k < f.hidden.size(); ++k) {
     const int h = static_cast<int>(f.hidden[k]);
     progress(static_cast<int>(k), static_cast<int>(f.hidden.size()), fmt::format("hidden {}", h));
-    NeuralTraining t;
+    fit::NeuralTraining t;
     t.source = f.source;
     t.hidden = {h};
     t.sun_count = f.suns;
@@ -69,7 +69,7 @@ int run_study(const StudyFlags& f) {
     t.options.seed = static_cast<std::uint64_t>(f.seed);
     t.options.time_limit_s = f.time_limit_s;
     t.options.max_iterations = f.iterations;
-    const NeuralTrainingResult r = train_neural_sky(t);
+    const fit::NeuralTrainingResult r = fit::train_neural_sky(t);
     const nn::ErrorStats& e = r.validation->errors;
     Row row;
     row.hidden = h;

@@ -179,7 +179,7 @@ const ParameterSchema<CieParameters>& CieParameters::schema() {
 }
 
 CieSkyModel::CieSkyModel(const CieParameters& p) : SkyModel(p.sun), params_(p), type_(p.type) {
-  CieParameters::schema().validate(p, model_context("cie"));
+  CieParameters::schema().validate(p, model_context(kName));
   sun_up_ = p.sun.zenith <= 0.5 * kPi;
   typical_luminance_ = !p.zenith_luminance.has_value();
   zenith_luminance_ = p.zenith_luminance
@@ -239,6 +239,22 @@ Domain CieSkyModel::domain() const {
                                     rad_to_deg(gs))});
   }
   return d;
+}
+
+ModelInfo CieSkyModel::registry_entry() {
+  return ModelInfo{
+      .name = std::string(kName),
+      .description =
+          "ISO 15469 / CIE S 011:2003 Standard General Sky, types 1-15, and 16 = traditional "
+          "overcast",
+      .output = "luminance Y [cd/m^2]; XYZ at D65 chromaticity (0.3127, 0.3290)",
+      .parameters = CieParameters::schema().specs(),
+      .domain =
+          "all sun positions above the horizon; the Kittler-Darula typical zenith luminance is "
+          "recommended for solar elevations 10-80 deg (flagged extrapolated outside)",
+      .make = model_factory<CieSkyModel, CieParameters>(),
+      .neural = NeuralPolicy{},
+  };
 }
 
 }  // namespace skylight

@@ -82,7 +82,11 @@ struct CieParameters {
 class CieSkyModel final : public SkyModel {
  public:
   explicit CieSkyModel(const CieParameters& params);
-  std::string_view name() const override { return "cie"; }
+  static constexpr std::string_view kName = "cie";
+  // The registry entry: documentation, schema, factory and policy (models/sky_model.h).
+  static ModelInfo registry_entry();
+
+  std::string_view name() const override { return kName; }
   const CieParameters& parameters() const { return params_; }
   ParameterValues parameter_values() const override;
   Xyz tristimulus(Vec3 view) const override;

@@ -498,7 +498,7 @@ const ParameterSchema<HosekParameters>& HosekParameters::schema() {
 }
 
 HosekWilkieModel::HosekWilkieModel(const HosekParameters& p) : SkyModel(p.sun), params_(p) {
-  HosekParameters::schema().validate(p, model_context("hosek"));
+  HosekParameters::schema().validate(p, model_context(kName));
   sun_ = p.sun.direction();
   const double elevation = p.sun.elevation();
   sun_up_ = elevation >= 0.0;
@@ -663,6 +663,32 @@ Domain HosekWilkieModel::domain() const {
                         "sun below the horizon: the Hosek-Wilkie model has no twilight; sky and "
                         "sun are 0"});
   return d;
+}
+
+ModelInfo HosekWilkieModel::registry_entry() {
+  return ModelInfo{
+      .name = std::string(kName),
+      .description =
+          "Hosek & Wilkie 2012 analytic sky (9-parameter extended Perez form fitted to "
+          "simulations; ArHosekSkyModel v1.4a datasets) with the 2013 solar radiance function",
+      .output =
+          "XYZ = the CIE XYZ dataset x 683 (Y [cd/m^2]); rgb = the native RGB dataset x 683 "
+          "(linear "
+          "sRGB primaries, same photometric scale); spectral radiance [W m^-2 sr^-1 nm^-1] "
+          "320-720 nm; sun disc radius 0.255 deg with limb darkening",
+      .parameters = HosekParameters::schema().specs(),
+      .domain =
+          "turbidity 1-10 and albedo 0-1 (rejected outside: no dataset knots there); sun "
+          "elevation 0-90 deg; sun below the horizon: sky and sun 0 (undefined); the fit's "
+          "slightly "
+          "negative values exactly at the horizon with a low sun are returned as 0",
+      .spectral = true,
+      .sun = true,
+      .make = model_factory<HosekWilkieModel, HosekParameters>(),
+      // the paper's Hosek protocol: T = 1..10 (validation 1.5..9.5); 683 = the native RGB dataset's
+      // raw values
+      .neural = NeuralPolicy::over_turbidity(1.0, 10.0, 683.0),
+  };
 }
 
 }  // namespace skylight

@@ -181,7 +181,11 @@ struct HosekParameters {
 class HosekWilkieModel final : public SkyModel {
  public:
   explicit HosekWilkieModel(const HosekParameters& params);
-  std::string_view name() const override { return "hosek"; }
+  static constexpr std::string_view kName = "hosek";
+  // The registry entry: documentation, schema, factory and policy (models/sky_model.h).
+  static ModelInfo registry_entry();
+
+  std::string_view name() const override { return kName; }
   const HosekParameters& parameters() const { return params_; }
   ParameterValues parameter_values() const override;
   Xyz tristimulus(Vec3 view) const override;

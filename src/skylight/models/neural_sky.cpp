@@ -51,7 +51,7 @@ const nn::SkyNetwork& embedded_sky_network() {
 }
 
 NeuralSkyModel::NeuralSkyModel(const NeuralSkyParameters& p) : SkyModel(p.sun), params_(p) {
-  NeuralSkyParameters::schema().validate(p, model_context("nn"));
+  NeuralSkyParameters::schema().validate(p, model_context(kName));
   if (!p.weights.empty()) {
     const std::string text = io::read_text_file(p.weights);
     if (nn::is_pietras_json(text)) {
@@ -69,7 +69,7 @@ NeuralSkyModel::NeuralSkyModel(const NeuralSkyParameters& p) : SkyModel(p.sun), 
 
 NeuralSkyModel::NeuralSkyModel(const NeuralSkyParameters& p, nn::PietrasNetwork network)
     : SkyModel(p.sun), params_(p) {
-  NeuralSkyParameters::schema().validate(p, model_context("nn"));
+  NeuralSkyParameters::schema().validate(p, model_context(kName));
   pietras_ = std::make_unique<nn::PietrasNetwork>(std::move(network));
   pietras_batch_ =
       std::make_unique<nn::PietrasBatch>(*pietras_, p.observer_altitude_m, std::cos(p.sun.zenith));
@@ -77,7 +77,7 @@ NeuralSkyModel::NeuralSkyModel(const NeuralSkyParameters& p, nn::PietrasNetwork 
 
 NeuralSkyModel::NeuralSkyModel(const NeuralSkyParameters& p, nn::SkyNetwork network)
     : SkyModel(p.sun), params_(p), network_(std::move(network)) {
-  NeuralSkyParameters::schema().validate(p, model_context("nn"));
+  NeuralSkyParameters::schema().validate(p, model_context(kName));
   init_sky();
 }
 
@@ -167,6 +167,26 @@ Domain NeuralSkyModel::domain() const {
     }
   }
   return d;
+}
+
+ModelInfo NeuralSkyModel::registry_entry() {
+  return ModelInfo{
+      .name = std::string(kName),
+      .description =
+          "Neural sky model (Satilmis et al. 2016): a small MLP trained on another sky model "
+          "(skylight nn train), e.g. the paper's 6-12-3 network; fixed cost per direction",
+      .output =
+          "rgb = the network's linear sRGB in the units of its source model's rgb() (the weights "
+          "file's target_scale); XYZ = rgb converted (D65)",
+      .parameters = NeuralSkyParameters::schema().specs(),
+      .domain =
+          "the source model's validity within the network's training range (weights file "
+          "provenance: turbidities, suns 0-90 deg); outside it extrapolated (flagged); sun below "
+          "the horizon: 0 (undefined); no spectral output, no solar disc",
+      .make = model_factory<NeuralSkyModel, NeuralSkyParameters>(),
+      // T = 1..10 of the turbidity input
+      .neural = NeuralPolicy::over_turbidity(1.0, 10.0),
+  };
 }
 
 }  // namespace skylight

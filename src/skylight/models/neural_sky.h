@@ -54,7 +54,11 @@ class NeuralSkyModel final : public SkyModel {
   // (views meeting the ground: the air up to the ground, as the source without --albedo).
   NeuralSkyModel(const NeuralSkyParameters& p, nn::PietrasNetwork network);
 
-  std::string_view name() const override { return "nn"; }
+  static constexpr std::string_view kName = "nn";
+  // The registry entry: documentation, schema, factory and policy (models/sky_model.h).
+  static ModelInfo registry_entry();
+
+  std::string_view name() const override { return kName; }
   ParameterValues parameter_values() const override;
   Xyz tristimulus(Vec3 view) const override;
   Rgb rgb(Vec3 view) const override;

@@ -77,7 +77,11 @@ class NishitaModel final : public SkyModel {
   explicit NishitaModel(const NishitaParameters& params,
                         const atmosphere::FastSettings& settings = {});
   explicit NishitaModel(const NishitaSetup& setup, const atmosphere::FastSettings& settings = {});
-  std::string_view name() const override { return "nishita"; }
+  static constexpr std::string_view kName = "nishita";
+  // The registry entry: documentation, schema, factory and policy (models/sky_model.h).
+  static ModelInfo registry_entry();
+
+  std::string_view name() const override { return kName; }
   ParameterValues parameter_values() const override;
   const NishitaSetup& setup() const { return setup_; }
   Xyz tristimulus(Vec3 view) const override;

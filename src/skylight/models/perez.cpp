@@ -26,7 +26,7 @@ const ParameterSchema<PerezParameters>& PerezParameters::schema() {
 }
 
 PerezModel::PerezModel(const PerezParameters& p) : SkyModel(p.sun), params_(p) {
-  PerezParameters::schema().validate(p, model_context("perez"));
+  PerezParameters::schema().validate(p, model_context(kName));
   const auto& k = *p.coefficients;
   sun_up_ = p.sun.zenith <= 0.5 * kPi;
   const PerezCoefficients c{k[0], k[1], k[2], k[3], k[4], 1.0};
@@ -99,6 +99,23 @@ Domain PerezModel::domain() const {
                         "return 0"});
   }
   return d;
+}
+
+ModelInfo PerezModel::registry_entry() {
+  return ModelInfo{
+      .name = std::string(kName),
+      .description =
+          "Perez all-weather relative luminance (Perez et al. 1993) with user coefficients A..E",
+      .output = "luminance Y [cd/m^2] = Lz F(theta,gamma)/F(0,theta_s); XYZ at D65 chromaticity",
+      .parameters = PerezParameters::schema().specs(),
+      .domain = "any coefficients that keep F > 0; sun above the horizon (below: 0)",
+      .make = model_factory<PerezModel, PerezParameters>(),
+      // A clear sky: the CIE S 011 type 12 gradation and indicatrix coefficients as A..E.
+      .example = ParameterValues()
+                     .set("perez", std::vector<double>{-1.0, -0.32, 10.0, -3.0, 0.45})
+                     .set("zenith-luminance", 5000.0),
+      .neural = NeuralPolicy{},
+  };
 }
 
 }  // namespace skylight

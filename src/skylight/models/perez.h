@@ -38,7 +38,11 @@ struct PerezParameters {
 class PerezModel final : public SkyModel {
  public:
   explicit PerezModel(const PerezParameters& params);
-  std::string_view name() const override { return "perez"; }
+  static constexpr std::string_view kName = "perez";
+  // The registry entry: documentation, schema, factory and policy (models/sky_model.h).
+  static ModelInfo registry_entry();
+
+  std::string_view name() const override { return kName; }
   const PerezParameters& parameters() const { return params_; }
   ParameterValues parameter_values() const override;
   Xyz tristimulus(Vec3 view) const override;

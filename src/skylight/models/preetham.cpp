@@ -176,7 +176,7 @@ const ParameterSchema<PreethamParameters>& PreethamParameters::schema() {
 }
 
 PreethamModel::PreethamModel(const PreethamParameters& p) : SkyModel(p.sun), params_(p) {
-  PreethamParameters::schema().validate(p, model_context("preetham"));
+  PreethamParameters::schema().validate(p, model_context(kName));
   const double T = p.turbidity;
   const double ts = p.sun.zenith;
   sun_up_ = ts <= 0.5 * kPi;
@@ -309,6 +309,29 @@ Domain PreethamModel::domain() const {
                                     zenith_luminance_)});
   }
   return d;
+}
+
+ModelInfo PreethamModel::registry_entry() {
+  return ModelInfo{
+      .name = std::string(kName),
+      .description =
+          "Preetham, Shirley & Smits 1999 analytic daylight: luminance, chromaticity, spectral, "
+          "sun",
+      .output =
+          "XYZ with Y [cd/m^2]; spectral radiance [W m^-2 sr^-1 nm^-1] 300-830 nm via the CIE "
+          "daylight basis; sun disc 380-750 nm",
+      .parameters = PreethamParameters::schema().specs(),
+      .domain =
+          "fitted for turbidity 2-6; unusable below 1.9 and above 10 (Zotti et al. 2007); the "
+          "zenith luminance formula is negative (Zotti Fig. 1) for T < 1.12 with a high sun "
+          "(T = 1: sun zenith < 12.9 deg) and T > 11.2 with the sun at the horizon: returned as 0, "
+          "flagged unphysical; sun below the horizon: 0 (undefined)",
+      .spectral = true,
+      .sun = true,
+      .make = model_factory<PreethamModel, PreethamParameters>(),
+      // the paper's Preetham protocol: T = 2..6 (validation 2.5..5.5), rgb() in kcd/m^2
+      .neural = NeuralPolicy::over_turbidity(2.0, 6.0),
+  };
 }
 
 }  // namespace skylight

@@ -87,7 +87,11 @@ struct PreethamParameters {
 class PreethamModel final : public SkyModel {
  public:
   explicit PreethamModel(const PreethamParameters& params);
-  std::string_view name() const override { return "preetham"; }
+  static constexpr std::string_view kName = "preetham";
+  // The registry entry: documentation, schema, factory and policy (models/sky_model.h).
+  static ModelInfo registry_entry();
+
+  std::string_view name() const override { return kName; }
   const PreethamParameters& parameters() const { return params_; }
   ParameterValues parameter_values() const override;
   Xyz tristimulus(Vec3 view) const override;

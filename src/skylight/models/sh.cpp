@@ -59,17 +59,17 @@ ShSkyModel::ShSkyModel(const ShParameters& p) : ShSkyModel(p, shared_table(p.tab
 
 ShSkyModel::ShSkyModel(const ShParameters& p, std::shared_ptr<const sh::PolynomialTable> table)
     : SkyModel(p.sun), params_(p), table_(std::move(table)) {
-  ShParameters::schema().validate(p, model_context("sh"));
+  ShParameters::schema().validate(p, model_context(kName));
   SKYLIGHT_CHECK(table_ != nullptr, "ShSkyModel: no table");
   const sh::PolynomialTable& t = *table_;
   if (params_.bands == 0) params_.bands = t.bands;
   if (params_.bands > t.bands) {
-    throw InvalidArgument(model_context("sh") + ": --bands " + std::to_string(params_.bands) +
+    throw InvalidArgument(model_context(kName) + ": --bands " + std::to_string(params_.bands) +
                           " exceeds the table's " + std::to_string(t.bands));
   }
   if (t.parameter.empty()) {
     if (params_.turbidity) {
-      throw InvalidArgument(model_context("sh") +
+      throw InvalidArgument(model_context(kName) +
                             ": --turbidity given, but the table varies the sun zenith only");
     }
   } else if (!params_.turbidity) {
@@ -97,6 +97,28 @@ Rgb ShSkyModel::rgb(Vec3 view) const {
 
 Domain ShSkyModel::domain() const {
   return {};
+}
+
+ModelInfo ShSkyModel::registry_entry() {
+  return ModelInfo{
+      .name = std::string(kName),
+      .description =
+          "a sky reconstructed from an SH polynomial table (Habel, Mustata & Wimmer 2008: "
+          "coefficients as polynomials in the sun zenith and turbidity, eq. 1; rotation to the "
+          "sun's azimuth, eq. 4; ringing filter, eq. 5) fitted to any model by `skylight sh fit`",
+      .output =
+          "the table's channels (XYZ with Y [cd/m^2], or linear sRGB on the same scale) of the "
+          "reconstruction sum c_lm Y_lm in every direction, below the horizon too, UNCLAMPED (it "
+          "rings and may be negative); no solar disc",
+      .parameters = ShParameters::schema().specs(),
+      .domain =
+          "the sun zenith and turbidity within the table's fitted ranges (refused outside); the "
+          "error against the fitted model is in docs/SH.md",
+      .make = model_factory<ShSkyModel, ShParameters>(),
+      .unclamped = true,
+      // T = 1..10 (a table of turbidity must cover them)
+      .neural = NeuralPolicy::over_turbidity(1.0, 10.0),
+  };
 }
 
 }  // namespace skylight

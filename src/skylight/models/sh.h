@@ -42,7 +42,11 @@ class ShSkyModel final : public SkyModel {
   explicit ShSkyModel(const ShParameters& params);
   // With an already loaded table (params.table is then only recorded).
   ShSkyModel(const ShParameters& params, std::shared_ptr<const sh::PolynomialTable> table);
-  std::string_view name() const override { return "sh"; }
+  static constexpr std::string_view kName = "sh";
+  // The registry entry: documentation, schema, factory and policy (models/sky_model.h).
+  static ModelInfo registry_entry();
+
+  std::string_view name() const override { return kName; }
   const ShParameters& parameters() const { return params_; }
   ParameterValues parameter_values() const override;
   Xyz tristimulus(Vec3 view) const override;

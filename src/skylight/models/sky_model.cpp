@@ -102,6 +102,17 @@ void tristimulus_parallel(const SkyModel& model, const DirectionsSoA& dirs, cons
   });
 }
 
+NeuralPolicy NeuralPolicy::over_turbidity(double first, double last, double target_scale) {
+  NeuralPolicy p;
+  p.target_scale = target_scale;
+  p.training_turbidities.clear();
+  p.validation_turbidities.clear();
+  for (double t = first; t <= last + 1e-9; t += 1.0) p.training_turbidities.push_back(t);
+  for (double t = first + 0.5; t <= last - 0.5 + 1e-9; t += 1.0)
+    p.validation_turbidities.push_back(t);
+  return p;
+}
+
 void require_in_range(std::string_view name, double value, double min, double max) {
   if (std::isnan(value) || value < min || value > max) {
     throw InvalidArgument(

@@ -151,6 +151,26 @@ P bind_parameters(const SkyParameters& sp, std::string_view name) {
 
 // ---- Registry -----------------------------------------------------------------------------------
 
+// What the rest of the library needs to know about a model, declared in its registry entry (the
+// model's own source file) so that no operation tests a model's name (docs/ARCHITECTURE.md, "The
+// registry").
+
+// How the neural-sky tools sample the model (Satilmis et al. 2016 §III-D, §IV-A;
+// fit/neural_training.h): the network learns rgb() / target_scale over these turbidities.
+struct NeuralPolicy {
+  double target_scale = 1000.0;
+  // {0}: the model has no turbidity (one sky state per sun; the network's turbidity input unused).
+  std::vector<double> training_turbidities{0.0};
+  std::vector<double> validation_turbidities{0.0};
+  // Training T = first, first + 1, ..., last; validation the midpoints between them (the paper's
+  // Preetham 2..6 / 2.5..5.5 and Hosek 1..10 / 1.5..9.5).
+  static NeuralPolicy over_turbidity(double first, double last, double target_scale = 1000.0);
+};
+
+// Binds the generic values into the model's typed parameters (its schema applies defaults and
+// checks them) and builds the model.
+using ModelFactory = std::function<std::unique_ptr<SkyModel>(const SkyParameters&)>;
+
 struct ModelInfo {
   std::string name;
   std::string description;
@@ -160,14 +180,23 @@ struct ModelInfo {
   std::string domain;  // where it is valid, in words
   bool spectral = false;
   bool sun = false;
-  std::function<std::unique_ptr<SkyModel>(const SkyParameters&)> make;
+  ModelFactory make;
   // Values that make a typical sky where the defaults do not (the required parameters): used by
   // benchmarks, the report and the docs' examples.
   ParameterValues example{};
   // The output may be negative (and is non-zero below the horizon): `sh`, whose reconstruction is
   // returned unclamped; every other model is non-negative.
   bool unclamped = false;
+  NeuralPolicy neural{};
 };
+
+// The factory of a model class built from its typed parameters P (bind_parameters).
+template <class Model, class P>
+ModelFactory model_factory() {
+  return [](const SkyParameters& sp) -> std::unique_ptr<SkyModel> {
+    return std::make_unique<Model>(bind_parameters<P>(sp, Model::kName));
+  };
+}
 
 const std::vector<ModelInfo>& model_registry();
 // Every parameter of a model as the user sees it: the sun (sun_parameter_specs()) and its own.

@@ -197,28 +197,21 @@ double decode_radiance(OutputEncoding e, double y) {
 // ---- sampling
 // ------------------------------------------------------------------------------------
 
-SamplingSpec paper_training_spec(std::string_view model, double target_scale) {
+SamplingSpec paper_training_spec(std::string_view source, std::vector<double> turbidities,
+                                 double target_scale) {
   SamplingSpec s;
-  s.model = std::string(model);
+  s.source = std::string(source);
   s.target_scale = target_scale;
-  if (model == "preetham") {
-    s.turbidities = {2, 3, 4, 5, 6};
-  } else {
-    for (int t = 1; t <= 10; ++t) s.turbidities.push_back(t);
-  }
+  s.turbidities = std::move(turbidities);
   s.sun_count = 20;
   s.vary_sun_azimuth = false;
   s.seed = 1;
   return s;
 }
 
-SamplingSpec paper_validation_spec(std::string_view model, double target_scale) {
-  SamplingSpec s = paper_training_spec(model, target_scale);
-  s.turbidities.clear();
-  const double t_max = model == "preetham" ? 5.5 : 9.5;
-  for (double t = model == "preetham" ? 2.5 : 1.5; t <= t_max + 1e-9; t += 1.0) {
-    s.turbidities.push_back(t);
-  }
+SamplingSpec paper_validation_spec(std::string_view source, std::vector<double> turbidities,
+                                   double target_scale) {
+  SamplingSpec s = paper_training_spec(source, std::move(turbidities), target_scale);
   s.sun_count = 7;
   s.vary_sun_azimuth = true;
   s.seed = 2;

@@ -102,8 +102,8 @@ double decode_radiance(OutputEncoding e, double y);
 // ---- sampling protocol -------------------------------------------------------------------------
 
 struct SamplingSpec {
-  std::string model = "hosek";
-  double target_scale = 683.0;
+  std::string source;  // what is sampled (a registry model's name, "images"): a label
+  double target_scale = 1.0;
   std::vector<double> turbidities;
   // Sun zenith angles theta_k = (k + 0.5) / sun_count * pi/2 (midpoints of equal strata of
   // [0, pi/2]: avoids the degenerate sun exactly at the horizon, where Preetham extrapolates).
@@ -119,13 +119,15 @@ struct SamplingSpec {
   std::uint64_t seed = 1;
 };
 
-// Satilmis et al. 2016 §III-D / §IV-A. Training: Preetham t = 2, 3, .., 6; Hosek t = 1, .., 10,
-// albedo 0.5; 20 sun zenith angles at azimuth pi; 10 x 20 views. Validation: Preetham t = 2.5,
-// .., 5.5, Hosek t = 1.5, .., 9.5; 7 sun zenith angles (azimuths varied); 10 x 20 views (another
-// seed).
-// target_scale: the source's normalisation (models/neural_sky.h, default_target_scale).
-SamplingSpec paper_training_spec(std::string_view model, double target_scale);
-SamplingSpec paper_validation_spec(std::string_view model, double target_scale);
+// Satilmis et al. 2016 §III-D / §IV-A over a source's turbidities (which ones is the source's
+// policy: models/sky_model.h, NeuralPolicy; e.g. Preetham t = 2, 3, .., 6 and 2.5, .., 5.5).
+// Training: albedo 0.5; 20 sun zenith angles at azimuth pi; 10 x 20 views, seed 1. Validation:
+// 7 sun zenith angles (azimuths varied); 10 x 20 views, seed 2. target_scale: the source's
+// normalisation (the network learns rgb / target_scale).
+SamplingSpec paper_training_spec(std::string_view source, std::vector<double> turbidities,
+                                 double target_scale);
+SamplingSpec paper_validation_spec(std::string_view source, std::vector<double> turbidities,
+                                   double target_scale);
 
 struct Dataset {
   SamplingSpec spec;

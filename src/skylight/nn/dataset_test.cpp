@@ -14,8 +14,15 @@ namespace {
 // Double-precision geometry (rotations, chord lengths) agrees to round-off.
 constexpr double kGeometryTolerance = 1e-12;
 
+// The paper's turbidities: Preetham 2..6 (validation 2.5..5.5), Hosek 1..10 (1.5..9.5).
+std::vector<double> steps(double first, double last) {
+  std::vector<double> t;
+  for (double v = first; v <= last + 1e-9; v += 1.0) t.push_back(v);
+  return t;
+}
+
 SamplingSpec small_spec(const char* model) {
-  SamplingSpec s = paper_training_spec(model, 683.0);
+  SamplingSpec s = paper_training_spec(model, {3.0}, 683.0);
   s.turbidities = {3.0};
   s.sun_count = 2;
   s.view_zeniths = 3;
@@ -27,13 +34,13 @@ TEST(Dataset, PaperProtocolSizes) {
   auto count = [](const SamplingSpec& s) {
     return s.turbidities.size() * s.sun_count * s.view_zeniths * s.view_azimuths;
   };
-  EXPECT_EQ(count(paper_training_spec("preetham", 1000.0)), 20000u);  // Table 1
-  EXPECT_EQ(count(paper_training_spec("hosek", 683.0)), 40000u);      // Table 1
-  EXPECT_EQ(count(paper_validation_spec("preetham", 1000.0)), 4u * 7 * 200);
-  EXPECT_EQ(count(paper_validation_spec("hosek", 683.0)), 9u * 7 * 200);
-  EXPECT_DOUBLE_EQ(paper_validation_spec("hosek", 683.0).turbidities.front(), 1.5);
-  EXPECT_DOUBLE_EQ(paper_validation_spec("hosek", 683.0).turbidities.back(), 9.5);
-  EXPECT_DOUBLE_EQ(paper_training_spec("hosek", 683.0).ground_albedo, 0.5);
+  EXPECT_EQ(count(paper_training_spec("preetham", steps(2, 6), 1000.0)), 20000u);  // Table 1
+  EXPECT_EQ(count(paper_training_spec("hosek", steps(1, 10), 683.0)), 40000u);     // Table 1
+  EXPECT_EQ(count(paper_validation_spec("preetham", steps(2.5, 5.5), 1000.0)), 4u * 7 * 200);
+  EXPECT_EQ(count(paper_validation_spec("hosek", steps(1.5, 9.5), 683.0)), 9u * 7 * 200);
+  EXPECT_DOUBLE_EQ(paper_validation_spec("hosek", steps(1.5, 9.5), 683.0).turbidities.front(), 1.5);
+  EXPECT_DOUBLE_EQ(paper_validation_spec("hosek", steps(1.5, 9.5), 683.0).turbidities.back(), 9.5);
+  EXPECT_DOUBLE_EQ(paper_training_spec("hosek", steps(1, 10), 683.0).ground_albedo, 0.5);
 }
 
 TEST(Dataset, RotationMovesTheSunToAzimuthPi) {
@@ -110,7 +117,7 @@ TEST(Dataset, StratifiedViewsAndSourceRadiance) {
 }
 
 TEST(Dataset, ValidationSunsHaveVariedAzimuths) {
-  SamplingSpec spec = paper_validation_spec("preetham", 1000.0);
+  SamplingSpec spec = paper_validation_spec("preetham", steps(2.5, 5.5), 1000.0);
   spec.view_zeniths = 1;
   spec.view_azimuths = 1;
   const Dataset ds =

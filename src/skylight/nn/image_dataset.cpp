@@ -31,7 +31,7 @@ Dataset image_dataset(const std::vector<ImageSamples>& images, const InputSpec& 
   if (!(target_scale > 0.0) || !std::isfinite(target_scale))
     throw InvalidArgument(fmt::format("images: target scale {} is not positive", target_scale));
   Dataset ds;
-  ds.spec.model = "images";
+  ds.spec.source = "images";
   ds.spec.target_scale = target_scale;
   ds.spec.sun_count = static_cast<int>(images.size());
   ds.spec.turbidities = {0.0};
@@ -98,7 +98,7 @@ TrainedSkyNetwork train_sky_network(const Dataset& ds, const NetworkSetup& setup
   sky.encoding = setup.encoding;
   sky.target_scale = ds.spec.target_scale;
   SkyNetworkProvenance& pv = sky.provenance;
-  pv.source = ds.spec.model;
+  pv.source = ds.spec.source;
   for (const SkyState& s : ds.states)
     if (std::find(pv.turbidities.begin(), pv.turbidities.end(), s.turbidity) ==
         pv.turbidities.end())

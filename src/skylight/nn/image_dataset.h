@@ -33,7 +33,7 @@ inline constexpr double kImageTargetMedian = 0.05;
 double image_target_scale(const std::vector<ImageSamples>& images);
 
 // The examples of every image, in image order: state s = image s, radiance = rgb / target_scale.
-// spec.model = "images", spec.target_scale, spec.sun_count = number of images.
+// spec.source = "images", spec.target_scale, spec.sun_count = number of images.
 Dataset image_dataset(const std::vector<ImageSamples>& images, const InputSpec& inputs,
                       double target_scale);
 
@@ -53,7 +53,7 @@ struct TrainedSkyNetwork {
 };
 
 // Trains the network of `setup` on all examples of ds (hidden layers satilmis; output satilmis
-// for the satilmis encoding, identity otherwise). provenance.source = ds.spec.model,
+// for the satilmis encoding, identity otherwise). provenance.source = ds.spec.source,
 // provenance.turbidities = the states' distinct turbidities.
 TrainedSkyNetwork train_sky_network(const Dataset& ds, const NetworkSetup& setup);
 

@@ -46,7 +46,7 @@ TEST(ImageDataset, ExamplesAreTheSamplesWithTheImagesSun) {
   const Dataset ds = image_dataset(ims, satilmis_inputs(), 20.0);
   ASSERT_EQ(ds.size(), 12u);
   EXPECT_EQ(ds.states.size(), 2u);
-  EXPECT_EQ(ds.spec.model, "images");
+  EXPECT_EQ(ds.spec.source, "images");
   EXPECT_EQ(ds.spec.target_scale, 20.0);
   std::vector<double> x(6);
   for (std::size_t i = 0; i < ds.size(); ++i) {

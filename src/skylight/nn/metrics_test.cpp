@@ -26,8 +26,7 @@ constexpr double kSumRelTolerance = 1e-12;
 constexpr double kMaxRelTolerance = 1e-9;
 
 Dataset small_set() {
-  SamplingSpec spec = paper_validation_spec("hosek", 683.0);
-  spec.turbidities = {2.5, 6.5};
+  SamplingSpec spec = paper_validation_spec("hosek", {2.5, 6.5}, 683.0);
   spec.sun_count = 3;
   spec.view_zeniths = 4;
   spec.view_azimuths = 6;

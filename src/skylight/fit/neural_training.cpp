@@ -1,4 +1,4 @@
-#include "skylight/models/neural_training.h"
+#include "skylight/fit/neural_training.h"
 
 #include <algorithm>
 #include <memory>
@@ -7,12 +7,12 @@
 #include "skylight/core/numbers.h"
 #include "skylight/models/sky_model.h"
 
-namespace skylight {
+namespace skylight::fit {
 namespace {
 
 const ModelInfo& source_info(std::string_view source) {
   const ModelInfo* info = find_model(source);
-  if (!info) throw InvalidArgument("--source: unknown sky model '" + excerpt(source) + "'");
+  if (!info) throw InvalidArgument("source: unknown sky model '" + excerpt(source) + "'");
   return *info;
 }
 
@@ -20,15 +20,6 @@ const ParameterSpec* find_spec(const ModelInfo& info, std::string_view name) {
   const auto it = std::find_if(info.parameters.begin(), info.parameters.end(),
                                [&](const ParameterSpec& s) { return s.name == name; });
   return it == info.parameters.end() ? nullptr : &*it;
-}
-
-// Turbidities first, first + 1, ... up to last, within the spec's range.
-std::vector<double> turbidity_list(const ParameterSpec* spec, double first, double last) {
-  std::vector<double> t;
-  if (!spec) return {0.0};
-  for (double v = first; v <= last + 1e-9; v += 1.0)
-    if (v >= spec->min && v <= spec->max) t.push_back(v);
-  return t;
 }
 
 void apply_overrides(nn::SamplingSpec& spec, const NeuralTraining& t) {
@@ -40,8 +31,7 @@ void apply_overrides(nn::SamplingSpec& spec, const NeuralTraining& t) {
 }  // namespace
 
 double default_target_scale(std::string_view source) {
-  if (source == "hosek") return 683.0;
-  return 1000.0;
+  return source_info(source).neural.target_scale;
 }
 
 nn::SkySource sky_model_source(std::string_view model) {
@@ -60,26 +50,20 @@ nn::SkySource sky_model_source(std::string_view model) {
 }
 
 nn::SamplingSpec neural_training_spec(std::string_view source) {
-  const ModelInfo& info = source_info(source);
-  nn::SamplingSpec s = nn::paper_training_spec(source, default_target_scale(source));
-  const ParameterSpec* t = find_spec(info, "turbidity");
-  s.turbidities = source == "preetham" ? turbidity_list(t, 2.0, 6.0) : turbidity_list(t, 1.0, 10.0);
-  return s;
+  const NeuralPolicy& p = source_info(source).neural;
+  return nn::paper_training_spec(source, p.training_turbidities, p.target_scale);
 }
 
 nn::SamplingSpec neural_validation_spec(std::string_view source) {
-  const ModelInfo& info = source_info(source);
-  nn::SamplingSpec s = nn::paper_validation_spec(source, default_target_scale(source));
-  const ParameterSpec* t = find_spec(info, "turbidity");
-  s.turbidities = source == "preetham" ? turbidity_list(t, 2.5, 5.5) : turbidity_list(t, 1.5, 9.5);
-  return s;
+  const NeuralPolicy& p = source_info(source).neural;
+  return nn::paper_validation_spec(source, p.validation_turbidities, p.target_scale);
 }
 
 NeuralTrainingResult train_neural_sky(const NeuralTraining& t) {
   nn::SamplingSpec spec = neural_training_spec(t.source);
   if (t.target_scale) spec.target_scale = *t.target_scale;
   apply_overrides(spec, t);
-  if (!(spec.target_scale > 0.0)) throw InvalidArgument("--target-scale must be positive");
+  if (!(spec.target_scale > 0.0)) throw InvalidArgument("target-scale must be positive");
   const nn::SkySource source = sky_model_source(t.source);
   const nn::Dataset data = nn::build_dataset(spec, t.inputs, source);
   const std::vector<double> targets = data.targets(t.encoding);
@@ -136,4 +120,4 @@ NeuralValidation validate_neural_sky(const nn::SkyNetwork& sky, int sun_count, i
   return v;
 }
 
-}  // namespace skylight
+}  // namespace skylight::fit

@@ -1,4 +1,4 @@
-#include "skylight/models/neural_training.h"
+#include "skylight/fit/neural_training.h"
 
 #include <gtest/gtest.h>
 
@@ -6,7 +6,7 @@
 #include "skylight/models/neural_sky.h"
 #include "skylight/models/sky_model.h"
 
-namespace skylight {
+namespace skylight::fit {
 namespace {
 
 // A 6-8-3 network trained for 60 Levenberg-Marquardt iterations on a reduced Preetham set (T =
@@ -103,4 +103,4 @@ TEST(NeuralTraining, EmbeddedNetworkMeetsHalfOfTable1) {
 }
 
 }  // namespace
-}  // namespace skylight
+}  // namespace skylight::fit

@@ -1,6 +1,7 @@
 // Training and validating neural sky models (Satilmis et al. 2016 §III-D, §IV) on any registered
-// SkyModel: the source (its rgb() per sky state), the paper's sampling protocol, training through
-// nn::train and the metrics of nn/metrics.h on the paper's validation sets. docs/NN.md.
+// SkyModel: the source (its rgb() per sky state), the paper's sampling protocol over the model's
+// turbidities (its registry entry's NeuralPolicy), training through nn::train and the metrics of
+// nn/metrics.h on the paper's validation sets. docs/NN.md.
 #pragma once
 
 #include <functional>
@@ -14,11 +15,10 @@
 #include "skylight/nn/sky_network.h"
 #include "skylight/nn/train.h"
 
-namespace skylight {
+namespace skylight::fit {
 
-// Normalisation of a source's rgb() (the network learns rgb / target_scale): Preetham 1000
-// (kcd/m^2-based sRGB), Hosek-Wilkie 683 (its native RGB dataset's raw values), any other model
-// 1000.
+// Normalisation of a source's rgb() (the network learns rgb / target_scale): its registry entry's
+// NeuralPolicy::target_scale. InvalidArgument for an unknown model.
 double default_target_scale(std::string_view source);
 
 // A training source from a registered model: per sky state, the model built with the state's
@@ -26,11 +26,10 @@ double default_target_scale(std::string_view source);
 // an unknown model or one that needs parameters the state does not give.
 nn::SkySource sky_model_source(std::string_view model);
 
-// The paper protocol (§III-D, §IV-A) for any source: Preetham T = 2..6 (validation 2.5..5.5),
-// others with a turbidity parameter T = 1..10 within its range (validation 1.5..9.5), sources
-// without one a single state per sun with T = 0 (the input unused, as for image-trained
-// networks); 20 training suns at azimuth pi, 7 validation suns at random azimuths; 10 x 20
-// stratified views; albedo 0.5.
+// The paper protocol (§III-D, §IV-A; nn::paper_training_spec) over the source's NeuralPolicy
+// turbidities (a source without turbidity: a single state per sun with T = 0, the input unused,
+// as for image-trained networks); 20 training suns at azimuth pi, 7 validation suns at random
+// azimuths; 10 x 20 stratified views; albedo 0.5.
 nn::SamplingSpec neural_training_spec(std::string_view source);
 nn::SamplingSpec neural_validation_spec(std::string_view source);
 
@@ -69,4 +68,4 @@ NeuralTrainingResult train_neural_sky(const NeuralTraining& t);
 NeuralValidation validate_neural_sky(const nn::SkyNetwork& sky, int sun_count = 0,
                                      int view_zeniths = 0, int view_azimuths = 0);
 
-}  // namespace skylight
+}  // namespace skylight::fit
