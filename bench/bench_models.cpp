@@ -26,6 +26,7 @@
 #include "skylight/haze/image_haze.h"
 #include "skylight/models/neural_sky.h"
 #include "skylight/models/nishita.h"
+#include "skylight/models/pietras.h"
 #include "skylight/models/sh.h"
 #include "skylight/models/sky_model.h"
 #include "skylight/render/sky_render.h"
@@ -156,12 +157,12 @@ BENCHMARK_CAPTURE(Threads, nn, "nn")->Unit(benchmark::kMillisecond)->UseRealTime
 BENCHMARK_CAPTURE(Scalar, nishita, "nishita")->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(Batch, nishita, "nishita")->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(Threads, nishita, "nishita")->Unit(benchmark::kMillisecond)->UseRealTime();
-// Pietras §III: the nn model with a Pietras network (trainer's initial weights, the cost of a
+// Pietras §III: the pietras model with a Pietras network (trainer's initial weights, the cost of a
 // trained one), observer on the ground, sun at zenith 45 deg; compare with Batch/nishita.
 void PietrasBatch(benchmark::State& state, nn::PietrasKind kind) {
-  NeuralSkyParameters p;
+  PietrasParameters p;
   p.sun = {deg_to_rad(45.0), deg_to_rad(180.0)};
-  const NeuralSkyModel m(p, nn::initial_pietras_network(kind, 1));
+  const PietrasSkyModel m(p, nn::initial_pietras_network(kind, 1));
   Grid& g = grid();
   for (auto _ : state) {
     m.tristimulus_batch({g.d.x, g.d.y, g.d.z}, {g.X, g.Y, g.Z});
@@ -208,7 +209,7 @@ void GpuNnFrame(benchmark::State& state, bool readback) {
   gpu::Context context;
   const auto m = model("nn");
   render::RenderSettings s;  // 1024 x 512 equirect
-  gpu::SkyRenderer r(dynamic_cast<const NeuralSkyModel&>(*m), s);
+  gpu::SkyRenderer r(*m, s);
   for (auto _ : state) {
     r.draw();
     if (readback)

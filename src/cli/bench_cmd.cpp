@@ -23,6 +23,7 @@
 #include "skylight/haze/airlight_field.h"
 #include "skylight/haze/image_haze.h"
 #include "skylight/models/neural_sky.h"
+#include "skylight/models/pietras.h"
 #include "skylight/models/sh.h"
 #include "skylight/render/sky_render.h"
 #include "skylight/sh/polynomial.h"
@@ -138,7 +139,7 @@ void bench_gpu(int width, int height, int repeats) {
   const std::size_t n = dirs.x.size();
   std::vector<float> X(n), Y(n), Z(n);
   // One network's fragment-shader frame against its CPU batch path.
-  const auto frame_vs_cpu = [&](const NeuralSkyModel& model, const std::string& what) {
+  const auto frame_vs_cpu = [&](const SkyModel& model, const std::string& what) {
     gpu::SkyRenderer r(model, s);
     r.draw();  // compile and first-use costs outside the timing
     context.finish();
@@ -167,10 +168,10 @@ void bench_gpu(int width, int height, int repeats) {
   frame_vs_cpu(nn, fmt::format("nn ({})", nn.network().net.layout().describe()));
   // A Pietras network per pixel (log3: the network and its exact shadow test of the view ray;
   // untrained weights, the same cost as data/nn/log3.json) from 1 km with the sun at 60 degrees.
-  NeuralSkyParameters pp;
+  PietrasParameters pp;
   pp.sun = sun_from_degrees(60.0, 180.0);
   pp.observer_altitude_m = 1000.0;
-  const NeuralSkyModel log3(pp, nn::initial_pietras_network(nn::PietrasKind::log3, 1));
+  const PietrasSkyModel log3(pp, nn::initial_pietras_network(nn::PietrasKind::log3, 1));
   frame_vs_cpu(log3, "Pietras log3 network (untrained weights, the same cost) per pixel from 1 km");
   // The Pietras vertex shader's planet from orbit (gpu/planet.h) at the `nn planet` default mesh:
   // the paper's network (untrained weights: the same cost): the vertex terms on the CPU, the
@@ -327,13 +328,13 @@ void bench_pietras(int repeats, const render::PixelDirections& dirs) {
   std::string out =
       fmt::format("pietras: nishita fast path {:.2f} ms per frame (one thread)\n", 1e3 * nishita);
   for (nn::PietrasKind k : {nn::PietrasKind::pietras, nn::PietrasKind::log3}) {
-    NeuralSkyParameters np;
+    PietrasParameters np;
     np.sun = p.sun;
-    const NeuralSkyModel m(np, nn::initial_pietras_network(k, 1));
+    const PietrasSkyModel m(np, nn::initial_pietras_network(k, 1));
     const double t = time(m);
     out +=
         fmt::format("pietras: {} ({} weights) {:.2f} ms per frame: {:.1f}x faster than nishita\n",
-                    nn::to_string(k), m.pietras()->parameter_count(), 1e3 * t, nishita / t);
+                    nn::to_string(k), m.network().parameter_count(), 1e3 * t, nishita / t);
   }
   (void)sink;
   write_stdout(out);

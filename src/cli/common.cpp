@@ -267,7 +267,15 @@ SkyParameters ModelOptions::parameters() const {
 }
 
 std::unique_ptr<SkyModel> ModelOptions::make() const {
-  auto model = make_sky_model(info().name, parameters());
+  const SkyParameters p = parameters();
+  auto model = make_sky_model(info().name, p);
+  // A parameter of the schema that this model, with these values, does not read (e.g. nn's
+  // turbidity for a network trained without one): said, and not recorded (parameter_values()).
+  const ParameterValues read = model->parameter_values();
+  for (const auto& [name, value] : p.values.all())
+    if (!read.has(name))
+      warn(fmt::format("--{} is not read by model '{}' with these parameters; ignored", name,
+                       model->name()));
   if ((include_sun_ || sun_only_) && !model->has_sun())
     throw InvalidArgument(
         fmt::format("--include-sun/--sun-only: model '{}' has no sun", model->name()));

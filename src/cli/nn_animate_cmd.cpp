@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <memory>
 #include <optional>
 
 #include "common.h"
@@ -17,6 +18,7 @@
 #include "skylight/io/file.h"
 #include "skylight/io/image.h"
 #include "skylight/models/neural_sky.h"
+#include "skylight/models/pietras.h"
 #include "skylight/render/sky_render.h"
 #include "skylight/render/tonemap.h"
 #include "skylight/sun/spa.h"
@@ -119,20 +121,29 @@ int run_animate(const AnimateFlags& f) {
   int dark = 0;
   for (int k = 0; k < f.frames; ++k) {
     progress(k, f.frames, fmt::format("frame {}", k));
-    NeuralSkyParameters p;
-    p.sun = suns[k];
-    p.weights = f.weights;
-    if (f.turbidity) p.turbidity = *f.turbidity;
-    if (f.observer_altitude_m) p.observer_altitude_m = *f.observer_altitude_m;
-    const NeuralSkyModel model = pietras ? NeuralSkyModel(p, *pietras) : NeuralSkyModel(p, network);
-    const render::SkyImage img = render::render_sky(model, s);
+    std::unique_ptr<SkyModel> model;
+    if (pietras) {
+      PietrasParameters p;
+      p.sun = suns[k];
+      p.weights = f.weights;
+      if (f.observer_altitude_m) p.observer_altitude_m = *f.observer_altitude_m;
+      model = std::make_unique<PietrasSkyModel>(p, *pietras);
+    } else {
+      NeuralSkyParameters p;
+      p.sun = suns[k];
+      p.weights = f.weights;
+      if (f.turbidity) p.turbidity = *f.turbidity;
+      model = std::make_unique<NeuralSkyModel>(p, network);
+    }
+    const SunPosition& sun = model->sun();
+    const render::SkyImage img = render::render_sky(*model, s);
     for (float v : img.rgb.data)
       if (!std::isfinite(v))
         throw InvalidArgument(fmt::format("frame {}: the network gives a non-finite value", k));
     // A sky network was trained for suns above the horizon; a Pietras network covers twilight
     // and night (its shadow test).
-    if (!pietras && p.sun.zenith > kPi / 2) ++dark;
-    auto md = model_metadata(model, "sky");
+    if (!pietras && sun.zenith > kPi / 2) ++dark;
+    auto md = model_metadata(*model, "sky");
     md.emplace_back("skylight:projection", f.projection);
     md.emplace_back("skylight:frame", fmt::format("{} of {}", k, f.frames));
     const std::string path = frame_path(f.output, k, f.frames);
@@ -141,8 +152,8 @@ int run_animate(const AnimateFlags& f) {
       for (int row = 0; row < s.height; ++row)
         for (int col = 0; col < s.width; ++col)
           std::copy_n(img.rgb.pixel(col, row), 3, strip.pixel(k * s.width + col, row));
-    out += fmt::format("{:5}  {:14.3f}  {:15.3f}  {}\n", k, rad_to_deg(p.sun.zenith),
-                       rad_to_deg(p.sun.azimuth), path);
+    out += fmt::format("{:5}  {:14.3f}  {:15.3f}  {}\n", k, rad_to_deg(sun.zenith),
+                       rad_to_deg(sun.azimuth), path);
   }
   progress(f.frames, f.frames, "done");
   if (dark > 0)
@@ -175,7 +186,7 @@ void add_nn_animate_command(CLI::App& nn, Commands& commands) {
   ParameterSpec turbidity = *NeuralSkyParameters::schema().find("turbidity");
   turbidity.default_value = Absent{"3; sky networks only"};
   add_number(*cmd, turbidity, f->turbidity);
-  ParameterSpec altitude = *NeuralSkyParameters::schema().find("observer-altitude");
+  ParameterSpec altitude = *PietrasParameters::schema().find("observer-altitude");
   altitude.default_value = Absent{"0; Pietras networks only"};
   altitude.description = "observer above the ground, a Pietras network's density input";
   add_number(*cmd, altitude, f->observer_altitude_m);

@@ -16,9 +16,9 @@
 #include "skylight/core/math.h"
 #include "skylight/core/numbers.h"
 #include "skylight/fit/neural_training.h"
+#include "skylight/fit/pietras_training.h"
 #include "skylight/io/file.h"
 #include "skylight/models/neural_sky.h"
-#include "skylight/models/pietras_training.h"
 #include "skylight/nn/glsl.h"
 #include "skylight/version.h"
 
@@ -28,7 +28,7 @@ namespace {
 // Defaults of nn train --samples: Pietras trains on 800 000 random samples (§VI, results); 2000
 // sky pixels per image keep a 12-image sequence at 24 000 examples (docs/NN.md).
 constexpr int kPietrasSamples = 800000, kImageSamples = 2000;
-// Trainer defaults of the sky networks (docs/NN.md); --network takes pietras_training.h's
+// Trainer defaults of the sky networks (docs/NN.md); --network takes fit/pietras_training.h's
 // (L-BFGS, kPietrasIterations, kPietrasTimeLimitS per sub-network).
 constexpr const char* kSkyTrainer = "lm";
 constexpr int kSkyIterations = 500;
@@ -38,11 +38,12 @@ struct TrainFlags {
   std::string source = "preetham";
   int seed = 1;
   int hidden = 12;
-  std::string trainer;  // empty: kSkyTrainer, with --network kPietrasTrainer
+  std::string trainer;  // empty: kSkyTrainer, with --network fit::kPietrasTrainer
   std::string inputs = nn::to_string(nn::satilmis_inputs());
   std::string encoding = "satilmis";
-  std::optional<double> time_limit_s;  // absent: kSkyTimeLimitS, with --network kPietrasTimeLimitS
-  int iterations = 0;                  // 0: kSkyIterations, with --network kPietrasIterations
+  std::optional<double>
+      time_limit_s;    // absent: kSkyTimeLimitS, with --network fit::kPietrasTimeLimitS
+  int iterations = 0;  // 0: kSkyIterations, with --network fit::kPietrasIterations
   std::optional<double> target_scale;
   int suns = 0, view_zeniths = 0, view_azimuths = 0;
   std::string output, log;
@@ -85,10 +86,10 @@ int run_train(const TrainFlags& f, const ImageTrainFlags& images) {
   if (!f.network.empty()) {
     return run_pietras_train(
         {f.network, f.source,
-         f.trainer.empty() ? std::string(nn::to_string(kPietrasTrainer)) : f.trainer,
+         f.trainer.empty() ? std::string(nn::to_string(fit::kPietrasTrainer)) : f.trainer,
          f.samples > 0 ? f.samples : kPietrasSamples, f.seed,
-         f.iterations > 0 ? f.iterations : kPietrasIterations,
-         f.time_limit_s.value_or(kPietrasTimeLimitS), f.output, f.planet, f.init},
+         f.iterations > 0 ? f.iterations : fit::kPietrasIterations,
+         f.time_limit_s.value_or(fit::kPietrasTimeLimitS), f.output, f.planet, f.init},
         utc_now_iso8601(), std::string("skylight ") + SKYLIGHT_VERSION);
   }
   if (planet_given(f.planet))
@@ -273,7 +274,7 @@ void add_nn_command(CLI::App& app, Commands& commands) {
   train->add_option("--trainer", tf->trainer,
                     fmt::format("lm (Levenberg-Marquardt), backprop (the paper's), adam, lbfgs; "
                                 "default {}, with --network {}",
-                                kSkyTrainer, nn::to_string(kPietrasTrainer)));
+                                kSkyTrainer, nn::to_string(fit::kPietrasTrainer)));
   train
       ->add_option("--inputs", tf->inputs,
                    "the network's inputs, comma-separated (the paper's V_NN by default; also "
@@ -288,13 +289,13 @@ void add_nn_command(CLI::App& app, Commands& commands) {
   add_number(*train,
              {"time-limit", "s", ParameterKind::number, 0.01, 1e6, 1,
               Absent{fmt::format("{} s, with --network {} s per sub-network", kSkyTimeLimitS,
-                                 kPietrasTimeLimitS)},
+                                 fit::kPietrasTimeLimitS)},
               "stop training after this wall time"},
              tf->time_limit_s);
   add_integer(*train,
               {"iterations", "1", ParameterKind::integer, 1, 100000000, 1,
                Absent{fmt::format("{}, with --network {} per sub-network", kSkyIterations,
-                                  kPietrasIterations)},
+                                  fit::kPietrasIterations)},
                "at most this many iterations (LM, L-BFGS) or epochs (backprop, adam)"},
               tf->iterations);
   add_number(*train,

@@ -11,8 +11,8 @@
 #include "nn_parts.h"
 #include "skylight/core/error.h"
 #include "skylight/core/numbers.h"
+#include "skylight/fit/pietras_training.h"
 #include "skylight/io/file.h"
-#include "skylight/models/pietras_training.h"
 
 namespace skylight::cli {
 namespace {
@@ -20,7 +20,7 @@ namespace {
 // The validation sets' seed: fixed, and apart from training seeds (1, 2, ...).
 constexpr std::uint64_t kValidationSeed = 1000003;
 
-nlohmann::ordered_json errors_json(const PietrasErrors& e) {
+nlohmann::ordered_json errors_json(const fit::PietrasErrors& e) {
   nlohmann::ordered_json j;
   j["samples"] = e.count;
   j["excluded_dark"] = e.excluded;
@@ -33,7 +33,7 @@ nlohmann::ordered_json errors_json(const PietrasErrors& e) {
   return j;
 }
 
-std::string errors_line(const char* name, const PietrasErrors& e) {
+std::string errors_line(const char* name, const fit::PietrasErrors& e) {
   return fmt::format(
       "{:<9} {:>7} samples: luminance error median {}, p95 {}, max {}; chromaticity |dxy| median "
       "{:.4f}, p95 {:.4f}\n",
@@ -67,14 +67,14 @@ int run_pietras_train(const PietrasTrainArgs& a, const std::string& date,
   if (!kind)
     throw InvalidArgument(
         fmt::format("--network: '{}' is not pietras or log3", excerpt(a.network)));
-  if (a.source != "nishita")
+  if (a.source != NishitaModel::kName)
     throw InvalidArgument(fmt::format("--network {}: --source must be nishita, not '{}'", a.network,
                                       excerpt(a.source)));
   const auto trainer = nn::parse_trainer(a.trainer);
   if (!trainer)
     throw InvalidArgument(
         fmt::format("--trainer: '{}' is not lm, backprop, adam or lbfgs", excerpt(a.trainer)));
-  PietrasTraining t;
+  fit::PietrasTraining t;
   t.kind = *kind;
   std::optional<nn::PietrasNetwork> initial;
   if (!a.init.empty()) {
@@ -118,7 +118,7 @@ int run_pietras_train(const PietrasTrainArgs& a, const std::string& date,
     }
     return true;
   };
-  nn::PietrasNetwork net = train_pietras(t);
+  nn::PietrasNetwork net = fit::train_pietras(t);
   net.provenance.date = date;
   net.provenance.software = software;
   io::write_text_file(a.output, nn::to_json(net));
@@ -135,7 +135,7 @@ int run_pietras_train(const PietrasTrainArgs& a, const std::string& date,
 // Why the paper network's luminance error is what it is (docs/PIETRAS.md, "What limits the
 // accuracy"), with the day set's own N / max N: printed with its errors, so the number is not read
 // without its cause.
-std::string paper_network_note(const PietrasErrors& day) {
+std::string paper_network_note(const fit::PietrasErrors& day) {
   const std::string per_milli =
       day.scaled_median > 0.0
           ? fmt::format("{:.1f} %", 100.0 * 0.001 / (nn::kPietrasMScale * day.scaled_median))
@@ -152,8 +152,8 @@ std::string paper_network_note(const PietrasErrors& day) {
 int run_pietras_validate(const std::string& weights, const std::string& text, bool json,
                          int samples) {
   const nn::PietrasNetwork net = nn::pietras_from_json(text, weights);
-  const PietrasValidation v =
-      validate_pietras(net, static_cast<std::size_t>(samples), kValidationSeed);
+  const fit::PietrasValidation v =
+      fit::validate_pietras(net, static_cast<std::size_t>(samples), kValidationSeed);
   if (json) {
     nlohmann::ordered_json j;
     j["weights"] = weights;

@@ -12,7 +12,7 @@
 #include "skylight/core/math.h"
 #include "skylight/core/numbers.h"
 #include "skylight/io/file.h"
-#include "skylight/models/pietras_training.h"
+#include "skylight/models/pietras.h"
 #include "skylight/models/sky_model.h"
 #include "skylight/render/icosphere.h"
 #include "skylight/render/sky_render.h"

@@ -9,7 +9,6 @@
 #include "common.h"
 #include "skylight/core/error.h"
 #include "skylight/io/image.h"
-#include "skylight/models/neural_sky.h"
 #include "skylight/render/false_colour.h"
 #include "skylight/render/sky_render.h"
 #include "skylight/render/tonemap.h"
@@ -32,16 +31,12 @@ struct RenderFlags {
   bool gpu = false;
 };
 
-// `--gpu`: the fragment-shader render of the `nn` model (gpu/sky_render.h).
+// `--gpu`: the fragment-shader render of a network model (gpu/sky_render.h).
 render::SkyImage render_on_gpu(const SkyModel& model, const render::RenderSettings& s) {
-  const auto* nn = dynamic_cast<const NeuralSkyModel*>(&model);
-  if (nn == nullptr)
-    throw InvalidArgument(
-        fmt::format("--gpu renders the nn model only (--model nn), not '{}'", model.name()));
 #ifdef SKYLIGHT_HAVE_GPU
-  return gpu::render_sky_gpu(*nn, s);
+  return gpu::render_sky_gpu(model, s);
 #else
-  (void)s;
+  (void)model, (void)s;
   throw std::runtime_error(
       "--gpu: this skylight was built without the GPU module (SKYLIGHT_GPU=OFF: EGL and OpenGL "
       "were not found when configuring; docs/GPU.md)");

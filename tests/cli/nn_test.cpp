@@ -10,6 +10,7 @@
 
 #include "skylight/io/image.h"
 #include "skylight/models/neural_sky.h"
+#include "skylight/models/pietras.h"
 #include "skylight/models/sky_model.h"
 #include "skylight/render/sky_render.h"
 #include "skylight/sun/spa.h"
@@ -237,11 +238,11 @@ TEST_F(Cli, NnAnimatePietrasThroughTwilight) {
   double peak[3] = {};
   for (int k = 0; k < 3; ++k) {
     const io::ImageF frame = io::read_image(dir_ / fmt::format("p_{}.exr", k));
-    NeuralSkyParameters p;
+    PietrasParameters p;
     p.sun = sun_from_degrees(80.0 + 15.0 * k, 250.0 + 10.0 * k);
     p.weights = w;
     p.observer_altitude_m = 1000.0;
-    const render::SkyImage ref = render::render_sky(NeuralSkyModel(p), s);
+    const render::SkyImage ref = render::render_sky(PietrasSkyModel(p), s);
     ASSERT_EQ(frame.data.size(), ref.rgb.data.size()) << k;
     for (std::size_t i = 0; i < ref.rgb.data.size(); ++i) {
       ASSERT_EQ(frame.data[i], ref.rgb.data[i]) << "frame " << k << " value " << i;
@@ -322,8 +323,8 @@ TEST_F(Cli, NnTrainValidateEvalPietras) {
             std::string::npos)
       << r.out;
 
-  // eval --model nn on a Pietras file is the network's forward pass (the library's rgb_at).
-  r = run("eval --model nn --weights '" + w +
+  // eval --model pietras on a Pietras file is the network's forward pass (the library's rgb_at).
+  r = run("eval --model pietras --weights '" + w +
               "' --observer-altitude 1500 --sun-zenith 40 --sun-azimuth 180 --quantity rgb",
           "zenith_deg,azimuth_deg\n10,20\n70,200\n");
   ASSERT_EQ(r.status, 0) << r.err;
@@ -333,7 +334,7 @@ TEST_F(Cli, NnTrainValidateEvalPietras) {
   SkyParameters p;
   p.sun = {deg_to_rad(40.0), deg_to_rad(180.0)};
   p.values.set("weights", w.c_str()).set("observer-altitude", 1500.0);
-  const auto m = make_sky_model("nn", p);
+  const auto m = make_sky_model("pietras", p);
   const Rgb c = m->rgb(direction_from_angles(deg_to_rad(70.0), deg_to_rad(200.0)));
   EXPECT_NEAR(rows[1].back(), c.b, kEvalExact) << r.out;
   EXPECT_GT(c.g, 0.0);

@@ -150,6 +150,47 @@ TEST_F(Cli, FlagsOfAnotherProjectionAreIgnoredWithOneWarning) {
   EXPECT_EQ(r.err, "");
 }
 
+// A flag the chosen model does not read is a warning and is not recorded: a parameter of another
+// model (pietras has no turbidity, nn no observer altitude) and a parameter of the model's schema
+// that these values leave unread (a network trained on a source without turbidity).
+TEST_F(Cli, AFlagTheModelDoesNotReadIsNotRecorded) {
+  const auto keys = [](const fs::path& exr) {
+    std::string all;
+    for (const auto& [key, value] : io::read_exr_metadata(exr)) all += key + "=" + value + "\n";
+    return all;
+  };
+  const fs::path exr = dir_ / "p.exr";
+  testing_support::CliResult r =
+      run("render --model pietras --turbidity 5 --observer-altitude 800 --width 8 --height 4 -o '" +
+          exr.string() + "'");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.err.find("skylight: warning: --turbidity is not a parameter of model 'pietras'; "
+                       "ignored"),
+            std::string::npos)
+      << r.err;
+  EXPECT_EQ(keys(exr).find("skylight:turbidity"), std::string::npos) << keys(exr);
+  EXPECT_NE(keys(exr).find("skylight:observer_altitude_m=800\n"), std::string::npos) << keys(exr);
+  r = run("render --model nn --width 8 --height 4 -o '" + exr.string() + "'");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(keys(exr).find("observer_altitude"), std::string::npos) << keys(exr);
+  EXPECT_NE(keys(exr).find("skylight:turbidity=3\n"), std::string::npos) << keys(exr);
+  // A network trained on cie (no turbidity input): --turbidity is not read.
+  const fs::path w = dir_ / "cie.json";
+  r =
+      run("nn train --source cie --hidden 3 --suns 2 --view-zeniths 2 --view-azimuths 3 "
+          "--iterations 2 -o '" +
+          w.string() + "'");
+  ASSERT_EQ(r.status, 0) << r.err;
+  r = run("render --model nn --weights '" + w.string() +
+          "' --turbidity 4 --width 8 --height 4 -o '" + exr.string() + "'");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.err.find("skylight: warning: --turbidity is not read by model 'nn' with these "
+                       "parameters; ignored"),
+            std::string::npos)
+      << r.err;
+  EXPECT_EQ(keys(exr).find("skylight:turbidity"), std::string::npos) << keys(exr);
+}
+
 TEST_F(Cli, PixelUnitSaysWhatEachOutputHolds) {
   const fs::path exr = dir_ / "a.exr", png = dir_ / "a.png", preview = dir_ / "p.png",
                  fc = dir_ / "fc.png";
@@ -218,7 +259,7 @@ TEST_F(Cli, RenderGpuMatchesTheCpuRender) {
   // The embedded sky network and a Pietras network (per-pixel shadow test and rgb_at in GLSL).
   const std::string log3 = std::string(SKYLIGHT_TEST_DATA_DIR) + "/nn/log3.json";
   const std::string models[] = {"--model nn --turbidity 3 --sun-zenith 50 --sun-azimuth 120",
-                                "--model nn --weights '" + log3 +
+                                "--model pietras --weights '" + log3 +
                                     "' --observer-altitude 2000 --sun-zenith 50 --sun-azimuth 120"};
   testing_support::CliResult r;
   for (const std::string& model : models) {
@@ -244,11 +285,14 @@ TEST_F(Cli, RenderGpuMatchesTheCpuRender) {
 #endif
   }
 #ifdef SKYLIGHT_HAVE_GPU
-  // Only the nn model has a shader.
+  // Only the network models (nn, pietras) have a shader.
   r = run("render --model preetham --gpu --width 8 --height 4 -o '" + (dir_ / "p.exr").string() +
           "'");
   EXPECT_EQ(r.status, 2);
-  EXPECT_NE(r.err.find("--gpu renders the nn model only"), std::string::npos) << r.err;
+  EXPECT_NE(
+      r.err.find("the GL renderer draws the network models (nn, pietras), not model 'preetham'"),
+      std::string::npos)
+      << r.err;
 #else
   EXPECT_EQ(r.status, 1);
   EXPECT_NE(r.err.find("built without the GPU module"), std::string::npos) << r.err;

@@ -4,7 +4,7 @@
 //
 // Per vertex V seen from the camera C along view = (V - C) / |V - C|, the evaluation point E is
 // the observer C inside the atmosphere, or where the view ray enters the top sphere from outside.
-// With E's zenith and altitude (models/pietras_training.h):
+// With E's zenith and altitude (models/pietras.h):
 //  * shell vertex (radius of the top): the sky from E along the view, rgb_at(h_E, ...);
 //  * ground vertex (radius R0): the surface colour of §IV, pietras_surface_terms(E, view, |V-E|,
 //    albedo, sun): I = I(E) - T(E, V) I(V) + T(E, V) albedo/pi E_sun(V). Ground vertices facing
@@ -22,7 +22,7 @@
 #include "skylight/core/frame.h"
 #include "skylight/gpu/context.h"
 #include "skylight/io/image.h"
-#include "skylight/models/pietras_training.h"
+#include "skylight/models/pietras.h"
 #include "skylight/nn/pietras.h"
 
 namespace skylight::gpu {

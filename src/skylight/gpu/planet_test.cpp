@@ -7,6 +7,7 @@
 #include <string>
 
 #include "skylight/core/error.h"
+#include "skylight/fit/pietras_training.h"
 #include "skylight/render/icosphere.h"
 #include "support/gpu_context.h"
 
@@ -37,13 +38,13 @@ constexpr int kTestSubdivisions = 3;
 // amplified a thousand times).
 const nn::PietrasNetwork& test_network(nn::PietrasKind kind) {
   static const auto train = [](nn::PietrasKind k) {
-    PietrasTraining t;
+    fit::PietrasTraining t;
     t.kind = k;
     t.samples = 4000;
     t.options.trainer = nn::Trainer::levenberg_marquardt;
     t.options.max_iterations = 20;
     t.options.seed = 5;
-    return train_pietras(t);
+    return fit::train_pietras(t);
   };
   static const nn::PietrasNetwork pietras = train(nn::PietrasKind::pietras);
   static const nn::PietrasNetwork log3 = train(nn::PietrasKind::log3);
@@ -122,7 +123,7 @@ TEST_F(GpuTest, PlanetVertexShaderMatchesTheCpuNetworkPerVertex) {
 
 TEST(PlanetMesh, GroundVerticesAreTheSurfaceColourOfSectionIV) {
   // From the ground the evaluation point is the observer: every visible ground vertex's colour
-  // is pietras_surface (models/pietras_training.h) with the network as the sky function.
+  // is pietras_surface (models/pietras.h) with the network as the sky function.
   const NishitaParameters planet;
   const NishitaSampler atmosphere(planet);
   const nn::PietrasNetwork& net = test_network(nn::PietrasKind::pietras);

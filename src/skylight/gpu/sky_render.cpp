@@ -2,10 +2,14 @@
 
 #include <fmt/format.h>
 
+#include <array>
 #include <cmath>
+#include <functional>
 
 #include "skylight/core/error.h"
 #include "skylight/core/parallel.h"
+#include "skylight/models/neural_sky.h"
+#include "skylight/models/pietras.h"
 #include "skylight/nn/glsl.h"
 
 namespace skylight::gpu {
@@ -172,24 +176,63 @@ io::ImageF shader_pixel_directions(const render::RenderSettings& s) {
   return t.read(4);
 }
 
-SkyRenderer::SkyRenderer(const NeuralSkyModel& model, const render::RenderSettings& s,
+namespace {
+
+// What the fragment shader needs of a model it can render: the network's GLSL, the uniforms of
+// the sky state, the colour of a valid direction `dir`, and the uniforms' values.
+struct ShaderSky {
+  std::string network, uniforms, rgb;
+  std::function<void(Program&)> set;
+};
+
+ShaderSky shader_sky(const SkyModel& model) {
+  if (const auto* pietras = dynamic_cast<const PietrasSkyModel*>(&model)) {
+    // The Pietras network with its shadow test: PietrasSkyModel::rgb of the view, every view
+    // (those meeting the ground included).
+    const Vec3 sun = model.sun().direction();
+    const float altitude = static_cast<float>(pietras->observer_altitude_m());
+    return {nn::glsl_pietras_sky(pietras->network()),
+            "uniform vec3 skylight_sun;  // unit vector, z up\nuniform float skylight_altitude;\n",
+            "skylight_pietras_at(skylight_altitude, dir, skylight_sun)",
+            [sun, altitude](Program& p) {
+              p.set_if_active("skylight_sun", std::array<float, 3>{static_cast<float>(sun.x),
+                                                                   static_cast<float>(sun.y),
+                                                                   static_cast<float>(sun.z)});
+              p.set_if_active("skylight_altitude", altitude);
+            }};
+  }
+  if (const auto* nn = dynamic_cast<const NeuralSkyModel*>(&model)) {
+    const nn::SkyState st = nn->state();
+    return {nn::glsl_sky_network(nn->network()),
+            "uniform float skylight_sun_zenith, skylight_sun_azimuth, skylight_turbidity;\n"
+            "uniform int skylight_sun_up;\n",
+            "(skylight_sun_up != 0 ? skylight_sky_state(dir, skylight_sun_zenith, "
+            "skylight_sun_azimuth, skylight_turbidity) : vec3(0.0))",
+            [st](Program& p) {
+              p.set_if_active("skylight_sun_zenith", static_cast<float>(st.sun_zenith));
+              p.set_if_active("skylight_sun_azimuth", static_cast<float>(st.sun_azimuth));
+              p.set_if_active("skylight_turbidity", static_cast<float>(st.turbidity));
+              // NeuralSkyModel returns 0 for a sun below the horizon (models/neural_sky.h).
+              p.set_if_active("skylight_sun_up", st.sun_zenith <= kPi / 2 ? 1 : 0);
+            }};
+  }
+  throw InvalidArgument(fmt::format(
+      "the GL renderer draws the network models (nn, pietras), not model '{}'", model.name()));
+}
+
+}  // namespace
+
+SkyRenderer::SkyRenderer(const SkyModel& model, const render::RenderSettings& s,
                          DirectionSource directions)
     : model_(model), settings_(s) {
   render::validate(s);
-  // A Pietras network (nn/pietras.h) is evaluated per pixel like the sky network, with its shadow
-  // test: NeuralSkyModel::rgb of the view, every view (those meeting the ground included).
-  const nn::PietrasNetwork* pietras = model.pietras();
+  const ShaderSky sky = shader_sky(model);
   source_ = std::string(kGlslVersion);
-  source_ += "// skylight: the `nn` sky model by pixel (docs/GPU.md).\n";
-  source_ +=
-      pietras != nullptr ? nn::glsl_pietras_sky(*pietras) : nn::glsl_sky_network(model.network());
+  source_ += fmt::format("// skylight: the `{}` sky model by pixel (docs/GPU.md).\n", model.name());
+  source_ += sky.network;
   source_ += '\n';
   source_ += glsl_pixel_direction(s);
-  source_ +=
-      pietras != nullptr
-          ? "\nuniform vec3 skylight_sun;  // unit vector, z up\nuniform float skylight_altitude;\n"
-          : "\nuniform float skylight_sun_zenith, skylight_sun_azimuth, skylight_turbidity;\n"
-            "uniform int skylight_sun_up;\n";
+  source_ += "\n" + sky.uniforms;
   if (directions == DirectionSource::texture)
     source_ += "uniform sampler2D skylight_directions;  // xyz, valid in w\n";
   source_ += "out vec4 colour;\nvoid main() {\n";
@@ -201,33 +244,14 @@ SkyRenderer::SkyRenderer(const NeuralSkyModel& model, const render::RenderSettin
         "  bool valid = d.w != 0.0;\n";
   else
     source_ += "  vec3 dir;\n  bool valid = skylight_pixel_direction(pixel, dir);\n";
-  source_ += pietras != nullptr
-                 ? "  vec3 rgb = valid ? skylight_pietras_at(skylight_altitude, dir, skylight_sun) "
-                   ": vec3(0.0);\n"
-                 : "  vec3 rgb = (valid && skylight_sun_up != 0)\n"
-                   "      ? skylight_sky_state(dir, skylight_sun_zenith, skylight_sun_azimuth, "
-                   "skylight_turbidity)\n"
-                   "      : vec3(0.0);\n";
+  source_ += "  vec3 rgb = valid ? " + sky.rgb + " : vec3(0.0);\n";
   source_ +=
       "  colour = vec4(rgb, valid ? 1.0 : 0.0);\n"
       "}\n";
   program_ = std::make_unique<Program>(Program::fullscreen(source_));
   Program& p = *program_;
   set_layout_uniforms(p, s);
-  if (pietras != nullptr) {
-    const Vec3 sun = model.sun().direction();
-    p.set_if_active("skylight_sun",
-                    std::array<float, 3>{static_cast<float>(sun.x), static_cast<float>(sun.y),
-                                         static_cast<float>(sun.z)});
-    p.set_if_active("skylight_altitude", static_cast<float>(model.observer_altitude_m()));
-  } else {
-    const nn::SkyState& st = model.state();
-    p.set_if_active("skylight_sun_zenith", static_cast<float>(st.sun_zenith));
-    p.set_if_active("skylight_sun_azimuth", static_cast<float>(st.sun_azimuth));
-    p.set_if_active("skylight_turbidity", static_cast<float>(st.turbidity));
-    // NeuralSkyModel returns 0 for a sun below the horizon (models/neural_sky.h).
-    p.set_if_active("skylight_sun_up", st.sun_zenith <= kPi / 2 ? 1 : 0);
-  }
+  sky.set(p);
   if (directions == DirectionSource::texture) {
     const render::PixelDirections d = render::pixel_directions(s);
     io::ImageF img(s.width, s.height, 4);
@@ -292,8 +316,7 @@ render::SkyImage SkyRenderer::image() const {
   return img;
 }
 
-render::SkyImage render_sky_gpu(const NeuralSkyModel& model,
-                                const render::RenderSettings& settings) {
+render::SkyImage render_sky_gpu(const SkyModel& model, const render::RenderSettings& settings) {
   render::validate(settings);
   Context context;
   SkyRenderer renderer(model, settings);

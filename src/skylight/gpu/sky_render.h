@@ -1,15 +1,15 @@
-// The neural sky model (`nn`, models/neural_sky.h) rendered by a fragment shader (docs/GPU.md):
-// per pixel, the direction of render/sky_render.h's layout (ported to GLSL, every projection) and
-// the network exported by nn/glsl.h. The result is the same SkyImage as render::render_sky; the
-// colour conversion to XYZ, the mask and the solar disc (none for `nn`) are done on the CPU after
-// the readback.
+// The network sky models (`nn`, models/neural_sky.h; `pietras`, models/pietras.h) rendered by a
+// fragment shader (docs/GPU.md): per pixel, the direction of render/sky_render.h's layout (ported
+// to GLSL, every projection) and the network exported by nn/glsl.h. The result is the same
+// SkyImage as render::render_sky; the colour conversion to XYZ, the mask and the solar disc (none
+// for either) are done on the CPU after the readback.
 #pragma once
 
 #include <memory>
 #include <string>
 
 #include "skylight/gpu/context.h"
-#include "skylight/models/neural_sky.h"
+#include "skylight/models/sky_model.h"
 #include "skylight/render/sky_render.h"
 
 namespace skylight::gpu {
@@ -34,9 +34,9 @@ enum class DirectionSource {
 // The compiled sky program and its float target for one model and layout.
 class SkyRenderer {
  public:
-  // Needs a current Context. Throws InvalidArgument for bad settings (render::validate) and
-  // GpuError from GL.
-  SkyRenderer(const NeuralSkyModel& model, const render::RenderSettings& settings,
+  // Needs a current Context. Throws InvalidArgument for bad settings (render::validate) or a model
+  // that is not nn or pietras, and GpuError from GL.
+  SkyRenderer(const SkyModel& model, const render::RenderSettings& settings,
               DirectionSource directions = DirectionSource::shader);
   // The full fragment shader (for docs and tests).
   const std::string& fragment_source() const { return source_; }
@@ -48,7 +48,7 @@ class SkyRenderer {
   render::SkyImage image() const;
 
  private:
-  const NeuralSkyModel& model_;
+  const SkyModel& model_;
   render::RenderSettings settings_;
   std::string source_;
   std::unique_ptr<Texture> directions_;
@@ -57,7 +57,6 @@ class SkyRenderer {
 };
 
 // One frame in a context of its own: render::render_sky(model, settings), computed by GL.
-render::SkyImage render_sky_gpu(const NeuralSkyModel& model,
-                                const render::RenderSettings& settings);
+render::SkyImage render_sky_gpu(const SkyModel& model, const render::RenderSettings& settings);
 
 }  // namespace skylight::gpu

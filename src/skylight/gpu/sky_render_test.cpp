@@ -9,6 +9,8 @@
 #include <string>
 
 #include "skylight/io/file.h"
+#include "skylight/models/neural_sky.h"
+#include "skylight/models/pietras.h"
 #include "skylight/nn/pietras.h"
 
 #include "support/gpu_context.h"
@@ -234,13 +236,13 @@ TEST_F(GpuTest, PietrasNetworksMatchTheCpuRender) {
   s.height = 128;
   for (const Case& c : cases) {
     const std::string path = std::string(SKYLIGHT_TEST_DATA_DIR) + "/nn/" + c.file;
-    NeuralSkyParameters p;
+    PietrasParameters p;
     p.observer_altitude_m = c.altitude_m;
     p.sun.zenith = deg_to_rad(c.sun_zenith_deg);
     p.sun.azimuth = deg_to_rad(150.0);
     const nn::PietrasNetwork net = nn::pietras_from_json(io::read_text_file(path), path);
     const double max_value = net.max_value;
-    const NeuralSkyModel model(p, net);
+    const PietrasSkyModel model(p, net);
     SkyRenderer r(model, s);
     r.draw();
     const PietrasDifference d = compare_pietras(r.image(), render::render_sky(model, s), max_value);

@@ -8,7 +8,7 @@
 #include "skylight/core/data.h"
 #include "skylight/core/math.h"
 #include "skylight/io/file.h"
-#include "skylight/models/nishita.h"
+#include "skylight/nn/pietras.h"
 
 namespace skylight {
 
@@ -25,10 +25,6 @@ const ParameterSchema<NeuralSkyParameters>& NeuralSkyParameters::schema() {
               ParameterValue(defaults.turbidity),
               "atmospheric turbidity T, the network's sqrt(T) input (trained range: the weights "
               "file's provenance)"});
-    s.number(&NeuralSkyParameters::observer_altitude_m,
-             {"observer-altitude", "m", ParameterKind::number, 0.0, kNishitaMaxAltitude, 1,
-              ParameterValue(defaults.observer_altitude_m),
-              "observer above the ground (Pietras networks: the density input; others ignore it)"});
     return s;
   }();
   return s;
@@ -38,8 +34,8 @@ nn::SkyNetwork load_sky_network_file(const std::filesystem::path& path) {
   const std::string text = io::read_text_file(path);
   if (nn::is_pietras_json(text))
     throw InvalidArgument(fmt::format(
-        "{}: a Pietras network ({}), not a sky network ({}): this loader reads sky networks "
-        "only (the model nn, eval, render and the nn commands take both)",
+        "{}: a Pietras network ({}), not a sky network ({}): the model pietras reads it "
+        "(models/pietras.h)",
         path.string(), nn::kPietrasFormat, nn::kSkyNetworkFormat));
   return nn::sky_network_from_json(text, path.string());
 }
@@ -53,26 +49,11 @@ const nn::SkyNetwork& embedded_sky_network() {
 NeuralSkyModel::NeuralSkyModel(const NeuralSkyParameters& p) : SkyModel(p.sun), params_(p) {
   NeuralSkyParameters::schema().validate(p, model_context(kName));
   if (!p.weights.empty()) {
-    const std::string text = io::read_text_file(p.weights);
-    if (nn::is_pietras_json(text)) {
-      pietras_ = std::make_unique<nn::PietrasNetwork>(nn::pietras_from_json(text, p.weights));
-      pietras_batch_ = std::make_unique<nn::PietrasBatch>(*pietras_, p.observer_altitude_m,
-                                                          std::cos(p.sun.zenith));
-      return;
-    }
-    network_ = nn::sky_network_from_json(text, p.weights);
+    network_ = load_sky_network_file(p.weights);
   } else {
     network_ = embedded_sky_network();
   }
   init_sky();
-}
-
-NeuralSkyModel::NeuralSkyModel(const NeuralSkyParameters& p, nn::PietrasNetwork network)
-    : SkyModel(p.sun), params_(p) {
-  NeuralSkyParameters::schema().validate(p, model_context(kName));
-  pietras_ = std::make_unique<nn::PietrasNetwork>(std::move(network));
-  pietras_batch_ =
-      std::make_unique<nn::PietrasBatch>(*pietras_, p.observer_altitude_m, std::cos(p.sun.zenith));
 }
 
 NeuralSkyModel::NeuralSkyModel(const NeuralSkyParameters& p, nn::SkyNetwork network)
@@ -100,15 +81,12 @@ void NeuralSkyModel::init_sky() {
 }
 
 ParameterValues NeuralSkyModel::parameter_values() const {
-  return NeuralSkyParameters::schema().values_of(params_);
+  ParameterValues v = NeuralSkyParameters::schema().values_of(params_);
+  if (turbidity_unused_) v.erase("turbidity");  // the network has no turbidity input
+  return v;
 }
 
 Rgb NeuralSkyModel::rgb(Vec3 view) const {
-  if (pietras_) {
-    const Vec3 v = normalize(view);
-    return pietras_->rgb_at(params_.observer_altitude_m, v.z, dot(v, sun().direction()),
-                            std::cos(sun().zenith));
-  }
   if (!sun_up_) return {};
   return network_.rgb(state_, view);
 }
@@ -118,39 +96,20 @@ Xyz NeuralSkyModel::tristimulus(Vec3 view) const {
 }
 
 void NeuralSkyModel::tristimulus_batch(const DirectionsSoA& dirs, const XyzSoA& out) const {
-  const std::size_t n = dirs.size();
-  if (pietras_) {
-    // cos alpha0 = z, cos beta0 = view . sun; then rgb into the output spans.
-    const Vec3 s = sun().direction();
-    std::vector<float> cb(n);
-    for (std::size_t i = 0; i < n; ++i)
-      cb[i] = static_cast<float>(s.x * dirs.x[i] + s.y * dirs.y[i] + s.z * dirs.z[i]);
-    pietras_batch_->rgb(dirs.z.data(), cb.data(), out.X.data(), out.Y.data(), out.Z.data(), n);
-  } else if (!sun_up_) {
+  if (!sun_up_) {
     std::fill(out.X.begin(), out.X.end(), 0.0f);
     std::fill(out.Y.begin(), out.Y.end(), 0.0f);
     std::fill(out.Z.begin(), out.Z.end(), 0.0f);
     return;
-  } else {
-    // rgb into the output spans, then the 3x3 matrix in place.
-    batch_->rgb(dirs.x.data(), dirs.y.data(), dirs.z.data(), out.X.data(), out.Y.data(),
-                out.Z.data(), n);
   }
-  const Matrix3& m = srgb_to_xyz_matrix();
-  std::array<float, 9> f{};
-  for (int r = 0; r < 3; ++r)
-    for (int c = 0; c < 3; ++c) f[3 * r + c] = static_cast<float>(m[r][c]);
-  for (std::size_t i = 0; i < n; ++i) {
-    const float R = out.X[i], G = out.Y[i], B = out.Z[i];
-    out.X[i] = f[0] * R + f[1] * G + f[2] * B;
-    out.Y[i] = f[3] * R + f[4] * G + f[5] * B;
-    out.Z[i] = f[6] * R + f[7] * G + f[8] * B;
-  }
+  // rgb into the output spans, then the 3x3 matrix in place.
+  batch_->rgb(dirs.x.data(), dirs.y.data(), dirs.z.data(), out.X.data(), out.Y.data(), out.Z.data(),
+              dirs.size());
+  linear_srgb_to_xyz_in_place(out);
 }
 
 Domain NeuralSkyModel::domain() const {
   Domain d;
-  if (pietras_) return d;
   if (!sun_up_) {
     d.issues.push_back({"sun_zenith", Validity::undefined,
                         "the sun is below the horizon: the network was trained for suns in "

@@ -10,7 +10,6 @@
 #include <string>
 
 #include "skylight/models/sky_model.h"
-#include "skylight/nn/pietras.h"
 #include "skylight/nn/sky_network.h"
 
 namespace skylight {
@@ -27,15 +26,13 @@ struct NeuralSkyParameters {
   SunPosition sun;
   std::string weights;     // --weights FILE; empty: the embedded network (kEmbeddedSkyNetwork)
   double turbidity = 3.0;  // --turbidity T [1], the network's sqrt(T) input
-  // --observer-altitude [m]: the rho0 input of a Pietras network (nn/pietras.h); others ignore it.
-  double observer_altitude_m = 0.0;
 
   static const ParameterSchema<NeuralSkyParameters>& schema();
 };
 
 // Reads and checks a weights file: IoError when it cannot be read, InvalidArgument (naming the
 // file and the field) when its content is malformed or inconsistent (nn::sky_network_from_json),
-// or when it is a Pietras network (nn/pietras.h), which this loader does not read.
+// or when it is a Pietras network (models/pietras.h reads those).
 nn::SkyNetwork load_sky_network_file(const std::filesystem::path& path);
 // The embedded network (parsed once).
 const nn::SkyNetwork& embedded_sky_network();
@@ -50,9 +47,6 @@ class NeuralSkyModel final : public SkyModel {
   explicit NeuralSkyModel(const NeuralSkyParameters& p);
   // A network given in code (weights = its description only).
   NeuralSkyModel(const NeuralSkyParameters& p, nn::SkyNetwork network);
-  // A Pietras network (docs/PIETRAS.md): rgb() in the units of its source's rgb() for every view
-  // (views meeting the ground: the air up to the ground, as the source without --albedo).
-  NeuralSkyModel(const NeuralSkyParameters& p, nn::PietrasNetwork network);
 
   static constexpr std::string_view kName = "nn";
   // The registry entry: documentation, schema, factory and policy (models/sky_model.h).
@@ -67,8 +61,6 @@ class NeuralSkyModel final : public SkyModel {
 
   const nn::SkyNetwork& network() const { return network_; }
   const nn::SkyState& state() const { return state_; }
-  const nn::PietrasNetwork* pietras() const { return pietras_.get(); }
-  double observer_altitude_m() const { return params_.observer_altitude_m; }
 
  private:
   void init_sky();
@@ -78,8 +70,6 @@ class NeuralSkyModel final : public SkyModel {
   bool sun_up_ = true;
   bool turbidity_unused_ = false;  // trained on a source without turbidity: the input is 0
   std::unique_ptr<nn::SkyNetworkBatch> batch_;
-  std::unique_ptr<nn::PietrasNetwork> pietras_;
-  std::unique_ptr<nn::PietrasBatch> pietras_batch_;
 };
 
 }  // namespace skylight

@@ -173,6 +173,80 @@ Domain NishitaModel::domain() const {
   return d;
 }
 
+namespace {
+
+NishitaParameters at_ground(NishitaParameters p) {
+  p.observer_altitude_m = 0.0;
+  p.sun = SunPosition{};
+  return p;
+}
+
+}  // namespace
+
+NishitaSampler::NishitaSampler(const NishitaParameters& atmosphere)
+    : params_(at_ground(atmosphere)), model_(params_) {
+  std::array<double, kNishitaXyzCount> nm{}, solar{};
+  for (int k = 0; k < kNishitaXyzCount; ++k) {
+    nm[k] = kNishitaXyzFirst + kNishitaXyzStep * k;
+    solar[k] =
+        params_.solar_irradiance ? *params_.solar_irradiance : solar_spectral_irradiance(nm[k]);
+    cmf_[k] = cie1931_cmf(nm[k]);
+  }
+  spectral_ = atmosphere::make_spectral(model_.atmosphere().parameters(), nm, solar);
+  const std::array<double, 3> unit{1.0, 1.0, 1.0};
+  channels_ = atmosphere::make_spectral(model_.atmosphere().parameters(), kSurfaceChannelNm, unit);
+}
+
+Vec3 NishitaSampler::position(double altitude_m) const {
+  return {0.0, 0.0, model_.atmosphere().parameters().ground_radius_m + altitude_m};
+}
+
+Rgb NishitaSampler::to_rgb(const std::array<double, kNishitaXyzCount>& r) const {
+  Xyz c{0, 0, 0};
+  for (int k = 0; k < kNishitaXyzCount; ++k) {
+    c.X += cmf_[k].x * r[k];
+    c.Y += cmf_[k].y * r[k];
+    c.Z += cmf_[k].z * r[k];
+  }
+  const double f = kMaxLuminousEfficacy * kNishitaXyzStep;
+  return xyz_to_linear_srgb({c.X * f, c.Y * f, c.Z * f});
+}
+
+Rgb NishitaSampler::aerial_perspective(double altitude_m, Vec3 view, double distance_m,
+                                       double albedo, Vec3 sun) const {
+  std::array<double, kNishitaXyzCount> a{}, r{};
+  a.fill(albedo);
+  model_.atmosphere().aerial_perspective(position(altitude_m), view, distance_m, a, sun, spectral_,
+                                         r);
+  return to_rgb(r);
+}
+
+Rgb NishitaSampler::reflected(double altitude_m, Vec3 view, double distance_m, double albedo,
+                              Vec3 sun) const {
+  std::array<double, kNishitaXyzCount> a{}, with{}, without{};
+  a.fill(albedo);
+  const Vec3 p = position(altitude_m);
+  model_.atmosphere().aerial_perspective(p, view, distance_m, a, sun, spectral_, with);
+  a.fill(0.0);
+  model_.atmosphere().aerial_perspective(p, view, distance_m, a, sun, spectral_, without);
+  for (int k = 0; k < kNishitaXyzCount; ++k) with[k] -= without[k];
+  return to_rgb(with);
+}
+
+std::array<double, 3> NishitaSampler::channel_transmittance(double altitude_m, Vec3 view,
+                                                            double distance_m) const {
+  std::array<double, 3> t{};
+  model_.atmosphere().transmittance(position(altitude_m), view, distance_m, channels_, t);
+  return t;
+}
+
+// NishitaModel::tristimulus at another observer and sun: the same sum as nishita.cpp's to_xyz.
+Rgb NishitaSampler::rgb(double altitude_m, Vec3 view, Vec3 sun) const {
+  std::array<double, kNishitaXyzCount> r{};
+  model_.atmosphere().single_scattering(position(altitude_m), view, sun, spectral_, r);
+  return to_rgb(r);
+}
+
 ModelInfo NishitaModel::registry_entry() {
   return ModelInfo{
       .name = std::string(kName),

@@ -105,4 +105,37 @@ class NishitaModel final : public SkyModel {
   Vec3 observer_, sun_;
 };
 
+// Representative wavelengths of the linear sRGB channels R, G, B for a transmittance per channel
+// (Pietras §IV, models/pietras.h) [nm]: the dominant wavelengths of the sRGB primaries.
+inline constexpr std::array<double, 3> kSurfaceChannelNm = {612.0, 549.0, 465.0};
+
+// nishita's rgb() for any observer altitude, view and sun with one set of optical-length tables
+// (equal to NishitaModel::rgb for the same setup; tested): the source of the Pietras networks
+// (models/pietras.h, fit/pietras_training.h).
+class NishitaSampler {
+ public:
+  explicit NishitaSampler(const NishitaParameters& atmosphere);
+  Rgb rgb(double altitude_m, Vec3 view, Vec3 sun) const;
+  const NishitaParameters& parameters() const { return params_; }
+  const atmosphere::Atmosphere& atmosphere() const { return model_.atmosphere(); }
+  // Light from a surface point q = P + distance view (P the observer at altitude h): nishita's
+  // aerial perspective (Atmosphere::aerial_perspective, grey Lambertian albedo) as rgb, and the
+  // parts of Pietras §IV: the reflected sunlight T(P, q) albedo/pi E_sun(q) alone, and T(P, q)
+  // per channel at the wavelengths kSurfaceChannelNm.
+  Rgb aerial_perspective(double altitude_m, Vec3 view, double distance_m, double albedo,
+                         Vec3 sun) const;
+  Rgb reflected(double altitude_m, Vec3 view, double distance_m, double albedo, Vec3 sun) const;
+  std::array<double, 3> channel_transmittance(double altitude_m, Vec3 view,
+                                              double distance_m) const;
+
+ private:
+  Rgb to_rgb(const std::array<double, kNishitaXyzCount>& radiance) const;
+  Vec3 position(double altitude_m) const;
+
+  NishitaParameters params_;
+  NishitaModel model_;  // at altitude 0: its tables and spectra
+  atmosphere::Spectral spectral_, channels_;
+  std::array<Cmf, kNishitaXyzCount> cmf_{};
+};
+
 }  // namespace skylight

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -128,6 +129,29 @@ TEST(Nishita, BadParametersAreRejected) {
   NishitaSetup setup = params(30).setup();
   setup.atmosphere.top_radius_m = setup.atmosphere.ground_radius_m - 1;
   EXPECT_THROW(NishitaModel{setup}, InvalidArgument);
+}
+
+// NishitaSampler repeats NishitaModel's sum in the same order: equal to double round-off.
+constexpr double kSamplerRelativeTolerance = 1e-12;
+
+TEST(NishitaSampler, EqualsNishitaModel) {
+  NishitaParameters p;
+  const NishitaSampler sampler(p);
+  for (double h : {0.0, 18000.0}) {
+    for (double sz : {20.0, 93.0}) {
+      p.observer_altitude_m = h;
+      p.sun = {deg_to_rad(sz), deg_to_rad(135.0)};
+      const NishitaModel m(p);
+      for (Vec3 v :
+           {Vec3{0, 0, 1}, normalize(Vec3{0.3, -0.5, 0.4}), normalize(Vec3{-1, 0.2, -0.1})}) {
+        const Rgb a = m.rgb(v), b = sampler.rgb(h, v, p.sun.direction());
+        const double scale = std::max({std::abs(a.r), std::abs(a.g), std::abs(a.b), 1e-30});
+        EXPECT_NEAR(b.r, a.r, kSamplerRelativeTolerance * scale);
+        EXPECT_NEAR(b.g, a.g, kSamplerRelativeTolerance * scale);
+        EXPECT_NEAR(b.b, a.b, kSamplerRelativeTolerance * scale);
+      }
+    }
+  }
 }
 
 }  // namespace

@@ -5,6 +5,7 @@
 #include "skylight/models/neural_sky.h"
 #include "skylight/models/nishita.h"
 #include "skylight/models/perez.h"
+#include "skylight/models/pietras.h"
 #include "skylight/models/preetham.h"
 #include "skylight/models/sh.h"
 #include "skylight/models/sky_model.h"
@@ -13,10 +14,10 @@ namespace skylight {
 
 const std::vector<ModelInfo>& model_registry() {
   static const std::vector<ModelInfo> registry{
-      PerezModel::registry_entry(),   PreethamModel::registry_entry(),
-      CieSkyModel::registry_entry(),  HosekWilkieModel::registry_entry(),
-      NishitaModel::registry_entry(), NeuralSkyModel::registry_entry(),
-      ShSkyModel::registry_entry(),
+      PerezModel::registry_entry(),      PreethamModel::registry_entry(),
+      CieSkyModel::registry_entry(),     HosekWilkieModel::registry_entry(),
+      NishitaModel::registry_entry(),    NeuralSkyModel::registry_entry(),
+      PietrasSkyModel::registry_entry(), ShSkyModel::registry_entry(),
   };
   return registry;
 }

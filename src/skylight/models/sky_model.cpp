@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "skylight/core/error.h"
@@ -111,6 +112,19 @@ NeuralPolicy NeuralPolicy::over_turbidity(double first, double last, double targ
   for (double t = first + 0.5; t <= last - 0.5 + 1e-9; t += 1.0)
     p.validation_turbidities.push_back(t);
   return p;
+}
+
+void linear_srgb_to_xyz_in_place(const XyzSoA& out) {
+  const Matrix3& m = srgb_to_xyz_matrix();
+  std::array<float, 9> f{};
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c) f[3 * r + c] = static_cast<float>(m[r][c]);
+  for (std::size_t i = 0; i < out.size(); ++i) {
+    const float R = out.X[i], G = out.Y[i], B = out.Z[i];
+    out.X[i] = f[0] * R + f[1] * G + f[2] * B;
+    out.Y[i] = f[3] * R + f[4] * G + f[5] * B;
+    out.Z[i] = f[6] * R + f[7] * G + f[8] * B;
+  }
 }
 
 void require_in_range(std::string_view name, double value, double min, double max) {

@@ -97,7 +97,9 @@ class SkyModel {
   // The sun position the model was built for.
   const SunPosition& sun() const { return sun_; }
   // The parameters the model read (its schema's names and units, defaults applied; the sun is
-  // sun()): what outputs record as metadata.
+  // sun()): what outputs record as metadata. A parameter of the schema that the model does not
+  // read with these values (e.g. nn's turbidity for a network without that input) is left out,
+  // and a front end warns when it was given.
   virtual ParameterValues parameter_values() const = 0;
 
   // Sky (without the solar disc) CIE 1931 XYZ in direction `view` (unit vector, ENU), Y =
@@ -132,6 +134,10 @@ class SkyModel {
  private:
   SunPosition sun_;
 };
+
+// Batch paths of models that compute linear sRGB: `out` holds r, g, b in its X, Y, Z spans and is
+// converted to XYZ in place (the sRGB (D65) matrix in float).
+void linear_srgb_to_xyz_in_place(const XyzSoA& out);
 
 // Evaluates the batch path over all directions on all threads (parallel_for over chunks).
 void tristimulus_parallel(const SkyModel& model, const DirectionsSoA& dirs, const XyzSoA& out);

@@ -52,9 +52,9 @@ struct PietrasInput {
 
 // Where a network came from (informative, written into and read from the weights file).
 struct PietrasProvenance {
-  std::string source = "nishita";  // the source model's registry name
-  std::string colour;              // what the outputs are, e.g. "linear sRGB, cd/m^2 scale"
-  std::string geometry;            // how the training inputs were sampled
+  std::string source;    // the source model's registry name
+  std::string colour;    // what the outputs are, e.g. "linear sRGB, cd/m^2 scale"
+  std::string geometry;  // how the training inputs were sampled
   // The source's parameters held fixed during training (the schema's names and values).
   std::vector<std::pair<std::string, double>> source_parameters;
   std::size_t samples = 0;

@@ -1,4 +1,4 @@
-#include "skylight/models/pietras_training.h"
+#include "skylight/fit/pietras_training.h"
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -15,14 +15,8 @@
 #include "skylight/nn/metrics.h"
 #include "skylight/nn/random.h"
 
-namespace skylight {
+namespace skylight::fit {
 namespace {
-
-NishitaParameters at_ground(NishitaParameters p) {
-  p.observer_altitude_m = 0.0;
-  p.sun = SunPosition{};
-  return p;
-}
 
 // Validation sets: altitudes 0-20 km, upward views; sun zenith bands [deg].
 constexpr double kValidationMaxAltitude = 20e3;  // [m]
@@ -32,108 +26,6 @@ constexpr double kTwilightMaxSunZenithDeg = 96.0;
 constexpr std::size_t kMaxNSamples = 100000;
 
 }  // namespace
-
-NishitaSampler::NishitaSampler(const NishitaParameters& atmosphere)
-    : params_(at_ground(atmosphere)), model_(params_) {
-  std::array<double, kNishitaXyzCount> nm{}, solar{};
-  for (int k = 0; k < kNishitaXyzCount; ++k) {
-    nm[k] = kNishitaXyzFirst + kNishitaXyzStep * k;
-    solar[k] =
-        params_.solar_irradiance ? *params_.solar_irradiance : solar_spectral_irradiance(nm[k]);
-    cmf_[k] = cie1931_cmf(nm[k]);
-  }
-  spectral_ = atmosphere::make_spectral(model_.atmosphere().parameters(), nm, solar);
-  const std::array<double, 3> unit{1.0, 1.0, 1.0};
-  channels_ = atmosphere::make_spectral(model_.atmosphere().parameters(), kSurfaceChannelNm, unit);
-}
-
-Vec3 NishitaSampler::position(double altitude_m) const {
-  return {0.0, 0.0, model_.atmosphere().parameters().ground_radius_m + altitude_m};
-}
-
-Rgb NishitaSampler::to_rgb(const std::array<double, kNishitaXyzCount>& r) const {
-  Xyz c{0, 0, 0};
-  for (int k = 0; k < kNishitaXyzCount; ++k) {
-    c.X += cmf_[k].x * r[k];
-    c.Y += cmf_[k].y * r[k];
-    c.Z += cmf_[k].z * r[k];
-  }
-  const double f = kMaxLuminousEfficacy * kNishitaXyzStep;
-  return xyz_to_linear_srgb({c.X * f, c.Y * f, c.Z * f});
-}
-
-Rgb NishitaSampler::aerial_perspective(double altitude_m, Vec3 view, double distance_m,
-                                       double albedo, Vec3 sun) const {
-  std::array<double, kNishitaXyzCount> a{}, r{};
-  a.fill(albedo);
-  model_.atmosphere().aerial_perspective(position(altitude_m), view, distance_m, a, sun, spectral_,
-                                         r);
-  return to_rgb(r);
-}
-
-Rgb NishitaSampler::reflected(double altitude_m, Vec3 view, double distance_m, double albedo,
-                              Vec3 sun) const {
-  std::array<double, kNishitaXyzCount> a{}, with{}, without{};
-  a.fill(albedo);
-  const Vec3 p = position(altitude_m);
-  model_.atmosphere().aerial_perspective(p, view, distance_m, a, sun, spectral_, with);
-  a.fill(0.0);
-  model_.atmosphere().aerial_perspective(p, view, distance_m, a, sun, spectral_, without);
-  for (int k = 0; k < kNishitaXyzCount; ++k) with[k] -= without[k];
-  return to_rgb(with);
-}
-
-std::array<double, 3> NishitaSampler::channel_transmittance(double altitude_m, Vec3 view,
-                                                            double distance_m) const {
-  std::array<double, 3> t{};
-  model_.atmosphere().transmittance(position(altitude_m), view, distance_m, channels_, t);
-  return t;
-}
-
-PietrasSurfaceTerms pietras_surface_terms(const NishitaSampler& atmosphere, double altitude_m,
-                                          Vec3 view, double distance_m, double albedo, Vec3 sun) {
-  const double r0 = atmosphere.atmosphere().parameters().ground_radius_m;
-  const Vec3 p{0.0, 0.0, r0 + altitude_m};
-  const Vec3 q = p + distance_m * view;
-  const double rq = length(q);
-  const Vec3 up = (1.0 / rq) * q;  // the probe's zenith
-  PietrasSurfaceTerms t;
-  t.observer_altitude_m = altitude_m;
-  t.probe_altitude_m = std::max(rq - r0, 0.0);
-  t.cos_view_sun = dot(view, sun);
-  t.observer_cos_view_zenith = view.z;
-  t.observer_cos_sun_zenith = sun.z;
-  t.probe_cos_view_zenith = dot(view, up);
-  t.probe_cos_sun_zenith = dot(sun, up);
-  t.transmittance = atmosphere.channel_transmittance(altitude_m, view, distance_m);
-  t.reflected = atmosphere.reflected(altitude_m, view, distance_m, albedo, sun);
-  return t;
-}
-
-Rgb pietras_surface(const PietrasSkyFunction& sky, const NishitaSampler& atmosphere,
-                    double altitude_m, Vec3 view, double distance_m, double albedo, Vec3 sun) {
-  const PietrasSurfaceTerms t =
-      pietras_surface_terms(atmosphere, altitude_m, view, distance_m, albedo, sun);
-  const Rgb obs = sky(t.observer_altitude_m, t.observer_cos_view_zenith, t.cos_view_sun,
-                      t.observer_cos_sun_zenith);
-  const Rgb probe =
-      sky(t.probe_altitude_m, t.probe_cos_view_zenith, t.cos_view_sun, t.probe_cos_sun_zenith);
-  const auto& tr = t.transmittance;
-  const Rgb& refl = t.reflected;
-  return {obs.r - tr[0] * probe.r + refl.r, obs.g - tr[1] * probe.g + refl.g,
-          obs.b - tr[2] * probe.b + refl.b};
-}
-
-PietrasSkyFunction sky_function(const nn::PietrasNetwork& net) {
-  return [&net](double h, double ca, double cb, double ct) { return net.rgb_at(h, ca, cb, ct); };
-}
-
-// NishitaModel::tristimulus at another observer and sun: the same sum as nishita.cpp's to_xyz.
-Rgb NishitaSampler::rgb(double altitude_m, Vec3 view, Vec3 sun) const {
-  std::array<double, kNishitaXyzCount> r{};
-  model_.atmosphere().single_scattering(position(altitude_m), view, sun, spectral_, r);
-  return to_rgb(r);
-}
 
 PietrasSamples sample_nishita(const NishitaSampler& source, PietrasSampling sampling, std::size_t n,
                               std::uint64_t seed) {
@@ -179,32 +71,6 @@ PietrasSamples sample_nishita(const NishitaSampler& source, PietrasSampling samp
   return s;
 }
 
-NishitaParameters nishita_parameters_of(const nn::PietrasNetwork& net) {
-  NishitaParameters p;
-  for (const auto& [k, v] : net.provenance.source_parameters) {
-    if (k == "ground-radius")
-      p.ground_radius_m = v;
-    else if (k == "top-radius")
-      p.top_radius_m = v;
-    else if (k == "rayleigh-scale-height")
-      p.rayleigh_scale_height_m = v;
-    else if (k == "mie-scale-height")
-      p.mie_scale_height_m = v;
-    else if (k == "mie-g")
-      p.mie_g = v;
-    else if (k == "ozone")
-      p.ozone_du = v;
-    else if (k == "solar-irradiance")
-      p.solar_irradiance = v;
-    else
-      throw InvalidArgument(
-          fmt::format("provenance.source_parameters: '{}' is not a nishita "
-                      "atmosphere parameter",
-                      excerpt(k)));
-  }
-  return p;
-}
-
 namespace {
 
 double luminance(const Rgb& c) {
@@ -226,7 +92,7 @@ std::vector<std::pair<std::string, double>> recorded(const NishitaParameters& p)
 }  // namespace
 
 nn::PietrasNetwork train_pietras(const PietrasTraining& t) {
-  if (t.samples < 16) throw InvalidArgument(fmt::format("--samples {} is below 16", t.samples));
+  if (t.samples < 16) throw InvalidArgument(fmt::format("samples = {} is below 16", t.samples));
   const auto start = std::chrono::steady_clock::now();
   const NishitaSampler source(t.atmosphere);
   const PietrasSamples s =
@@ -316,7 +182,7 @@ nn::PietrasNetwork train_pietras(const PietrasTraining& t) {
                            : 0;
     net.provenance.iterations.push_back(before + r.iterations);
   }
-  net.provenance.source = "nishita";
+  net.provenance.source = std::string(NishitaModel::kName);
   net.provenance.colour =
       "nishita rgb(): linear sRGB (D65) on the photometric scale, Y in cd/m^2 for the ASTM G-173 "
       "sun (or per W m^-2 nm^-1 with --solar-irradiance); no ground reflection";
@@ -393,4 +259,4 @@ PietrasValidation validate_pietras(const nn::PietrasNetwork& net, std::size_t sa
   return v;
 }
 
-}  // namespace skylight
+}  // namespace skylight::fit

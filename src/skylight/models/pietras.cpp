@@ -1,0 +1,178 @@
+#include "skylight/models/pietras.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+#include "skylight/core/data.h"
+#include "skylight/core/math.h"
+#include "skylight/core/numbers.h"
+#include "skylight/io/file.h"
+#include "skylight/nn/sky_network.h"
+
+namespace skylight {
+
+const ParameterSchema<PietrasParameters>& PietrasParameters::schema() {
+  static const auto s = [] {
+    ParameterSchema<PietrasParameters> s;
+    const PietrasParameters defaults;
+    s.text(&PietrasParameters::weights,
+           {"weights", "", ParameterKind::text, 0, 0, 1,
+            Absent{"the embedded log3 network trained on Earth's nishita (data/nn/log3.json)"},
+            "Pietras weights file (skylight nn train --network pietras|log3; docs/PIETRAS.md)"});
+    s.number(&PietrasParameters::observer_altitude_m,
+             {"observer-altitude", "m", ParameterKind::number, 0.0, kNishitaMaxAltitude, 1,
+              ParameterValue(defaults.observer_altitude_m),
+              "observer above the ground: the network's density input exp(-h / H0)"});
+    return s;
+  }();
+  return s;
+}
+
+nn::PietrasNetwork load_pietras_network_file(const std::filesystem::path& path) {
+  const std::string text = io::read_text_file(path);
+  if (!nn::is_pietras_json(text))
+    throw InvalidArgument(
+        fmt::format("{}: not a Pietras network ({}); a sky network ({}) is the model nn's",
+                    path.string(), nn::kPietrasFormat, nn::kSkyNetworkFormat));
+  return nn::pietras_from_json(text, path.string());
+}
+
+const nn::PietrasNetwork& embedded_pietras_network() {
+  static const nn::PietrasNetwork net = nn::pietras_from_json(
+      data::embedded_file(kEmbeddedPietrasNetwork), std::string("data/") + kEmbeddedPietrasNetwork);
+  return net;
+}
+
+NishitaParameters nishita_parameters_of(const nn::PietrasNetwork& net) {
+  NishitaParameters p;
+  for (const auto& [k, v] : net.provenance.source_parameters) {
+    if (k == "ground-radius")
+      p.ground_radius_m = v;
+    else if (k == "top-radius")
+      p.top_radius_m = v;
+    else if (k == "rayleigh-scale-height")
+      p.rayleigh_scale_height_m = v;
+    else if (k == "mie-scale-height")
+      p.mie_scale_height_m = v;
+    else if (k == "mie-g")
+      p.mie_g = v;
+    else if (k == "ozone")
+      p.ozone_du = v;
+    else if (k == "solar-irradiance")
+      p.solar_irradiance = v;
+    else
+      throw InvalidArgument(
+          fmt::format("provenance.source_parameters: '{}' is not a nishita "
+                      "atmosphere parameter",
+                      excerpt(k)));
+  }
+  return p;
+}
+
+PietrasSkyModel::PietrasSkyModel(const PietrasParameters& p)
+    : PietrasSkyModel(p, p.weights.empty() ? embedded_pietras_network()
+                                           : load_pietras_network_file(p.weights)) {}
+
+PietrasSkyModel::PietrasSkyModel(const PietrasParameters& p, nn::PietrasNetwork network)
+    : SkyModel(p.sun), params_(p), network_(std::move(network)) {
+  PietrasParameters::schema().validate(p, model_context(kName));
+  batch_ =
+      std::make_unique<nn::PietrasBatch>(network_, p.observer_altitude_m, std::cos(p.sun.zenith));
+}
+
+ParameterValues PietrasSkyModel::parameter_values() const {
+  return PietrasParameters::schema().values_of(params_);
+}
+
+Rgb PietrasSkyModel::rgb(Vec3 view) const {
+  const Vec3 v = normalize(view);
+  return network_.rgb_at(params_.observer_altitude_m, v.z, dot(v, sun().direction()),
+                         std::cos(sun().zenith));
+}
+
+Xyz PietrasSkyModel::tristimulus(Vec3 view) const {
+  return linear_srgb_to_xyz(rgb(view));
+}
+
+void PietrasSkyModel::tristimulus_batch(const DirectionsSoA& dirs, const XyzSoA& out) const {
+  const std::size_t n = dirs.size();
+  // cos alpha0 = z, cos beta0 = view . sun; then rgb into the output spans and the 3x3 matrix in
+  // place.
+  const Vec3 s = sun().direction();
+  std::vector<float> cb(n);
+  for (std::size_t i = 0; i < n; ++i)
+    cb[i] = static_cast<float>(s.x * dirs.x[i] + s.y * dirs.y[i] + s.z * dirs.z[i]);
+  batch_->rgb(dirs.z.data(), cb.data(), out.X.data(), out.Y.data(), out.Z.data(), n);
+  linear_srgb_to_xyz_in_place(out);
+}
+
+Domain PietrasSkyModel::domain() const {
+  return {};
+}
+
+PietrasSurfaceTerms pietras_surface_terms(const NishitaSampler& atmosphere, double altitude_m,
+                                          Vec3 view, double distance_m, double albedo, Vec3 sun) {
+  const double r0 = atmosphere.atmosphere().parameters().ground_radius_m;
+  const Vec3 p{0.0, 0.0, r0 + altitude_m};
+  const Vec3 q = p + distance_m * view;
+  const double rq = length(q);
+  const Vec3 up = (1.0 / rq) * q;  // the probe's zenith
+  PietrasSurfaceTerms t;
+  t.observer_altitude_m = altitude_m;
+  t.probe_altitude_m = std::max(rq - r0, 0.0);
+  t.cos_view_sun = dot(view, sun);
+  t.observer_cos_view_zenith = view.z;
+  t.observer_cos_sun_zenith = sun.z;
+  t.probe_cos_view_zenith = dot(view, up);
+  t.probe_cos_sun_zenith = dot(sun, up);
+  t.transmittance = atmosphere.channel_transmittance(altitude_m, view, distance_m);
+  t.reflected = atmosphere.reflected(altitude_m, view, distance_m, albedo, sun);
+  return t;
+}
+
+Rgb pietras_surface(const PietrasSkyFunction& sky, const NishitaSampler& atmosphere,
+                    double altitude_m, Vec3 view, double distance_m, double albedo, Vec3 sun) {
+  const PietrasSurfaceTerms t =
+      pietras_surface_terms(atmosphere, altitude_m, view, distance_m, albedo, sun);
+  const Rgb obs = sky(t.observer_altitude_m, t.observer_cos_view_zenith, t.cos_view_sun,
+                      t.observer_cos_sun_zenith);
+  const Rgb probe =
+      sky(t.probe_altitude_m, t.probe_cos_view_zenith, t.cos_view_sun, t.probe_cos_sun_zenith);
+  const auto& tr = t.transmittance;
+  const Rgb& refl = t.reflected;
+  return {obs.r - tr[0] * probe.r + refl.r, obs.g - tr[1] * probe.g + refl.g,
+          obs.b - tr[2] * probe.b + refl.b};
+}
+
+PietrasSkyFunction sky_function(const nn::PietrasNetwork& net) {
+  return [&net](double h, double ca, double cb, double ct) { return net.rgb_at(h, ca, cb, ct); };
+}
+
+ModelInfo PietrasSkyModel::registry_entry() {
+  return ModelInfo{
+      .name = std::string(kName),
+      .description =
+          "Pietras's per-vertex sky network (Pietras §III): small MLPs trained on nishita "
+          "(skylight "
+          "nn train --network pietras|log3), the paper's 4 x 4-8-4-1 or the log-luminance 3 x "
+          "4-16-16-1; any observer altitude, twilight, night exactly dark (the shadow test of the "
+          "view ray); fixed cost per direction",
+      .output =
+          "rgb = the network's linear sRGB in the units of its source's rgb() (nishita: Y in "
+          "cd/m^2 for the ASTM G-173 sun), views meeting the ground see the air up to it; XYZ = "
+          "rgb converted (D65)",
+      .parameters = PietrasParameters::schema().specs(),
+      .domain =
+          "the training planet's nishita sky (weights file provenance) at any view, sun and "
+          "observer altitude; its error against nishita is `skylight nn validate` "
+          "(docs/PIETRAS.md); "
+          "no spectral output, no solar disc",
+      .make = model_factory<PietrasSkyModel, PietrasParameters>(),
+      .neural = NeuralPolicy{},
+  };
+}
+
+}  // namespace skylight
