@@ -20,13 +20,14 @@
 
 #include "estimate_fixture.h"
 #include "skylight/core/parallel.h"
-#include "skylight/estimate/turbidity.h"
+#include "skylight/fit/luminance_fit.h"
 #include "skylight/fit/sh_fit.h"
 #include "skylight/haze/airlight_field.h"
 #include "skylight/haze/image_haze.h"
 #include "skylight/models/neural_sky.h"
 #include "skylight/models/nishita.h"
 #include "skylight/models/pietras.h"
+#include "skylight/models/preetham.h"
 #include "skylight/models/sh.h"
 #include "skylight/models/sky_model.h"
 #include "skylight/render/sky_render.h"
@@ -129,8 +130,9 @@ void NishitaReference(benchmark::State& state) {
 void EstimateFisheye1Mpx(benchmark::State& state) {
   const bench::EstimateFixture f = bench::estimate_fixture();
   for (auto _ : state) {
-    const auto e = estimate::estimate_from_photo(f.photo, f.camera, std::nullopt, {}, {});
-    benchmark::DoNotOptimize(e.estimate.turbidity);
+    const auto e =
+        fit::estimate_from_photo(PreethamModel::kName, f.photo, f.camera, std::nullopt, {}, {});
+    benchmark::DoNotOptimize(e.fit.log_scale);
   }
 }
 

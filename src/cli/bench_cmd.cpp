@@ -18,12 +18,13 @@
 #include "skylight/core/error.h"
 #include "skylight/core/parallel.h"
 #include "skylight/core/statistics.h"
-#include "skylight/estimate/turbidity.h"
+#include "skylight/fit/luminance_fit.h"
 #include "skylight/fit/sh_fit.h"
 #include "skylight/haze/airlight_field.h"
 #include "skylight/haze/image_haze.h"
 #include "skylight/models/neural_sky.h"
 #include "skylight/models/pietras.h"
+#include "skylight/models/preetham.h"
 #include "skylight/models/sh.h"
 #include "skylight/render/sky_render.h"
 #include "skylight/sh/polynomial.h"
@@ -69,21 +70,21 @@ double median_seconds(int repeats, F&& f) {
 // bootstrap) on a 1024 x 1024 fisheye Preetham sky with the solar disc, on the calling thread.
 void bench_estimate(int repeats) {
   const bench::EstimateFixture f = bench::estimate_fixture();
-  estimate::PhotoEstimate e;
+  fit::PhotoFit e;
   // Wall time and this thread's CPU time (the estimate runs on the calling thread only; on a busy
   // machine the CPU time is the cost, the wall time includes waiting for a core).
   std::vector<double> cpu;
   const double wall = median_seconds(repeats, [&] {
     const double c0 = thread_cpu_s();
-    e = estimate::estimate_from_photo(f.photo, f.camera, std::nullopt, {}, {});
+    e = fit::estimate_from_photo(PreethamModel::kName, f.photo, f.camera, std::nullopt, {}, {});
     cpu.push_back(thread_cpu_s() - c0);
   });
   write_stdout(fmt::format(
       "estimate: 1024x1024 fisheye (preetham T = 4, sun 40 deg / 150 deg), sun detection + mask + "
       "fit on one thread: {:.2f} ms CPU, {:.2f} ms wall (T = {:.4f}, sun found at {:.2f} deg / "
       "{:.2f} deg)\n",
-      1e3 * median(cpu), 1e3 * wall, e.estimate.turbidity, rad_to_deg(e.estimate.sun.zenith),
-      rad_to_deg(e.estimate.sun.azimuth)));
+      1e3 * median(cpu), 1e3 * wall, e.fit.parameter("turbidity").value,
+      rad_to_deg(e.fit.sun.zenith), rad_to_deg(e.fit.sun.azimuth)));
 }
 
 // Habel 2008 §4: the SH coefficients of one sky (7 bands x 3 channels) from the embedded table,

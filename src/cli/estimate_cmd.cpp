@@ -13,13 +13,9 @@
 #include "skylight/core/error.h"
 #include "skylight/core/numbers.h"
 #include "skylight/estimate/camera.h"
-#include "skylight/estimate/hosek_fit.h"
 #include "skylight/estimate/photo.h"
-#include "skylight/estimate/sky_type.h"
-#include "skylight/estimate/turbidity.h"
+#include "skylight/fit/luminance_fit.h"
 #include "skylight/io/image.h"
-#include "skylight/models/cie_sky.h"
-#include "skylight/models/hosek_wilkie.h"
 #include "skylight/render/false_colour.h"
 #include "skylight/sun/spa.h"
 
@@ -67,7 +63,7 @@ struct EstimateFlags {
   FisheyeFlags fisheye;
   std::optional<double> sun_zenith_deg, sun_azimuth_deg;
   SpaOptions spa;
-  std::string model = "preetham";
+  std::string model = fit::default_estimated_model();
   int samples = 100, seed = 1, ransac_iterations = 64, bootstrap = 32;
   double inlier_threshold = 0.1;
   double min_elevation_deg = 0.0, sun_exclusion_deg = 5.0;
@@ -100,92 +96,65 @@ int run_estimate(const EstimateFlags& f) {
   estimate::MaskSettings ms;
   ms.min_elevation = deg_to_rad(f.min_elevation_deg);
   ms.sun_exclusion = deg_to_rad(f.sun_exclusion_deg);
-  estimate::EstimateSettings es;
+  fit::EstimateSettings es;
   es.samples = f.samples;
   es.seed = static_cast<std::uint64_t>(f.seed);
   es.ransac = !f.no_ransac;
   es.ransac_iterations = f.ransac_iterations;
   es.inlier_threshold = f.inlier_threshold;
   es.bootstrap = f.bootstrap;
-  const estimate::PhotoSamples ps =
-      estimate::sample_photo(image, camera, given_sun, ms, es, user_mask ? &*user_mask : nullptr);
+  const EstimationPolicy& policy = fit::estimation_policy(f.model);
+  const estimate::PhotoSamples ps = estimate::sample_photo(
+      image, camera, given_sun, ms, es.samples, es.seed, user_mask ? &*user_mask : nullptr);
+  const fit::LuminanceFit fit = fit::fit_luminance(f.model, ps.samples, ps.sun, es);
   const double zenith_deg = rad_to_deg(ps.sun.zenith), azimuth_deg = rad_to_deg(ps.sun.azimuth);
+  const bool ranking = policy.method == EstimationPolicy::Method::ranking;
   nlohmann::ordered_json j;
   std::string text;
   j["model"] = f.model;
   text += fmt::format("model            {}\n", f.model);
-  if (f.model == "preetham") {
-    const estimate::TurbidityEstimate e = estimate::estimate_turbidity(ps.samples, ps.sun, es);
-    j["turbidity"] = e.turbidity;
-    j["turbidity_sigma"] = e.turbidity_sigma;
-    j["inlier_fraction"] = e.inlier_fraction;
-    j["residual"] = e.residual;
-    j["inliers"] = e.inliers;
-    j["method"] = e.method;
-    j["luminance_scale"] = std::exp(e.log_scale);
-    text += fmt::format("turbidity        {:.4f} +- {:.4f} ({})\n", e.turbidity, e.turbidity_sigma,
-                        e.method);
-    text += fmt::format("inliers          {} of {} samples ({:.3f}){}\n", e.inliers, e.samples,
-                        e.inlier_fraction, es.ransac ? "" : ", RANSAC off");
-    text += fmt::format("residual         {:.5f} (RMS of ln luminance)\n", e.residual);
-    if (!f.compare.empty())
-      write_comparison(
-          f.compare, image, ps.mask, estimate::model_luminance_image(camera, [&](Vec3 v) {
-            return std::exp(e.log_scale +
-                            estimate::preetham_log_relative_luminance(e.turbidity, v, ps.sun));
-          }));
-  } else if (f.model == "hosek") {
-    const estimate::HosekFit h = estimate::fit_hosek(ps.samples, ps.sun, es);
-    j["turbidity"] = h.turbidity;
-    j["turbidity_sigma"] = h.turbidity_sigma;
-    j["albedo"] = h.albedo;
-    j["albedo_sigma"] = h.albedo_sigma;
-    j["inlier_fraction"] = h.inlier_fraction;
-    j["residual"] = h.residual;
-    j["inliers"] = h.inliers;
-    j["method"] = "levenberg-marquardt";
-    j["luminance_scale"] = std::exp(h.log_scale);
-    text += fmt::format("turbidity        {:.4f} +- {:.4f}\n", h.turbidity, h.turbidity_sigma);
-    text += fmt::format("albedo           {:.4f} +- {:.4f}\n", h.albedo, h.albedo_sigma);
-    text += fmt::format("inliers          {} of {} samples ({:.3f}){}\n", h.inliers, h.samples,
-                        h.inlier_fraction, es.ransac ? "" : ", RANSAC off");
-    text += fmt::format("residual         {:.5f} (RMS of ln luminance)\n", h.residual);
-    if (!f.compare.empty()) {
-      const HosekWilkieModel model(HosekParameters{ps.sun, h.turbidity, h.albedo});
-      write_comparison(f.compare, image, ps.mask,
-                       estimate::model_luminance_image(camera, [&](Vec3 v) {
-                         return std::exp(h.log_scale) * model.tristimulus(v).Y;
-                       }));
+  for (std::size_t a = 0; a < policy.axes.size(); ++a) {
+    const EstimationPolicy::Axis& axis = policy.axes[a];
+    const fit::FittedParameter& p = fit.parameters[a];
+    std::string key = p.name;
+    std::replace(key.begin(), key.end(), '-', '_');
+    if (ranking) {
+      j[key] = static_cast<int>(p.value);
+      text += fmt::format("{:<17}{} {}\n", axis.label, static_cast<int>(p.value), axis.note);
+    } else {
+      j[key] = p.value;
+      j[key + "_sigma"] = p.sigma;
+      // The method is said where the fit can fall back from LM (a profile scan's bracketing).
+      const bool method = policy.method == EstimationPolicy::Method::profile_scan;
+      text += fmt::format("{:<17}{:.4f} +- {:.4f}{}\n", axis.label, p.value, p.sigma,
+                          method ? fmt::format(" ({})", fit.method) : "");
     }
-  } else {
-    // cie: the standard sky types ranked; no turbidity.
-    const auto ranking = estimate::rank_cie_types(ps.samples, ps.sun, f.inlier_threshold);
-    const estimate::CieTypeFit& best = ranking.front();
-    j["cie_type"] = best.type;
+  }
+  // Every estimate reports a turbidity: null when the model fitted has none.
+  if (!j.contains("turbidity")) {
     j["turbidity"] = nullptr;
     j["turbidity_sigma"] = nullptr;
-    j["inlier_fraction"] = best.inlier_fraction;
-    j["residual"] = best.residual;
-    j["inliers"] = best.inliers;
-    j["luminance_scale"] = std::exp(best.log_scale);
-    auto& list = j["cie_ranking"] = nlohmann::ordered_json::array();
-    for (const auto& r : ranking)
-      list.push_back(
-          {{"type", r.type}, {"inlier_fraction", r.inlier_fraction}, {"residual", r.residual}});
-    text += fmt::format("CIE sky type     {} (of 15, CIE S 011)\n", best.type);
-    text += fmt::format("inliers          {} of {} samples ({:.3f})\n", best.inliers,
-                        ps.samples.size(), best.inlier_fraction);
-    text += fmt::format("residual         {:.5f} (RMS of ln luminance)\n", best.residual);
-    if (!f.compare.empty())
-      write_comparison(
-          f.compare, image, ps.mask, estimate::model_luminance_image(camera, [&](Vec3 v) {
-            return std::exp(best.log_scale) *
-                   cie_relative_luminance(best.type, std::acos(clamp_cosine(v.z)),
-                                          angle_between(v, ps.sun.direction()), ps.sun.zenith);
-          }));
+  }
+  j["inlier_fraction"] = fit.inlier_fraction;
+  j["residual"] = fit.residual;
+  j["inliers"] = fit.inliers;
+  if (!ranking) j["method"] = fit.method;
+  j["luminance_scale"] = std::exp(fit.log_scale);
+  text += fmt::format("inliers          {} of {} samples ({:.3f}){}\n", fit.inliers, fit.samples,
+                      fit.inlier_fraction, es.ransac || ranking ? "" : ", RANSAC off");
+  text += fmt::format("residual         {:.5f} (RMS of ln luminance)\n", fit.residual);
+  if (!f.compare.empty())
+    write_comparison(f.compare, image, ps.mask, fit::fitted_luminance_image(fit, camera));
+  if (ranking) {
+    auto& list = j[policy.ranking_field] = nlohmann::ordered_json::array();
     text += "ranking          ";
-    for (const auto& r : ranking)
-      text += fmt::format("{}{}", r.type, &r == &ranking.back() ? "\n" : " ");
+    for (const fit::RankedValue& r : fit.ranking) {
+      list.push_back({{policy.ranking_key, static_cast<int>(r.value)},
+                      {"inlier_fraction", r.inlier_fraction},
+                      {"residual", r.residual}});
+      text +=
+          fmt::format("{}{}", static_cast<int>(r.value), &r == &fit.ranking.back() ? "\n" : " ");
+    }
   }
   const char* sun_text = ps.sun_detected ? "image" : sun_source.c_str();
   j["sun_zenith_deg"] = zenith_deg;
@@ -228,10 +197,14 @@ void add_estimate_command(CLI::App& app, Commands& commands) {
   auto* t =
       f->spa.add(*cmd, false, {"lat", "lon", "elevation", "pressure", "temperature", "delta-t"});
   t->excludes(z)->excludes(a);
-  cmd->add_option("--model", f->model,
-                  "preetham (turbidity), hosek (turbidity and ground albedo) or cie (best CIE "
-                  "S 011 standard sky type); default preetham")
-      ->check(CLI::IsMember({"preetham", "hosek", "cie"}));
+  std::string models;
+  for (const std::string& m : fit::estimated_models())
+    models += fmt::format("{}{} ({})", models.empty() ? "" : ", ", m,
+                          fit::estimation_policy(m).description);
+  cmd->add_option(
+         "--model", f->model,
+         fmt::format("the model fitted: {}; default {}", models, fit::default_estimated_model()))
+      ->check(CLI::IsMember(fit::estimated_models()));
   add_integer(*cmd,
               {"samples", "1", ParameterKind::integer, 2, 1000000, 1,
                ParameterValue(static_cast<double>(f->samples)),

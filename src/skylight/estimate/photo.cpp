@@ -9,6 +9,7 @@
 
 #include "skylight/core/colorimetry.h"
 #include "skylight/core/error.h"
+#include "skylight/core/random.h"
 
 namespace skylight::estimate {
 namespace {
@@ -265,6 +266,61 @@ SunDetection detect_sun(const io::ImageF& image, const SkyCamera& camera, double
   const ZenithAzimuth za = angles_from_direction(*dir);
   d.sun = SunPosition{za.zenith, za.azimuth};
   return d;
+}
+
+std::vector<LuminanceSample> sample_sky(const io::ImageF& image, const SkyCamera& camera,
+                                        const SkyMask& mask, int samples, std::uint64_t seed) {
+  SKYLIGHT_CHECK(mask.width == image.width && mask.height == image.height,
+                 "mask and image sizes differ");
+  if (samples < 2) throw InvalidArgument(fmt::format("samples = {} is below 2", samples));
+  if (mask.count < static_cast<std::size_t>(samples))
+    throw InvalidArgument(
+        fmt::format("the sky mask has {} usable pixels, fewer than the {} samples asked for",
+                    mask.count, samples));
+  SplitMix64 rng(seed);
+  const std::size_t total = mask.sky.size();
+  // Rejection sampling over the image while the sky is at least 1/8 of it, else over the list of
+  // sky pixels: uniform over the mask either way.
+  std::vector<std::size_t> list;
+  if (mask.count * 8 < total)
+    for (std::size_t i = 0; i < total; ++i)
+      if (mask.sky[i]) list.push_back(i);
+  std::vector<LuminanceSample> out;
+  out.reserve(static_cast<std::size_t>(samples));
+  while (out.size() < static_cast<std::size_t>(samples)) {
+    const std::size_t i = list.empty() ? rng.below(total) : list[rng.below(list.size())];
+    if (!mask.sky[i]) continue;
+    const int col = static_cast<int>(i % static_cast<std::size_t>(mask.width));
+    const int row = static_cast<int>(i / static_cast<std::size_t>(mask.width));
+    const auto d = camera.pixel_direction(col, row);
+    SKYLIGHT_CHECK(d && d->z > 0.0, "sky-mask pixels see a direction above the horizon");
+    out.push_back({*d, pixel_luminance(image, col, row)});
+  }
+  return out;
+}
+
+PhotoSamples sample_photo(const io::ImageF& image, const SkyCamera& camera,
+                          const std::optional<SunPosition>& sun, const MaskSettings& mask_settings,
+                          int samples, std::uint64_t seed, const io::ImageF* user_mask) {
+  PhotoSamples out;
+  out.sun_detected = !sun;
+  out.sun = sun ? *sun : detect_sun(image, camera).sun;
+  if (!(out.sun.zenith < kPi / 2))
+    throw InvalidArgument(
+        fmt::format("the sun is at zenith angle {} deg: the fit needs it above the horizon",
+                    rad_to_deg(out.sun.zenith)));
+  out.mask = sky_mask(image, camera, mask_settings, out.sun, user_mask);
+  out.sky_pixels = out.mask.count;
+  out.samples = sample_sky(image, camera, out.mask, samples, seed);
+  return out;
+}
+
+io::ImageF photo_luminance_image(const io::ImageF& image) {
+  io::ImageF out(image.width, image.height, 1);
+  for (int row = 0; row < image.height; ++row)
+    for (int col = 0; col < image.width; ++col)
+      out.pixel(col, row)[0] = static_cast<float>(pixel_luminance(image, col, row));
+  return out;
 }
 
 }  // namespace skylight::estimate

@@ -1,5 +1,6 @@
 // Sky photographs as data for a fit (docs/ESTIMATE.md): luminance from RGB, the sky mask (a user
-// mask and the automatic rules) and the sun's position found in the image.
+// mask and the automatic rules), the sun's position found in the image and the random sky samples
+// that the fits (fit/luminance_fit.h) take.
 #pragma once
 
 #include <cstdint>
@@ -68,5 +69,33 @@ inline constexpr double kSunRegionFraction = 0.95;
 // when the centroid lies below the horizon.
 SunDetection detect_sun(const io::ImageF& image, const SkyCamera& camera,
                         double region_fraction = kSunRegionFraction);
+
+// One sample point: a view direction and the photo's luminance there (any positive unit).
+struct LuminanceSample {
+  Vec3 view;
+  double luminance = 0.0;
+};
+
+// Draws `samples` sky pixels (uniformly over the mask, with SplitMix64 seeded by `seed`) and their
+// luminance. Throws InvalidArgument when the mask has fewer sky pixels.
+std::vector<LuminanceSample> sample_sky(const io::ImageF& image, const SkyCamera& camera,
+                                        const SkyMask& mask, int samples, std::uint64_t seed);
+
+// A photo's samples as `skylight estimate` draws them: the sun (given, or found by detect_sun;
+// InvalidArgument when it is not above the horizon), the sky mask (the automatic rules with the
+// sun exclusion, and the user's mask when given) and `samples` random sky pixels.
+struct PhotoSamples {
+  std::vector<LuminanceSample> samples;
+  SunPosition sun;
+  bool sun_detected = false;   // the sun came from detect_sun
+  std::size_t sky_pixels = 0;  // in the mask the samples were drawn from
+  SkyMask mask;                // that mask
+};
+PhotoSamples sample_photo(const io::ImageF& image, const SkyCamera& camera,
+                          const std::optional<SunPosition>& sun, const MaskSettings& mask_settings,
+                          int samples, std::uint64_t seed, const io::ImageF* user_mask = nullptr);
+
+// The photo's luminance per pixel (pixel_luminance; one channel).
+io::ImageF photo_luminance_image(const io::ImageF& image);
 
 }  // namespace skylight::estimate

@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
+#include <span>
 #include <vector>
 
 #include "skylight/core/data.h"
@@ -241,6 +243,27 @@ Domain CieSkyModel::domain() const {
   return d;
 }
 
+namespace {
+
+// The photo fit's ln L: ln(L / Lz) of the type p[0] (CIE S 011 eq. 1); -infinity where it is 0.
+EstimationPolicy::LogLuminance prepare_relative_luminance(const SunPosition& sun,
+                                                          std::span<const Vec3> views) {
+  auto v = std::make_shared<std::vector<Vec3>>(views.begin(), views.end());
+  return
+      [v, sun](std::span<const double> p, std::span<const std::size_t> idx, std::span<double> out) {
+        const Vec3 s = sun.direction();
+        const int type = static_cast<int>(p[0]);
+        for (std::size_t k = 0; k < idx.size(); ++k) {
+          const Vec3 d = (*v)[idx[k]];
+          const double rel = cie_relative_luminance(type, std::acos(clamp_cosine(d.z)),
+                                                    angle_between(d, s), sun.zenith);
+          out[k] = rel > 0.0 ? std::log(rel) : -std::numeric_limits<double>::infinity();
+        }
+      };
+}
+
+}  // namespace
+
 ModelInfo CieSkyModel::registry_entry() {
   return ModelInfo{
       .name = std::string(kName),
@@ -254,6 +277,19 @@ ModelInfo CieSkyModel::registry_entry() {
           "recommended for solar elevations 10-80 deg (flagged extrapolated outside)",
       .make = model_factory<CieSkyModel, CieParameters>(),
       .neural = NeuralPolicy{},
+      // The 15 standard types of CIE S 011 ranked against the photo (type 16, the traditional
+      // overcast sky, is not one of them).
+      .estimation = EstimationPolicy{.method = EstimationPolicy::Method::ranking,
+                                     .axes = {{.parameter = "cie-type",
+                                               .label = "CIE sky type",
+                                               .note = "(of 15, CIE S 011)",
+                                               .min = 1,
+                                               .max = 15,
+                                               .grid_points = 15}},
+                                     .prepare = prepare_relative_luminance,
+                                     .description = "the best CIE S 011 standard sky type",
+                                     .ranking_field = "cie_ranking",
+                                     .ranking_key = "type"},
   };
 }
 

@@ -4,6 +4,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -665,6 +668,24 @@ Domain HosekWilkieModel::domain() const {
   return d;
 }
 
+namespace {
+
+// The photo fit's ln L: ln Y of the model built for (T, albedo) at the sun (floored at the smallest
+// double: the fit's negative values at the horizon are returned as 0).
+EstimationPolicy::LogLuminance prepare_log_luminance(const SunPosition& sun,
+                                                     std::span<const Vec3> views) {
+  auto v = std::make_shared<std::vector<Vec3>>(views.begin(), views.end());
+  return [v, sun](std::span<const double> p, std::span<const std::size_t> idx,
+                  std::span<double> out) {
+    const HosekWilkieModel model(HosekParameters{sun, p[0], p[1]});
+    for (std::size_t k = 0; k < idx.size(); ++k)
+      out[k] =
+          std::log(std::max(model.tristimulus((*v)[idx[k]]).Y, std::numeric_limits<double>::min()));
+  };
+}
+
+}  // namespace
+
 ModelInfo HosekWilkieModel::registry_entry() {
   return ModelInfo{
       .name = std::string(kName),
@@ -688,6 +709,23 @@ ModelInfo HosekWilkieModel::registry_entry() {
       // the paper's Hosek protocol: T = 1..10 (validation 1.5..9.5); 683 = the native RGB dataset's
       // raw values
       .neural = NeuralPolicy::over_turbidity(1.0, 10.0, 683.0),
+      // Turbidity and ground albedo with a free scale: the grid T every 0.5 over the dataset's
+      // knots, albedo at its ends and middle (docs/ESTIMATE.md).
+      .estimation =
+          EstimationPolicy{.method = EstimationPolicy::Method::grid_ransac,
+                           .axes = {{.parameter = "turbidity",
+                                     .label = "turbidity",
+                                     .min = kHwTurbidityMin,
+                                     .max = kHwTurbidityMax,
+                                     .grid_points = 19},
+                                    {.parameter = "albedo",
+                                     .label = "albedo",
+                                     .min = 0.0,
+                                     .max = 1.0,
+                                     .grid_points = 3}},
+                           .prepare = prepare_log_luminance,
+                           .description = "turbidity and ground albedo (Hosek & Wilkie 2012), "
+                                          "free luminance scale"},
   };
 }
 

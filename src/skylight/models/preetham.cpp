@@ -4,6 +4,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <memory>
+#include <span>
 #include <vector>
 
 #include "skylight/core/data.h"
@@ -311,6 +314,37 @@ Domain PreethamModel::domain() const {
   return d;
 }
 
+double preetham_log_relative_luminance(double turbidity, Vec3 view, const SunPosition& sun) {
+  const PerezCoefficients c = preetham_perez_coefficients(turbidity).Y;
+  return std::log(perez_function(c, view.z, angle_between(view, sun.direction()))) -
+         std::log(perez_function(c, 1.0, sun.zenith));
+}
+
+namespace {
+
+// The photo fit's ln L: ln f(T) of preetham_log_relative_luminance, the views' cos theta and
+// gamma computed once per fit.
+EstimationPolicy::LogLuminance prepare_relative_luminance(const SunPosition& sun,
+                                                          std::span<const Vec3> views) {
+  auto cos_theta = std::make_shared<std::vector<double>>();
+  auto gamma = std::make_shared<std::vector<double>>();
+  const Vec3 s = sun.direction();
+  for (const Vec3& v : views) {
+    cos_theta->push_back(v.z);
+    gamma->push_back(angle_between(v, s));
+  }
+  const double sun_zenith = sun.zenith;
+  return [cos_theta, gamma, sun_zenith](std::span<const double> p, std::span<const std::size_t> idx,
+                                        std::span<double> out) {
+    const PerezCoefficients c = preetham_perez_coefficients(p[0]).Y;
+    const double log_f0 = std::log(perez_function(c, 1.0, sun_zenith));
+    for (std::size_t k = 0; k < idx.size(); ++k)
+      out[k] = std::log(perez_function(c, (*cos_theta)[idx[k]], (*gamma)[idx[k]])) - log_f0;
+  };
+}
+
+}  // namespace
+
 ModelInfo PreethamModel::registry_entry() {
   return ModelInfo{
       .name = std::string(kName),
@@ -331,6 +365,19 @@ ModelInfo PreethamModel::registry_entry() {
       .make = model_factory<PreethamModel, PreethamParameters>(),
       // the paper's Preetham protocol: T = 2..6 (validation 2.5..5.5), rgb() in kcd/m^2
       .neural = NeuralPolicy::over_turbidity(2.0, 6.0),
+      // Morales et al. 2017 §3.4, eq. 8 with a free scale instead of a reference pixel: 38 scan
+      // points (a step of ~0.5 in T).
+      .estimation =
+          EstimationPolicy{
+              .method = EstimationPolicy::Method::profile_scan,
+              .axes = {{.parameter = "turbidity",
+                        .label = "turbidity",
+                        .min = kPreethamFitTurbidityMin,
+                        .max = kPreethamFitTurbidityMax,
+                        .grid_points = 38}},
+              .prepare = prepare_relative_luminance,
+              .description = "turbidity (Morales et al. 2017 eq. 8, free luminance scale)",
+              .is_default = true},
   };
 }
 

@@ -66,6 +66,15 @@ inline constexpr double kPreethamSunAngularRadius = 0.5 * 0.5358 * kDegree;
 // 2007 Fig. 1 studies T up to 64).
 inline constexpr double kPreethamTurbidityMin = 1.0;
 inline constexpr double kPreethamTurbidityMax = 64.0;
+// Turbidity range of the photo fit (Morales et al. 2017 §3.4, eq. 8; fit/luminance_fit.h). Eq. 8
+// searches [1, 20]; below T = 1.643 Preetham's gradation factor 1 + A_Y exp(B_Y) changes sign at
+// the zenith (docs/MODELS.md), so the relative luminance has no logarithm there: the fit starts at
+// 1.7.
+inline constexpr double kPreethamFitTurbidityMin = 1.7;
+inline constexpr double kPreethamFitTurbidityMax = 20.0;
+// ln f(T) = ln F(theta, gamma; T) - ln F(0, theta_s; T): Preetham's luminance relative to the
+// zenith luminance Yz (Preetham 1999 A.2, Perez coefficients of Y). F > 0 for T in the fit range.
+double preetham_log_relative_luminance(double turbidity, Vec3 view, const SunPosition& sun);
 
 struct PreethamParameters {
   SunPosition sun;

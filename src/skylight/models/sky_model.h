@@ -7,6 +7,7 @@
 #pragma once
 
 #include <array>
+#include <cstddef>
 #include <functional>
 #include <memory>
 #include <optional>
@@ -173,6 +174,43 @@ struct NeuralPolicy {
   static NeuralPolicy over_turbidity(double first, double last, double target_scale = 1000.0);
 };
 
+// How a photo's luminance samples are fitted with the model (`skylight estimate`,
+// fit/luminance_fit.h): the parameters fitted (numbers of its schema, each with the range the fit
+// searches and the grid it starts from), the method, and the model's luminance up to a constant
+// factor (the fit's free scale s absorbs it: r_i = ln Y_i - ln s - ln L(v_i; p)).
+struct EstimationPolicy {
+  enum class Method {
+    // One parameter: a scan of its grid with ln s in closed form, Levenberg-Marquardt from the
+    // best point, golden section in the bracket as the fallback; RANSAC fits every minimal set.
+    profile_scan,
+    // Any parameters: the grid of all axes, RANSAC on the grid, Levenberg-Marquardt in the box.
+    grid_ransac,
+    // One integer parameter: every value ranked by inliers around the median scale, then residual.
+    ranking,
+  };
+  struct Axis {
+    std::string parameter;          // the schema's name, e.g. "turbidity"
+    std::string label;              // in the text output, e.g. "CIE sky type"
+    std::string note;               // after the value in the text output, e.g. "(of 15, CIE S 011)"
+    double min = 0.0, max = 0.0;    // the range searched (the fit's box)
+    int grid_points = 2;            // the starting grid (ranking: max - min + 1 values)
+    double derivative_step = 1e-4;  // central differences of ln L
+  };
+  // ln L(v_i; p) for the indices `idx` of the views the closure was prepared for (p in axes
+  // order), into out (idx.size() values); -infinity where L <= 0.
+  using LogLuminance = std::function<void(std::span<const double> p,
+                                          std::span<const std::size_t> idx, std::span<double> out)>;
+  Method method = Method::grid_ransac;
+  std::vector<Axis> axes;
+  // Prepares the closure for a sun and the sample views (e.g. the angles to the sun, once).
+  std::function<LogLuminance(const SunPosition& sun, std::span<const Vec3> views)> prepare;
+  std::string description;  // what is fitted, after which paper
+  bool is_default = false;  // the model `skylight estimate` fits without --model (one model)
+  // ranking: the JSON array of every value, best first, and the key of each entry's value (e.g.
+  // "cie_ranking" of {"type": 12, ...}).
+  std::string ranking_field, ranking_key;
+};
+
 // Binds the generic values into the model's typed parameters (its schema applies defaults and
 // checks them) and builds the model.
 using ModelFactory = std::function<std::unique_ptr<SkyModel>(const SkyParameters&)>;
@@ -194,6 +232,8 @@ struct ModelInfo {
   // returned unclamped; every other model is non-negative.
   bool unclamped = false;
   NeuralPolicy neural{};
+  // Absent: `skylight estimate` does not fit this model.
+  std::optional<EstimationPolicy> estimation{};
 };
 
 // The factory of a model class built from its typed parameters P (bind_parameters).
