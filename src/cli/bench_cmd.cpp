@@ -428,11 +428,11 @@ void add_bench_command(CLI::App& app, Commands& commands) {
   auto* cmd = app.add_subcommand(
       "bench", "time the batch path against an in-run scalar loop (ratios, medians)");
   add_integer(*cmd,
-              {"width", "px", ParameterKind::integer, 1, render::kMaxImageSide, 1,
+              {"width", "px", ParameterKind::integer, 1, kMaxImageSide, 1,
                ParameterValue(static_cast<double>(f->width)), "grid width"},
               f->width);
   add_integer(*cmd,
-              {"height", "px", ParameterKind::integer, 1, render::kMaxImageSide, 1,
+              {"height", "px", ParameterKind::integer, 1, kMaxImageSide, 1,
                ParameterValue(static_cast<double>(f->height)), "grid height"},
               f->height);
   add_integer(*cmd,

@@ -10,9 +10,9 @@
 #include <vector>
 
 #include "common.h"
+#include "skylight/core/camera.h"
 #include "skylight/core/error.h"
 #include "skylight/core/numbers.h"
-#include "skylight/estimate/camera.h"
 #include "skylight/estimate/photo.h"
 #include "skylight/fit/luminance_fit.h"
 #include "skylight/io/image.h"
@@ -74,9 +74,8 @@ int run_estimate(const EstimateFlags& f) {
   if (f.sun_zenith_deg.has_value() != f.sun_azimuth_deg.has_value())
     throw InvalidArgument("--sun-zenith and --sun-azimuth go together");
   const io::ImageF image = io::read_image(f.image);
-  const estimate::SkyCamera camera =
-      estimate::image_camera(*estimate::parse_photo_projection(f.projection), f.fisheye.layout(),
-                             image.width, image.height);
+  const Camera camera =
+      image_camera(*parse_projection(f.projection), f.fisheye.layout(), image.width, image.height);
   std::optional<io::ImageF> user_mask;
   if (!f.mask.empty()) user_mask = estimate::load_mask(f.mask);
   if (!f.compare.empty() && io::format_from_path(f.compare) != io::ImageFormat::png)

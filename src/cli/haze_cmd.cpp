@@ -13,11 +13,11 @@
 
 #include "common.h"
 #include "haze_camera.h"
+#include "skylight/core/camera.h"
 #include "skylight/core/error.h"
 #include "skylight/core/frame.h"
 #include "skylight/core/math.h"
 #include "skylight/core/numbers.h"
-#include "skylight/estimate/camera.h"
 #include "skylight/haze/airlight_field.h"
 #include "skylight/haze/attenuation.h"
 #include "skylight/haze/coefficients.h"
@@ -57,9 +57,8 @@ struct SkyPhotoFlags {
         ->check(CLI::IsMember({"fisheye", "equirect"}));
     fisheye.add(cmd, "180", "--sky fisheye: field of view across the image circle");
   }
-  estimate::SkyCamera camera(const io::ImageF& photo) const {
-    return estimate::image_camera(*estimate::parse_photo_projection(projection), fisheye.layout(),
-                                  photo.width, photo.height);
+  Camera camera(const io::ImageF& photo) const {
+    return image_camera(*parse_projection(projection), fisheye.layout(), photo.width, photo.height);
   }
 };
 
@@ -171,7 +170,7 @@ struct AirlightFlags {
   haze::PhotoAirlight photo_horizon(double t, double theta) const {
     if (!photo) {
       const io::ImageF image = io::read_image(sky.path);
-      const estimate::SkyCamera cam = sky.camera(image);
+      const Camera cam = sky.camera(image);
       haze::HorizonSettings h;
       if (horizon_region == "band") {
         if (!sky_mask.empty())
@@ -339,7 +338,7 @@ int run_sky_mask(const SkyMaskFlags& f) {
     throw InvalidArgument(
         fmt::format("-o '{}' is also an input; write to another file", excerpt(f.output)));
   const io::ImageF photo = io::read_image(f.sky.path);
-  const estimate::SkyCamera cam = f.sky.camera(photo);
+  const Camera cam = f.sky.camera(photo);
   const estimate::SkyMask mask = haze::segment_sky(photo, cam);
   io::write_png(f.output, haze::mask_image(mask),
                 {{"Software", fmt::format("skylight {}", kVersion)},

@@ -88,11 +88,11 @@ int run_animate(const AnimateFlags& f) {
   if (!f.strip.empty() && io::format_from_path(f.strip) != io::ImageFormat::png)
     throw InvalidArgument(fmt::format("--strip '{}' must be a .png file", excerpt(f.strip)));
   render::RenderSettings s;
-  s.projection = *render::parse_projection(f.projection);
+  s.projection = *parse_projection(f.projection);
   s.width = f.width;
   s.height = f.height;
   s.fisheye = f.fisheye.layout(kFisheyeFovDeg);
-  render::validate(s);
+  validate(s);
   // A sky network or a Pietras network (read once; load_sky_network_file's checks on this text).
   const std::string text = io::read_text_file(f.weights);
   std::optional<nn::PietrasNetwork> pietras;
@@ -214,11 +214,11 @@ void add_nn_animate_command(CLI::App& nn, Commands& commands) {
       ->check(CLI::IsMember({"equirect", "hemisphere", "fisheye"}));
   f->fisheye.add(*cmd, "180", "fisheye: field of view across the image circle");
   add_integer(*cmd,
-              {"width", "px", ParameterKind::integer, 1, render::kMaxImageSide, 1,
+              {"width", "px", ParameterKind::integer, 1, kMaxImageSide, 1,
                ParameterValue(static_cast<double>(f->width)), "image width"},
               f->width);
   add_integer(*cmd,
-              {"height", "px", ParameterKind::integer, 1, render::kMaxImageSide, 1,
+              {"height", "px", ParameterKind::integer, 1, kMaxImageSide, 1,
                ParameterValue(static_cast<double>(f->height)), "image height"},
               f->height);
   cmd->add_option("-o,--output", f->output,

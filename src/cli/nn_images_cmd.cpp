@@ -11,10 +11,10 @@
 
 #include "common.h"
 #include "nn_parts.h"
+#include "skylight/core/camera.h"
 #include "skylight/core/error.h"
 #include "skylight/core/math.h"
 #include "skylight/core/numbers.h"
-#include "skylight/estimate/camera.h"
 #include "skylight/estimate/photo.h"
 #include "skylight/estimate/sky_sequence.h"
 #include "skylight/io/file.h"
@@ -159,9 +159,8 @@ int run_train_images(const ImageTrainFlags& f, const fit::NeuralTraining& t,
     li.entry = e;
     const std::optional<SunPosition> sun = entry_sun(f, e, li.sun_source);
     const io::ImageF image = io::read_image(e.file);
-    const estimate::SkyCamera camera =
-        estimate::image_camera(*estimate::parse_photo_projection(f.projection), f.fisheye.layout(),
-                               image.width, image.height);
+    const Camera camera = image_camera(*parse_projection(f.projection), f.fisheye.layout(),
+                                       image.width, image.height);
     std::optional<io::ImageF> own_mask;
     if (!e.mask.empty()) own_mask = estimate::load_mask(e.mask);
     const io::ImageF* mask = own_mask ? &*own_mask : common_mask ? &*common_mask : nullptr;

@@ -156,11 +156,11 @@ void add_nn_planet_command(CLI::App& nn, Commands& commands) {
                "icosphere level of the ground and the shell (10 * 4^n + 2 vertices each)"},
               f->subdivisions);
   add_integer(*cmd,
-              {"width", "px", ParameterKind::integer, 1, render::kMaxImageSide, 1,
+              {"width", "px", ParameterKind::integer, 1, kMaxImageSide, 1,
                ParameterValue(static_cast<double>(f->width)), "image width"},
               f->width);
   add_integer(*cmd,
-              {"height", "px", ParameterKind::integer, 1, render::kMaxImageSide, 1,
+              {"height", "px", ParameterKind::integer, 1, kMaxImageSide, 1,
                ParameterValue(static_cast<double>(f->height)), "image height"},
               f->height);
   cmd->add_option("-o,--output", f->output,

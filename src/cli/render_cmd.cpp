@@ -48,10 +48,10 @@ constexpr double kCameraFovDeg = 60.0;
 
 // Flags that only some projections read: given with another projection they are ignored with a
 // warning.
-void warn_unused_projection_flags(const CLI::App& cmd, render::Projection projection,
+void warn_unused_projection_flags(const CLI::App& cmd, Projection projection,
                                   std::string_view projection_name) {
-  const bool fisheye = projection == render::Projection::fisheye;
-  const bool camera = projection == render::Projection::camera;
+  const bool fisheye = projection == Projection::fisheye;
+  const bool camera = projection == Projection::camera;
   const std::pair<const char*, bool> flags[] = {{"--lens", fisheye},
                                                 {"--north-angle", fisheye},
                                                 {"--fov", fisheye || camera},
@@ -79,18 +79,18 @@ constexpr const char* kPreviewPixelUnit =
 
 int run_render(const RenderFlags& f, const CLI::App& cmd) {
   render::RenderSettings s;
-  s.projection = *render::parse_projection(f.projection);
+  s.projection = *parse_projection(f.projection);
   s.height = f.height;
-  s.width = s.projection == render::Projection::cubemap && !f.width_given ? 6 * f.height : f.width;
+  s.width = s.projection == Projection::cubemap && !f.width_given ? 6 * f.height : f.width;
   s.fisheye = f.fisheye.layout(kFisheyeFovDeg);
-  s.camera.look_zenith = deg_to_rad(90.0 - f.look_elevation_deg);
-  s.camera.look_azimuth = wrap_azimuth(deg_to_rad(f.look_azimuth_deg));
-  s.camera.vertical_fov = deg_to_rad(f.fisheye.fov_deg.value_or(kCameraFovDeg));
+  s.pinhole.look_zenith = deg_to_rad(90.0 - f.look_elevation_deg);
+  s.pinhole.look_azimuth = wrap_azimuth(deg_to_rad(f.look_azimuth_deg));
+  s.pinhole.vertical_fov = deg_to_rad(f.fisheye.fov_deg.value_or(kCameraFovDeg));
   s.sun = f.model.sun_only()      ? render::SunMode::sun_only
           : f.model.include_sun() ? render::SunMode::sky_and_sun
                                   : render::SunMode::sky;
   warn_unused_projection_flags(cmd, s.projection, f.projection);
-  render::validate(s);
+  validate(s);
   (void)io::format_from_path(f.output);
   if (!f.preview.empty() && io::format_from_path(f.preview) != io::ImageFormat::png)
     throw InvalidArgument(fmt::format("--preview '{}' must be a .png file", f.preview));
@@ -117,13 +117,13 @@ int run_render(const RenderFlags& f, const CLI::App& cmd) {
   for (auto& entry : f.model.solar_position_metadata()) md.push_back(std::move(entry));
   md.emplace_back("skylight:projection", f.projection);
   if (f.gpu) md.emplace_back("skylight:renderer", "gpu (OpenGL fragment shader, docs/GPU.md)");
-  if (s.projection == render::Projection::camera) {
+  if (s.projection == Projection::camera) {
     md.emplace_back("skylight:fov_deg",
                     fmt::format("{}", f.fisheye.fov_deg.value_or(kCameraFovDeg)));
     md.emplace_back("skylight:look_elevation_deg", fmt::format("{}", f.look_elevation_deg));
     md.emplace_back("skylight:look_azimuth_deg", fmt::format("{}", f.look_azimuth_deg));
   }
-  if (s.projection == render::Projection::fisheye) {
+  if (s.projection == Projection::fisheye) {
     md.emplace_back("skylight:lens", f.fisheye.lens);
     md.emplace_back("skylight:fov_deg",
                     fmt::format("{}", f.fisheye.fov_deg.value_or(kFisheyeFovDeg)));
@@ -176,13 +176,13 @@ void add_render_command(CLI::App& app, Commands& commands) {
               "camera: azimuth of the view centre from north towards east"},
              f->look_azimuth_deg);
   add_integer(*cmd,
-              {"width", "px", ParameterKind::integer, 1, render::kMaxImageSide, 1,
+              {"width", "px", ParameterKind::integer, 1, kMaxImageSide, 1,
                ParameterValue(static_cast<double>(f->width)),
                "image width (cubemap: must be 6 x height, which is its default)"},
               f->width)
       ->each([f](const std::string&) { f->width_given = true; });
   add_integer(*cmd,
-              {"height", "px", ParameterKind::integer, 1, render::kMaxImageSide, 1,
+              {"height", "px", ParameterKind::integer, 1, kMaxImageSide, 1,
                ParameterValue(static_cast<double>(f->height)), "image height"},
               f->height);
   cmd->add_option("-o,--output", f->output,

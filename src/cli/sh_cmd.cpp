@@ -282,10 +282,10 @@ int run_render(const RenderFlags& f) {
   if (!f.sphere.empty()) (void)io::format_from_path(f.sphere);
   const auto model = f.sky.make();
   render::RenderSettings s;
-  s.projection = render::Projection::equirect;
+  s.projection = Projection::equirect;
   s.width = f.width;
   s.height = f.width / 2;
-  render::validate(s);
+  validate(s);
   const render::SkyImage img = render::render_sky(*model, s);
   auto md = model_metadata(*model, "sky");
   md.emplace_back("skylight:projection", "equirect");
@@ -480,7 +480,7 @@ void add_sh_command(CLI::App& app, Commands& commands) {
       "render", "the reconstructed sky as an equirect env map, and a diffuse sphere lit by it");
   rf->sky.add(*ren);
   add_integer(*ren,
-              {"width", "px", ParameterKind::integer, 2, render::kMaxImageSide, 1,
+              {"width", "px", ParameterKind::integer, 2, kMaxImageSide, 1,
                ParameterValue(static_cast<double>(rf->width)), "env map width (height = width/2)"},
               rf->width);
   ren->add_option("-o,--output", rf->output, "env map (.exr/.hdr/.pfm; .png clamped)")->required();

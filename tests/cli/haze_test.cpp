@@ -422,7 +422,7 @@ TEST_F(HazeCameraCli, IncompleteOrConflictingCamerasAreErrors) {
 // its horizon region, given as a file or segmented again, against the fixed band.
 TEST_F(HazeCli, SkyMaskAndTheWatershedHorizonRegion) {
   write_scene();
-  const estimate::SkyCamera cam{estimate::PhotoProjection::equirect, 360, 180, {}};
+  const Camera cam{Projection::equirect, 360, 180, {}};
   const testing_support::ScenePhoto photo = testing_support::render_skyline_scene(cam);
   io::write_image(dir_ / "sky.exr", photo.image);
   auto r =

@@ -1,4 +1,4 @@
-// Test helper: synthetic sky photographs. A sky model drawn through an estimate::SkyCamera (the
+// Test helper: synthetic sky photographs. A sky model drawn through an Camera (the
 // scalar reference path per pixel centre, linear sRGB), and synthetic clouds painted over it.
 #pragma once
 
@@ -6,14 +6,14 @@
 #include <cstdint>
 #include <vector>
 
+#include "skylight/core/camera.h"
 #include "skylight/core/colorimetry.h"
-#include "skylight/estimate/camera.h"
 #include "skylight/io/image.h"
 #include "skylight/models/sky_model.h"
 
 namespace skylight::testing_support {
 
-inline io::ImageF render_photo(const SkyModel& model, const estimate::SkyCamera& camera) {
+inline io::ImageF render_photo(const SkyModel& model, const Camera& camera) {
   io::ImageF img(camera.width, camera.height, 3);
   for (int row = 0; row < camera.height; ++row)
     for (int col = 0; col < camera.width; ++col) {

@@ -1,5 +1,5 @@
 // Test helper: rendered sky-image sequences standing in for HDR time-lapses (no calibrated public
-// one exists; docs/NN.md). A sky model drawn per sun position through an estimate::SkyCamera
+// one exists; docs/NN.md). A sky model drawn per sun position through an Camera
 // (render_photo), with the defects of a real capture: a clipped sun (a disc at a saturation level
 // above every sky pixel), multiplicative noise and an occluder (a dark block above the horizon)
 // with its mask.
@@ -11,8 +11,8 @@
 #include <memory>
 #include <vector>
 
+#include "skylight/core/camera.h"
 #include "skylight/core/frame.h"
-#include "skylight/estimate/camera.h"
 #include "skylight/io/image.h"
 #include "skylight/models/sky_model.h"
 #include "support/sky_photo.h"
@@ -38,7 +38,7 @@ inline bool occluded(Vec3 d) {
 
 // One capture: `model` (built for `sun`) through `camera`, with the defects.
 inline io::ImageF render_capture(const SkyModel& model, const SunPosition& sun,
-                                 const estimate::SkyCamera& camera, const SequenceDefects& x) {
+                                 const Camera& camera, const SequenceDefects& x) {
   io::ImageF img = render_photo(model, camera);
   float peak = 0.0f;
   for (float v : img.data) peak = std::max(peak, v);
@@ -67,7 +67,7 @@ inline io::ImageF render_capture(const SkyModel& model, const SunPosition& sun,
 }
 
 // The occluder's mask for `camera`: 1 = sky, 0 = occluder (one channel).
-inline io::ImageF occluder_mask(const estimate::SkyCamera& camera) {
+inline io::ImageF occluder_mask(const Camera& camera) {
   io::ImageF m(camera.width, camera.height, 1);
   for (int row = 0; row < camera.height; ++row)
     for (int col = 0; col < camera.width; ++col) {

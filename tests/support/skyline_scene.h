@@ -3,7 +3,7 @@
 // 2.5, a sun 35 deg up and two clouds, over a dark textured mountain range with a snow field from
 // 1 deg above the horizon to 2 deg below the skyline (brighter than the horizon's sky) and a
 // building with windows 28 deg high; below the horizon, textured ground. Drawn through an
-// estimate::SkyCamera (3 x 3 samples a pixel, 1 % noise), with the true sky mask.
+// Camera (3 x 3 samples a pixel, 1 % noise), with the true sky mask.
 #pragma once
 
 #include <algorithm>
@@ -12,9 +12,9 @@
 #include <cstdint>
 #include <optional>
 
+#include "skylight/core/camera.h"
 #include "skylight/core/frame.h"
 #include "skylight/core/math.h"
-#include "skylight/estimate/camera.h"
 #include "skylight/estimate/photo.h"
 #include "skylight/io/image.h"
 
@@ -103,7 +103,7 @@ struct ScenePhoto {
 
 // Each pixel is the mean of 3 x 3 samples over its area (the skyline's pixels are mixed, as
 // through a lens) times 1 + 0.01 n, n a hash noise in [-1, 1] (sensor noise).
-inline ScenePhoto render_skyline_scene(const estimate::SkyCamera& cam) {
+inline ScenePhoto render_skyline_scene(const Camera& cam) {
   constexpr int kSub = 3;
   ScenePhoto p{io::ImageF(cam.width, cam.height, 3), {}};
   p.truth.width = cam.width;

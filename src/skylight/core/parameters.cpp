@@ -64,7 +64,12 @@ std::string ParameterSpec::metadata_key() const {
 }
 
 std::string ParameterSpec::range_text() const {
-  if (kind == ParameterKind::text || kind == ParameterKind::flag) return {};
+  if (kind == ParameterKind::text) {
+    std::string out;
+    for (const auto& c : choices) out += (out.empty() ? "" : "|") + c;
+    return out;
+  }
+  if (kind == ParameterKind::flag) return {};
   return fmt::format("{} .. {}", display_number(min), display_number(max));
 }
 
@@ -79,7 +84,7 @@ std::string ParameterSpec::default_text() const {
 std::string ParameterSpec::help() const {
   std::string h = description;
   if (!unit.empty()) h += fmt::format(" [{}]", unit);
-  if (kind == ParameterKind::numbers) h += fmt::format(", {} values", count);
+  if (kind == ParameterKind::numbers && count > 0) h += fmt::format(", {} values", count);
   if (const std::string r = range_text(); !r.empty())
     h += fmt::format(", {}{}", kind == ParameterKind::numbers ? "each " : "", r);
   if (kind != ParameterKind::flag) h += "; default " + default_text();
@@ -135,16 +140,23 @@ void ParameterSpec::check(const ParameterValue& value, std::string_view context)
     case ParameterKind::numbers: {
       const auto* l = std::get_if<std::vector<double>>(&value);
       if (!l) wrong_kind();
-      if (l->size() != count)
+      if (count > 0 && l->size() != count)
         throw InvalidArgument(
             fmt::format("{} needs {} values, got {}{}", flag(), count, l->size(), where(context)));
+      if (l->empty())
+        throw InvalidArgument(fmt::format("{} needs at least one value{}", flag(), where(context)));
       for (std::size_t i = 0; i < l->size(); ++i)
         in_range((*l)[i], fmt::format("{} (value {})", format_number((*l)[i]), i + 1));
       return;
     }
-    case ParameterKind::text:
-      if (!std::holds_alternative<std::string>(value)) wrong_kind();
+    case ParameterKind::text: {
+      const auto* s = std::get_if<std::string>(&value);
+      if (!s) wrong_kind();
+      if (!choices.empty() && std::find(choices.begin(), choices.end(), *s) == choices.end())
+        throw InvalidArgument(fmt::format("{} = '{}' is not one of {}{}", flag(), excerpt(*s),
+                                          range_text(), where(context)));
       return;
+    }
     case ParameterKind::flag:
       if (!std::holds_alternative<bool>(value)) wrong_kind();
       return;
@@ -155,10 +167,13 @@ std::string markdown_table(const std::vector<ParameterSpec>& specs) {
   std::string t = "| flag | unit | range | default | description |\n|---|---|---|---|---|\n";
   for (const auto& s : specs) {
     std::string range = s.range_text();
-    if (s.kind == ParameterKind::numbers) range = fmt::format("{} values, each {}", s.count, range);
+    if (s.kind == ParameterKind::numbers)
+      range = s.count > 0 ? fmt::format("{} values, each {}", s.count, range)
+                          : fmt::format("values, each {}", range);
     if (s.kind == ParameterKind::integer) range += " (integer)";
     std::string description = s.description;
     std::replace(description.begin(), description.end(), '|', '/');
+    std::replace(range.begin(), range.end(), '|', '/');
     t += fmt::format("| `{}` | {} | {} | {} | {} |\n", s.flag(), s.unit, range, s.default_text(),
                      description);
   }
@@ -179,6 +194,13 @@ std::optional<double> ParameterValues::number(std::string_view name) const {
   const ParameterValue* v = find(name);
   if (const auto* d = v ? std::get_if<double>(v) : nullptr) return *d;
   return std::nullopt;
+}
+
+ParameterValues ParameterValues::only(const std::vector<ParameterSpec>& specs) const {
+  ParameterValues out;
+  for (const auto& s : specs)
+    if (const ParameterValue* v = find(s.name)) out.set(s.name, *v);
+  return out;
 }
 
 void ParameterValues::erase(std::string_view name) {

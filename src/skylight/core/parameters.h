@@ -18,6 +18,8 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <type_traits>
+#include <utility>
 #include <variant>
 #include <vector>
 
@@ -26,8 +28,8 @@ namespace skylight {
 enum class ParameterKind {
   number,   // a finite double
   integer,  // a whole number (stored as double in a ParameterValue)
-  numbers,  // a fixed-length list of finite doubles (`count` values, comma-separated as text)
-  text,     // a string (e.g. a file path)
+  numbers,  // a list of finite doubles (`count` values, 0: any number >= 1; comma-separated text)
+  text,     // a string (e.g. a file path), or one of `choices` when the spec lists them
   flag,     // a boolean switch (present = true)
 };
 
@@ -53,13 +55,15 @@ struct ParameterSpec {
   std::size_t count = 1;        // values of a `numbers` parameter
   ParameterDefault default_value = Required{};
   std::string description;
+  // A text parameter that takes one of these names (an enumeration); empty: any text.
+  std::vector<std::string> choices{};
 
   std::string flag() const { return "--" + name; }
   bool required() const { return std::holds_alternative<Required>(default_value); }
   // "skylight:" + name with '-' -> '_' + a unit suffix ("_deg", "_m", "_cd_m2", "_W_m2_nm",
   // "_DU"; none for "1" and ""): e.g. skylight:zenith_luminance_cd_m2.
   std::string metadata_key() const;
-  // "1 .. 64" for numbers; "" for text and flags.
+  // "1 .. 64" for numbers; "a|b|c" for a text of choices; "" for other text and flags.
   std::string range_text() const;
   // The default as the user sees it: "3", "-1,-0.32,10,-3,0.45", "required", "none (<meaning>)".
   std::string default_text() const;
@@ -74,6 +78,19 @@ struct ParameterSpec {
   // Throws InvalidArgument naming the parameter, the value and the range (and `context`, e.g.
   // "model 'hosek'", when not empty) if the value has the wrong kind or is outside the range.
   void check(const ParameterValue& value, std::string_view context = {}) const;
+};
+
+// An operation of the library with options (render, estimate, sh fit, nn train, haze add, ...):
+// its name as the command line spells it, what it does, and its parameters, built from the
+// schemas of the settings it takes (docs/ARCHITECTURE.md, "Operations"). Front ends (the CLI, the
+// Python package) derive their flags and arguments from it; `skylight operations --json` lists
+// every operation.
+struct OperationInfo {
+  std::string name;  // e.g. "sh fit"
+  std::string description;
+  std::vector<ParameterSpec> parameters;
+  // What the library fills (its types, in words), e.g. "fit::LuminanceFit".
+  std::string result;
 };
 
 // The specs as a Markdown table (flag, unit, range, default, description), as docs/MODELS.md shows
@@ -101,6 +118,8 @@ class ParameterValues {
   // A number's value, nullopt if absent (or not a number).
   std::optional<double> number(std::string_view name) const;
   bool has(std::string_view name) const { return find(name) != nullptr; }
+  // The values whose names the specs declare (one schema's share of an operation's values).
+  ParameterValues only(const std::vector<ParameterSpec>& specs) const;
   void erase(std::string_view name);
   bool empty() const { return values_.empty(); }
   const std::map<std::string, ParameterValue, std::less<>>& all() const { return values_; }
@@ -138,7 +157,19 @@ class ParameterSchema {
           return *(p.*field);
         });
   }
-  ParameterSchema& integer(int P::*field, ParameterSpec spec) {
+  // A field of any integer type (int, std::uint64_t, ...).
+  template <class T>
+  ParameterSchema& integer(T P::*field, ParameterSpec spec) {
+    static_assert(std::is_integral_v<T>, "an integer field");
+    spec.kind = ParameterKind::integer;
+    return add(
+        std::move(spec),
+        [field](P& p, const ParameterValue& v) { p.*field = static_cast<T>(std::get<double>(v)); },
+        [field](const P& p) -> std::optional<ParameterValue> {
+          return static_cast<double>(p.*field);
+        });
+  }
+  ParameterSchema& optional_integer(std::optional<int> P::*field, ParameterSpec spec) {
     spec.kind = ParameterKind::integer;
     return add(
         std::move(spec),
@@ -146,7 +177,38 @@ class ParameterSchema {
           p.*field = static_cast<int>(std::get<double>(v));
         },
         [field](const P& p) -> std::optional<ParameterValue> {
-          return static_cast<double>(p.*field);
+          if (!(p.*field)) return std::nullopt;
+          return static_cast<double>(*(p.*field));
+        });
+  }
+  // A list (spec.count values, 0: any number); an empty list is absent.
+  ParameterSchema& numbers(std::vector<double> P::*field, ParameterSpec spec) {
+    spec.kind = ParameterKind::numbers;
+    return add(
+        std::move(spec),
+        [field](P& p, const ParameterValue& v) { p.*field = std::get<std::vector<double>>(v); },
+        [field](const P& p) -> std::optional<ParameterValue> {
+          if ((p.*field).empty()) return std::nullopt;
+          return p.*field;
+        });
+  }
+  // An enumeration by name: `names` pairs each choice with its value (spec.choices from them).
+  template <class E>
+  ParameterSchema& choice(E P::*field, ParameterSpec spec,
+                          std::vector<std::pair<std::string, E>> names) {
+    spec.kind = ParameterKind::text;
+    spec.choices.clear();
+    for (const auto& [n, e] : names) spec.choices.push_back(n);
+    return add(
+        std::move(spec),
+        [field, names](P& p, const ParameterValue& v) {
+          for (const auto& [n, e] : names)
+            if (n == std::get<std::string>(v)) p.*field = e;
+        },
+        [field, names](const P& p) -> std::optional<ParameterValue> {
+          for (const auto& [n, e] : names)
+            if (e == p.*field) return n;
+          return std::nullopt;
         });
   }
   template <std::size_t N>

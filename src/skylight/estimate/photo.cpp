@@ -19,9 +19,9 @@ namespace {
 // image centre, so theta < pi/2 - e  <=>  r < r(pi/2 - e); for an equirect map, row by row.
 class HorizonTest {
  public:
-  HorizonTest(const SkyCamera& c, double min_elevation) : camera_(c) {
+  HorizonTest(const Camera& c, double min_elevation) : camera_(c) {
     const double theta_max = kPi / 2 - min_elevation;
-    if (c.projection == PhotoProjection::fisheye) {
+    if (c.projection == Projection::fisheye) {
       radius_px_ = 0.5 * std::min(c.width, c.height);
       if (theta_max > 0.5 * c.fisheye.fov) {
         limit_ = 1.0;  // every imaged direction is high enough
@@ -35,7 +35,7 @@ class HorizonTest {
     }
   }
   bool operator()(int col, int row) const {
-    if (camera_.projection == PhotoProjection::equirect)
+    if (camera_.projection == Projection::equirect)
       return kPi * (row + 0.5) / camera_.height < limit_;
     const double dx = (col + 0.5 - 0.5 * camera_.width) / radius_px_;
     const double dy = (row + 0.5 - 0.5 * camera_.height) / radius_px_;
@@ -44,7 +44,7 @@ class HorizonTest {
   }
 
  private:
-  const SkyCamera& camera_;
+  const Camera& camera_;
   double radius_px_ = 1.0;
   double limit_ = 0.0;
   bool inclusive_ = false;
@@ -80,7 +80,7 @@ double luminance_of(const float* p, int channels) {
 struct Box {
   int c0, c1, r0, r1;
 };
-Box exclusion_box(const SkyCamera& camera, const SunPosition& sun, double radius) {
+Box exclusion_box(const Camera& camera, const SunPosition& sun, double radius) {
   const Box whole{0, camera.width, 0, camera.height};
   const Vec3 s = sun.direction();
   // An orthonormal pair perpendicular to s.
@@ -101,7 +101,7 @@ Box exclusion_box(const SkyCamera& camera, const SunPosition& sun, double radius
     rmin = std::min(rmin, (*p)[1]);
     rmax = std::max(rmax, (*p)[1]);
   }
-  if (camera.projection == PhotoProjection::equirect &&
+  if (camera.projection == Projection::equirect &&
       (cmax - cmin > 0.5 * camera.width || sun.zenith < radius || sun.zenith > kPi - radius))
     return whole;
   // The ring's sampling misses bulges of at most a few pixels: a margin of kMargin pixels.
@@ -134,7 +134,7 @@ io::ImageF load_mask(const std::filesystem::path& path) {
   return m;
 }
 
-SkyMask sky_mask(const io::ImageF& image, const SkyCamera& camera, const MaskSettings& settings,
+SkyMask sky_mask(const io::ImageF& image, const Camera& camera, const MaskSettings& settings,
                  const std::optional<SunPosition>& sun, const io::ImageF* user_mask) {
   validate(camera);
   SKYLIGHT_CHECK(image.width == camera.width && image.height == camera.height,
@@ -192,7 +192,7 @@ SkyMask sky_mask(const io::ImageF& image, const SkyCamera& camera, const MaskSet
   return m;
 }
 
-SunDetection detect_sun(const io::ImageF& image, const SkyCamera& camera, double region_fraction) {
+SunDetection detect_sun(const io::ImageF& image, const Camera& camera, double region_fraction) {
   validate(camera);
   SKYLIGHT_CHECK(image.width == camera.width && image.height == camera.height,
                  "camera and image sizes differ");
@@ -220,7 +220,7 @@ SunDetection detect_sun(const io::ImageF& image, const SkyCamera& camera, double
   // pixel's offset from the peak is carried along so that a region across the seam has one
   // centroid.
   const double threshold = region_fraction * peak;
-  const bool wrap = camera.projection == PhotoProjection::equirect;
+  const bool wrap = camera.projection == Projection::equirect;
   std::vector<std::uint8_t> seen(static_cast<std::size_t>(w) * static_cast<std::size_t>(h), 0);
   struct Node {
     int col, row;
@@ -268,7 +268,7 @@ SunDetection detect_sun(const io::ImageF& image, const SkyCamera& camera, double
   return d;
 }
 
-std::vector<LuminanceSample> sample_sky(const io::ImageF& image, const SkyCamera& camera,
+std::vector<LuminanceSample> sample_sky(const io::ImageF& image, const Camera& camera,
                                         const SkyMask& mask, int samples, std::uint64_t seed) {
   SKYLIGHT_CHECK(mask.width == image.width && mask.height == image.height,
                  "mask and image sizes differ");
@@ -299,7 +299,7 @@ std::vector<LuminanceSample> sample_sky(const io::ImageF& image, const SkyCamera
   return out;
 }
 
-PhotoSamples sample_photo(const io::ImageF& image, const SkyCamera& camera,
+PhotoSamples sample_photo(const io::ImageF& image, const Camera& camera,
                           const std::optional<SunPosition>& sun, const MaskSettings& mask_settings,
                           int samples, std::uint64_t seed, const io::ImageF* user_mask) {
   PhotoSamples out;

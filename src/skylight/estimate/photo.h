@@ -8,8 +8,8 @@
 #include <optional>
 #include <vector>
 
+#include "skylight/core/camera.h"
 #include "skylight/core/frame.h"
-#include "skylight/estimate/camera.h"
 #include "skylight/io/image.h"
 
 namespace skylight::estimate {
@@ -51,7 +51,7 @@ io::ImageF load_mask(const std::filesystem::path& path);
 // The sky mask of `image` seen through `camera` by the automatic rules, restricted to the user's
 // mask where one is given (nonzero in any channel = sky; it must have the image's size, otherwise
 // InvalidArgument naming both sizes). `sun` enables the sun exclusion.
-SkyMask sky_mask(const io::ImageF& image, const SkyCamera& camera, const MaskSettings& settings,
+SkyMask sky_mask(const io::ImageF& image, const Camera& camera, const MaskSettings& settings,
                  const std::optional<SunPosition>& sun = std::nullopt,
                  const io::ImageF* user_mask = nullptr);
 
@@ -67,7 +67,7 @@ struct SunDetection {
 inline constexpr double kSunRegionFraction = 0.95;
 // Throws InvalidArgument when no imaged pixel above the horizon has positive finite luminance, or
 // when the centroid lies below the horizon.
-SunDetection detect_sun(const io::ImageF& image, const SkyCamera& camera,
+SunDetection detect_sun(const io::ImageF& image, const Camera& camera,
                         double region_fraction = kSunRegionFraction);
 
 // One sample point: a view direction and the photo's luminance there (any positive unit).
@@ -78,7 +78,7 @@ struct LuminanceSample {
 
 // Draws `samples` sky pixels (uniformly over the mask, with SplitMix64 seeded by `seed`) and their
 // luminance. Throws InvalidArgument when the mask has fewer sky pixels.
-std::vector<LuminanceSample> sample_sky(const io::ImageF& image, const SkyCamera& camera,
+std::vector<LuminanceSample> sample_sky(const io::ImageF& image, const Camera& camera,
                                         const SkyMask& mask, int samples, std::uint64_t seed);
 
 // A photo's samples as `skylight estimate` draws them: the sun (given, or found by detect_sun;
@@ -91,7 +91,7 @@ struct PhotoSamples {
   std::size_t sky_pixels = 0;  // in the mask the samples were drawn from
   SkyMask mask;                // that mask
 };
-PhotoSamples sample_photo(const io::ImageF& image, const SkyCamera& camera,
+PhotoSamples sample_photo(const io::ImageF& image, const Camera& camera,
                           const std::optional<SunPosition>& sun, const MaskSettings& mask_settings,
                           int samples, std::uint64_t seed, const io::ImageF* user_mask = nullptr);
 

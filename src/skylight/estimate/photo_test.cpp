@@ -17,7 +17,7 @@ constexpr double kFloatRelTol = 1e-6;
 
 TEST(Photo, LuminanceIsTheModelsYThroughLinearSrgb) {
   const PreethamModel model({{50 * kDegree, 2.0}, 4.0});
-  const SkyCamera cam{PhotoProjection::fisheye, 64, 64, {}};
+  const Camera cam{Projection::fisheye, 64, 64, {}};
   const io::ImageF img = testing_support::render_photo(model, cam);
   for (int row = 0; row < 64; row += 5)
     for (int col = 0; col < 64; col += 5) {
@@ -41,8 +41,8 @@ TEST(Photo, AutomaticMaskMatchesItsRulesPixelByPixel) {
   for (const double fov_deg : {180.0, 200.0}) {
     const SunPosition sun{40 * kDegree, 300 * kDegree};
     const PreethamModel model({sun, 3.0});
-    const SkyCamera cam{
-        PhotoProjection::fisheye, 120, 100, {FisheyeLens::equisolid, fov_deg * kDegree, 0.4}};
+    const Camera cam{
+        Projection::fisheye, 120, 100, {FisheyeLens::equisolid, fov_deg * kDegree, 0.4}};
     io::ImageF img = testing_support::render_photo(model, cam);
     img.pixel(60, 50)[1] = std::numeric_limits<float>::quiet_NaN();
     img.pixel(61, 50)[0] = -1.0f;
@@ -79,7 +79,7 @@ TEST(Photo, AutomaticMaskMatchesItsRulesPixelByPixel) {
 
 TEST(Photo, UserMaskRestrictsAndMustMatchTheImageSize) {
   const PreethamModel model({{30 * kDegree, 1.0}, 3.0});
-  const SkyCamera cam{PhotoProjection::equirect, 80, 40, {}};
+  const Camera cam{Projection::equirect, 80, 40, {}};
   const io::ImageF img = testing_support::render_photo(model, cam);
   io::ImageF user(80, 40, 1);
   for (int row = 0; row < 40; ++row)
@@ -113,16 +113,16 @@ constexpr double kPeakFoundWithinRad = 3.0 * kDegree;
 
 TEST(Photo, DetectsTheSunOfARenderedSky) {
   struct Case {
-    PhotoProjection projection;
+    Projection projection;
     int w, h;
     SunPosition sun;
   };
-  for (const Case& c : {Case{PhotoProjection::fisheye, 200, 200, {58.4 * kDegree, 180.6 * kDegree}},
-                        Case{PhotoProjection::fisheye, 200, 200, {20 * kDegree, 70 * kDegree}},
-                        Case{PhotoProjection::equirect, 360, 180, {45 * kDegree, 0.1 * kDegree}},
-                        Case{PhotoProjection::equirect, 360, 180, {60 * kDegree, 250 * kDegree}}}) {
+  for (const Case& c : {Case{Projection::fisheye, 200, 200, {58.4 * kDegree, 180.6 * kDegree}},
+                        Case{Projection::fisheye, 200, 200, {20 * kDegree, 70 * kDegree}},
+                        Case{Projection::equirect, 360, 180, {45 * kDegree, 0.1 * kDegree}},
+                        Case{Projection::equirect, 360, 180, {60 * kDegree, 250 * kDegree}}}) {
     const PreethamModel model({c.sun, 2.5});
-    const SkyCamera cam{c.projection, c.w, c.h, {}};
+    const Camera cam{c.projection, c.w, c.h, {}};
     io::ImageF img = testing_support::render_photo(model, cam);
     const SunDetection peak = detect_sun(img, cam);
     EXPECT_LT(angle_between(peak.sun.direction(), c.sun.direction()), kPeakFoundWithinRad);
@@ -141,7 +141,7 @@ TEST(Photo, DetectsTheSunOfARenderedSky) {
     EXPECT_EQ(d.peak_luminance,
               pixel_luminance(img, static_cast<int>(d.col), static_cast<int>(d.row)));
   }
-  const SkyCamera cam{PhotoProjection::fisheye, 8, 8, {}};
+  const Camera cam{Projection::fisheye, 8, 8, {}};
   EXPECT_THROW(detect_sun(io::ImageF(8, 8, 3), cam), InvalidArgument);
 }
 

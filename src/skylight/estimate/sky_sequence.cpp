@@ -105,7 +105,7 @@ std::vector<SequenceEntry> parse_sequence_list(std::string_view text, const std:
   return rows;
 }
 
-SampledImage sample_sky_image(const io::ImageF& image, const SkyCamera& camera,
+SampledImage sample_sky_image(const io::ImageF& image, const Camera& camera,
                               const std::optional<SunPosition>& sun,
                               const SequenceSampling& sampling, const io::ImageF* user_mask) {
   SampledImage r;

@@ -11,7 +11,7 @@
 #include <string_view>
 #include <vector>
 
-#include "skylight/estimate/camera.h"
+#include "skylight/core/camera.h"
 #include "skylight/estimate/photo.h"
 #include "skylight/io/image.h"
 #include "skylight/nn/image_dataset.h"
@@ -52,7 +52,7 @@ struct SampledImage {
 // without replacement (SplitMix64 seeded by seed), views = the camera's pixel-centre directions,
 // rgb = the pixel (a one-channel image: grey). InvalidArgument when the sun is below the horizon
 // or the mask is empty.
-SampledImage sample_sky_image(const io::ImageF& image, const SkyCamera& camera,
+SampledImage sample_sky_image(const io::ImageF& image, const Camera& camera,
                               const std::optional<SunPosition>& sun,
                               const SequenceSampling& sampling,
                               const io::ImageF* user_mask = nullptr);

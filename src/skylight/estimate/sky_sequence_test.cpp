@@ -19,11 +19,11 @@ using testing_support::SequenceDefects;
 // a pixel of the true sun (the disc's pixels are symmetric about it up to one pixel).
 constexpr double kSunFoundTolerance = 2.9 * kDegree;
 
-SkyCamera equirect(int w, int h) {
-  return {PhotoProjection::equirect, w, h, {}};
+Camera equirect(int w, int h) {
+  return {Projection::equirect, w, h, {}};
 }
 
-io::ImageF hosek_capture(const SunPosition& sun, const SkyCamera& cam, const SequenceDefects& x) {
+io::ImageF hosek_capture(const SunPosition& sun, const Camera& cam, const SequenceDefects& x) {
   const HosekWilkieModel model(HosekParameters{sun, 3.0, 0.3});
   return testing_support::render_capture(model, sun, cam, x);
 }
@@ -72,7 +72,7 @@ TEST(SkySequence, ListErrorsNameTheFileAndLine) {
 }
 
 TEST(SkySequence, ClippedSunIsFoundAndExcludedAndTheOccluderMasked) {
-  const SkyCamera cam = equirect(128, 64);
+  const Camera cam = equirect(128, 64);
   const SunPosition sun{50 * kDegree, 120 * kDegree};
   SequenceDefects x;
   x.sun_radius = 3 * kDegree;
@@ -121,7 +121,7 @@ constexpr double kHeldOutMedian = 0.03;  // 2.5x the measured median: SIMD-targe
 constexpr double kHeldOutP95 = 0.08;     // 2.5x the measured p95
 
 TEST(SkySequence, FourCaptureNetworkReproducesAHeldOutCapture) {
-  const SkyCamera cam = equirect(96, 48);
+  const Camera cam = equirect(96, 48);
   const io::ImageF mask = testing_support::occluder_mask(cam);
   SequenceDefects x;
   x.sun_radius = 4 * kDegree;
@@ -161,7 +161,7 @@ TEST(SkySequence, FourCaptureNetworkReproducesAHeldOutCapture) {
 // io, its sun found, the automatic mask applied and sky pixels sampled.
 TEST(SkySequence, RealPanoramaIsReadMaskedAndSampled) {
   const io::ImageF img = io::read_image(std::string(SKYLIGHT_TEST_DATA_DIR) + "/hdr_sky/city.exr");
-  const SkyCamera cam = equirect(img.width, img.height);
+  const Camera cam = equirect(img.width, img.height);
   SequenceSampling s;
   s.samples_per_image = 2000;
   const SampledImage r = sample_sky_image(img, cam, std::nullopt, s);

@@ -524,7 +524,7 @@ LuminanceFit fit_profile(std::string_view model, std::span<const LuminanceSample
   return result(pr, model, sun, f, all);
 }
 
-io::ImageF fitted_luminance_image(const LuminanceFit& fit, const estimate::SkyCamera& camera) {
+io::ImageF fitted_luminance_image(const LuminanceFit& fit, const Camera& camera) {
   const EstimationPolicy& policy = estimation_policy(fit.model);
   std::vector<Vec3> views;
   std::vector<std::size_t> pixels;
@@ -546,8 +546,7 @@ io::ImageF fitted_luminance_image(const LuminanceFit& fit, const estimate::SkyCa
   return out;
 }
 
-PhotoFit estimate_from_photo(std::string_view model, const io::ImageF& image,
-                             const estimate::SkyCamera& camera,
+PhotoFit estimate_from_photo(std::string_view model, const io::ImageF& image, const Camera& camera,
                              const std::optional<SunPosition>& sun,
                              const estimate::MaskSettings& mask_settings,
                              const EstimateSettings& settings, const io::ImageF* user_mask) {

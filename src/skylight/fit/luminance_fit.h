@@ -16,8 +16,8 @@
 #include <string_view>
 #include <vector>
 
+#include "skylight/core/camera.h"
 #include "skylight/core/frame.h"
-#include "skylight/estimate/camera.h"
 #include "skylight/estimate/photo.h"
 #include "skylight/io/image.h"
 #include "skylight/models/sky_model.h"
@@ -91,7 +91,7 @@ LuminanceFit fit_profile(std::string_view model, std::span<const LuminanceSample
 
 // The fitted sky drawn on the photo's pixels, for comparison with the photo: s L(v; p) at the
 // centre of every pixel whose direction is above the horizon, 0 elsewhere (one channel).
-io::ImageF fitted_luminance_image(const LuminanceFit& fit, const estimate::SkyCamera& camera);
+io::ImageF fitted_luminance_image(const LuminanceFit& fit, const Camera& camera);
 
 // The whole estimate from a photo: estimate::sample_photo (sun given or found, mask, samples) and
 // fit_luminance.
@@ -101,8 +101,7 @@ struct PhotoFit {
   bool sun_detected = false;
   estimate::SkyMask mask;
 };
-PhotoFit estimate_from_photo(std::string_view model, const io::ImageF& image,
-                             const estimate::SkyCamera& camera,
+PhotoFit estimate_from_photo(std::string_view model, const io::ImageF& image, const Camera& camera,
                              const std::optional<SunPosition>& sun,
                              const estimate::MaskSettings& mask_settings,
                              const EstimateSettings& settings,

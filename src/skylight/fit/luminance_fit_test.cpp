@@ -87,7 +87,7 @@ constexpr double kTable1MeanTol = 0.02;
 constexpr double kTable1SigmaMax = 0.02;
 
 TEST(Turbidity, Table1ProtocolOnRenderedFisheyeSkies) {
-  const SkyCamera cam{PhotoProjection::fisheye, 500, 500, {}};
+  const Camera cam{Projection::fisheye, 500, 500, {}};
   for (int t = 2; t <= 9; ++t) {
     const PreethamModel model({kTable1Sun, static_cast<double>(t)});
     const io::ImageF img = testing_support::render_photo(model, cam);
@@ -118,7 +118,7 @@ constexpr double kCloudFraction = 0.3;
 constexpr double kCloudTol = 0.1;
 
 TEST(Turbidity, RansacRejectsSyntheticClouds) {
-  const SkyCamera cam{PhotoProjection::fisheye, 300, 300, {}};
+  const Camera cam{Projection::fisheye, 300, 300, {}};
   for (const double t : {3.0, 6.0}) {
     const PreethamModel model({kTable1Sun, t});
     io::ImageF img = testing_support::render_photo(model, cam);
@@ -148,7 +148,7 @@ TEST(Turbidity, RansacRejectsSyntheticClouds) {
 constexpr double kFloatRelTol = 1e-6;
 
 TEST(Turbidity, ModelImageMatchesThePhotoOfTheSameSky) {
-  const SkyCamera cam{PhotoProjection::fisheye, 40, 30, {FisheyeLens::stereographic, kPi, 0.2}};
+  const Camera cam{Projection::fisheye, 40, 30, {FisheyeLens::stereographic, kPi, 0.2}};
   const PreethamModel model({kTable1Sun, 4.0});
   const io::ImageF photo = photo_luminance_image(testing_support::render_photo(model, cam));
   LuminanceFit fit;  // the model itself: T = 4, s = Yz (ln L is relative to the zenith)
@@ -164,7 +164,7 @@ TEST(Turbidity, ModelImageMatchesThePhotoOfTheSameSky) {
 }
 
 TEST(Turbidity, SamplingNeedsEnoughSkyPixels) {
-  const SkyCamera cam{PhotoProjection::fisheye, 8, 8, {}};
+  const Camera cam{Projection::fisheye, 8, 8, {}};
   const io::ImageF img(8, 8, 3);  // black: no usable pixel
   const SkyMask mask = sky_mask(img, cam, MaskSettings{});
   EXPECT_EQ(mask.count, 0u);
@@ -181,7 +181,7 @@ constexpr double kHosekCloudTol = 0.1;
 
 TEST(HosekFit, RecoversTurbidityAndAlbedoOfARenderedSky) {
   const SunPosition sun{50 * kDegree, 120 * kDegree};
-  const SkyCamera cam{PhotoProjection::fisheye, 200, 200, {}};
+  const Camera cam{Projection::fisheye, 200, 200, {}};
   for (const auto& [t, a] : {std::pair{2.5, 0.1}, std::pair{4.0, 0.3}, std::pair{7.0, 0.8}}) {
     const HosekWilkieModel model(HosekParameters{sun, t, a});
     io::ImageF img = testing_support::render_photo(model, cam);
@@ -200,7 +200,7 @@ TEST(HosekFit, RecoversTurbidityAndAlbedoOfARenderedSky) {
 
 TEST(HosekFit, RansacRejectsSyntheticClouds) {
   const SunPosition sun{58.4 * kDegree, wrap_azimuth(-179.4 * kDegree)};
-  const SkyCamera cam{PhotoProjection::fisheye, 300, 300, {}};
+  const Camera cam{Projection::fisheye, 300, 300, {}};
   const HosekWilkieModel model(HosekParameters{sun, 4.0, 0.3});
   io::ImageF img = testing_support::render_photo(model, cam);
   const SkyMask clear = sky_mask(img, cam, MaskSettings{}, sun);

@@ -64,7 +64,7 @@ struct CameraFrame {
   Vec3 f, right, up;
   double t;
 };
-CameraFrame camera_frame(const render::CameraLayout& c) {
+CameraFrame camera_frame(const PinholeLayout& c) {
   const Vec3 f = direction_from_angles(c.look_zenith, c.look_azimuth);
   Vec3 right = cross(f, Vec3{0, 0, 1});
   if (dot(right, right) < 1e-12) right = cross(f, Vec3{0, 1, 0});
@@ -79,7 +79,6 @@ std::array<float, 3> to_float(Vec3 v) {
 }  // namespace
 
 std::string glsl_pixel_direction(const render::RenderSettings& s) {
-  using render::Projection;
   std::string g = kDirectionFromAngles;
   g += "uniform vec2 skylight_size;  // width, height [px]\n";
   switch (s.projection) {
@@ -141,12 +140,12 @@ namespace {
 void set_layout_uniforms(Program& p, const render::RenderSettings& s) {
   p.set_if_active("skylight_size",
                   std::array<float, 2>{static_cast<float>(s.width), static_cast<float>(s.height)});
-  if (s.projection == render::Projection::fisheye) {
+  if (s.projection == Projection::fisheye) {
     p.set_if_active("skylight_g_max", static_cast<float>(lens_g_max(s.fisheye)));
     p.set_if_active("skylight_north_angle", static_cast<float>(s.fisheye.north_angle));
   }
-  if (s.projection == render::Projection::camera) {
-    const CameraFrame c = camera_frame(s.camera);
+  if (s.projection == Projection::camera) {
+    const CameraFrame c = camera_frame(s.pinhole);
     p.set_if_active("skylight_forward", to_float(c.f));
     p.set_if_active("skylight_right", to_float(c.right));
     p.set_if_active("skylight_up", to_float(c.up));
@@ -161,7 +160,7 @@ constexpr const char* kPixel =
 }  // namespace
 
 io::ImageF shader_pixel_directions(const render::RenderSettings& s) {
-  render::validate(s);
+  validate(s);
   std::string src(kGlslVersion);
   src += glsl_pixel_direction(s);
   src += "out vec4 colour;\nvoid main() {\n";
@@ -225,7 +224,7 @@ ShaderSky shader_sky(const SkyModel& model) {
 SkyRenderer::SkyRenderer(const SkyModel& model, const render::RenderSettings& s,
                          DirectionSource directions)
     : model_(model), settings_(s) {
-  render::validate(s);
+  validate(s);
   const ShaderSky sky = shader_sky(model);
   source_ = std::string(kGlslVersion);
   source_ += fmt::format("// skylight: the `{}` sky model by pixel (docs/GPU.md).\n", model.name());
@@ -317,7 +316,7 @@ render::SkyImage SkyRenderer::image() const {
 }
 
 render::SkyImage render_sky_gpu(const SkyModel& model, const render::RenderSettings& settings) {
-  render::validate(settings);
+  validate(settings);
   Context context;
   SkyRenderer renderer(model, settings);
   renderer.draw();

@@ -14,7 +14,7 @@
 
 namespace skylight::gpu {
 
-// GLSL of render::pixel_direction for s.projection (no #version line):
+// GLSL of Camera::direction for s.projection (no #version line):
 //   bool skylight_pixel_direction(vec2 pixel, out vec3 dir)
 // pixel = (col, row) continuous with centres at +0.5, row 0 at the top; false (dir = zenith)
 // where the layout has no direction. Reads the uniforms it declares (see SkyRenderer).
@@ -34,8 +34,8 @@ enum class DirectionSource {
 // The compiled sky program and its float target for one model and layout.
 class SkyRenderer {
  public:
-  // Needs a current Context. Throws InvalidArgument for bad settings (render::validate) or a model
-  // that is not nn or pietras, and GpuError from GL.
+  // Needs a current Context. Throws InvalidArgument for bad settings (validate, core/camera.h) or a
+  // model that is not nn or pietras, and GpuError from GL.
   SkyRenderer(const SkyModel& model, const render::RenderSettings& settings,
               DirectionSource directions = DirectionSource::shader);
   // The full fragment shader (for docs and tests).

@@ -67,21 +67,20 @@ NeuralSkyParameters sky(double sun_zenith_deg, double sun_azimuth_deg) {
 
 std::vector<render::RenderSettings> layouts() {
   std::vector<render::RenderSettings> out;
-  for (const auto proj :
-       {render::Projection::equirect, render::Projection::hemisphere, render::Projection::fisheye,
-        render::Projection::cubemap, render::Projection::camera}) {
+  for (const auto proj : {Projection::equirect, Projection::hemisphere, Projection::fisheye,
+                          Projection::cubemap, Projection::camera}) {
     render::RenderSettings s;
     s.projection = proj;
-    s.width = proj == render::Projection::cubemap ? 192 : 160;
-    s.height = proj == render::Projection::cubemap ? 32 : 80;
-    s.camera.look_zenith = deg_to_rad(70.0);
-    s.camera.look_azimuth = deg_to_rad(120.0);
+    s.width = proj == Projection::cubemap ? 192 : 160;
+    s.height = proj == Projection::cubemap ? 32 : 80;
+    s.pinhole.look_zenith = deg_to_rad(70.0);
+    s.pinhole.look_azimuth = deg_to_rad(120.0);
     out.push_back(s);
   }
   for (const auto lens : {FisheyeLens::equidistant, FisheyeLens::equisolid,
                           FisheyeLens::orthographic, FisheyeLens::stereographic}) {
     render::RenderSettings s;
-    s.projection = render::Projection::fisheye;
+    s.projection = Projection::fisheye;
     s.width = 96;
     s.height = 96;
     s.fisheye.lens = lens;
@@ -94,7 +93,7 @@ std::vector<render::RenderSettings> layouts() {
 
 std::string name(const render::RenderSettings& s) {
   std::string n(to_string(s.projection));
-  if (s.projection == render::Projection::fisheye) {
+  if (s.projection == Projection::fisheye) {
     n += '_';
     n += to_string(s.fisheye.lens);
   }
@@ -159,7 +158,7 @@ TEST_F(GpuTest, ShaderDirectionsMatchTheCpuLayouts) {
 TEST_F(GpuTest, SunBelowTheHorizonIsDarkAndMaskIsKept) {
   const NeuralSkyModel model(sky(100.0, 180.0));
   render::RenderSettings s;
-  s.projection = render::Projection::fisheye;
+  s.projection = Projection::fisheye;
   s.width = 64;
   s.height = 32;
   SkyRenderer r(model, s);
@@ -231,7 +230,7 @@ TEST_F(GpuTest, PietrasNetworksMatchTheCpuRender) {
                         {"log3.json", 400e3, 80.0, true},  // space is dark: rays missing the air
                         {"pietras.json", 8000.0, 95.0, true}};
   render::RenderSettings s;
-  s.projection = render::Projection::equirect;  // the whole sphere: views meeting the ground too
+  s.projection = Projection::equirect;  // the whole sphere: views meeting the ground too
   s.width = 256;
   s.height = 128;
   for (const Case& c : cases) {

@@ -303,8 +303,8 @@ double zeta(double turbidity, double theta, double theta_prime) {
   return term(theta) / term(theta_prime);
 }
 
-PhotoAirlight photo_airlight(const io::ImageF& sky, const estimate::SkyCamera& camera,
-                             double turbidity, double theta, double band) {
+PhotoAirlight photo_airlight(const io::ImageF& sky, const Camera& camera, double turbidity,
+                             double theta, double band) {
   if (sky.channels != 3) throw InvalidArgument("the sky photo must be R, G, B");
   if (camera.width != sky.width || camera.height != sky.height)
     throw InvalidArgument(fmt::format("the sky photo is {}x{} but its camera {}x{}", sky.width,
@@ -326,7 +326,7 @@ PhotoAirlight photo_airlight(const io::ImageF& sky, const estimate::SkyCamera& c
   return region_airlight(sky, camera, region, turbidity, theta);
 }
 
-PhotoAirlight region_airlight(const io::ImageF& sky, const estimate::SkyCamera& camera,
+PhotoAirlight region_airlight(const io::ImageF& sky, const Camera& camera,
                               const std::vector<std::uint8_t>& region, double turbidity,
                               double theta) {
   if (sky.channels != 3) throw InvalidArgument("the sky photo must be R, G, B");

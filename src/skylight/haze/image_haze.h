@@ -11,8 +11,8 @@
 #include <optional>
 #include <vector>
 
+#include "skylight/core/camera.h"
 #include "skylight/core/math.h"
-#include "skylight/estimate/camera.h"
 #include "skylight/haze/attenuation.h"
 #include "skylight/io/image.h"
 #include "skylight/models/sky_model.h"
@@ -172,13 +172,13 @@ inline constexpr double kHorizonBand = 10.0 * kDegree;
 // zenith angle theta'; then I^inf(T, theta) = I^inf(theta') zeta(T, theta, theta') (eq. 13) for
 // the zenith angle `theta` [rad] seen behind the scene (pi/2: the horizon). InvalidArgument when
 // no pixel lies in the band or the photo is not RGB.
-PhotoAirlight photo_airlight(const io::ImageF& sky, const estimate::SkyCamera& camera,
-                             double turbidity, double theta, double band = kHorizonBand);
+PhotoAirlight photo_airlight(const io::ImageF& sky, const Camera& camera, double turbidity,
+                             double theta, double band = kHorizonBand);
 
 // Eq. 12 on a given horizon region (`region`: one byte per pixel, nonzero = in the region; its
 // pixels below the horizon or outside the image circle are ignored): the brightest 1 % as above.
 // photo_airlight's band and the watershed region of haze/sky_segmentation.h both end here.
-PhotoAirlight region_airlight(const io::ImageF& sky, const estimate::SkyCamera& camera,
+PhotoAirlight region_airlight(const io::ImageF& sky, const Camera& camera,
                               const std::vector<std::uint8_t>& region, double turbidity,
                               double theta);
 

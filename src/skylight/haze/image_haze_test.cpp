@@ -247,7 +247,7 @@ TEST(HazeImage, PhotoAirlightEquations12And13) {
       sky.pixel(col, row)[1] = 0.5f * k;
       sky.pixel(col, row)[2] = 0.7f * k;
     }
-  const estimate::SkyCamera cam{estimate::PhotoProjection::equirect, 64, 32, {}};
+  const Camera cam{Projection::equirect, 64, 32, {}};
   const PhotoAirlight a = photo_airlight(sky, cam, 2.5, kPi / 2);
   EXPECT_EQ(a.pixels, 2u);
   const double theta_prime = kPi * 15.5 / 32.0;
@@ -256,8 +256,8 @@ TEST(HazeImage, PhotoAirlightEquations12And13) {
   EXPECT_NEAR(a.airlight[0], 0.8 * z, kFloatTol);
   EXPECT_NEAR(a.airlight[2], 1.4 * z, kFloatTol);
   // A photo that sees nothing near the horizon.
-  const estimate::SkyCamera narrow{estimate::PhotoProjection::fisheye, 64, 32,
-                                   FisheyeLayout{FisheyeLens::equidistant, 60.0 * kDegree, 0.0}};
+  const Camera narrow{Projection::fisheye, 64, 32,
+                      FisheyeLayout{FisheyeLens::equidistant, 60.0 * kDegree, 0.0}};
   EXPECT_THROW(photo_airlight(sky, narrow, 2.5, kPi / 2), InvalidArgument);
 }
 
@@ -265,7 +265,7 @@ TEST(HazeImage, PhotoAirlightEquations12And13) {
 // pixels. An equirect 72 x 36 sky (5 deg a row; rows 16 and 17 lie within 10 deg above the
 // horizon, row 17 twice as bright) whose brightness grows with the pixel's azimuth.
 TEST(HazeImage, PhotoAirlightPerSectorOfAzimuth) {
-  const estimate::SkyCamera cam{estimate::PhotoProjection::equirect, 72, 36, {}};
+  const Camera cam{Projection::equirect, 72, 36, {}};
   const auto gain = [&](int col, int row) {
     return 1.0 + angles_from_direction(*cam.pixel_direction(col, row)).azimuth / (2 * kPi);
   };

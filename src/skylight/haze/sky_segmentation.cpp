@@ -92,10 +92,10 @@ void validate(const SegmentationSettings& s) {
         s.ground_texture, s.texture_radius));
 }
 
-estimate::SkyMask segment_sky(const io::ImageF& photo, const estimate::SkyCamera& camera,
+estimate::SkyMask segment_sky(const io::ImageF& photo, const Camera& camera,
                               const SegmentationSettings& settings) {
   validate(settings);
-  estimate::validate(camera);
+  skylight::validate(camera);
   if (photo.width != camera.width || photo.height != camera.height)
     throw InvalidArgument(fmt::format("the sky photo is {}x{} but its camera {}x{}", photo.width,
                                       photo.height, camera.width, camera.height));
@@ -212,7 +212,7 @@ io::Image8 mask_image(const estimate::SkyMask& mask) {
   return out;
 }
 
-estimate::SkyMask mask_from_image(const io::ImageF& image, const estimate::SkyCamera& camera) {
+estimate::SkyMask mask_from_image(const io::ImageF& image, const Camera& camera) {
   if (image.width != camera.width || image.height != camera.height)
     throw InvalidArgument(fmt::format("the sky mask is {}x{} but the sky photo {}x{}", image.width,
                                       image.height, camera.width, camera.height));
@@ -232,8 +232,8 @@ estimate::SkyMask mask_from_image(const io::ImageF& image, const estimate::SkyCa
   return mask;
 }
 
-std::vector<std::uint8_t> horizon_region(const estimate::SkyMask& mask,
-                                         const estimate::SkyCamera& camera, double band) {
+std::vector<std::uint8_t> horizon_region(const estimate::SkyMask& mask, const Camera& camera,
+                                         double band) {
   SKYLIGHT_CHECK(mask.width == camera.width && mask.height == camera.height,
                  "mask and camera sizes differ");
   const Grid g{mask.width, mask.height};
@@ -261,8 +261,8 @@ std::vector<std::uint8_t> horizon_region(const estimate::SkyMask& mask,
   return region;
 }
 
-PhotoAirlight photo_airlight(const io::ImageF& sky, const estimate::SkyCamera& camera,
-                             double turbidity, double theta, const HorizonSettings& settings) {
+PhotoAirlight photo_airlight(const io::ImageF& sky, const Camera& camera, double turbidity,
+                             double theta, const HorizonSettings& settings) {
   if (settings.region == HorizonRegion::band)
     return photo_airlight(sky, camera, turbidity, theta, settings.band);
   if (sky.channels != 3) throw InvalidArgument("the sky photo must be R, G, B");

@@ -7,8 +7,8 @@
 #include <cstdint>
 #include <vector>
 
+#include "skylight/core/camera.h"
 #include "skylight/core/math.h"
-#include "skylight/estimate/camera.h"
 #include "skylight/estimate/photo.h"
 #include "skylight/haze/image_haze.h"
 #include "skylight/io/image.h"
@@ -42,20 +42,19 @@ void validate(const SegmentationSettings& settings);
 // The sky mask of an RGB (or luminance) photo seen through `camera`: 1 = sky. Pixels outside the
 // fisheye's image circle and below the horizon are 0. InvalidArgument when the photo and camera
 // sizes differ or no pixel qualifies as a sky marker.
-estimate::SkyMask segment_sky(const io::ImageF& photo, const estimate::SkyCamera& camera,
+estimate::SkyMask segment_sky(const io::ImageF& photo, const Camera& camera,
                               const SegmentationSettings& settings = {});
 
 // The mask as an 8-bit one-channel image (255 = sky) and back (nonzero in any channel = sky; the
 // size must be the camera's).
 io::Image8 mask_image(const estimate::SkyMask& mask);
-estimate::SkyMask mask_from_image(const io::ImageF& image, const estimate::SkyCamera& camera);
+estimate::SkyMask mask_from_image(const io::ImageF& image, const Camera& camera);
 
 // The horizon region of eq. 12 within a sky mask: per azimuth bin (kHorizonAzimuthBins over the
 // full circle), the sky pixels above the horizon at most `band` above the lowest sky pixel of
 // that bin, i.e. the visible sky just over the skyline, whatever its height.
 inline constexpr int kHorizonAzimuthBins = 360;
-std::vector<std::uint8_t> horizon_region(const estimate::SkyMask& mask,
-                                         const estimate::SkyCamera& camera,
+std::vector<std::uint8_t> horizon_region(const estimate::SkyMask& mask, const Camera& camera,
                                          double band = kHorizonBand);
 
 enum class HorizonRegion { watershed, band };
@@ -70,7 +69,7 @@ struct HorizonSettings {
 // Eq. 12 on the photo: HorizonRegion::band is photo_airlight(sky, camera, turbidity, theta, band)
 // (the pixels within `band` above the horizon); HorizonRegion::watershed takes the horizon_region
 // of the sky mask (given, or segment_sky). The brightest 1 % of the region as there.
-PhotoAirlight photo_airlight(const io::ImageF& sky, const estimate::SkyCamera& camera,
-                             double turbidity, double theta, const HorizonSettings& settings);
+PhotoAirlight photo_airlight(const io::ImageF& sky, const Camera& camera, double turbidity,
+                             double theta, const HorizonSettings& settings);
 
 }  // namespace skylight::haze

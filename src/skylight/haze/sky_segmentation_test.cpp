@@ -56,9 +56,9 @@ HorizonSettings band_region() {
   return h;
 }
 
-const estimate::SkyCamera kEquirect{estimate::PhotoProjection::equirect, 360, 180, {}};
-const estimate::SkyCamera kFisheye{estimate::PhotoProjection::fisheye, 256, 256,
-                                   FisheyeLayout{FisheyeLens::equidistant, kPi, 0.0}};
+const Camera kEquirect{Projection::equirect, 360, 180, {}};
+const Camera kFisheye{Projection::fisheye, 256, 256,
+                      FisheyeLayout{FisheyeLens::equidistant, kPi, 0.0}};
 
 TEST(SkySegmentation, WatershedMaskMatchesTheSceneSky) {
   for (const auto& [name, cam] : {std::pair{"equirect", kEquirect}, {"fisheye", kFisheye}}) {
@@ -139,7 +139,7 @@ TEST(SkySegmentation, MaskImageRoundTripAndErrors) {
     for (int x = 0; x < 64; ++x)
       for (int c = 0; c < 3; ++c)
         rough.pixel(x, y)[c] = testing_support::scene_noise(x, y) > 0.0 ? 1.0f : 0.1f;
-  const estimate::SkyCamera eq{estimate::PhotoProjection::equirect, 64, 32, {}};
+  const Camera eq{Projection::equirect, 64, 32, {}};
   EXPECT_THROW(segment_sky(rough, eq), InvalidArgument);
   SegmentationSettings bad;
   bad.ground_texture = bad.sky_seed_texture / 2;

@@ -7,6 +7,7 @@
 #include <string_view>
 #include <vector>
 
+#include "skylight/core/camera.h"
 #include "skylight/core/frame.h"
 #include "skylight/io/image.h"
 #include "skylight/models/sky_model.h"
@@ -15,39 +16,14 @@ namespace skylight::render {
 
 using io::ImageF;
 
-enum class Projection { equirect, hemisphere, fisheye, cubemap, camera };
-std::optional<Projection> parse_projection(std::string_view name);
-std::string_view to_string(Projection p);
-
 // What is drawn: the sky alone (default), sky + solar disc, or the solar disc alone. The disc is
 // integrated over each pixel's footprint (average_sun_over_pixel).
 enum class SunMode { sky, sky_and_sun, sun_only };
 
-// A pinhole (perspective) camera at the model's observer (e.g. `nishita` with an observer
-// altitude: the planet and its limb from orbit). The image centre looks along
-// direction(look_zenith, look_azimuth) (core/frame.h); image up is the projection of the zenith
-// (of north when looking straight up or down); vertical_fov spans the image height, square pixels.
-struct CameraLayout {
-  double look_zenith = kPi / 2;   // [rad], [0, pi]; default: the horizon
-  double look_azimuth = 0.0;      // [rad], from north towards east
-  double vertical_fov = kPi / 3;  // [rad], (0, pi)
-};
-
-// Largest image side [px]: keeps width x height x 3 floats addressable and sane.
-inline constexpr int kMaxImageSide = 32768;
-
-struct RenderSettings {
-  Projection projection = Projection::equirect;
-  int width = 1024;
-  int height = 512;
-  FisheyeLayout fisheye;  // used by Projection::fisheye
-  CameraLayout camera;    // used by Projection::camera
+// The image (core/camera.h: layout and size) and what is drawn in it.
+struct RenderSettings : Camera {
   SunMode sun = SunMode::sky;
 };
-
-// Checks sizes (positive, at most 32768 per side, cubemap width = 6 height) and the fisheye
-// field of view; throws InvalidArgument naming the setting and value.
-void validate(const RenderSettings& settings);
 
 struct SkyImage {
   ImageF xyz;                      // CIE XYZ, Y in the model's luminance unit (cd/m^2)
@@ -62,9 +38,6 @@ struct PixelDirections {
   std::vector<std::uint8_t> valid;
 };
 PixelDirections pixel_directions(const RenderSettings& settings);
-// Direction at continuous pixel position (u, v) (pixel centres at +0.5), nullopt outside the
-// layout.
-std::optional<Vec3> pixel_direction(const RenderSettings& settings, double u, double v);
 
 // The solar disc's radiance averaged over pixel (col, row): the pixel is supersampled wherever it
 // may overlap the disc, so the sun's energy in a map does not depend on the resolution (a disc

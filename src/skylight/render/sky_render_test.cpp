@@ -74,7 +74,7 @@ TEST(SkyRender, PixelsMatchTheModelAndLayout) {
   const SkyImage img = render_sky(*m, s);
   EXPECT_EQ(img.mask[0], 1) << "corner outside the fisheye circle";
   EXPECT_EQ(img.xyz.pixel(0, 0)[1], 0.0f);
-  const auto d = pixel_direction(s, 16.5, 16.5);
+  const auto d = s.direction(16.5, 16.5);
   ASSERT_TRUE(d);
   EXPECT_NEAR(d->z, 1.0, 1e-12);
   // Float batch vs double scalar (batch_test.cpp bound).
@@ -113,23 +113,23 @@ TEST(SkyRender, CameraLooksWhereAsked) {
   s.projection = Projection::camera;
   s.width = 200;
   s.height = 100;
-  s.camera = {deg_to_rad(120), deg_to_rad(30), deg_to_rad(60)};
+  s.pinhole = {deg_to_rad(120), deg_to_rad(30), deg_to_rad(60)};
   // The image centre is the look direction; the top edge centre is 30 deg above it (fov / 2).
   const Vec3 f = direction_from_angles(deg_to_rad(120), deg_to_rad(30));
-  const Vec3 c = *pixel_direction(s, 100, 50);
+  const Vec3 c = *s.direction(100, 50);
   EXPECT_NEAR(c.x, f.x, kDirTol);
   EXPECT_NEAR(c.y, f.y, kDirTol);
   EXPECT_NEAR(c.z, f.z, kDirTol);
-  const Vec3 top = *pixel_direction(s, 100, 0);
+  const Vec3 top = *s.direction(100, 0);
   EXPECT_NEAR(angle_between(top, f), deg_to_rad(30), kDirTol);
   EXPECT_GT(top.z, c.z);  // image up is towards the zenith
   // Square pixels: the right edge centre is atan(2 tan 30 deg) away.
-  EXPECT_NEAR(angle_between(*pixel_direction(s, 200, 50), f),
-              std::atan(2 * std::tan(deg_to_rad(30))), kDirTol);
+  EXPECT_NEAR(angle_between(*s.direction(200, 50), f), std::atan(2 * std::tan(deg_to_rad(30))),
+              kDirTol);
   // Straight down works too (image up = north).
-  s.camera.look_zenith = kPi;
-  EXPECT_NEAR(pixel_direction(s, 100, 50)->z, -1.0, kDirTol);
-  s.camera.vertical_fov = kPi;
+  s.pinhole.look_zenith = kPi;
+  EXPECT_NEAR(s.direction(100, 50)->z, -1.0, kDirTol);
+  s.pinhole.vertical_fov = kPi;
   EXPECT_THROW(validate(s), InvalidArgument);
 }
 
@@ -141,33 +141,33 @@ TEST(SkyRender, CameraLayoutIsTheOneInConventions) {
   s.projection = Projection::camera;
   s.width = 12;
   s.height = 8;
-  s.camera = {deg_to_rad(65), deg_to_rad(60), deg_to_rad(50)};
-  const Vec3 f = direction_from_angles(s.camera.look_zenith, s.camera.look_azimuth);
+  s.pinhole = {deg_to_rad(65), deg_to_rad(60), deg_to_rad(50)};
+  const Vec3 f = direction_from_angles(s.pinhole.look_zenith, s.pinhole.look_azimuth);
   const Vec3 r = normalize(cross(f, Vec3{0, 0, 1}));
   const Vec3 u = cross(r, f);
-  const double t = std::tan(0.5 * s.camera.vertical_fov);
+  const double t = std::tan(0.5 * s.pinhole.vertical_fov);
   const auto dirs = pixel_directions(s);
   for (int row = 0; row < s.height; ++row)
     for (int col = 0; col < s.width; ++col) {
       const double x = (2.0 * (col + 0.5) / s.height - 1.0 * s.width / s.height) * t;
       const double y = (1.0 - 2.0 * (row + 0.5) / s.height) * t;
       const Vec3 want = normalize(f + x * r + y * u);
-      const Vec3 got = *pixel_direction(s, col + 0.5, row + 0.5);
+      const Vec3 got = *s.direction(col + 0.5, row + 0.5);
       EXPECT_NEAR(got.x, want.x, kDirTol);
       EXPECT_NEAR(got.y, want.y, kDirTol);
       EXPECT_NEAR(got.z, want.z, kDirTol);
       EXPECT_TRUE(dirs.valid[static_cast<std::size_t>(row * s.width + col)]);  // no mask
     }
   // Looking north at the horizon, east is on the right.
-  s.camera = {kPi / 2, 0.0, deg_to_rad(60)};
-  EXPECT_GT(pixel_direction(s, 12, 4)->x, 0.0);
+  s.pinhole = {kPi / 2, 0.0, deg_to_rad(60)};
+  EXPECT_GT(s.direction(12, 4)->x, 0.0);
   // Looking up: west on the right, north at the top; looking down: east on the right, north up.
-  s.camera.look_zenith = 0.0;
-  EXPECT_LT(pixel_direction(s, 12, 4)->x, 0.0);
-  EXPECT_GT(pixel_direction(s, 6, 0)->y, 0.0);
-  s.camera.look_zenith = kPi;
-  EXPECT_GT(pixel_direction(s, 12, 4)->x, 0.0);
-  EXPECT_GT(pixel_direction(s, 6, 0)->y, 0.0);
+  s.pinhole.look_zenith = 0.0;
+  EXPECT_LT(s.direction(12, 4)->x, 0.0);
+  EXPECT_GT(s.direction(6, 0)->y, 0.0);
+  s.pinhole.look_zenith = kPi;
+  EXPECT_GT(s.direction(12, 4)->x, 0.0);
+  EXPECT_GT(s.direction(6, 0)->y, 0.0);
 }
 
 }  // namespace

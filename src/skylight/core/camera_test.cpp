@@ -1,20 +1,20 @@
-#include "skylight/estimate/camera.h"
+#include "skylight/core/camera.h"
 
 #include <gtest/gtest.h>
 
 #include "skylight/core/error.h"
 
-namespace skylight::estimate {
+namespace skylight {
 namespace {
 
 // pixel -> direction -> pixel goes through asin/atan2 and back: double round-off, a few ulps of a
 // pixel coordinate of ~1000.
 constexpr double kRoundTripPx = 1e-9;
 
-TEST(SkyCamera, FisheyePixelDirectionRoundTripsForEveryLens) {
+TEST(Camera, FisheyePixelDirectionRoundTripsForEveryLens) {
   for (const FisheyeLens lens : {FisheyeLens::equidistant, FisheyeLens::equisolid,
                                  FisheyeLens::orthographic, FisheyeLens::stereographic}) {
-    SkyCamera cam{PhotoProjection::fisheye, 301, 257, {lens, kPi, 0.3}};
+    Camera cam{Projection::fisheye, 301, 257, {lens, kPi, 0.3}};
     validate(cam);
     int imaged = 0;
     for (int row = 0; row < cam.height; row += 7)
@@ -35,8 +35,8 @@ TEST(SkyCamera, FisheyePixelDirectionRoundTripsForEveryLens) {
   }
 }
 
-TEST(SkyCamera, EquirectPixelDirectionRoundTrips) {
-  const SkyCamera cam{PhotoProjection::equirect, 360, 180, {}};
+TEST(Camera, EquirectPixelDirectionRoundTrips) {
+  const Camera cam{Projection::equirect, 360, 180, {}};
   for (int row = 0; row < cam.height; row += 3)
     for (int col = 0; col < cam.width; col += 7) {
       const auto d = cam.pixel_direction(col, row);
@@ -50,14 +50,16 @@ TEST(SkyCamera, EquirectPixelDirectionRoundTrips) {
     }
 }
 
-TEST(SkyCamera, ValidateRefusesBadGeometry) {
-  EXPECT_THROW(validate(SkyCamera{PhotoProjection::fisheye, 0, 10, {}}), InvalidArgument);
+TEST(Camera, ValidateRefusesBadGeometry) {
+  EXPECT_THROW(validate(Camera{Projection::fisheye, 0, 10, {}}), InvalidArgument);
   EXPECT_THROW(
-      validate(SkyCamera{PhotoProjection::fisheye, 10, 10, {FisheyeLens::orthographic, 1.1 * kPi}}),
+      validate(Camera{Projection::fisheye, 10, 10, {FisheyeLens::orthographic, 1.1 * kPi}}),
       InvalidArgument);
-  EXPECT_EQ(parse_photo_projection("equirect"), PhotoProjection::equirect);
-  EXPECT_FALSE(parse_photo_projection("cubemap"));
+  EXPECT_THROW(validate(Camera{Projection::cubemap, 600, 99, {}}), InvalidArgument);
+  EXPECT_EQ(parse_projection("equirect"), Projection::equirect);
+  EXPECT_EQ(parse_projection("cubemap"), Projection::cubemap);
+  EXPECT_FALSE(parse_projection("cube"));
 }
 
 }  // namespace
-}  // namespace skylight::estimate
+}  // namespace skylight

@@ -1,0 +1,122 @@
+#include "skylight/core/camera.h"
+
+#include <fmt/format.h>
+
+#include <cmath>
+
+#include "skylight/core/error.h"
+
+namespace skylight {
+namespace {
+
+// Pinhole camera: d = normalize(f + x tan(fov/2) right + y tan(fov/2) up), x in [-w/h, w/h],
+// y in [-1, 1] (image up), right = f x zenith (f x north when f is vertical), up = right x f.
+Vec3 pinhole_direction(double u, double v, int width, int height, const PinholeLayout& c) {
+  const Vec3 f = direction_from_angles(c.look_zenith, c.look_azimuth);
+  Vec3 right = cross(f, Vec3{0, 0, 1});
+  if (dot(right, right) < 1e-12) right = cross(f, Vec3{0, 1, 0});
+  right = normalize(right);
+  const Vec3 up = cross(right, f);
+  const double t = std::tan(0.5 * c.vertical_fov);
+  const double x = (2.0 * u / height - static_cast<double>(width) / height) * t;
+  const double y = (1.0 - 2.0 * v / height) * t;
+  return normalize(f + x * right + y * up);
+}
+
+void validate_fisheye(const FisheyeLayout& f) {
+  const double fov_deg = rad_to_deg(f.fov);
+  const double max_deg = f.lens == FisheyeLens::orthographic ? 180.0 : 360.0;
+  if (!(fov_deg > 0.0 && fov_deg <= max_deg) ||
+      (f.lens == FisheyeLens::stereographic && fov_deg >= 360.0))
+    throw InvalidArgument(fmt::format("fov = {} deg is outside (0, {}{} for the {} lens", fov_deg,
+                                      max_deg, f.lens == FisheyeLens::stereographic ? ")" : "]",
+                                      to_string(f.lens)));
+  if (!std::isfinite(f.north_angle))
+    throw InvalidArgument(fmt::format("north-angle = {} is not finite", f.north_angle));
+}
+
+}  // namespace
+
+std::optional<Projection> parse_projection(std::string_view name) {
+  if (name == "equirect") return Projection::equirect;
+  if (name == "hemisphere") return Projection::hemisphere;
+  if (name == "fisheye") return Projection::fisheye;
+  if (name == "cubemap") return Projection::cubemap;
+  if (name == "camera") return Projection::camera;
+  return std::nullopt;
+}
+
+std::string_view to_string(Projection p) {
+  switch (p) {
+    case Projection::equirect:
+      return "equirect";
+    case Projection::hemisphere:
+      return "hemisphere";
+    case Projection::fisheye:
+      return "fisheye";
+    case Projection::cubemap:
+      return "cubemap";
+    case Projection::camera:
+      return "camera";
+  }
+  return "equirect";
+}
+
+std::optional<Vec3> Camera::direction(double u, double v) const {
+  switch (projection) {
+    case Projection::equirect:
+      if (u < 0.0 || u > width || v < 0.0 || v > height) return std::nullopt;
+      return equirect_direction(u, v, width, height);
+    case Projection::hemisphere:
+      return hemisphere_direction(u, v, width, height);
+    case Projection::fisheye:
+      return fisheye_direction(u, v, width, height, fisheye);
+    case Projection::cubemap:
+      return cubemap_direction(u, v, width, height);
+    case Projection::camera:
+      return pinhole_direction(u, v, width, height, pinhole);
+  }
+  return std::nullopt;
+}
+
+std::optional<std::array<double, 2>> Camera::pixel(Vec3 d) const {
+  if (projection == Projection::fisheye) return fisheye_pixel(d, width, height, fisheye);
+  if (projection != Projection::equirect) return std::nullopt;
+  // Inverse of equirect_direction: theta = pi row / height, phi = 2 pi col / width
+  // (docs/CONVENTIONS.md, pixel centres at +0.5).
+  const ZenithAzimuth za = angles_from_direction(d);
+  return std::array<double, 2>{za.azimuth / (2.0 * kPi) * width, za.zenith / kPi * height};
+}
+
+void validate(const Camera& s) {
+  if (s.width < 1 || s.width > kMaxImageSide)
+    throw InvalidArgument(fmt::format("width = {} is outside [1, {}]", s.width, kMaxImageSide));
+  if (s.height < 1 || s.height > kMaxImageSide)
+    throw InvalidArgument(fmt::format("height = {} is outside [1, {}]", s.height, kMaxImageSide));
+  if (s.projection == Projection::cubemap && s.width != 6 * s.height)
+    throw InvalidArgument(fmt::format(
+        "cubemap needs width = 6 x height (six square faces); got {} x {}", s.width, s.height));
+  if (s.projection == Projection::camera) {
+    const PinholeLayout& c = s.pinhole;
+    if (!(c.vertical_fov > 0.0 && c.vertical_fov < kPi))
+      throw InvalidArgument(fmt::format("fov = {} deg is outside (0, 180) for the camera",
+                                        rad_to_deg(c.vertical_fov)));
+    if (!(c.look_zenith >= 0.0 && c.look_zenith <= kPi) || !std::isfinite(c.look_azimuth))
+      throw InvalidArgument(
+          fmt::format("camera look direction (zenith {} deg, azimuth {} deg) is not a direction",
+                      rad_to_deg(c.look_zenith), rad_to_deg(c.look_azimuth)));
+  }
+  if (s.projection == Projection::fisheye) validate_fisheye(s.fisheye);
+}
+
+Camera image_camera(Projection projection, const FisheyeLayout& layout, int width, int height) {
+  Camera camera;
+  camera.projection = projection;
+  camera.width = width;
+  camera.height = height;
+  camera.fisheye = layout;
+  validate(camera);
+  return camera;
+}
+
+}  // namespace skylight
