@@ -69,6 +69,44 @@ CLI::Option* add_number(CLI::App& app, const ParameterSpec& spec, std::optional<
                     });
 }
 
+void SchemaFlags::add(CLI::App& app, const std::vector<ParameterSpec>& specs) {
+  for (const ParameterSpec& spec : specs) {
+    specs_.push_back(spec);
+    auto& raw = raw_[spec.name];
+    CLI::Option* opt = nullptr;
+    if (spec.kind == ParameterKind::flag) {
+      opt = app.add_flag_callback(
+          spec.flag(), [&raw] { raw = "true"; }, spec.help());
+    } else {
+      opt = app.add_option_function<std::string>(
+          spec.flag(), [&raw](const std::string& s) { raw = s; }, spec.help());
+      if (spec.kind == ParameterKind::text && !spec.choices.empty())
+        opt->check(CLI::IsMember(spec.choices));
+      else if (spec.kind != ParameterKind::text)
+        opt->check(number_in(spec));
+    }
+    options_[spec.name] = opt;
+  }
+}
+
+CLI::Option* SchemaFlags::option(std::string_view name) const {
+  const auto it = options_.find(name);
+  SKYLIGHT_CHECK(it != options_.end(), "SchemaFlags: no such flag");
+  return it->second;
+}
+
+bool SchemaFlags::given(std::string_view name) const {
+  const auto it = raw_.find(name);
+  return it != raw_.end() && it->second.has_value();
+}
+
+ParameterValues SchemaFlags::values() const {
+  ParameterValues v;
+  for (const ParameterSpec& spec : specs_)
+    if (const auto& raw = raw_.at(spec.name)) v.set(spec.name, spec.parse(*raw));
+  return v;
+}
+
 void FisheyeFlags::add(CLI::App& app, const std::string& fov_default, const std::string& fov_help) {
   app.add_option(
          "--lens", lens,
@@ -148,6 +186,23 @@ sun::SpaInput SpaOptions::input() const {
   sun::spa_input_schema().bind(values, in, "--time");
   sun::validate(in);
   return in;
+}
+
+std::optional<sun::SpaInput> solar_position_input(const ParameterValues& given) {
+  const ParameterValue* time = given.find("time");
+  if (!time) return std::nullopt;
+  sun::SpaInput in;
+  in.time = sun::parse_iso8601(std::get<std::string>(*time));
+  sun::spa_input_schema().bind(given.only(sun::spa_parameter_specs()), in, "--time");
+  sun::validate(in);
+  return in;
+}
+
+void wire_solar_position(const SchemaFlags& flags, const std::vector<std::string>& angles) {
+  CLI::Option* time = flags.option("time");
+  for (const std::string& a : angles) time->excludes(flags.option(a));
+  for (const auto& spec : sun::spa_parameter_specs())
+    if (flags.has(spec.name)) flags.option(spec.name)->needs(time);
 }
 
 // ---- model flags --------------------------------------------------------------------------------

@@ -60,6 +60,33 @@ CLI::Option* add_integer(CLI::App& app, const ParameterSpec& spec, int& target);
 // A comma-separated list of `spec.count` numbers (spec.count 0: any length >= 1).
 CLI::Option* add_numbers(CLI::App& app, const ParameterSpec& spec, std::vector<double>& target);
 
+// The flags of a library schema (an operation's settings, core/parameters.h): one per spec, the
+// values kept as given until the command runs, then parsed and checked by the specs and bound
+// into the library's settings by its schema. --help, the range errors and the defaults are the
+// specs'.
+class SchemaFlags {
+ public:
+  // Adds --NAME per spec: numbers range-checked (number_in), a text of choices by CLI11's
+  // IsMember, a flag as a switch. Returns the first option added.
+  void add(CLI::App& app, const std::vector<ParameterSpec>& specs);
+  CLI::Option* option(std::string_view name) const;
+  bool has(std::string_view name) const { return options_.count(name) > 0; }
+  bool given(std::string_view name) const;
+  // The given values, parsed by their specs.
+  ParameterValues values() const;
+  // Binds the given values of the schema's specs over p (the schema checks them).
+  template <class P>
+  P bind(const ParameterSchema<P>& schema, P p, std::string_view context) const {
+    schema.bind(values().only(schema.specs()), p, context);
+    return p;
+  }
+
+ private:
+  std::vector<ParameterSpec> specs_;
+  std::map<std::string, std::optional<std::string>, std::less<>> raw_;
+  std::map<std::string, CLI::Option*, std::less<>> options_;
+};
+
 // ---- fisheye flags (render, estimate) ---------------------------------------------------------
 
 // Default field of view of a fisheye image [deg]: the upper hemisphere on the image circle.
@@ -100,6 +127,12 @@ class SpaOptions {
   std::string time_;
   std::map<std::string, std::optional<double>> values_;  // spec name -> value as given
 };
+
+// The SPA input of --time and its flags among the given values (sun::spa_input_schema() binds
+// them; a missing --lat/--lon throws), nullopt without --time.
+std::optional<sun::SpaInput> solar_position_input(const ParameterValues& given);
+// --time excludes the given angle flags; each SPA flag needs --time.
+void wire_solar_position(const SchemaFlags& flags, const std::vector<std::string>& angles);
 
 // ---- model flags (render, eval) -----------------------------------------------------------------
 

@@ -16,6 +16,7 @@
 #include "skylight/estimate/photo.h"
 #include "skylight/fit/luminance_fit.h"
 #include "skylight/io/image.h"
+#include "skylight/operations/operations.h"
 #include "skylight/render/false_colour.h"
 #include "skylight/sun/spa.h"
 
@@ -57,61 +58,51 @@ void write_comparison(const std::string& path, const io::ImageF& image,
   io::write_png(path, both, {{"Software", "skylight estimate"}, {"Comment", "photo | fitted sky"}});
 }
 
-struct EstimateFlags {
+struct EstimateCommand {
   std::string image, mask, compare;
-  std::string projection = "fisheye";
-  FisheyeFlags fisheye;
-  std::optional<double> sun_zenith_deg, sun_azimuth_deg;
-  SpaOptions spa;
-  std::string model = fit::default_estimated_model();
-  int samples = 100, seed = 1, ransac_iterations = 64, bootstrap = 32;
-  double inlier_threshold = 0.1;
-  double min_elevation_deg = 0.0, sun_exclusion_deg = 5.0;
-  bool no_ransac = false, json = false;
+  bool json = false;
+  SchemaFlags flags;  // the operation's parameters (operations::find("estimate"))
 };
 
-int run_estimate(const EstimateFlags& f) {
-  if (f.sun_zenith_deg.has_value() != f.sun_azimuth_deg.has_value())
+int run_estimate(const EstimateCommand& c) {
+  const SchemaFlags& f = c.flags;
+  const ParameterValues given = f.values();
+  if (given.has("sun-zenith") != given.has("sun-azimuth"))
     throw InvalidArgument("--sun-zenith and --sun-azimuth go together");
-  const io::ImageF image = io::read_image(f.image);
+  const io::ImageF image = io::read_image(c.image);
+  const ImageSchemaOptions photo = estimate::photo_image_options();
   const Camera camera =
-      image_camera(*parse_projection(f.projection), f.fisheye.layout(), image.width, image.height);
+      f.bind(image_schema(photo), photo.defaults(), "estimate").camera(image.width, image.height);
   std::optional<io::ImageF> user_mask;
-  if (!f.mask.empty()) user_mask = estimate::load_mask(f.mask);
-  if (!f.compare.empty() && io::format_from_path(f.compare) != io::ImageFormat::png)
-    throw InvalidArgument(fmt::format("--compare '{}' must be a .png file", excerpt(f.compare)));
+  if (!c.mask.empty()) user_mask = estimate::load_mask(c.mask);
+  if (!c.compare.empty() && io::format_from_path(c.compare) != io::ImageFormat::png)
+    throw InvalidArgument(fmt::format("--compare '{}' must be a .png file", excerpt(c.compare)));
 
   // The sun: given angles, the solar position of --time/--lat/--lon, or found in the image.
   std::optional<SunPosition> given_sun;
   std::string sun_source = "image";
-  if (f.sun_zenith_deg) {
-    given_sun = sun_from_degrees(*f.sun_zenith_deg, *f.sun_azimuth_deg);
+  if (given.has("sun-zenith")) {
+    given_sun = sun_from_degrees(*given.number("sun-zenith"), *given.number("sun-azimuth"));
     sun_source = "given";
-  } else if (f.spa.given()) {
-    const sun::SpaResult r = sun::solar_position(f.spa.input());
+  } else if (const auto spa = solar_position_input(given)) {
+    const sun::SpaResult r = sun::solar_position(*spa);
     given_sun = sun_from_degrees(rad_to_deg(r.zenith), rad_to_deg(r.azimuth));
     sun_source = "time";
   }
-  estimate::MaskSettings ms;
-  ms.min_elevation = deg_to_rad(f.min_elevation_deg);
-  ms.sun_exclusion = deg_to_rad(f.sun_exclusion_deg);
-  fit::EstimateSettings es;
-  es.samples = f.samples;
-  es.seed = static_cast<std::uint64_t>(f.seed);
-  es.ransac = !f.no_ransac;
-  es.ransac_iterations = f.ransac_iterations;
-  es.inlier_threshold = f.inlier_threshold;
-  es.bootstrap = f.bootstrap;
-  const EstimationPolicy& policy = fit::estimation_policy(f.model);
+  const auto ms = f.bind(estimate::MaskSettings::schema(), {}, "estimate");
+  const auto es = f.bind(fit::EstimateSettings::schema(), {}, "estimate");
+  const std::string model = given.has("model") ? std::get<std::string>(*given.find("model"))
+                                               : fit::default_estimated_model();
+  const EstimationPolicy& policy = fit::estimation_policy(model);
   const estimate::PhotoSamples ps = estimate::sample_photo(
       image, camera, given_sun, ms, es.samples, es.seed, user_mask ? &*user_mask : nullptr);
-  const fit::LuminanceFit fit = fit::fit_luminance(f.model, ps.samples, ps.sun, es);
+  const fit::LuminanceFit fit = fit::fit_luminance(model, ps.samples, ps.sun, es);
   const double zenith_deg = rad_to_deg(ps.sun.zenith), azimuth_deg = rad_to_deg(ps.sun.azimuth);
   const bool ranking = policy.method == EstimationPolicy::Method::ranking;
   nlohmann::ordered_json j;
   std::string text;
-  j["model"] = f.model;
-  text += fmt::format("model            {}\n", f.model);
+  j["model"] = model;
+  text += fmt::format("model            {}\n", model);
   for (std::size_t a = 0; a < policy.axes.size(); ++a) {
     const EstimationPolicy::Axis& axis = policy.axes[a];
     const fit::FittedParameter& p = fit.parameters[a];
@@ -142,8 +133,8 @@ int run_estimate(const EstimateFlags& f) {
   text += fmt::format("inliers          {} of {} samples ({:.3f}){}\n", fit.inliers, fit.samples,
                       fit.inlier_fraction, es.ransac || ranking ? "" : ", RANSAC off");
   text += fmt::format("residual         {:.5f} (RMS of ln luminance)\n", fit.residual);
-  if (!f.compare.empty())
-    write_comparison(f.compare, image, ps.mask, fit::fitted_luminance_image(fit, camera));
+  if (!c.compare.empty())
+    write_comparison(c.compare, image, ps.mask, fit::fitted_luminance_image(fit, camera));
   if (ranking) {
     auto& list = j[policy.ranking_field] = nlohmann::ordered_json::array();
     text += "ranking          ";
@@ -162,7 +153,7 @@ int run_estimate(const EstimateFlags& f) {
   j["samples"] = ps.samples.size();
   j["sky_pixels"] = ps.sky_pixels;
   j["ransac"] = es.ransac;
-  j["seed"] = f.seed;
+  j["seed"] = es.seed;
   text += fmt::format("sun              zenith {:.3f} deg, azimuth {:.3f} deg ({})\n", zenith_deg,
                       azimuth_deg, sun_text);
   text += fmt::format("sky pixels       {}\n", ps.sky_pixels);
@@ -170,80 +161,29 @@ int run_estimate(const EstimateFlags& f) {
   for (const auto& [key, value] : j.items())
     if (value.is_number_float() && !std::isfinite(value.get<double>()))
       throw InvalidArgument(fmt::format("the fit gave a non-finite {}; nothing was written", key));
-  write_stdout(f.json ? j.dump(2) + "\n" : text);
+  write_stdout(c.json ? j.dump(2) + "\n" : text);
   return kExitOk;
 }
 
 }  // namespace
 
 void add_estimate_command(CLI::App& app, Commands& commands) {
-  auto f = std::make_shared<EstimateFlags>();
+  auto c = std::make_shared<EstimateCommand>();
+  const OperationInfo& op = operations::find("estimate");
   auto* cmd = app.add_subcommand(
       "estimate",
       "turbidity of a clear sky from an HDR photo (fisheye or equirect; Preetham, Hosek-Wilkie or "
       "CIE sky-type fit)");
-  cmd->add_option("--image", f->image, "the sky photo: linear .exr, .hdr or .pfm")->required();
-  cmd->add_option("--mask", f->mask,
+  cmd->add_option("--image", c->image, "the sky photo: linear .exr, .hdr or .pfm")->required();
+  cmd->add_option("--mask", c->mask,
                   "sky mask (.png, .pfm, .exr, .hdr) of the image's size: nonzero = sky");
-  cmd->add_option("--projection", f->projection, "fisheye|equirect; default fisheye")
-      ->check(CLI::IsMember({"fisheye", "equirect"}));
-  f->fisheye.add(*cmd, "180", "fisheye: field of view across the image circle");
-  ParameterSpec zenith = sun_parameter_specs()[0], azimuth = sun_parameter_specs()[1];
-  zenith.default_value = Absent{"from --time, or found in the image"};
-  azimuth.default_value = Absent{"from --time, or found in the image"};
-  auto* z = add_number(*cmd, zenith, f->sun_zenith_deg);
-  auto* a = add_number(*cmd, azimuth, f->sun_azimuth_deg);
-  auto* t =
-      f->spa.add(*cmd, false, {"lat", "lon", "elevation", "pressure", "temperature", "delta-t"});
-  t->excludes(z)->excludes(a);
-  std::string models;
-  for (const std::string& m : fit::estimated_models())
-    models += fmt::format("{}{} ({})", models.empty() ? "" : ", ", m,
-                          fit::estimation_policy(m).description);
-  cmd->add_option(
-         "--model", f->model,
-         fmt::format("the model fitted: {}; default {}", models, fit::default_estimated_model()))
-      ->check(CLI::IsMember(fit::estimated_models()));
-  add_integer(*cmd,
-              {"samples", "1", ParameterKind::integer, 2, 1000000, 1,
-               ParameterValue(static_cast<double>(f->samples)),
-               "random sky pixels per estimate (N of Morales 2017 eq. 8)"},
-              f->samples);
-  add_integer(
-      *cmd,
-      {"seed", "1", ParameterKind::integer, 0, 2147483647, 1,
-       ParameterValue(static_cast<double>(f->seed)), "seed of the sampling, RANSAC and bootstrap"},
-      f->seed);
-  add_integer(*cmd,
-              {"ransac-iterations", "1", ParameterKind::integer, 1, 100000, 1,
-               ParameterValue(static_cast<double>(f->ransac_iterations)),
-               "random minimal sets RANSAC tries"},
-              f->ransac_iterations);
-  add_number(
-      *cmd,
-      {"inlier-threshold", "1", ParameterKind::number, 1e-6, 10.0, 1,
-       ParameterValue(f->inlier_threshold), "RANSAC: |ln Y - ln model| below this is clear sky"},
-      f->inlier_threshold);
-  add_integer(*cmd,
-              {"bootstrap", "1", ParameterKind::integer, 0, 10000, 1,
-               ParameterValue(static_cast<double>(f->bootstrap)),
-               "bootstrap resamples of the inliers for turbidity_sigma (0: none)"},
-              f->bootstrap);
-  add_number(*cmd,
-             {"min-elevation", "deg", ParameterKind::number, 0.0, 89.0, 1,
-              ParameterValue(f->min_elevation_deg), "mask: ignore sky below this elevation"},
-             f->min_elevation_deg);
-  add_number(
-      *cmd,
-      {"sun-exclusion", "deg", ParameterKind::number, 0.0, 90.0, 1,
-       ParameterValue(f->sun_exclusion_deg), "mask: ignore pixels within this angle of the sun"},
-      f->sun_exclusion_deg);
-  cmd->add_option("--compare", f->compare,
+  c->flags.add(*cmd, op.parameters);
+  wire_solar_position(c->flags, {"sun-zenith", "sun-azimuth"});
+  cmd->add_option("--compare", c->compare,
                   "write a .png: the photo's luminance (sky pixels) beside the fitted sky, false "
                   "colour on one log scale");
-  cmd->add_flag("--no-ransac", f->no_ransac, "fit all samples (no outlier rejection)");
-  cmd->add_flag("--json", f->json, "write JSON instead of labelled lines");
-  commands.push_back({cmd, [f] { return run_estimate(*f); }});
+  cmd->add_flag("--json", c->json, "write JSON instead of labelled lines");
+  commands.push_back({cmd, [c] { return run_estimate(*c); }});
 }
 
 }  // namespace skylight::cli

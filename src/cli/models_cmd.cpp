@@ -6,6 +6,7 @@
 
 #include "common.h"
 #include "skylight/core/error.h"
+#include "skylight/operations/operations.h"
 
 namespace skylight::cli {
 namespace {
@@ -37,6 +38,7 @@ nlohmann::ordered_json spec_json(const ParameterSpec& s) {
     j["default"] = value_json(std::get<ParameterValue>(s.default_value));
   }
   j["description"] = s.description;
+  if (!s.choices.empty()) j["choices"] = s.choices;
   return j;
 }
 
@@ -72,6 +74,35 @@ int run_models(bool json, bool markdown) {
   return kExitOk;
 }
 
+int run_operations(bool json, bool markdown) {
+  if (json && markdown) throw InvalidArgument("--json and --markdown exclude each other");
+  std::string out;
+  if (markdown) {
+    for (const auto& op : operations::registry()) out += operations::markdown(op) + "\n";
+  } else if (json) {
+    nlohmann::ordered_json list = nlohmann::ordered_json::array();
+    for (const auto& op : operations::registry()) {
+      nlohmann::ordered_json params = nlohmann::ordered_json::array();
+      for (const auto& p : op.parameters) params.push_back(spec_json(p));
+      list.push_back({{"name", op.name},
+                      {"description", op.description},
+                      {"parameters", params},
+                      {"result", op.result}});
+    }
+    out = list.dump(2) + "\n";
+  } else {
+    for (const auto& op : operations::registry()) {
+      out += fmt::format("{}\n  {}\n  result: {}\n  parameters:\n", op.name, op.description,
+                         op.result);
+      for (const auto& p : op.parameters)
+        out += fmt::format("    --{:<22} [{}] {}, default {}: {}\n", p.name, p.unit, p.range_text(),
+                           p.default_text(), p.description);
+    }
+  }
+  write_stdout(out);
+  return kExitOk;
+}
+
 }  // namespace
 
 void add_models_command(CLI::App& app, Commands& commands) {
@@ -82,6 +113,15 @@ void add_models_command(CLI::App& app, Commands& commands) {
   cmd->add_flag("--markdown", (*flags)[1],
                 "the parameter tables of docs/MODELS.md (generated from the schema)");
   commands.push_back({cmd, [flags] { return run_models((*flags)[0], (*flags)[1]); }});
+
+  auto op_flags = std::make_shared<std::array<bool, 2>>();
+  auto* ops = app.add_subcommand(
+      "operations",
+      "list the operations with options (estimate, sh fit, nn train, haze add, ...), their "
+      "parameters (unit, range, default) and results; the models' parameters: `models`");
+  ops->add_flag("--json", (*op_flags)[0], "machine-readable JSON");
+  ops->add_flag("--markdown", (*op_flags)[1], "the parameter tables of docs/OPERATIONS.md");
+  commands.push_back({ops, [op_flags] { return run_operations((*op_flags)[0], (*op_flags)[1]); }});
 }
 
 }  // namespace skylight::cli

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "skylight/core/error.h"
@@ -107,6 +108,136 @@ void validate(const Camera& s) {
                       rad_to_deg(c.look_zenith), rad_to_deg(c.look_azimuth)));
   }
   if (s.projection == Projection::fisheye) validate_fisheye(s.fisheye);
+}
+
+namespace {
+
+std::string projection_help(Projection p) {
+  switch (p) {
+    case Projection::equirect:
+      return "equirect (the full sphere)";
+    case Projection::hemisphere:
+      return "hemisphere (the upper half)";
+    case Projection::fisheye:
+      return "fisheye";
+    case Projection::cubemap:
+      return "cubemap (six faces in a strip, width = 6 x height)";
+    case Projection::camera:
+      return "camera (a pinhole, e.g. of the planet from orbit)";
+  }
+  return {};
+}
+
+}  // namespace
+
+Camera ImageOptions::camera() const {
+  const int w = width ? *width : projection == Projection::cubemap ? 6 * height : default_width;
+  return camera(w, height);
+}
+
+Camera ImageOptions::camera(int w, int h) const {
+  Camera c;
+  c.projection = projection;
+  c.width = w;
+  c.height = h;
+  c.fisheye = {lens, deg_to_rad(fov_deg.value_or(kFisheyeFovDeg)), deg_to_rad(north_angle_deg)};
+  c.pinhole.look_zenith = deg_to_rad(90.0 - look_elevation_deg);
+  c.pinhole.look_azimuth = wrap_azimuth(deg_to_rad(look_azimuth_deg));
+  c.pinhole.vertical_fov = deg_to_rad(fov_deg.value_or(kPinholeFovDeg));
+  validate(c);
+  return c;
+}
+
+std::vector<std::string> ImageOptions::unread(const ParameterValues& given) const {
+  const bool fisheye = projection == Projection::fisheye;
+  const bool pinhole = projection == Projection::camera;
+  const std::pair<const char*, bool> options[] = {{"lens", fisheye},
+                                                  {"north-angle", fisheye},
+                                                  {"fov", fisheye || pinhole},
+                                                  {"look-elevation", pinhole},
+                                                  {"look-azimuth", pinhole}};
+  std::vector<std::string> out;
+  for (const auto& [name, used] : options)
+    if (!used && given.has(name)) out.emplace_back(name);
+  return out;
+}
+
+std::vector<std::pair<std::string, std::string>> ImageOptions::metadata() const {
+  std::vector<std::pair<std::string, std::string>> md{
+      {"skylight:projection", std::string(to_string(projection))}};
+  if (projection == Projection::camera) {
+    md.emplace_back("skylight:fov_deg", fmt::format("{}", fov_deg.value_or(kPinholeFovDeg)));
+    md.emplace_back("skylight:look_elevation_deg", fmt::format("{}", look_elevation_deg));
+    md.emplace_back("skylight:look_azimuth_deg", fmt::format("{}", look_azimuth_deg));
+  }
+  if (projection == Projection::fisheye) {
+    md.emplace_back("skylight:lens", std::string(to_string(lens)));
+    md.emplace_back("skylight:fov_deg", fmt::format("{}", fov_deg.value_or(kFisheyeFovDeg)));
+    md.emplace_back("skylight:north_angle_deg", fmt::format("{}", north_angle_deg));
+  }
+  return md;
+}
+
+ParameterSchema<ImageOptions> image_schema(const ImageSchemaOptions& o) {
+  using P = ImageOptions;
+  const auto takes = [&](Projection p) {
+    return std::find(o.projections.begin(), o.projections.end(), p) != o.projections.end();
+  };
+  ParameterSchema<P> s;
+  std::vector<std::pair<std::string, Projection>> names;
+  std::string list;
+  for (Projection p : o.projections) {
+    names.emplace_back(std::string(to_string(p)), p);
+    list += (list.empty() ? "" : ", ") + projection_help(p);
+  }
+  s.choice(
+      &P::projection,
+      {o.projection_flag, "", ParameterKind::text, 0, 0, 1,
+       ParameterValue(std::string(to_string(o.default_projection))),
+       (o.description.empty() ? std::string("the image's layout") : o.description) + ": " + list},
+      names);
+  if (o.size) {
+    s.optional_integer(
+        &P::width,
+        {"width", "px", ParameterKind::integer, 1, static_cast<double>(kMaxImageSide), 1,
+         ParameterValue(static_cast<double>(o.width)),
+         takes(Projection::cubemap) ? "image width (cubemap: must be 6 x height, which is its "
+                                      "default)"
+                                    : "image width"});
+    s.integer(&P::height,
+              {"height", "px", ParameterKind::integer, 1, static_cast<double>(kMaxImageSide), 1,
+               ParameterValue(static_cast<double>(o.height)), "image height"});
+  }
+  const bool pinhole = takes(Projection::camera);
+  if (takes(Projection::fisheye)) {
+    s.choice(&P::lens,
+             {"lens", "", ParameterKind::text, 0, 0, 1, ParameterValue(std::string("equidistant")),
+              "fisheye lens"},
+             {{"equidistant", FisheyeLens::equidistant},
+              {"equisolid", FisheyeLens::equisolid},
+              {"orthographic", FisheyeLens::orthographic},
+              {"stereographic", FisheyeLens::stereographic}});
+    s.optional_number(
+        &P::fov_deg,
+        {"fov", "deg", ParameterKind::number, 1e-6, 360.0, 1,
+         Absent{pinhole ? fmt::format("{} (fisheye), {} (camera)", kFisheyeFovDeg, kPinholeFovDeg)
+                        : fmt::format("{}", kFisheyeFovDeg)},
+         pinhole ? "fisheye: field of view across the image circle: (0, 360], orthographic (0, "
+                   "180], stereographic (0, 360); camera: vertical field of view, (0, 180)"
+                 : "fisheye: field of view across the image circle"});
+    s.number(&P::north_angle_deg,
+             {"north-angle", "deg", ParameterKind::number, -360.0, 360.0, 1, ParameterValue(0.0),
+              "fisheye: north drawn this many deg counter-clockwise from image up"});
+  }
+  if (pinhole) {
+    s.number(&P::look_elevation_deg,
+             {"look-elevation", "deg", ParameterKind::number, -90.0, 90.0, 1, ParameterValue(0.0),
+              "camera: elevation of the view centre"});
+    s.number(&P::look_azimuth_deg,
+             {"look-azimuth", "deg", ParameterKind::number, -360.0, 360.0, 1, ParameterValue(0.0),
+              "camera: azimuth of the view centre from north towards east"});
+  }
+  return s;
 }
 
 Camera image_camera(Projection projection, const FisheyeLayout& layout, int width, int height) {

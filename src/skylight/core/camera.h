@@ -6,9 +6,12 @@
 
 #include <array>
 #include <optional>
+#include <string>
 #include <string_view>
+#include <vector>
 
 #include "skylight/core/frame.h"
+#include "skylight/core/parameters.h"
 
 namespace skylight {
 
@@ -58,5 +61,55 @@ void validate(const Camera& camera);
 
 // The camera of a width x height image in `projection` (fisheye: `layout`), validated.
 Camera image_camera(Projection projection, const FisheyeLayout& layout, int width, int height);
+
+// ---- an operation's image as the user gives it ----------------------------------------------
+
+// Default field of view [deg]: a fisheye's across its image circle (the upper hemisphere), a
+// pinhole camera's vertical one.
+inline constexpr double kFisheyeFovDeg = 180.0;
+inline constexpr double kPinholeFovDeg = 60.0;
+
+// The image options of an operation (render, nn animate, estimate's photo, ...) in the user's
+// units (degrees), absent values taking the projection's defaults; camera() makes the Camera.
+struct ImageOptions {
+  Projection projection = Projection::equirect;
+  std::optional<int> width;  // absent: the operation's default (cubemap: 6 x height)
+  int height = 512;
+  FisheyeLens lens = FisheyeLens::equidistant;
+  std::optional<double> fov_deg;  // absent: kFisheyeFovDeg (fisheye), kPinholeFovDeg (camera)
+  double north_angle_deg = 0.0;
+  double look_elevation_deg = 0.0, look_azimuth_deg = 0.0;
+  int default_width = 1024;
+
+  // The camera, validated. The second form is for an image read from a file (its size).
+  Camera camera() const;
+  Camera camera(int width, int height) const;
+  // The given options (names of its schema) that this projection does not read, e.g. --lens for
+  // an equirect image: a front end warns about them.
+  std::vector<std::string> unread(const ParameterValues& given) const;
+  // Metadata of the projection's options: (key, value) of projection, fov, lens, north angle or
+  // look direction as outputs record them.
+  std::vector<std::pair<std::string, std::string>> metadata() const;
+};
+
+// Which options an operation's image takes and their defaults.
+struct ImageSchemaOptions {
+  std::vector<Projection> projections{Projection::equirect, Projection::hemisphere,
+                                      Projection::fisheye, Projection::cubemap, Projection::camera};
+  Projection default_projection = Projection::equirect;
+  bool size = true;  // --width/--height (false: the size of an image read from a file)
+  int width = 1024, height = 512;
+  std::string projection_flag = "projection";  // e.g. "sky-projection" for a second image
+  std::string description;                     // of the projection, e.g. "the images' projection"
+  // The options' values before any is given (the default projection and size).
+  ImageOptions defaults() const {
+    ImageOptions d;
+    d.projection = default_projection;
+    d.height = height;
+    d.default_width = width;
+    return d;
+  }
+};
+ParameterSchema<ImageOptions> image_schema(const ImageSchemaOptions& options);
 
 }  // namespace skylight

@@ -85,7 +85,8 @@ std::string ParameterSpec::help() const {
   std::string h = description;
   if (!unit.empty()) h += fmt::format(" [{}]", unit);
   if (kind == ParameterKind::numbers && count > 0) h += fmt::format(", {} values", count);
-  if (const std::string r = range_text(); !r.empty())
+  // (A text's choices are the front end's to show: CLI11 lists them beside the flag.)
+  if (const std::string r = range_text(); !r.empty() && kind != ParameterKind::text)
     h += fmt::format(", {}{}", kind == ParameterKind::numbers ? "each " : "", r);
   if (kind != ParameterKind::flag) h += "; default " + default_text();
   return h;

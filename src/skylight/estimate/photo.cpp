@@ -12,6 +12,37 @@
 #include "skylight/core/random.h"
 
 namespace skylight::estimate {
+
+ImageSchemaOptions photo_image_options(Projection default_projection, std::string projection_flag,
+                                       std::string description) {
+  ImageSchemaOptions o;
+  o.projections = {Projection::fisheye, Projection::equirect};
+  o.default_projection = default_projection;
+  o.size = false;
+  o.projection_flag = std::move(projection_flag);
+  o.description = std::move(description);
+  return o;
+}
+
+const ParameterSchema<MaskSettings>& MaskSettings::schema() {
+  static const ParameterSchema<MaskSettings> s = [] {
+    ParameterSchema<MaskSettings> s;
+    s.number(&MaskSettings::min_elevation,
+             {"min-elevation", "deg", ParameterKind::number, 0.0, 89.0, 1, ParameterValue(0.0),
+              "mask: sky pixels above this elevation only"},
+             kDegree)
+        .number(&MaskSettings::sun_exclusion,
+                {"sun-exclusion", "deg", ParameterKind::number, 0.0, 90.0, 1, ParameterValue(5.0),
+                 "mask: pixels within this angle of the sun are not sky (disc, aureole, flare)"},
+                kDegree)
+        .number(&MaskSettings::saturation_fraction,
+                {"saturation", "1", ParameterKind::number, 1e-6, 1.0, 1, ParameterValue(0.999),
+                 "mask: pixels with a channel >= this fraction of the image's largest value are "
+                 "not sky (a clipped sun)"});
+    return s;
+  }();
+  return s;
+}
 namespace {
 
 // Which pixels a camera images above an elevation, decided from the pixel position alone (no

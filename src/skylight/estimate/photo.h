@@ -10,6 +10,7 @@
 
 #include "skylight/core/camera.h"
 #include "skylight/core/frame.h"
+#include "skylight/core/parameters.h"
 #include "skylight/io/image.h"
 
 namespace skylight::estimate {
@@ -29,9 +30,11 @@ double pixel_luminance(const io::ImageF& image, int col, int row);
 //  * the pixel's direction is more than sun_exclusion from the sun (disc, aureole, lens flare),
 //    when the sun is known.
 struct MaskSettings {
-  double min_elevation = 0.0;            // [rad], [0, pi/2)
-  double saturation_fraction = 0.999;    // [1], (0, 1]
-  double sun_exclusion = 5.0 * kDegree;  // [rad], [0, pi)
+  double min_elevation = 0.0;            // [rad], [0, pi/2)  (--min-elevation, deg)
+  double saturation_fraction = 0.999;    // [1], (0, 1]      (--saturation)
+  double sun_exclusion = 5.0 * kDegree;  // [rad], [0, pi)   (--sun-exclusion, deg)
+
+  static const ParameterSchema<MaskSettings>& schema();
 };
 
 struct SkyMask {
@@ -69,6 +72,12 @@ inline constexpr double kSunRegionFraction = 0.95;
 // when the centroid lies below the horizon.
 SunDetection detect_sun(const io::ImageF& image, const Camera& camera,
                         double region_fraction = kSunRegionFraction);
+
+// The image options of a sky photo (core/camera.h): fisheye or equirect, the size the file's;
+// `projection_flag` names the projection's option (e.g. "sky-projection" for a second image).
+ImageSchemaOptions photo_image_options(Projection default_projection = Projection::fisheye,
+                                       std::string projection_flag = "projection",
+                                       std::string description = "the photo's layout");
 
 // One sample point: a view direction and the photo's luminance there (any positive unit).
 struct LuminanceSample {

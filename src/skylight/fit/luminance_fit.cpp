@@ -463,6 +463,54 @@ LuminanceFit fit_by_ranking(const Problem& pr, std::string_view model, const Sun
 
 }  // namespace
 
+const ParameterSchema<EstimateSettings>& EstimateSettings::schema() {
+  static const ParameterSchema<EstimateSettings> s = [] {
+    using S = EstimateSettings;
+    const S d;
+    ParameterSchema<S> s;
+    s.integer(&S::samples, {"samples", "1", ParameterKind::integer, 2, 1000000, 1,
+                            ParameterValue(static_cast<double>(d.samples)),
+                            "random sky pixels per estimate (N of Morales 2017 eq. 8)"})
+        .integer(&S::seed, {"seed", "1", ParameterKind::integer, 0, 2147483647, 1,
+                            ParameterValue(static_cast<double>(d.seed)),
+                            "seed of the sampling, RANSAC and bootstrap"})
+        .integer(&S::ransac_iterations,
+                 {"ransac-iterations", "1", ParameterKind::integer, 1, 100000, 1,
+                  ParameterValue(static_cast<double>(d.ransac_iterations)),
+                  "random minimal sets RANSAC tries"})
+        .number(&S::inlier_threshold, {"inlier-threshold", "1", ParameterKind::number, 1e-6, 10.0,
+                                       1, ParameterValue(d.inlier_threshold),
+                                       "RANSAC: |ln Y - ln model| below this is clear sky"})
+        .integer(&S::bootstrap, {"bootstrap", "1", ParameterKind::integer, 0, 10000, 1,
+                                 ParameterValue(static_cast<double>(d.bootstrap)),
+                                 "bootstrap resamples of the inliers for the sigmas (0: none)"})
+        .custom(
+            {"no-ransac", "", ParameterKind::flag, 0, 0, 1, ParameterValue(false),
+             "fit all samples (no outlier rejection)"},
+            [](S& p, const ParameterValue& v) { p.ransac = !std::get<bool>(v); },
+            [](const S& p) -> std::optional<ParameterValue> { return !p.ransac; });
+    return s;
+  }();
+  return s;
+}
+
+ParameterSpec estimation_model_spec() {
+  std::string models;
+  for (const std::string& m : estimated_models())
+    models +=
+        fmt::format("{}{} ({})", models.empty() ? "" : ", ", m, estimation_policy(m).description);
+  ParameterSpec s{"model",
+                  "",
+                  ParameterKind::text,
+                  0,
+                  0,
+                  1,
+                  ParameterValue(default_estimated_model()),
+                  "the model fitted: " + models};
+  s.choices = estimated_models();
+  return s;
+}
+
 const FittedParameter& LuminanceFit::parameter(std::string_view name) const {
   for (const auto& p : parameters)
     if (p.name == name) return p;

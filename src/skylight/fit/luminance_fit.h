@@ -29,12 +29,18 @@ using estimate::LuminanceSample;
 struct EstimateSettings {
   int samples = 100;              // N random sky pixels (Morales 2017 §7.1: N = 100)
   std::uint64_t seed = 1;         // of the sampling, RANSAC and bootstrap (SplitMix64)
-  bool ransac = true;             // reject cloud pixels (§3.4)
+  bool ransac = true;             // reject cloud pixels (§3.4); --no-ransac
   int ransac_iterations = 64;     // random minimal sets tried
   int ransac_minimal_set = 3;     // samples per minimal set
   double inlier_threshold = 0.1;  // |r_i| below this (ln luminance, ~10 %) = clear sky
   int bootstrap = 32;             // resamples of the inliers for the sigmas
+
+  static const ParameterSchema<EstimateSettings>& schema();
 };
+
+// The model an estimate fits (`--model`): one of estimated_models(), default
+// default_estimated_model().
+ParameterSpec estimation_model_spec();
 
 struct FittedParameter {
   std::string name;  // the model schema's, e.g. "turbidity"

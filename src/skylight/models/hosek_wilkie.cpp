@@ -724,8 +724,7 @@ ModelInfo HosekWilkieModel::registry_entry() {
                                      .max = 1.0,
                                      .grid_points = 3}},
                            .prepare = prepare_log_luminance,
-                           .description = "turbidity and ground albedo (Hosek & Wilkie 2012), "
-                                          "free luminance scale"},
+                           .description = "turbidity and ground albedo, free luminance scale"},
   };
 }
 

@@ -376,7 +376,7 @@ ModelInfo PreethamModel::registry_entry() {
                         .max = kPreethamFitTurbidityMax,
                         .grid_points = 38}},
               .prepare = prepare_relative_luminance,
-              .description = "turbidity (Morales et al. 2017 eq. 8, free luminance scale)",
+              .description = "turbidity, Morales et al. 2017 eq. 8 with a free luminance scale",
               .is_default = true},
   };
 }

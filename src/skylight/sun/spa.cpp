@@ -253,6 +253,18 @@ double equation_of_time(double M, double alpha, double delta_psi, double epsilon
 
 // ---------------------------------------------------------------------------------------------
 
+ParameterSpec time_spec(std::string absent) {
+  return {"time",
+          "",
+          ParameterKind::text,
+          0,
+          0,
+          1,
+          Absent{std::move(absent)},
+          "date and time, ISO 8601 with seconds and UTC offset, e.g. 2003-10-17T12:30:30-07:00 or "
+          "2003-10-17T19:30:30Z"};
+}
+
 const ParameterSchema<SpaInput>& spa_input_schema() {
   // Ranges: the SPA's own limits where the paper states them (3.1: Delta UT1; Delta T: the
   // report's +-8000 s for its -2000 .. 6000 years), else the physically sensible span. Defaults:

@@ -45,6 +45,9 @@ struct SpaInput {
 // degrees; the schema binds them to the fields (radians). `time` is not in the schema: it is
 // ISO 8601 text (parse_iso8601()).
 const ParameterSchema<SpaInput>& spa_input_schema();
+// The time of a solar position as text: --time, ISO 8601 with seconds and UTC offset (sun/time.h);
+// `absent`: what an operation does without it.
+ParameterSpec time_spec(std::string absent);
 const std::vector<ParameterSpec>& spa_parameter_specs();
 // The spec named `name` (a programming error if there is none).
 const ParameterSpec& spa_parameter_spec(std::string_view name);

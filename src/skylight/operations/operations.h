@@ -1,0 +1,35 @@
+// The library's operations as front ends see them (docs/ARCHITECTURE.md, "Operations"): each
+// operation's name (as the command line spells it), what it does and its parameters, composed
+// from the schemas of the settings it takes. The CLI builds its flags from these entries and
+// `skylight operations --json` lists them, so another front end (the Python package) can be
+// generated from the same declarations. The models' own parameters are the registry's
+// (models/sky_model.h, `skylight models --json`).
+#pragma once
+
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "skylight/core/parameters.h"
+
+namespace skylight::operations {
+
+// Every operation with options, in the command line's order.
+const std::vector<OperationInfo>& registry();
+// The operation named `name` (a programming error if there is none).
+const OperationInfo& find(std::string_view name);
+
+// The specs of a named subset of an operation's parameters (a programming error for a name the
+// operation does not have), e.g. the solar-position flags.
+std::vector<ParameterSpec> select(const OperationInfo& op, const std::vector<std::string>& names);
+
+// The sun of an operation that takes it as angles or from a time and place: --sun-zenith and
+// --sun-azimuth (their defaults replaced by `absent` when not empty), --time (absent: `time`) and
+// the SPA's --lat --lon --elevation --pressure --temperature --delta-t.
+std::vector<ParameterSpec> sun_specs(const std::string& absent = {});
+std::vector<ParameterSpec> solar_position_specs(const std::string& time_absent);
+
+// The operation's parameters as a Markdown table (docs), one table per operation.
+std::string markdown(const OperationInfo& op);
+
+}  // namespace skylight::operations
