@@ -20,7 +20,7 @@ inline EstimateFixture estimate_fixture() {
   render::RenderSettings s;
   s.projection = Projection::fisheye;
   s.width = s.height = 1024;
-  s.sun = render::SunMode::sky_and_sun;
+  s.sun = SunMode::sky_and_sun;
   SkyParameters p;
   p.sun = {deg_to_rad(40.0), deg_to_rad(150.0)};
   p.values.set("turbidity", 4.0);

@@ -10,6 +10,7 @@
 #include "skylight/core/error.h"
 #include "skylight/core/numbers.h"
 #include "skylight/io/file.h"
+#include "skylight/operations/operations.h"
 #include "skylight/version.h"
 
 namespace skylight::cli {
@@ -226,19 +227,6 @@ model_parameter_names() {
 
 namespace {
 
-// The solar elevation flag: --sun-zenith's alternative, its range derived from the zenith's.
-ParameterSpec sun_elevation_spec() {
-  const ParameterSpec& z = sun_parameter_specs()[0];
-  return {"sun-elevation",
-          "deg",
-          ParameterKind::number,
-          90.0 - z.max,
-          90.0 - z.min,
-          1,
-          Absent{"90 - sun zenith"},
-          "solar elevation (alternative to --sun-zenith)"};
-}
-
 // Help for a parameter several models declare: the first description, then each model's range
 // and default.
 std::string model_flag_help(const std::vector<std::pair<std::string, ParameterSpec>>& specs) {
@@ -256,16 +244,18 @@ std::string model_flag_help(const std::vector<std::pair<std::string, ParameterSp
 }  // namespace
 
 void ModelOptions::add(CLI::App& app) {
-  std::string names;
-  for (const auto& m : model_registry()) names += (names.empty() ? "" : "|") + m.name;
-  app.add_option("--model", model_, "sky model: " + names + " (see `skylight models`)")->required();
-  const auto& sun = sun_parameter_specs();
-  auto* z = add_number(app, sun[0], sun_zenith_deg_);
-  auto* e = add_number(app, sun_elevation_spec(), sun_elevation_deg_);
-  z->excludes(e);
-  auto* a = add_number(app, sun[1], sun_azimuth_deg_);
-  auto* t = spa_.add(app, false, {"lat", "lon", "elevation", "pressure", "temperature", "delta-t"});
-  t->excludes(z)->excludes(e)->excludes(a);
+  // --model without CLI11's membership check: an unknown name is the registry's error, which
+  // lists the models.
+  const ParameterSpec model = model_spec();
+  app.add_option(model.flag(), model_, model.description)->required();
+  std::vector<ParameterSpec> specs = operations::model_specs();
+  specs.erase(std::remove_if(specs.begin(), specs.end(),
+                             [&](const ParameterSpec& s) { return s.name == model.name; }),
+              specs.end());
+  flags_.add(app, specs);
+  flags_.option("sun-zenith")->excludes(flags_.option("sun-elevation"));
+  wire_solar_position(flags_, {"sun-zenith", "sun-elevation", "sun-azimuth"});
+  flags_.option("include-sun")->excludes(flags_.option("sun-only"));
   for (const auto& [name, specs] : model_parameter_names()) {
     const bool flag = std::all_of(specs.begin(), specs.end(), [](const auto& s) {
       return s.second.kind == ParameterKind::flag;
@@ -279,34 +269,42 @@ void ModelOptions::add(CLI::App& app) {
       app.add_option("--" + name, raw_[name], model_flag_help(specs));
     }
   }
-  auto* inc = app.add_flag("--include-sun", include_sun_, "add the solar disc (models with a sun)");
-  auto* only = app.add_flag("--sun-only", sun_only_, "the solar disc alone, without the sky");
-  inc->excludes(only);
+}
+
+std::string ModelOptions::model_name() const {
+  return model_;
+}
+
+SunMode ModelOptions::sun_mode() const {
+  return flags_.bind(SolarDisc::schema(), SolarDisc{}, "solar disc").mode;
 }
 
 const ModelInfo& ModelOptions::info() const {
-  const ModelInfo* m = find_model(model_);
+  const std::string name = model_name();
+  const ModelInfo* m = find_model(name);
   if (!m) {
     std::string names;
     for (const auto& r : model_registry()) names += (names.empty() ? "" : ", ") + r.name;
-    throw InvalidArgument(fmt::format("unknown model '{}' (known: {})", excerpt(model_), names));
+    throw InvalidArgument(fmt::format("unknown model '{}' (known: {})", excerpt(name), names));
   }
   return *m;
 }
 
 SkyParameters ModelOptions::parameters() const {
   const ModelInfo& m = info();
+  const ParameterValues given = flags_.values();
   SkyParameters p;
-  if (spa_.given()) {
+  if (const auto spa = solar_position_input(given)) {
     // Through the same degrees as --sun-zenith/--sun-azimuth, so that `skylight sun --json`'s
     // zenith_deg and azimuth_deg given as flags build the identical sky.
-    const sun::SpaResult r = sun::solar_position(spa_.input());
+    const sun::SpaResult r = sun::solar_position(*spa);
     p.sun = sun_from_degrees(rad_to_deg(r.zenith), rad_to_deg(r.azimuth));
   } else {
-    const double zenith_deg = sun_zenith_deg_      ? *sun_zenith_deg_
-                              : sun_elevation_deg_ ? 90.0 - *sun_elevation_deg_
-                                                   : kDefaultSunZenithDeg;
-    p.sun = sun_from_degrees(zenith_deg, sun_azimuth_deg_);
+    const double zenith_deg = given.has("sun-zenith")      ? *given.number("sun-zenith")
+                              : given.has("sun-elevation") ? 90.0 - *given.number("sun-elevation")
+                                                           : kDefaultSunZenithDeg;
+    p.sun =
+        sun_from_degrees(zenith_deg, given.number("sun-azimuth").value_or(kDefaultSunAzimuthDeg));
   }
   for (const auto& [name, text] : raw_) {
     if (!text) continue;
@@ -331,15 +329,14 @@ std::unique_ptr<SkyModel> ModelOptions::make() const {
     if (!read.has(name))
       warn(fmt::format("--{} is not read by model '{}' with these parameters; ignored", name,
                        model->name()));
-  if ((include_sun_ || sun_only_) && !model->has_sun())
-    throw InvalidArgument(
-        fmt::format("--include-sun/--sun-only: model '{}' has no sun", model->name()));
+  check_sun_mode(*model, sun_mode());
   return model;
 }
 
 io::Metadata ModelOptions::solar_position_metadata() const {
-  if (!spa_.given()) return {};
-  const sun::SpaInput in = spa_.input();
+  const auto spa = solar_position_input(flags_.values());
+  if (!spa) return {};
+  const sun::SpaInput& in = *spa;
   return {
       {"skylight:time", sun::format_iso8601(in.time, 3)},
       {"skylight:latitude_deg", fmt::format("{}", rad_to_deg(in.latitude))},

@@ -19,6 +19,7 @@
 
 #include "skylight/core/parameters.h"
 #include "skylight/io/image.h"
+#include "skylight/models/evaluation.h"
 #include "skylight/models/sky_model.h"
 #include "skylight/sun/spa.h"
 
@@ -143,6 +144,8 @@ void wire_solar_position(const SchemaFlags& flags, const std::vector<std::string
 // model's schema.
 class ModelOptions {
  public:
+  // The model's flags: the operation's --model, sun, solar-position and solar-disc parameters
+  // (operations::model_specs()) and one flag per parameter name of every registered model.
   void add(CLI::App& app);
   // The registry entry of --model (InvalidArgument for an unknown name).
   const ModelInfo& info() const;
@@ -154,17 +157,14 @@ class ModelOptions {
   // The solar-position inputs as metadata (skylight:time, skylight:latitude_deg, ...) when the sun
   // came from --time; empty otherwise.
   io::Metadata solar_position_metadata() const;
-  bool include_sun() const { return include_sun_; }
-  bool sun_only() const { return sun_only_; }
-  const std::string& model_name() const { return model_; }
+  // The solar disc switches (--include-sun, --sun-only).
+  SunMode sun_mode() const;
+  std::string model_name() const;
 
  private:
   std::string model_;
-  std::optional<double> sun_zenith_deg_, sun_elevation_deg_;
-  double sun_azimuth_deg_ = kDefaultSunAzimuthDeg;
-  SpaOptions spa_;
+  SchemaFlags flags_;
   std::map<std::string, std::optional<std::string>> raw_;  // parameter name -> text as given
-  bool include_sun_ = false, sun_only_ = false;
 };
 
 // Every parameter name of the registry's models, in first-seen order, with the specs declaring it.

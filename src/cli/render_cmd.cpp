@@ -9,6 +9,7 @@
 #include "common.h"
 #include "skylight/core/error.h"
 #include "skylight/io/image.h"
+#include "skylight/operations/operations.h"
 #include "skylight/render/false_colour.h"
 #include "skylight/render/sky_render.h"
 #include "skylight/render/tonemap.h"
@@ -19,17 +20,14 @@
 namespace skylight::cli {
 namespace {
 
-struct RenderFlags {
+struct RenderCommand {
   ModelOptions model;
-  std::string projection = "equirect";
-  FisheyeFlags fisheye;  // --lens, --fov (fisheye default 180, camera default 60), --north-angle
-  double look_elevation_deg = 0.0, look_azimuth_deg = 0.0;
-  int width = 1024, height = 512;
-  bool width_given = false;  // cubemap: without --width the width is 6 x height
+  SchemaFlags flags;  // the image, false-colour and --gpu parameters of operations "render"
   std::string output, preview, false_colour;
-  std::vector<double> fc_range{0.0, 6.0};
-  bool gpu = false;
 };
+
+// The image options of `render`: every projection, 1024 x 512 by default.
+const ImageSchemaOptions kImage{};
 
 // `--gpu`: the fragment-shader render of a network model (gpu/sky_render.h).
 render::SkyImage render_on_gpu(const SkyModel& model, const render::RenderSettings& s) {
@@ -41,27 +39,6 @@ render::SkyImage render_on_gpu(const SkyModel& model, const render::RenderSettin
       "--gpu: this skylight was built without the GPU module (SKYLIGHT_GPU=OFF: EGL and OpenGL "
       "were not found when configuring; docs/GPU.md)");
 #endif
-}
-
-// Default vertical field of view of the camera projection [deg] (fisheye: kFisheyeFovDeg).
-constexpr double kCameraFovDeg = 60.0;
-
-// Flags that only some projections read: given with another projection they are ignored with a
-// warning.
-void warn_unused_projection_flags(const CLI::App& cmd, Projection projection,
-                                  std::string_view projection_name) {
-  const bool fisheye = projection == Projection::fisheye;
-  const bool camera = projection == Projection::camera;
-  const std::pair<const char*, bool> flags[] = {{"--lens", fisheye},
-                                                {"--north-angle", fisheye},
-                                                {"--fov", fisheye || camera},
-                                                {"--look-elevation", camera},
-                                                {"--look-azimuth", camera}};
-  std::string unused;
-  for (const auto& [name, used] : flags)
-    if (!used && cmd.count(name) > 0) unused += (unused.empty() ? "" : ", ") + std::string(name);
-  if (!unused.empty())
-    warn(fmt::format("{} not used by --projection {}; ignored", unused, projection_name));
 }
 
 // A copy of `md` whose skylight:pixel_unit is `unit`.
@@ -77,31 +54,27 @@ constexpr const char* kPreviewPixelUnit =
     "tone-mapped display values (8-bit sRGB: 99th percentile of luminance -> 1, Reinhard, sRGB "
     "curve), not luminance";
 
-int run_render(const RenderFlags& f, const CLI::App& cmd) {
+int run_render(const RenderCommand& f) {
+  const ParameterValues given = f.flags.values();
+  const ImageOptions image = f.flags.bind(image_schema(kImage), kImage.defaults(), "render");
   render::RenderSettings s;
-  s.projection = *parse_projection(f.projection);
-  s.height = f.height;
-  s.width = s.projection == Projection::cubemap && !f.width_given ? 6 * f.height : f.width;
-  s.fisheye = f.fisheye.layout(kFisheyeFovDeg);
-  s.pinhole.look_zenith = deg_to_rad(90.0 - f.look_elevation_deg);
-  s.pinhole.look_azimuth = wrap_azimuth(deg_to_rad(f.look_azimuth_deg));
-  s.pinhole.vertical_fov = deg_to_rad(f.fisheye.fov_deg.value_or(kCameraFovDeg));
-  s.sun = f.model.sun_only()      ? render::SunMode::sun_only
-          : f.model.include_sun() ? render::SunMode::sky_and_sun
-                                  : render::SunMode::sky;
-  warn_unused_projection_flags(cmd, s.projection, f.projection);
-  validate(s);
+  static_cast<Camera&>(s) = image.camera();
+  s.sun = f.model.sun_mode();
+  if (const auto unread = image.unread(given); !unread.empty()) {
+    std::string list;
+    for (const auto& n : unread) list += (list.empty() ? "--" : ", --") + n;
+    warn(fmt::format("{} not used by --projection {}; ignored", list, to_string(image.projection)));
+  }
   (void)io::format_from_path(f.output);
   if (!f.preview.empty() && io::format_from_path(f.preview) != io::ImageFormat::png)
     throw InvalidArgument(fmt::format("--preview '{}' must be a .png file", f.preview));
   if (!f.false_colour.empty() && io::format_from_path(f.false_colour) != io::ImageFormat::png)
     throw InvalidArgument(fmt::format("--false-colour '{}' must be a .png file", f.false_colour));
-  if (!(f.fc_range[0] < f.fc_range[1]))
-    throw InvalidArgument(fmt::format("--false-colour-range {},{}: LO must be below HI",
-                                      f.fc_range[0], f.fc_range[1]));
+  const auto fc = f.flags.bind(render::FalseColourOptions::schema(), {}, "render");
+  const bool gpu = given.has("gpu");
   const auto model = f.model.make();
   warn_domain(*model);
-  const render::SkyImage img = f.gpu ? render_on_gpu(*model, s) : render::render_sky(*model, s);
+  const render::SkyImage img = gpu ? render_on_gpu(*model, s) : render::render_sky(*model, s);
   // No output may hold NaN or Inf: a model that overflows is an error, and nothing is written.
   const auto bad = std::count_if(img.rgb.data.begin(), img.rgb.data.end(),
                                  [](float v) { return !std::isfinite(v); });
@@ -111,24 +84,12 @@ int run_render(const RenderFlags& f, const CLI::App& cmd) {
         "was written",
         model->name(), bad));
 
-  auto md = model_metadata(*model, s.sun == render::SunMode::sun_only      ? "sun-only"
-                                   : s.sun == render::SunMode::sky_and_sun ? "sky+sun"
-                                                                           : "sky");
+  auto md = model_metadata(*model, to_string(s.sun));
   for (auto& entry : f.model.solar_position_metadata()) md.push_back(std::move(entry));
-  md.emplace_back("skylight:projection", f.projection);
-  if (f.gpu) md.emplace_back("skylight:renderer", "gpu (OpenGL fragment shader, docs/GPU.md)");
-  if (s.projection == Projection::camera) {
-    md.emplace_back("skylight:fov_deg",
-                    fmt::format("{}", f.fisheye.fov_deg.value_or(kCameraFovDeg)));
-    md.emplace_back("skylight:look_elevation_deg", fmt::format("{}", f.look_elevation_deg));
-    md.emplace_back("skylight:look_azimuth_deg", fmt::format("{}", f.look_azimuth_deg));
-  }
-  if (s.projection == Projection::fisheye) {
-    md.emplace_back("skylight:lens", f.fisheye.lens);
-    md.emplace_back("skylight:fov_deg",
-                    fmt::format("{}", f.fisheye.fov_deg.value_or(kFisheyeFovDeg)));
-    md.emplace_back("skylight:north_angle_deg", fmt::format("{}", f.fisheye.north_angle_deg));
-  }
+  const auto layout = image.metadata();
+  md.push_back(layout.front());  // the projection
+  if (gpu) md.emplace_back("skylight:renderer", "gpu (OpenGL fragment shader, docs/GPU.md)");
+  md.insert(md.end(), layout.begin() + 1, layout.end());
   md.emplace_back("skylight:pixel_unit", kFloatPixelUnit);
   // What the model actually used: its zenith luminance and where it stands in its domain.
   md.emplace_back("skylight:zenith_luminance_evaluated_cd_m2",
@@ -142,9 +103,7 @@ int run_render(const RenderFlags& f, const CLI::App& cmd) {
   if (!f.false_colour.empty()) {
     io::ImageF lum(img.xyz.width, img.xyz.height, 1);
     for (std::size_t i = 0; i < lum.data.size(); ++i) lum.data[i] = img.xyz.data[3 * i + 1];
-    render::FalseColourOptions fo;
-    fo.log10_min = f.fc_range[0];
-    fo.log10_max = f.fc_range[1];
+    const render::FalseColourOptions& fo = fc;
     io::write_png(f.false_colour, render::false_colour(lum, fo, &img.mask),
                   with_pixel_unit(md, fmt::format("false colour of log10 luminance, {} to {} "
                                                   "log10 cd/m^2 (legend in the image)",
@@ -156,50 +115,18 @@ int run_render(const RenderFlags& f, const CLI::App& cmd) {
 }  // namespace
 
 void add_render_command(CLI::App& app, Commands& commands) {
-  auto f = std::make_shared<RenderFlags>();
+  auto f = std::make_shared<RenderCommand>();
   auto* cmd = app.add_subcommand("render",
                                  "render a sky into an image (EXR, HDR, PFM or PNG by extension)");
   f->model.add(*cmd);
-  cmd->add_option("--projection", f->projection,
-                  "equirect|hemisphere|fisheye|cubemap|camera (perspective, e.g. of the planet "
-                  "from orbit with --observer-altitude); default equirect")
-      ->check(CLI::IsMember({"equirect", "hemisphere", "fisheye", "cubemap", "camera"}));
-  f->fisheye.add(*cmd, "180 (fisheye), 60 (camera)",
-                 "fisheye: field of view across the image circle: (0, 360], orthographic (0, 180], "
-                 "stereographic (0, 360); camera: vertical field of view, (0, 180)");
-  add_number(*cmd,
-             {"look-elevation", "deg", ParameterKind::number, -90.0, 90.0, 1, ParameterValue(0.0),
-              "camera: elevation of the view centre"},
-             f->look_elevation_deg);
-  add_number(*cmd,
-             {"look-azimuth", "deg", ParameterKind::number, -360.0, 360.0, 1, ParameterValue(0.0),
-              "camera: azimuth of the view centre from north towards east"},
-             f->look_azimuth_deg);
-  add_integer(*cmd,
-              {"width", "px", ParameterKind::integer, 1, kMaxImageSide, 1,
-               ParameterValue(static_cast<double>(f->width)),
-               "image width (cubemap: must be 6 x height, which is its default)"},
-              f->width)
-      ->each([f](const std::string&) { f->width_given = true; });
-  add_integer(*cmd,
-              {"height", "px", ParameterKind::integer, 1, kMaxImageSide, 1,
-               ParameterValue(static_cast<double>(f->height)), "image height"},
-              f->height);
+  f->flags.add(*cmd, operations::without_model_specs(operations::find("render")));
   cmd->add_option("-o,--output", f->output,
                   "output image: .exr (float + metadata), .hdr, .pfm or .png (preview)")
       ->required();
-  cmd->add_flag("--gpu", f->gpu,
-                "render with OpenGL (headless EGL; the nn model only, docs/GPU.md) instead of the "
-                "CPU");
   cmd->add_option("--preview", f->preview, "also write a tone-mapped PNG preview here");
   cmd->add_option("--false-colour", f->false_colour,
                   "also write a log-luminance false-colour PNG with legend here");
-  add_numbers(
-      *cmd,
-      {"false-colour-range", "log10 cd/m^2", ParameterKind::numbers, -20.0, 20.0, 2,
-       ParameterValue(f->fc_range), "log10 luminance range LO,HI of the false-colour scale"},
-      f->fc_range);
-  commands.push_back({cmd, [f, cmd] { return run_render(*f, *cmd); }});
+  commands.push_back({cmd, [f] { return run_render(*f); }});
 }
 
 }  // namespace skylight::cli

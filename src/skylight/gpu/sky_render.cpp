@@ -281,8 +281,8 @@ render::SkyImage SkyRenderer::image() const {
   const std::size_t n = static_cast<std::size_t>(s.width) * static_cast<std::size_t>(s.height);
   render::SkyImage img{io::ImageF(s.width, s.height, 3), io::ImageF(s.width, s.height, 3), {}};
   img.mask.assign(n, 0);
-  const bool sky = s.sun != render::SunMode::sun_only;
-  const bool add_sun = s.sun != render::SunMode::sky && model_.has_sun();
+  const bool sky = s.sun != SunMode::sun_only;
+  const bool add_sun = s.sun != SunMode::sky && model_.has_sun();
   parallel_for(static_cast<std::size_t>(s.height), 8, [&](std::size_t r0, std::size_t r1) {
     for (std::size_t row = r0; row < r1; ++row) {
       for (int col = 0; col < s.width; ++col) {

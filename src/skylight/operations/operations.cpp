@@ -8,7 +8,9 @@
 #include "skylight/core/error.h"
 #include "skylight/estimate/photo.h"
 #include "skylight/fit/luminance_fit.h"
+#include "skylight/models/evaluation.h"
 #include "skylight/models/sky_model.h"
+#include "skylight/render/false_colour.h"
 #include "skylight/sun/spa.h"
 
 namespace skylight::operations {
@@ -20,6 +22,28 @@ Specs concat(std::initializer_list<Specs> parts) {
   Specs out;
   for (const Specs& p : parts) out.insert(out.end(), p.begin(), p.end());
   return out;
+}
+
+OperationInfo render_operation() {
+  ImageSchemaOptions image;
+  return {"render",
+          "a sky model drawn into an image in one of the project's layouts (the batch path on all "
+          "threads, or the network models by GL); the chosen model's own parameters are its "
+          "registry entry's (`skylight models`)",
+          concat({model_specs(),
+                  image_schema(image).specs(),
+                  render::FalseColourOptions::schema().specs(),
+                  {gpu_spec("render with OpenGL (headless EGL; the network models nn and pietras, "
+                            "docs/GPU.md) instead of the CPU")}}),
+          "render::SkyImage (XYZ and linear sRGB images, the mask of pixels without a direction)"};
+}
+
+OperationInfo eval_operation() {
+  return {"eval",
+          "a sky model evaluated in given directions (zenith, azimuth): linear sRGB, XYZ, "
+          "luminance or spectral radiance, of the sky, the solar disc or both",
+          concat({model_specs(), EvaluationOptions::schema().specs()}),
+          "one value per quantity column (models/evaluation.h, quantity_columns)"};
 }
 
 OperationInfo estimate_operation() {
@@ -52,8 +76,30 @@ std::vector<ParameterSpec> solar_position_specs(const std::string& time_absent) 
   return s;
 }
 
+std::vector<ParameterSpec> model_specs() {
+  Specs sun = sun_parameter_specs();
+  return concat({{model_spec(), sun[0], sun_elevation_spec(), sun[1]},
+                 solar_position_specs("the sun from the angles"),
+                 SolarDisc::schema().specs()});
+}
+
+std::vector<ParameterSpec> without_model_specs(const OperationInfo& op) {
+  const Specs model = model_specs();
+  Specs own;
+  for (const ParameterSpec& spec : op.parameters)
+    if (std::none_of(model.begin(), model.end(),
+                     [&](const ParameterSpec& m) { return m.name == spec.name; }))
+      own.push_back(spec);
+  return own;
+}
+
+ParameterSpec gpu_spec(const std::string& what) {
+  return {"gpu", "", ParameterKind::flag, 0, 0, 1, ParameterValue(false), what};
+}
+
 const std::vector<OperationInfo>& registry() {
-  static const std::vector<OperationInfo> ops{estimate_operation()};
+  static const std::vector<OperationInfo> ops{render_operation(), eval_operation(),
+                                              estimate_operation()};
   return ops;
 }
 

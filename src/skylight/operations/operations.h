@@ -29,6 +29,15 @@ std::vector<ParameterSpec> select(const OperationInfo& op, const std::vector<std
 std::vector<ParameterSpec> sun_specs(const std::string& absent = {});
 std::vector<ParameterSpec> solar_position_specs(const std::string& time_absent);
 
+// The model of an operation on one sky (render, eval): --model, the sun (--sun-zenith or
+// --sun-elevation, --sun-azimuth, or --time and the SPA's flags) and the solar-disc switches. The
+// chosen model's own parameters are the registry's (`skylight models --json`).
+std::vector<ParameterSpec> model_specs();
+// An operation's parameters without its model_specs() (those the front end's model options take).
+std::vector<ParameterSpec> without_model_specs(const OperationInfo& op);
+// The GL path of an operation (--gpu; the optional gpu/ module, docs/GPU.md).
+ParameterSpec gpu_spec(const std::string& what);
+
 // The operation's parameters as a Markdown table (docs), one table per operation.
 std::string markdown(const OperationInfo& op);
 

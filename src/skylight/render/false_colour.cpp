@@ -17,6 +17,31 @@
 #pragma GCC diagnostic pop
 
 namespace skylight::render {
+
+const ParameterSchema<FalseColourOptions>& FalseColourOptions::schema() {
+  static const ParameterSchema<FalseColourOptions> s = [] {
+    using F = FalseColourOptions;
+    const F d;
+    ParameterSchema<F> s;
+    s.custom(
+        {"false-colour-range", "log10 cd/m^2", ParameterKind::numbers, -20.0, 20.0, 2,
+         ParameterValue(std::vector<double>{d.log10_min, d.log10_max}),
+         "log10 luminance range LO,HI of the false-colour scale"},
+        [](F& f, const ParameterValue& v) {
+          const auto& r = std::get<std::vector<double>>(v);
+          if (!(r[0] < r[1]))
+            throw InvalidArgument(
+                fmt::format("--false-colour-range {},{}: LO must be below HI", r[0], r[1]));
+          f.log10_min = r[0];
+          f.log10_max = r[1];
+        },
+        [](const F& f) -> std::optional<ParameterValue> {
+          return std::vector<double>{f.log10_min, f.log10_max};
+        });
+    return s;
+  }();
+  return s;
+}
 namespace {
 
 using Rgb8 = std::array<std::uint8_t, 3>;

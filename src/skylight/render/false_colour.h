@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "skylight/core/parameters.h"
 #include "skylight/io/image.h"
 
 namespace skylight::render {
@@ -23,6 +24,9 @@ struct FalseColourOptions {
   double log10_max = 6.0;
   std::string unit = "cd/m2";  // printed on the legend
   bool legend = true;
+
+  // --false-colour-range LO,HI [log10 cd/m^2] (LO below HI).
+  static const ParameterSchema<FalseColourOptions>& schema();
 };
 Image8 false_colour(const ImageF& luminance, const FalseColourOptions& options = {},
                     const std::vector<std::uint8_t>* mask = nullptr);

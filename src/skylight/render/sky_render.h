@@ -10,17 +10,16 @@
 #include "skylight/core/camera.h"
 #include "skylight/core/frame.h"
 #include "skylight/io/image.h"
+#include "skylight/models/evaluation.h"
 #include "skylight/models/sky_model.h"
 
 namespace skylight::render {
 
 using io::ImageF;
 
-// What is drawn: the sky alone (default), sky + solar disc, or the solar disc alone. The disc is
-// integrated over each pixel's footprint (average_sun_over_pixel).
-enum class SunMode { sky, sky_and_sun, sun_only };
-
-// The image (core/camera.h: layout and size) and what is drawn in it.
+// The image (core/camera.h: layout and size) and what is drawn in it (models/evaluation.h: the
+// sky, sky + solar disc or the disc alone; the disc integrated over each pixel's footprint,
+// average_sun_over_pixel).
 struct RenderSettings : Camera {
   SunMode sun = SunMode::sky;
 };
