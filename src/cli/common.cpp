@@ -78,6 +78,10 @@ void SchemaFlags::add(CLI::App& app, const std::vector<ParameterSpec>& specs) {
     if (spec.kind == ParameterKind::flag) {
       opt = app.add_flag_callback(
           spec.flag(), [&raw] { raw = "true"; }, spec.help());
+    } else if (spec.repeated) {
+      opt = app.add_option_function<std::vector<std::string>>(
+          spec.flag(), [&raw](const std::vector<std::string>& v) { raw = join_repeated(v); },
+          spec.help());
     } else {
       opt = app.add_option_function<std::string>(
           spec.flag(), [&raw](const std::string& s) { raw = s; }, spec.help());

@@ -197,6 +197,23 @@ std::optional<double> ParameterValues::number(std::string_view name) const {
   return std::nullopt;
 }
 
+std::string join_repeated(const std::vector<std::string>& values) {
+  std::string out;
+  for (const auto& v : values) out += (out.empty() ? "" : "\n") + v;
+  return out;
+}
+
+std::vector<std::string> split_repeated(const std::string& text) {
+  std::vector<std::string> out;
+  std::size_t start = 0;
+  for (;;) {
+    const std::size_t end = text.find('\n', start);
+    out.push_back(text.substr(start, end - start));
+    if (end == std::string::npos) return out;
+    start = end + 1;
+  }
+}
+
 ParameterValues ParameterValues::only(const std::vector<ParameterSpec>& specs) const {
   ParameterValues out;
   for (const auto& s : specs)

@@ -57,6 +57,9 @@ struct ParameterSpec {
   std::string description;
   // A text parameter that takes one of these names (an enumeration); empty: any text.
   std::vector<std::string> choices{};
+  // A text parameter that may be given more than once: its values joined by '\n'
+  // (join_repeated, split_repeated).
+  bool repeated = false;
 
   std::string flag() const { return "--" + name; }
   bool required() const { return std::holds_alternative<Required>(default_value); }
@@ -96,6 +99,10 @@ struct OperationInfo {
 // The specs as a Markdown table (flag, unit, range, default, description), as docs/MODELS.md shows
 // them (a test keeps the two equal; `skylight models --markdown` prints them).
 std::string markdown_table(const std::vector<ParameterSpec>& specs);
+
+// The values of a repeated text parameter as one text and back (joined by '\n').
+std::string join_repeated(const std::vector<std::string>& values);
+std::vector<std::string> split_repeated(const std::string& text);
 
 // Named values as a user gives them (command line, JSON, code).
 class ParameterValues {

@@ -1,6 +1,9 @@
 #include "skylight/fit/sh_fit.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -9,6 +12,9 @@
 #include "skylight/analysis/hemisphere.h"
 #include "skylight/core/error.h"
 #include "skylight/core/math.h"
+#include "skylight/core/numbers.h"
+#include "skylight/core/statistics.h"
+#include "skylight/sh/approximation_error.h"
 #include "skylight/sh/basis.h"
 
 namespace skylight::fit {
@@ -112,6 +118,217 @@ Triple minimum_over_sky(const SkyModel& model, Channels channels, int n_theta) {
   return lo;
 }
 
+const ParameterSchema<ShFitRequest>& ShFitRequest::schema() {
+  static const ParameterSchema<ShFitRequest> s = [] {
+    using R = ShFitRequest;
+    const R d;
+    std::vector<std::string> models;
+    for (const auto& m : model_registry())
+      if (m.sh_fit) models.push_back(m.name);
+    ParameterSchema<R> s;
+    ParameterSpec model{"model",
+                        "",
+                        ParameterKind::text,
+                        0,
+                        0,
+                        1,
+                        Required{},
+                        "the model fitted (any of `skylight models` with a fit policy)"};
+    model.choices = models;
+    s.text(&R::model, model)
+        .integer(&R::bands, {"bands", "1", ParameterKind::integer, 1, sh::kMaxBands, 1,
+                             ParameterValue(static_cast<double>(d.bands)),
+                             "SH bands N (degrees l = 0..N-1, N^2 coefficients)"})
+        .numbers(&R::degrees, {"degrees", "1", ParameterKind::numbers, 0, 40, 2,
+                               ParameterValue(std::vector<double>{17.0, 12.0}),
+                               "polynomial degrees I,J in the sun zenith and the second parameter "
+                               "(J = 0 for a zenith-only fit); hosek: 17,2 per turbidity piece"})
+        .text(&R::parameter,
+              {"parameter", "", ParameterKind::text, 0, 0, 1,
+               Absent{"the model's fit policy: turbidity for preetham, hosek and nn, else none"},
+               "the varying parameter tau (a number of the model's schema); 'none': the sun "
+               "zenith only"})
+        .numbers(&R::range, {"range", "1", ParameterKind::numbers, -1e9, 1e9, 2,
+                             Absent{"preetham: 2.5,6 (Habel 2008); others: the parameter's whole "
+                                    "range"},
+                             "range LO,HI of tau"})
+        .numbers(&R::theta_range_deg,
+                 {"theta-range", "deg", ParameterKind::numbers, 0, 90, 2,
+                  ParameterValue(d.theta_range_deg), "range LO,HI of the sun zenith"})
+        .numbers(&R::grid,
+                 {"grid", "1", ParameterKind::numbers, 1, 1000, 2,
+                  Absent{"2 (degree + 1) + 1 points each"}, "fitting grid points in theta, tau"})
+        .custom(
+            {"set",
+             "",
+             ParameterKind::text,
+             0,
+             0,
+             1,
+             Absent{"the model's defaults"},
+             "NAME=VALUE: a model parameter held fixed (e.g. albedo=0.3, cie-type=7); "
+             "repeatable",
+             {},
+             true},
+            [](R& r, const ParameterValue& v) { r.set = split_repeated(std::get<std::string>(v)); },
+            [](const R& r) -> std::optional<ParameterValue> {
+              if (r.set.empty()) return std::nullopt;
+              return join_repeated(r.set);
+            })
+        .choice(&R::channels,
+                {"channels", "", ParameterKind::text, 0, 0, 1, ParameterValue(std::string("xyz")),
+                 "the channels fitted: xyz (Y in cd/m^2) or linear-srgb"},
+                {{"xyz", sh::Channels::xyz}, {"linear-srgb", sh::Channels::linear_srgb}})
+        .number(&R::tolerance, {"tolerance", "1", ParameterKind::number, 1e-9, 1e-1, 1,
+                                ParameterValue(d.tolerance),
+                                "projection convergence: largest coefficient change relative to "
+                                "c_00"})
+        .custom(
+            {"theta-axis",
+             "",
+             ParameterKind::text,
+             0,
+             0,
+             1,
+             Absent{"the model's: theta"},
+             "the sun-zenith coordinate of the fit: theta, or elevation-cbrt ((elevation / "
+             "90 deg)^(1/3), Hosek's)",
+             {"theta", "elevation-cbrt"}},
+            [](R& r, const ParameterValue& v) {
+              r.theta_axis = std::get<std::string>(v) == "theta" ? sh::ThetaAxis::theta
+                                                                 : sh::ThetaAxis::elevation_cbrt;
+            },
+            [](const R& r) -> std::optional<ParameterValue> {
+              if (!r.theta_axis) return std::nullopt;
+              return std::string(*r.theta_axis == sh::ThetaAxis::theta ? "theta"
+                                                                       : "elevation-cbrt");
+            })
+        .optional_integer(&R::tau_pieces,
+                          {"tau-pieces", "1", ParameterKind::integer, 1, sh::kMaxTauPieces, 1,
+                           Absent{"hosek: one per unit of turbidity (degrees 17,2, 4 turbidities "
+                                  "each); others: 1"},
+                           "equal pieces of the tau range, each its own polynomial in tau"})
+        .optional_number(&R::ground_albedo,
+                         {"ground-albedo", "1", ParameterKind::number, 0, 1, 1,
+                          Absent{"the lower hemisphere black"},
+                          "the lower hemisphere as a uniform ground of this albedo lit by the sky "
+                          "and the sun (L = albedo E / pi)"});
+    return s;
+  }();
+  return s;
+}
+
+namespace {
+
+const ParameterSpec* spec_of(const ModelInfo& info, const std::string& name) {
+  for (const auto& s : info.parameters)
+    if (s.name == name) return &s;
+  return nullptr;
+}
+
+int integer_intervals(double lo, double hi) {
+  return std::clamp(static_cast<int>(std::lround(hi - lo)), 1, sh::kMaxTauPieces);
+}
+
+// The parameters held fixed (--set NAME=VALUE), each checked by the model's spec.
+ParameterValues fixed_parameters(const ModelInfo& info, const std::vector<std::string>& set) {
+  ParameterValues fixed;
+  for (const auto& kv : set) {
+    const auto eq = kv.find('=');
+    const ParameterSpec* spec = eq == std::string::npos ? nullptr : spec_of(info, kv.substr(0, eq));
+    if (!spec) {
+      throw InvalidArgument(
+          fmt::format("--set {}: expected NAME=VALUE with NAME a parameter of model '{}'",
+                      excerpt(kv), info.name));
+    }
+    const ParameterValue v = spec->parse(kv.substr(eq + 1));
+    spec->check(v, model_context(info.name));
+    fixed.set(spec->name, v);
+  }
+  return fixed;
+}
+
+// tau's range: given, the policy's or the parameter's whole range; checked.
+void set_tau_range(sh::PolynomialFitSettings& p, const ShFitRequest& r, const ParameterSpec& tau,
+                   const ShFitPolicy& policy) {
+  if (!r.range.empty()) {
+    p.tau_min = r.range[0];
+    p.tau_max = r.range[1];
+  } else if (policy.range && p.parameter == policy.parameter) {
+    p.tau_min = (*policy.range)[0];
+    p.tau_max = (*policy.range)[1];
+  } else {
+    p.tau_min = tau.min;
+    p.tau_max = tau.max;
+  }
+  if (!(p.tau_min < p.tau_max)) throw InvalidArgument("--range LO,HI: LO must be below HI");
+  tau.check(p.tau_min, "--range");
+  tau.check(p.tau_max, "--range");
+}
+
+// The policy's table structure (Hosek's pieces) where the fit varies the policy's parameter.
+void apply_structure(sh::PolynomialFitSettings& p, const ShFitRequest& r,
+                     const ShFitPolicy& policy) {
+  if (policy.parameter.empty() || p.parameter != policy.parameter) return;
+  if (!r.theta_axis) p.theta_axis = policy.theta_axis;
+  if (policy.unit_pieces && !r.tau_pieces) p.tau_pieces = integer_intervals(p.tau_min, p.tau_max);
+  if (policy.degrees && r.degrees.empty()) {
+    p.degree_theta = (*policy.degrees)[0];
+    p.degree_tau = (*policy.degrees)[1];
+  }
+  if (policy.grid_tau > 0 && r.grid.empty() && p.tau_pieces > 1) p.grid_tau = policy.grid_tau;
+}
+
+}  // namespace
+
+ShFitSettings sh_fit_settings(const ShFitRequest& r) {
+  const ModelInfo* info = find_model(r.model);
+  if (!info) throw InvalidArgument(fmt::format("--model: unknown model '{}'", excerpt(r.model)));
+  if (!info->sh_fit)
+    throw InvalidArgument(
+        fmt::format("--model {}: no SH table is fitted to this model (a table "
+                    "cannot be fitted to a table)",
+                    info->name));
+  const ShFitPolicy& policy = *info->sh_fit;
+  ShFitSettings s;
+  s.model = info->name;
+  sh::PolynomialFitSettings& p = s.polynomial;
+  p.parameter = r.parameter.empty() ? policy.parameter : r.parameter == "none" ? "" : r.parameter;
+  const ParameterSpec* tau = p.parameter.empty() ? nullptr : spec_of(*info, p.parameter);
+  if (!p.parameter.empty() && (!tau || tau->kind != ParameterKind::number)) {
+    throw InvalidArgument(fmt::format("--parameter: '{}' is not a number parameter of model '{}'",
+                                      excerpt(p.parameter), info->name));
+  }
+  s.fixed = fixed_parameters(*info, r.set);
+  const std::vector<double> degrees =
+      r.degrees.empty() ? std::vector<double>{17.0, 12.0} : r.degrees;
+  p.channels = r.channels;
+  p.bands = r.bands;
+  p.degree_theta = static_cast<int>(degrees[0]);
+  p.degree_tau = tau ? static_cast<int>(degrees[1]) : 0;
+  if (!tau && !r.degrees.empty() && degrees[1] != 0.0)
+    throw InvalidArgument("--degrees I,J: J must be 0 for a fit in the sun zenith only");
+  if (degrees[0] != std::floor(degrees[0]) || degrees[1] != std::floor(degrees[1]))
+    throw InvalidArgument("--degrees I,J: whole numbers expected");
+  p.theta_min = deg_to_rad(r.theta_range_deg[0]);
+  p.theta_max = deg_to_rad(r.theta_range_deg[1]);
+  if (!(r.theta_range_deg[0] < r.theta_range_deg[1]))
+    throw InvalidArgument("--theta-range LO,HI: LO must be below HI");
+  if (tau) set_tau_range(p, r, *tau, policy);
+  if (!r.grid.empty()) {
+    p.grid_theta = static_cast<int>(r.grid[0]);
+    p.grid_tau = static_cast<int>(r.grid[1]);
+  }
+  p.theta_axis = r.theta_axis.value_or(sh::ThetaAxis::theta);
+  p.tau_pieces = r.tau_pieces.value_or(1);
+  if (tau) apply_structure(p, r, policy);
+  if (!tau && p.tau_pieces != 1)
+    throw InvalidArgument("--tau-pieces: a fit in the sun zenith only has one piece");
+  s.projection.tolerance = r.tolerance;
+  s.projection.ground_albedo = r.ground_albedo;
+  return s;
+}
+
 sh::PolynomialTable fit_sh_table(const ShFitSettings& s) {
   const sh::PolynomialFitSettings& poly = s.polynomial;
   if (!poly.parameter.empty() && s.fixed.has(poly.parameter)) {
@@ -133,6 +350,56 @@ sh::Projection project_reference(const sh::PolynomialTable& table, double theta,
   sh::ProjectionOptions o = options;
   o.ground_albedo = table.ground_albedo;
   return project_model(*model, table.channels, bands, o);
+}
+
+const ParameterSchema<ShErrorOptions>& ShErrorOptions::schema() {
+  static const ParameterSchema<ShErrorOptions> s = [] {
+    ParameterSchema<ShErrorOptions> s;
+    s.numbers(&ShErrorOptions::points, {"points", "1", ParameterKind::numbers, 1, 1000, 2,
+                                        ParameterValue(ShErrorOptions{}.points),
+                                        "test points (cell midpoints) in theta, tau"});
+    return s;
+  }();
+  return s;
+}
+
+ShTableError table_error(const sh::PolynomialTable& t, const ShErrorOptions& options,
+                         const std::function<void(int, int)>& progress) {
+  const int nt = static_cast<int>(options.points[0]);
+  const int nv = t.parameter.empty() ? 1 : static_cast<int>(options.points[1]);
+  const int n_bands = t.bands;
+  // [band N - 1][channel] -> values over the points
+  std::vector<std::array<std::vector<double>, 3>> e_mean(static_cast<std::size_t>(n_bands)),
+      e_max(static_cast<std::size_t>(n_bands));
+  for (int it = 0; it < nt; ++it) {
+    for (int iv = 0; iv < nv; ++iv) {
+      const double theta = t.theta_min + (t.theta_max - t.theta_min) * (it + 0.5) / nt;
+      const double tau = t.tau_min + (t.tau_max - t.tau_min) * (iv + 0.5) / nv;
+      const sh::Projection ref = project_reference(t, theta, tau, 0.0, n_bands);
+      const sh::Coefficients rec = sh::evaluate_table(t, theta, tau, 0.0, n_bands, false);
+      const auto model = make_model(t.model, t.parameter, t.fixed, theta, tau, 0.0);
+      const Triple l_min = minimum_over_sky(*model, t.channels);
+      for (int n = 1; n <= n_bands; ++n) {
+        const sh::ErrorMeasures m = sh::error_measures(ref.coefficients, rec, n, l_min);
+        for (std::size_t ch = 0; ch < 3; ++ch) {
+          e_mean[static_cast<std::size_t>(n - 1)][ch].push_back(m.e_mean[ch]);
+          e_max[static_cast<std::size_t>(n - 1)][ch].push_back(m.e_max[ch]);
+        }
+      }
+      if (progress) progress(it * nv + iv + 1, nt * nv);
+    }
+  }
+  ShTableError out;
+  out.points = nt * nv;
+  for (int n = 1; n <= n_bands; ++n) {
+    for (std::size_t ch = 0; ch < 3; ++ch) {
+      const auto& a = e_mean[static_cast<std::size_t>(n - 1)][ch];
+      const auto& b = e_max[static_cast<std::size_t>(n - 1)][ch];
+      out.rows.push_back({n, static_cast<int>(ch), *std::max_element(a.begin(), a.end()), median(a),
+                          *std::max_element(b.begin(), b.end()), median(b)});
+    }
+  }
+  return out;
 }
 
 }  // namespace skylight::fit

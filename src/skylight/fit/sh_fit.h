@@ -4,7 +4,9 @@
 // error measures (sh/approximation_error.h). sh/ knows no SkyModel; this is where the two meet.
 #pragma once
 
+#include <functional>
 #include <string>
+#include <vector>
 
 #include "skylight/core/parameters.h"
 #include "skylight/models/sky_model.h"
@@ -41,6 +43,31 @@ struct ShFitSettings {
   sh::ProjectionOptions projection{};
 };
 
+// `skylight sh fit` as the user asks for it: the model and the options, absent ones taking the
+// model's ShFitPolicy (its registry entry) or the defaults. sh_fit_settings() resolves them.
+struct ShFitRequest {
+  std::string model;
+  int bands = 7;
+  std::vector<double> degrees;  // (theta, tau); empty: the policy's or (17, 12)
+  std::string parameter;        // empty: the policy's; "none": the sun zenith only
+  std::vector<double> range;    // tau's LO,HI; empty: the policy's or the whole range
+  std::vector<double> theta_range_deg{0.0, 90.0};
+  std::vector<double> grid;      // points in theta, tau; empty: 2 (degree + 1) + 1
+  std::vector<std::string> set;  // NAME=VALUE: model parameters held fixed
+  sh::Channels channels = sh::Channels::xyz;
+  double tolerance = sh::ProjectionOptions{}.tolerance;
+  std::optional<sh::ThetaAxis> theta_axis;  // absent: the policy's
+  std::optional<int> tau_pieces;            // absent: the policy's (1 without one)
+  std::optional<double> ground_albedo;      // absent: the lower hemisphere black
+
+  static const ParameterSchema<ShFitRequest>& schema();
+};
+
+// The fit's settings: the request over the model's ShFitPolicy (InvalidArgument naming the option
+// for an unknown model, one without a policy, a parameter that is not a number of its schema, an
+// empty range, degrees or pieces the fit cannot take).
+ShFitSettings sh_fit_settings(const ShFitRequest& request);
+
 // Projects the model at each grid point (sun at azimuth 0) and fits; the table records the model,
 // the fixed parameters and the ground albedo. Throws InvalidArgument for an unknown model or
 // parameter, a parameter both varied and fixed, and the settings sh::fit_polynomial refuses.
@@ -51,5 +78,25 @@ sh::PolynomialTable fit_sh_table(const ShFitSettings& settings);
 // sh::evaluate_table approximates.
 sh::Projection project_reference(const sh::PolynomialTable& table, double theta, double tau,
                                  double phi, int bands, const sh::ProjectionOptions& options = {});
+
+// Habel 2008 §3.2, Fig. 3 (`skylight sh error`): E_max (eq. 2) and E_mean (eq. 3) of a table
+// against converged projections of its model at the cell midpoints of a (theta, tau) grid over
+// the fitted range (points[1] ignored for a table in theta only), per band count N and channel;
+// the worst and the median over the points [fractions].
+struct ShErrorOptions {
+  std::vector<double> points{10.0, 7.0};
+  static const ParameterSchema<ShErrorOptions>& schema();
+};
+struct ShErrorRow {
+  int bands = 0, channel = 0;
+  double e_mean_worst = 0, e_mean_median = 0, e_max_worst = 0, e_max_median = 0;
+};
+struct ShTableError {
+  int points = 0;
+  std::vector<ShErrorRow> rows;  // N = 1..bands, channels 0..2 within each
+};
+// progress(done, total) after each point (may be empty).
+ShTableError table_error(const sh::PolynomialTable& table, const ShErrorOptions& options,
+                         const std::function<void(int, int)>& progress = {});
 
 }  // namespace skylight::fit

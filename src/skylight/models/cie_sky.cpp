@@ -290,6 +290,8 @@ ModelInfo CieSkyModel::registry_entry() {
                                      .description = "the best CIE S 011 standard sky type",
                                      .ranking_field = "cie_ranking",
                                      .ranking_key = "type"},
+      // In the sun zenith, the type (--set cie-type=N) held fixed.
+      .sh_fit = ShFitPolicy{},
   };
 }
 

@@ -725,6 +725,15 @@ ModelInfo HosekWilkieModel::registry_entry() {
                                      .grid_points = 3}},
                            .prepare = prepare_log_luminance,
                            .description = "turbidity and ground albedo, free luminance scale"},
+      // Hosek & Wilkie's own structure (docs/SH.md, "Hosek fits", where the study that chose
+      // these is): one tau piece per turbidity interval of width 1 (the knots at the integers,
+      // where Hosek interpolates linearly), degrees (17, 2) on 4 turbidities per piece, in the
+      // sun zenith itself (elevation^(1/3) measured worse at equal degree).
+      .sh_fit = ShFitPolicy{.parameter = "turbidity",
+                            .unit_pieces = true,
+                            .degrees = std::array<int, 2>{17, 2},
+                            .grid_tau = 4,
+                            .theta_axis = sh::ThetaAxis::theta},
   };
 }
 

@@ -145,6 +145,7 @@ ModelInfo NeuralSkyModel::registry_entry() {
       .make = model_factory<NeuralSkyModel, NeuralSkyParameters>(),
       // T = 1..10 of the turbidity input
       .neural = NeuralPolicy::over_turbidity(1.0, 10.0),
+      .sh_fit = ShFitPolicy{.parameter = "turbidity"},
   };
 }
 

@@ -268,6 +268,7 @@ ModelInfo NishitaModel::registry_entry() {
       .spectral = true,
       .make = model_factory<NishitaModel, NishitaParameters>(),
       .neural = NeuralPolicy{},
+      .sh_fit = ShFitPolicy{},
   };
 }
 

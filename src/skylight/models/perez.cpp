@@ -115,6 +115,7 @@ ModelInfo PerezModel::registry_entry() {
                      .set("perez", std::vector<double>{-1.0, -0.32, 10.0, -3.0, 0.45})
                      .set("zenith-luminance", 5000.0),
       .neural = NeuralPolicy{},
+      .sh_fit = ShFitPolicy{},
   };
 }
 

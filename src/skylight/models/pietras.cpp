@@ -172,6 +172,7 @@ ModelInfo PietrasSkyModel::registry_entry() {
           "no spectral output, no solar disc",
       .make = model_factory<PietrasSkyModel, PietrasParameters>(),
       .neural = NeuralPolicy{},
+      .sh_fit = ShFitPolicy{},
   };
 }
 

@@ -378,6 +378,8 @@ ModelInfo PreethamModel::registry_entry() {
               .prepare = prepare_relative_luminance,
               .description = "turbidity, Morales et al. 2017 eq. 8 with a free luminance scale",
               .is_default = true},
+      // Habel 2008 §2.2: the Preetham fit covers T in [2.5, 6].
+      .sh_fit = ShFitPolicy{.parameter = "turbidity", .range = std::array<double, 2>{2.5, 6.0}},
   };
 }
 

@@ -1,5 +1,7 @@
 #include "skylight/models/sh.h"
 
+#include "skylight/core/camera.h"
+
 #include <string>
 #include <vector>
 
@@ -97,6 +99,35 @@ Rgb ShSkyModel::rgb(Vec3 view) const {
 
 Domain ShSkyModel::domain() const {
   return {};
+}
+
+const ParameterSchema<ShEvalOptions>& ShEvalOptions::schema() {
+  static const ParameterSchema<ShEvalOptions> s = [] {
+    ParameterSchema<ShEvalOptions> s;
+    s.flag(&ShEvalOptions::irradiance,
+           {"irradiance",
+            "",
+            ParameterKind::flag,
+            0,
+            0,
+            1,
+            {},
+            "the irradiance coefficients A_l c_lm (clamped-cosine convolution)"});
+    return s;
+  }();
+  return s;
+}
+
+const ParameterSchema<ShRenderOptions>& ShRenderOptions::schema() {
+  static const ParameterSchema<ShRenderOptions> s = [] {
+    ParameterSchema<ShRenderOptions> s;
+    s.integer(&ShRenderOptions::width,
+              {"width", "px", ParameterKind::integer, 2, kMaxImageSide, 1,
+               ParameterValue(static_cast<double>(ShRenderOptions{}.width)),
+               "env map width (height = width/2)"});
+    return s;
+  }();
+  return s;
 }
 
 ModelInfo ShSkyModel::registry_entry() {

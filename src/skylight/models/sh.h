@@ -28,6 +28,19 @@ struct ShParameters {
   static const ParameterSchema<ShParameters>& schema();
 };
 
+// `skylight sh eval`: the sky's coefficients, or with --irradiance those of the irradiance
+// (sh/irradiance.h).
+struct ShEvalOptions {
+  bool irradiance = false;
+  static const ParameterSchema<ShEvalOptions>& schema();
+};
+// `skylight sh render`: the reconstructed sky as an equirect environment map --width px wide
+// (height = width / 2).
+struct ShRenderOptions {
+  int width = 512;
+  static const ParameterSchema<ShRenderOptions>& schema();
+};
+
 // The table of a file (IoError if unreadable, InvalidArgument naming the field if malformed), or
 // the embedded default for an empty path.
 sh::PolynomialTable load_sh_table(const std::string& path);

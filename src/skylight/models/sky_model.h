@@ -20,6 +20,7 @@
 #include "skylight/core/error.h"
 #include "skylight/core/frame.h"
 #include "skylight/core/parameters.h"
+#include "skylight/sh/polynomial.h"
 
 namespace skylight {
 
@@ -211,6 +212,23 @@ struct EstimationPolicy {
   std::string ranking_field, ranking_key;
 };
 
+// How `skylight sh fit` fits the model's SH polynomial table (Habel et al. 2008 eq. 1;
+// fit/sh_fit.h): the second varying parameter tau and, when the fit varies it, its default range
+// and the table's structure.
+struct ShFitPolicy {
+  // A number of the schema; empty: the fit is in the sun zenith only.
+  std::string parameter;
+  // The default range of tau [its unit]; absent: the parameter's whole range.
+  std::optional<std::array<double, 2>> range{};
+  // Hosek & Wilkie's structure: one tau piece per unit of tau (their knots at the integers),
+  // these degrees (theta, tau) unless given, grid_tau points per piece (0: the default), the sun
+  // zenith axis theta_axis.
+  bool unit_pieces = false;
+  std::optional<std::array<int, 2>> degrees{};
+  int grid_tau = 0;
+  sh::ThetaAxis theta_axis = sh::ThetaAxis::theta;
+};
+
 // Binds the generic values into the model's typed parameters (its schema applies defaults and
 // checks them) and builds the model.
 using ModelFactory = std::function<std::unique_ptr<SkyModel>(const SkyParameters&)>;
@@ -234,6 +252,8 @@ struct ModelInfo {
   NeuralPolicy neural{};
   // Absent: `skylight estimate` does not fit this model.
   std::optional<EstimationPolicy> estimation{};
+  // Absent: no SH table is fitted to this model (`sh`: a table is not fitted to a table).
+  std::optional<ShFitPolicy> sh_fit{};
 };
 
 // The factory of a model class built from its typed parameters P (bind_parameters).

@@ -8,9 +8,12 @@
 #include "skylight/core/error.h"
 #include "skylight/estimate/photo.h"
 #include "skylight/fit/luminance_fit.h"
+#include "skylight/fit/sh_fit.h"
 #include "skylight/models/evaluation.h"
+#include "skylight/models/sh.h"
 #include "skylight/models/sky_model.h"
 #include "skylight/render/false_colour.h"
+#include "skylight/sh/irradiance.h"
 #include "skylight/sun/spa.h"
 
 namespace skylight::operations {
@@ -97,9 +100,44 @@ ParameterSpec gpu_spec(const std::string& what) {
   return {"gpu", "", ParameterKind::flag, 0, 0, 1, ParameterValue(false), what};
 }
 
+// The sh model's table, bands, filter and tau, and the sun, as `sh eval` and `sh render` take
+// them.
+Specs sh_sky_specs() {
+  return concat({sun_parameter_specs(), ShParameters::schema().specs()});
+}
+
+OperationInfo sh_fit_operation() {
+  return {"sh fit",
+          "an SH polynomial table (Habel et al. 2008 eq. 1) fitted to a registry model's "
+          "converged projections; the model's fit policy gives tau, its range and the table's "
+          "structure (docs/SH.md)",
+          fit::ShFitRequest::schema().specs(), "sh::PolynomialTable"};
+}
+
+std::vector<OperationInfo> sh_operations() {
+  const Specs table{*ShParameters::schema().find("table")};
+  return {
+      sh_fit_operation(),
+      {"sh eval",
+       "the SH coefficients of a table's sky (eq. 1, rotation eq. 4, ringing filter eq. 5), "
+       "or of its irradiance",
+       concat({sh_sky_specs(), ShEvalOptions::schema().specs()}), "sh::Coefficients"},
+      {"sh export", "a table as JSON or as a C header",
+       concat({table, sh::ExportOptions::schema().specs()}), "text"},
+      {"sh render", "a table's sky as an equirect environment map, and a diffuse sphere lit by it",
+       concat({sh_sky_specs(), ShRenderOptions::schema().specs(),
+               sh::SphereOptions::schema().specs()}),
+       "render::SkyImage, and the sphere's linear sRGB image"},
+      {"sh error", "E_mean (eq. 3) and E_max (eq. 2) of a table per band count",
+       concat({table, fit::ShErrorOptions::schema().specs()}), "fit::ShTableError"}};
+}
+
 const std::vector<OperationInfo>& registry() {
-  static const std::vector<OperationInfo> ops{render_operation(), eval_operation(),
-                                              estimate_operation()};
+  static const std::vector<OperationInfo> ops = [] {
+    std::vector<OperationInfo> ops{render_operation(), eval_operation(), estimate_operation()};
+    for (auto& op : sh_operations()) ops.push_back(std::move(op));
+    return ops;
+  }();
   return ops;
 }
 

@@ -153,4 +153,31 @@ std::string table_to_c_header(const PolynomialTable& t, const std::string& name,
   return h;
 }
 
+const ParameterSchema<ExportOptions>& ExportOptions::schema() {
+  static const ParameterSchema<ExportOptions> s = [] {
+    const ExportOptions d;
+    ParameterSchema<ExportOptions> s;
+    s.flag(&ExportOptions::c_header,
+           {"c-header", "", ParameterKind::flag, 0, 0, 1, {}, "a C header (default: JSON)"})
+        .flag(&ExportOptions::monomial,
+              {"monomial",
+               "",
+               ParameterKind::flag,
+               0,
+               0,
+               1,
+               {},
+               "with --c-header: also the published monomial form p_ij theta^i tau^j in double"})
+        .text(&ExportOptions::name, {"name", "", ParameterKind::text, 0, 0, 1,
+                                     ParameterValue(d.name), "C identifier of the arrays"});
+    return s;
+  }();
+  return s;
+}
+
+std::string export_table(const PolynomialTable& table, const ExportOptions& o) {
+  if (o.monomial && !o.c_header) throw InvalidArgument("--monomial needs --c-header");
+  return o.c_header ? table_to_c_header(table, o.name, o.monomial) : table_to_json(table);
+}
+
 }  // namespace skylight::sh

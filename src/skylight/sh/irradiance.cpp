@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "skylight/core/colorimetry.h"
 #include "skylight/core/math.h"
 #include "skylight/sh/basis.h"
 #include "skylight/sh/rotation.h"
@@ -30,6 +31,43 @@ Coefficients irradiance_coefficients(const Coefficients& radiance) {
 
 Triple irradiance(const Coefficients& radiance, Vec3 normal) {
   return reconstruct(irradiance_coefficients(radiance), normal);
+}
+
+const ParameterSchema<SphereOptions>& SphereOptions::schema() {
+  static const ParameterSchema<SphereOptions> s = [] {
+    const SphereOptions d;
+    ParameterSchema<SphereOptions> s;
+    s.integer(&SphereOptions::size,
+              {"sphere-size", "px", ParameterKind::integer, 2, 8192, 1,
+               ParameterValue(static_cast<double>(d.size)), "sphere image side"})
+        .number(&SphereOptions::albedo, {"sphere-albedo", "1", ParameterKind::number, 0, 1, 1,
+                                         ParameterValue(d.albedo), "diffuse albedo of the sphere"});
+    return s;
+  }();
+  return s;
+}
+
+io::ImageF diffuse_sphere(const Coefficients& radiance, Channels channels,
+                          const SphereOptions& options) {
+  const Coefficients e = irradiance_coefficients(radiance);
+  const int size = options.size;
+  io::ImageF img(size, size, 3);
+  for (int y = 0; y < size; ++y) {
+    for (int x = 0; x < size; ++x) {
+      const double u = (2.0 * (x + 0.5) / size) - 1.0, v = 1.0 - (2.0 * (y + 0.5) / size);
+      const double r2 = u * u + v * v;
+      if (r2 > 1.0) continue;
+      const Triple t = reconstruct(e, Vec3{u, -std::sqrt(1.0 - r2), v});
+      const Xyz xyz = channels == Channels::xyz ? Xyz{t[0], t[1], t[2]}
+                                                : linear_srgb_to_xyz({t[0], t[1], t[2]});
+      const Rgb rgb = xyz_to_linear_srgb(xyz);
+      float* p = img.pixel(x, y);
+      p[0] = static_cast<float>(options.albedo / kPi * rgb.r);
+      p[1] = static_cast<float>(options.albedo / kPi * rgb.g);
+      p[2] = static_cast<float>(options.albedo / kPi * rgb.b);
+    }
+  }
+  return img;
 }
 
 }  // namespace skylight::sh

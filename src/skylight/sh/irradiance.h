@@ -3,6 +3,8 @@
 // diffuse lighting of Habel, Mustata & Wimmer 2008 §1.
 #pragma once
 
+#include "skylight/core/parameters.h"
+#include "skylight/io/image.h"
 #include "skylight/sh/projection.h"
 
 namespace skylight::sh {
@@ -18,5 +20,17 @@ Coefficients irradiance_coefficients(const Coefficients& radiance);
 // Irradiance [radiance unit x sr] on a surface with unit normal n lit by the radiance whose SH
 // coefficients are given: sum_lm A_l L_lm Y_lm(n). Per channel; not clamped.
 Triple irradiance(const Coefficients& radiance, Vec3 normal);
+
+// A diffuse sphere of albedo rho lit by the radiance (in `channels`) seen from the south (the view
+// looks north, east to the right), its disc filling a size x size image: L = rho / pi * E(n)
+// per pixel as linear sRGB (Ramamoorthi & Hanrahan 2001), 0 outside the disc.
+struct SphereOptions {
+  int size = 256;       // [px]
+  double albedo = 0.8;  // [1]
+  // --sphere-size, --sphere-albedo.
+  static const ParameterSchema<SphereOptions>& schema();
+};
+io::ImageF diffuse_sphere(const Coefficients& radiance, Channels channels,
+                          const SphereOptions& options);
 
 }  // namespace skylight::sh

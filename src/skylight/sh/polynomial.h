@@ -116,6 +116,15 @@ std::vector<double> monomial_coefficients(const PolynomialTable& table);
 // as a double array `<name>_monomial`. `name` must be a C identifier.
 std::string table_to_c_header(const PolynomialTable& table, const std::string& name, bool monomial);
 
+// `skylight sh export`: the table as JSON, or as a C header (--c-header, --name, --monomial).
+struct ExportOptions {
+  bool c_header = false;
+  std::string name = "skylight_sh_table";
+  bool monomial = false;  // with c_header only (InvalidArgument otherwise)
+  static const ParameterSchema<ExportOptions>& schema();
+};
+std::string export_table(const PolynomialTable& table, const ExportOptions& options);
+
 // JSON form (docs/SH.md); load validates every field and throws InvalidArgument naming it.
 std::string table_to_json(const PolynomialTable& table);
 PolynomialTable table_from_json(const std::string& text, const std::string& where);
