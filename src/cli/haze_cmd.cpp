@@ -2,6 +2,7 @@
 // scattering coefficients, the attenuation factor of a camera, the camera list, add / retarget /
 // remove haze on an image with a depth map or composite a virtual object into a hazy photo
 // (`--gpu`: by the fragment shaders of gpu/haze.h), and the watershed sky mask of a sky photo.
+// The options are haze/request.h's (their schemas, the airlight's source, the settings).
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
@@ -12,18 +13,12 @@
 #include <vector>
 
 #include "common.h"
-#include "haze_camera.h"
-#include "skylight/core/camera.h"
 #include "skylight/core/error.h"
-#include "skylight/core/frame.h"
-#include "skylight/core/math.h"
 #include "skylight/core/numbers.h"
-#include "skylight/haze/airlight_field.h"
 #include "skylight/haze/attenuation.h"
-#include "skylight/haze/coefficients.h"
-#include "skylight/haze/image_haze.h"
-#include "skylight/haze/sky_segmentation.h"
+#include "skylight/haze/request.h"
 #include "skylight/io/image.h"
+#include "skylight/operations/operations.h"
 #include "skylight/version.h"
 #ifdef SKYLIGHT_HAVE_GPU
 #include "skylight/gpu/haze.h"
@@ -33,8 +28,6 @@ namespace skylight::cli {
 namespace {
 
 namespace fs = std::filesystem;
-
-// ---- shared flags ---------------------------------------------------------------------------
 
 // `--gpu` needs the GPU module: said before any input is read.
 void check_gpu_available(bool gpu) {
@@ -48,185 +41,27 @@ void check_gpu_available(bool gpu) {
 #endif
 }
 
-// A sky photo and its camera (--sky, --sky-projection and the fisheye flags).
-struct SkyPhotoFlags {
-  std::string path, projection = "fisheye";
-  FisheyeFlags fisheye;
-  void add_projection(CLI::App& cmd) {
-    cmd.add_option("--sky-projection", projection, "--sky: fisheye|equirect; default fisheye")
-        ->check(CLI::IsMember({"fisheye", "equirect"}));
-    fisheye.add(cmd, "180", "--sky fisheye: field of view across the image circle");
-  }
-  Camera camera(const io::ImageF& photo) const {
-    return image_camera(*parse_projection(projection), fisheye.layout(), photo.width, photo.height);
-  }
-};
+// One haze subcommand: its operation's flags and its files.
+struct HazeCommand {
+  SchemaFlags flags;
+  std::string image, depth, output;                // add, retarget, remove
+  std::string object, object_depth, object_alpha;  // composite (--background is `image`)
+  bool json = false;
 
-const ParameterSpec& turbidity_spec() {
-  static const ParameterSpec s{"turbidity",
-                               "1",
-                               ParameterKind::number,
-                               1.0,
-                               64.0,
-                               1,
-                               Required{},
-                               "turbidity T of the air (Morales 2017 eq. 5; 1 = pure air)"};
-  return s;
-}
-
-const ParameterSpec& altitude_spec() {
-  static const ParameterSpec s{"altitude",
-                               "m",
-                               ParameterKind::number,
-                               -500.0,
-                               20000.0,
-                               1,
-                               ParameterValue(0.0),
-                               "observer altitude h0 above sea level (horizontal paths at h0)"};
-  return s;
-}
-
-struct AirFlags {
-  double turbidity = 2.0, altitude_m = 0.0;
-  std::string variant = "improved";
-  void add(CLI::App& cmd) {
-    add_number(cmd, turbidity_spec(), turbidity)->required();
-    add_number(cmd, altitude_spec(), altitude_m);
-    cmd.add_option("--variant", variant,
-                   "scattering coefficients: improved (Morales 2017 eqs. 15, 18), preetham or "
-                   "zhao; default improved")
-        ->check(CLI::IsMember({"improved", "preetham", "zhao"}));
-  }
   haze::Atmosphere atmosphere() const {
-    return {turbidity, altitude_m, haze::parse_scattering_variant(variant)};
+    const haze::Atmosphere a = flags.bind(haze::atmosphere_schema(), {}, "haze");
+    haze::validate(a);
+    return a;
   }
-};
-
-struct CameraFlags {
-  std::string name, csv;
-  void add(CLI::App& cmd) {
-    auto* n = cmd.add_option("--camera", name,
-                             "camera spectral sensitivity by name (skylight haze cameras)");
-    auto* c = cmd.add_option("--camera-csv", csv, "camera sensitivities: CSV 'nm,r,g,b'");
-    n->excludes(c);
+  haze::CameraSensitivity sensitivity() const {
+    return flags.bind(haze::SensitivityOptions::schema(), {}, "haze").sensitivity();
   }
-  haze::CameraSensitivity camera() const {
-    if (!csv.empty()) return haze::load_camera_csv(csv);
-    if (name.empty()) throw InvalidArgument("give --camera NAME or --camera-csv FILE");
-    return haze::find_camera(name);
+  haze::AirlightOptions airlight() const {
+    return flags.bind(haze::AirlightOptions::schema(), {}, "haze");
   }
-};
-
-// The airlight I^inf: constant, or a sky model seen through the camera.
-struct AirlightFlags {
-  std::vector<double> airlight;
-  std::string sky_model, sky_mask, horizon_region = "watershed";
-  SkyPhotoFlags sky;
-  mutable std::optional<haze::PhotoAirlight> photo;  // the horizon region of --sky, read once
-  double sun_zenith_deg = kDefaultSunZenithDeg, sun_azimuth_deg = kDefaultSunAzimuthDeg;
-  double view_elevation_deg = 0.0, view_azimuth_deg = 0.0;
-  CLI::Option *view_elevation = nullptr, *view_azimuth = nullptr;
-  void add(CLI::App& cmd) {
-    auto* a = add_numbers(
-        cmd,
-        {"airlight", "image units", ParameterKind::numbers, 1e-30, 1e30, 3,
-         Absent{"from --sky-model"}, "constant airlight I^inf R,G,B (Morales 2017 eq. 10), > 0"},
-        airlight);
-    auto* m = cmd.add_option("--sky-model", sky_model,
-                             "airlight from a spectral sky model (preetham, hosek, nishita) at the "
-                             "turbidity, seen through the camera (eq. 7)");
-    auto* sky_photo = cmd.add_option(
-        "--sky", sky.path,
-        "airlight from a sky photo's horizon region (eqs. 12-13): linear .exr, .hdr or .pfm");
-    a->excludes(m)->excludes(sky_photo);
-    m->excludes(sky_photo);
-    sky.add_projection(cmd);
-    cmd.add_option("--horizon-region", horizon_region,
-                   "--sky: the horizon region over the watershed sky mask (the band above the "
-                   "skyline) or the fixed band above the horizon; default watershed (docs/HAZE.md)")
-        ->check(CLI::IsMember({"watershed", "band"}));
-    cmd.add_option("--sky-mask", sky_mask,
-                   "--sky: its sky mask (.png, .pfm, .exr; nonzero = sky, e.g. from `skylight haze "
-                   "sky-mask`) instead of the watershed")
-        ->needs(sky_photo);
-    ParameterSpec zenith = sun_parameter_specs()[0], azimuth = sun_parameter_specs()[1];
-    add_number(cmd, zenith, sun_zenith_deg);
-    add_number(cmd, azimuth, sun_azimuth_deg);
-    view_elevation = add_number(
-        cmd,
-        {"view-elevation", "deg", ParameterKind::number, 0.0, 90.0, 1, ParameterValue(0.0),
-         "--sky-model, --sky without an image camera: elevation of the sky seen behind the scene"},
-        view_elevation_deg);
-    view_azimuth = add_number(
-        cmd,
-        {"view-azimuth", "deg", ParameterKind::number, -360.0, 360.0, 1, ParameterValue(0.0),
-         "--sky-model without an image camera: azimuth of that direction "
-         "(north 0, east 90)"},
-        view_azimuth_deg);
-  }
-  // The sky photo's horizon region (eq. 12) at turbidity `t`, its airlight for zenith `theta`.
-  // The region (watershed or band, haze/sky_segmentation.h) is found once; only zeta depends on t
-  // and theta.
-  haze::PhotoAirlight photo_horizon(double t, double theta) const {
-    if (!photo) {
-      const io::ImageF image = io::read_image(sky.path);
-      const Camera cam = sky.camera(image);
-      haze::HorizonSettings h;
-      if (horizon_region == "band") {
-        if (!sky_mask.empty())
-          throw InvalidArgument("--sky-mask goes with --horizon-region watershed");
-        h.region = haze::HorizonRegion::band;
-      }
-      estimate::SkyMask mask;
-      if (!sky_mask.empty()) {
-        mask = haze::mask_from_image(estimate::load_mask(sky_mask), cam);
-        h.mask = &mask;
-      }
-      photo = haze::photo_airlight(image, cam, t, theta, h);
-    }
-    haze::PhotoAirlight out = *photo;
-    const double z = haze::zeta(t, theta, out.theta_prime);
-    for (std::size_t c = 0; c < 3; ++c) out.airlight[c] = out.horizon[c] * z;
-    return out;
-  }
-  std::unique_ptr<SkyModel> model_at(double t) const {
-    const ModelInfo* info = find_model(sky_model);
-    if (!info) throw InvalidArgument(fmt::format("unknown --sky-model '{}'", excerpt(sky_model)));
-    SkyParameters p;
-    p.sun = sun_from_degrees(sun_zenith_deg, sun_azimuth_deg);
-    p.values = info->example;
-    bool has_turbidity = false;
-    for (const auto& spec : info->parameters) has_turbidity |= spec.name == "turbidity";
-    if (!has_turbidity)
-      throw InvalidArgument(fmt::format("--sky-model '{}' has no turbidity", sky_model));
-    p.values.set("turbidity", t);
-    return make_sky_model(sky_model, p);
-  }
-  // Per pixel at turbidity `t` through the image camera (Morales 2017 §6.2 step 3); null for a
-  // constant --airlight.
-  std::shared_ptr<const haze::AirlightMap> per_pixel(double t,
-                                                     const haze::CameraSensitivity& camera,
-                                                     const haze::ImagePositioning& image) const {
-    if (view_elevation->count() > 0 || view_azimuth->count() > 0)
-      throw InvalidArgument(
-          "--view-elevation and --view-azimuth are for one airlight per image; with an image "
-          "camera every pixel sees its own direction");
-    if (!airlight.empty()) return nullptr;
-    if (!sky.path.empty()) return haze::photo_airlight_map(image, photo_horizon(t, kPi / 2), t);
-    const haze::AirlightTable table(*model_at(t), camera);
-    return haze::sky_model_airlight_map(image, table);
-  }
-  // At turbidity `t`.
-  haze::Rgb3 at(double t, const haze::CameraSensitivity& camera) const {
-    if (!airlight.empty()) return {airlight[0], airlight[1], airlight[2]};
-    const double theta = deg_to_rad(90.0 - view_elevation_deg);
-    if (!sky.path.empty()) return photo_horizon(t, theta).airlight;
-    if (sky_model.empty())
-      throw InvalidArgument("give --airlight R,G,B, --sky PHOTO or --sky-model NAME");
-    const auto model = model_at(t);
-    const Vec3 view = direction_from_angles(theta, wrap_azimuth(deg_to_rad(view_azimuth_deg)));
-    return haze::sky_model_airlight(*model, view, camera);
-  }
+  std::string sky_path() const { return airlight().sky_photo; }
+  ImageOptions sky_image() const { return airlight().sky_image; }
+  bool gpu() const { return flags.values().has("gpu"); }
 };
 
 // An output must not replace any input.
@@ -254,25 +89,21 @@ std::string json_or_text(bool json, const nlohmann::ordered_json& j, const std::
 
 // ---- coefficients, attenuation, cameras ----------------------------------------------------
 
-struct CoefficientsFlags {
-  AirFlags air;
-  double wavelength_nm = 550.0;
-  bool json = false;
-};
-
-int run_coefficients(const CoefficientsFlags& f) {
-  const haze::Atmosphere a = f.air.atmosphere();
+int run_coefficients(const HazeCommand& f) {
+  const haze::Atmosphere a = f.atmosphere();
+  const double wavelength_nm =
+      f.flags.bind(haze::CoefficientsOptions::schema(), {}, "haze coefficients").wavelength_nm;
   haze::validate(a);
   constexpr double kPerKm = 1e3;
-  const double br = haze::rayleigh_per_m(f.wavelength_nm, a.altitude_m, a.variant) * kPerKm;
-  const double bm = haze::mie_per_m(f.wavelength_nm, a.turbidity, a.altitude_m, a.variant) * kPerKm;
+  const double br = haze::rayleigh_per_m(wavelength_nm, a.altitude_m, a.variant) * kPerKm;
+  const double bm = haze::mie_per_m(wavelength_nm, a.turbidity, a.altitude_m, a.variant) * kPerKm;
   // Table 2 classifies at standard conditions: 550 nm, sea level.
   const double bm_standard = haze::mie_per_m(550.0, a.turbidity, 0.0, a.variant) * kPerKm;
   const std::string weather = haze::weather_class(bm_standard);
   nlohmann::ordered_json j;
-  j["variant"] = f.air.variant;
+  j["variant"] = haze::to_string(a.variant);
   j["turbidity"] = a.turbidity;
-  j["wavelength_nm"] = f.wavelength_nm;
+  j["wavelength_nm"] = wavelength_nm;
   j["altitude_m"] = a.altitude_m;
   j["beta_rayleigh_per_km"] = br;
   j["beta_mie_per_km"] = bm;
@@ -282,32 +113,28 @@ int run_coefficients(const CoefficientsFlags& f) {
   const std::string text = fmt::format(
       "variant        {}\nbeta_rayleigh  {:.6g} /km\nbeta_mie       {:.6g} /km\nbeta_total     "
       "{:.6g} /km\nweather class  {} (beta_mie {:.4g} /km at 550 nm, 0 m; Table 2)\n",
-      f.air.variant, br, bm, br + bm, weather, bm_standard);
+      haze::to_string(a.variant), br, bm, br + bm, weather, bm_standard);
   write_stdout(json_or_text(f.json, j, text));
   return kExitOk;
 }
 
-struct AttenuationFlags {
-  AirFlags air;
-  CameraFlags camera;
-  double distance_m = 1000.0;
-  bool json = false;
-};
-
-int run_attenuation(const AttenuationFlags& f) {
-  const haze::CameraSensitivity cam = f.camera.camera();
-  const haze::Attenuation att(f.air.atmosphere(), cam);
-  const haze::Rgb3 g = att.gamma(f.distance_m);
+int run_attenuation(const HazeCommand& f) {
+  const haze::CameraSensitivity cam = f.sensitivity();
+  const haze::Atmosphere air = f.atmosphere();
+  const double distance_m =
+      f.flags.bind(haze::AttenuationOptions::schema(), {}, "haze attenuation").distance_m;
+  const haze::Attenuation att(air, cam);
+  const haze::Rgb3 g = att.gamma(distance_m);
   nlohmann::ordered_json j;
   j["camera"] = cam.name;
-  j["variant"] = f.air.variant;
-  j["turbidity"] = f.air.turbidity;
-  j["altitude_m"] = f.air.altitude_m;
-  j["distance_m"] = f.distance_m;
+  j["variant"] = haze::to_string(air.variant);
+  j["turbidity"] = air.turbidity;
+  j["altitude_m"] = air.altitude_m;
+  j["distance_m"] = distance_m;
   j["gamma"] = {g[0], g[1], g[2]};
   write_stdout(json_or_text(f.json, j,
                             fmt::format("Gamma r g b  {:.6f} {:.6f} {:.6f}  ({}, {} m)\n", g[0],
-                                        g[1], g[2], cam.name, f.distance_m)));
+                                        g[1], g[2], cam.name, distance_m)));
   return kExitOk;
 }
 
@@ -325,20 +152,15 @@ int run_cameras(bool json) {
 
 // ---- sky mask ----------------------------------------------------------------------------------
 
-struct SkyMaskFlags {
-  SkyPhotoFlags sky;
-  std::string output;
-};
-
-int run_sky_mask(const SkyMaskFlags& f) {
+int run_sky_mask(const HazeCommand& f) {
   if (io::format_from_path(f.output) != io::ImageFormat::png)
     throw InvalidArgument(fmt::format("-o '{}': the sky mask is an 8-bit .png", excerpt(f.output)));
   std::error_code ec;
-  if (f.output == f.sky.path || fs::equivalent(f.sky.path, f.output, ec))
+  if (f.output == f.sky_path() || fs::equivalent(f.sky_path(), f.output, ec))
     throw InvalidArgument(
         fmt::format("-o '{}' is also an input; write to another file", excerpt(f.output)));
-  const io::ImageF photo = io::read_image(f.sky.path);
-  const Camera cam = f.sky.camera(photo);
+  const io::ImageF photo = io::read_image(f.sky_path());
+  const Camera cam = f.sky_image().camera(photo.width, photo.height);
   const estimate::SkyMask mask = haze::segment_sky(photo, cam);
   io::write_png(f.output, haze::mask_image(mask),
                 {{"Software", fmt::format("skylight {}", kVersion)},
@@ -353,71 +175,6 @@ int run_sky_mask(const SkyMaskFlags& f) {
 
 // ---- image operations ------------------------------------------------------------------------
 
-struct ImageFlags {
-  haze::HazeOperation operation = haze::HazeOperation::add;
-  std::string image, depth, output;
-  std::optional<double> near_m, far_m, target_turbidity;
-  double min_transmission = haze::kDefaultMinTransmission;
-  bool gpu = false;  // add / retarget / remove on the headless GL context (gpu/haze.h)
-  AirFlags air;
-  CameraFlags camera;
-  AirlightFlags airlight;
-  HazeCameraFlags image_camera;  // per-pixel airlight (Morales 2017 eqs. 20-23)
-  // composite
-  std::string object, object_depth, object_alpha;
-};
-
-io::Metadata haze_metadata(const ImageFlags& f, const haze::CameraSensitivity& cam,
-                           std::string_view op, const haze::HazeSettings& s) {
-  io::Metadata md{
-      {"skylight:version", kVersion},
-      {"skylight:haze_operation", std::string(op)},
-      {"skylight:camera", cam.name},
-      {"skylight:scattering_variant", f.air.variant},
-      {"skylight:turbidity", fmt::format("{}", f.air.turbidity)},
-      {"skylight:altitude_m", fmt::format("{}", f.air.altitude_m)},
-      {"skylight:airlight", s.airlight_source_map
-                                ? std::string("per pixel")
-                                : fmt::format("{},{},{}", s.airlight_source[0],
-                                              s.airlight_source[1], s.airlight_source[2])}};
-  if (s.target_turbidity)
-    md.emplace_back("skylight:target_turbidity", fmt::format("{}", *s.target_turbidity));
-  return md;
-}
-
-haze::HazeSettings settings_of(const ImageFlags& f, const haze::CameraSensitivity& cam) {
-  haze::HazeSettings s;
-  s.operation = f.operation;
-  s.source = f.air.atmosphere();
-  haze::validate(s.source);
-  s.min_transmission = f.min_transmission;
-  s.airlight_source = f.airlight.at(f.air.turbidity, cam);
-  if (f.operation == haze::HazeOperation::retarget) {
-    if (!f.target_turbidity) throw InvalidArgument("haze retarget needs --target-turbidity");
-    s.target_turbidity = f.target_turbidity;
-    s.airlight_target = f.airlight.at(*f.target_turbidity, cam);
-  } else if (f.target_turbidity) {
-    throw InvalidArgument("--target-turbidity is for haze retarget only");
-  }
-  return s;
-}
-
-// Clip planes of a pinhole image camera when the depth map holds metres (the pixels' directions do
-// not depend on them) [m].
-constexpr double kPinholeNearM = 1.0, kPinholeFarM = 1e4;
-
-// With an image camera, --sky and --sky-model give every pixel the airlight of its own direction
-// (Morales 2017 §6.2: eqs. 20-22, then eqs. 12-13 or the model); --airlight stays constant.
-void add_per_pixel_airlight(const ImageFlags& f, const haze::CameraSensitivity& cam,
-                            haze::HazeSettings& s, int width, int height) {
-  const std::optional<haze::ImagePositioning> image = f.image_camera.positioning(
-      width, height, f.near_m.value_or(kPinholeNearM), f.far_m.value_or(kPinholeFarM));
-  if (!image) return;
-  s.airlight_source_map = f.airlight.per_pixel(f.air.turbidity, cam, *image);
-  if (s.airlight_source_map && s.target_turbidity)
-    s.airlight_target_map = f.airlight.per_pixel(*s.target_turbidity, cam, *image);
-}
-
 // `--gpu`: the same operation by the fragment shader (gpu/haze.h; depth already in metres).
 io::ImageF apply_on_gpu(const io::ImageF& image, const io::ImageF& depth_m,
                         const haze::CameraSensitivity& cam, const haze::HazeSettings& s,
@@ -431,111 +188,87 @@ io::ImageF apply_on_gpu(const io::ImageF& image, const io::ImageF& depth_m,
 #endif
 }
 
-int run_image(const ImageFlags& f, std::string_view op) {
-  check_gpu_available(f.gpu);
-  check_output(f.output, {f.image, f.depth, f.airlight.sky.path, f.airlight.sky_mask});
-  const haze::CameraSensitivity cam = f.camera.camera();
-  haze::HazeSettings s = settings_of(f, cam);
+int run_image(const HazeCommand& f, haze::HazeOperation op, std::string_view name) {
+  check_gpu_available(f.gpu());
+  const haze::AirlightOptions ao = f.airlight();
+  check_output(f.output, {f.image, f.depth, ao.sky_photo, ao.sky_mask});
+  const haze::CameraSensitivity cam = f.sensitivity();
+  const haze::Atmosphere air = f.atmosphere();
+  const auto options = f.flags.bind(haze::HazeOptions::schema(), {}, "haze");
   const io::ImageF image = io::read_image(f.image);
   if (image.channels != 3)
     throw InvalidArgument(
         fmt::format("--image '{}' has one channel; haze needs R, G, B", excerpt(f.image)));
-  add_per_pixel_airlight(f, cam, s, image.width, image.height);
-  const io::ImageF depth =
-      haze::depth_in_metres(io::read_scalar_image(f.depth), {f.near_m, f.far_m}, image.width,
-                            image.height, fmt::format("--depth '{}'", excerpt(f.depth)));
+  const haze::HazeSettings s = haze::haze_settings(
+      op, air, options, cam, haze::AirlightSource(ao),
+      f.flags.bind(haze::ImageCameraOptions::schema(), {}, "haze"), image.width, image.height);
+  const io::ImageF depth = haze::depth_in_metres(
+      io::read_scalar_image(f.depth), {options.near_m, options.far_m}, image.width, image.height,
+      fmt::format("--depth '{}'", excerpt(f.depth)));
   haze::HazeReport report;
-  const io::ImageF out = f.gpu ? apply_on_gpu(image, depth, cam, s, &report)
-                               : haze::apply_haze(image, depth, cam, s, &report);
+  const io::ImageF out = f.gpu() ? apply_on_gpu(image, depth, cam, s, &report)
+                                 : haze::apply_haze(image, depth, cam, s, &report);
   check_finite(out);
-  io::write_image(f.output, out, haze_metadata(f, cam, op, s));
+  io::write_image(f.output, out, haze::haze_metadata(name, air, cam, s));
   write_stdout(fmt::format(
       "haze {}: {}x{}, {} airlight, Gamma table {} entries (interpolation error <= {:.2g}), {} "
       "pixels with Gamma_s below {} -> {}\n",
-      op, image.width, image.height, s.airlight_source_map ? "per-pixel" : "constant",
+      name, image.width, image.height, s.airlight_source_map ? "per-pixel" : "constant",
       report.table_entries, report.table_error_bound, report.clamped_transmission_pixels,
       s.min_transmission, f.output));
   return kExitOk;
 }
 
-int run_composite(const ImageFlags& f) {
-  check_gpu_available(f.gpu);
-  check_output(f.output, {f.image, f.object, f.object_depth, f.object_alpha, f.airlight.sky.path,
-                          f.airlight.sky_mask});
-  const haze::CameraSensitivity cam = f.camera.camera();
-  haze::HazeSettings s = settings_of(f, cam);
+int run_composite(const HazeCommand& f) {
+  check_gpu_available(f.gpu());
+  const haze::AirlightOptions ao = f.airlight();
+  check_output(f.output,
+               {f.image, f.object, f.object_depth, f.object_alpha, ao.sky_photo, ao.sky_mask});
+  const haze::CameraSensitivity cam = f.sensitivity();
+  const haze::Atmosphere air = f.atmosphere();
+  const auto options = f.flags.bind(haze::HazeOptions::schema(), {}, "haze");
   const io::ImageF bg = io::read_image(f.image);
-  add_per_pixel_airlight(f, cam, s, bg.width, bg.height);
+  const haze::HazeSettings s = haze::haze_settings(
+      haze::HazeOperation::add, air, options, cam, haze::AirlightSource(ao),
+      f.flags.bind(haze::ImageCameraOptions::schema(), {}, "haze"), bg.width, bg.height);
   const io::ImageF obj = io::read_image(f.object);
   const io::ImageF depth = haze::depth_in_metres(
-      io::read_scalar_image(f.object_depth), {f.near_m, f.far_m}, obj.width, obj.height,
+      io::read_scalar_image(f.object_depth), {options.near_m, options.far_m}, obj.width, obj.height,
       fmt::format("--object-depth '{}'", excerpt(f.object_depth)));
-  io::ImageF alpha;
-  if (!f.object_alpha.empty()) {
-    alpha = io::read_scalar_image(f.object_alpha);
-  } else {  // no alpha: the object covers the pixels with depth > 0
-    alpha = io::ImageF(depth.width, depth.height, 1);
-    for (std::size_t i = 0; i < alpha.data.size(); ++i)
-      alpha.data[i] = depth.data[i] > 0.0f ? 1.0f : 0.0f;
-  }
+  // No alpha: the object covers the pixels with depth > 0.
+  const io::ImageF alpha = !f.object_alpha.empty() ? io::read_scalar_image(f.object_alpha)
+                                                   : haze::coverage_from_depth(depth);
 #ifdef SKYLIGHT_HAVE_GPU
-  const io::ImageF out = f.gpu ? gpu::composite(bg, obj, alpha, depth, cam, s)
-                               : haze::composite(bg, obj, alpha, depth, cam, s);
+  const io::ImageF out = f.gpu() ? gpu::composite(bg, obj, alpha, depth, cam, s)
+                                 : haze::composite(bg, obj, alpha, depth, cam, s);
 #else
   const io::ImageF out = haze::composite(bg, obj, alpha, depth, cam, s);
 #endif
   check_finite(out);
-  io::write_image(f.output, out, haze_metadata(f, cam, "composite", s));
-  write_stdout(fmt::format("haze composite{}: {}x{} -> {}\n", f.gpu ? " (GL)" : "", bg.width,
+  io::write_image(f.output, out, haze::haze_metadata("composite", air, cam, s));
+  write_stdout(fmt::format("haze composite{}: {}x{} -> {}\n", f.gpu() ? " (GL)" : "", bg.width,
                            bg.height, f.output));
   return kExitOk;
 }
 
-void add_image_flags(CLI::App& cmd, ImageFlags& f, bool composite) {
-  if (composite) {
-    cmd.add_option("--background", f.image, "the background photo (.exr, .pfm, .hdr; linear RGB)")
-        ->required();
-    cmd.add_option("--object", f.object, "the virtual object's RGB without haze")->required();
-    cmd.add_option("--object-depth", f.object_depth,
-                   "its depth: .exr (Z, Y or R), .pfm or 16-bit .png; metres, or normalised with "
-                   "--near/--far")
-        ->required();
-    cmd.add_option("--object-alpha", f.object_alpha,
-                   "its coverage in [0, 1] (one channel); default 1 where the depth is > 0");
-  } else {
-    cmd.add_option("--image", f.image, "the photo (.exr, .pfm, .hdr; linear RGB)")->required();
-    cmd.add_option("--depth", f.depth,
-                   "depth of every pixel: .exr (Z, Y or R), .pfm or 16-bit .png; metres, or "
-                   "normalised with --near/--far (eq. 19)")
-        ->required();
-  }
-  f.air.add(cmd);
-  if (!composite && f.operation == haze::HazeOperation::retarget)
-    add_number(cmd,
-               {"target-turbidity", "1", ParameterKind::number, 1.0, 64.0, 1, Required{},
-                "turbidity T_t to re-target to (eq. 26)"},
-               f.target_turbidity)
-        ->required();
-  f.camera.add(cmd);
-  add_number(cmd,
-             {"near", "m", ParameterKind::number, 1e-6, 1e9, 1,
-              Absent{"the depth map holds metres"}, "near plane of a normalised depth map"},
-             f.near_m);
-  add_number(cmd,
-             {"far", "m", ParameterKind::number, 1e-6, 1e9, 1, Absent{"the depth map holds metres"},
-              "far plane of a normalised depth map"},
-             f.far_m);
-  f.airlight.add(cmd);
-  f.image_camera.add(cmd);
-  if (!composite)
-    add_number(cmd,
-               {"min-transmission", "1", ParameterKind::number, 1e-6, 1.0, 1,
-                ParameterValue(f.min_transmission),
-                "remove/retarget: Gamma_s is taken as at least this (bounds the amplification)"},
-               f.min_transmission);
-  cmd.add_flag("--gpu", f.gpu,
-               "run the operation as a fragment shader on the headless GL context (docs/GPU.md)");
-  cmd.add_option("-o,--output", f.output, "output image (.exr, .pfm or .hdr)")->required();
+// The flags of a subcommand from its operation, and the exclusions between them.
+void add_operation_flags(CLI::App& cmd, HazeCommand& c, const std::string& operation) {
+  c.flags.add(cmd, operations::find(operation).parameters);
+  const auto excludes = [&](const char* a, const char* b) {
+    if (c.flags.has(a) && c.flags.has(b)) c.flags.option(a)->excludes(c.flags.option(b));
+  };
+  excludes("camera", "camera-csv");
+  excludes("airlight", "sky-model");
+  excludes("airlight", "sky");
+  excludes("sky-model", "sky");
+  excludes("vfov", "hfov");
+  for (const char* angle : {"heading", "pitch", "roll"}) excludes("view-matrix", angle);
+  excludes("projection-matrix", "vfov");
+  excludes("projection-matrix", "hfov");
+  if (c.flags.has("sky-mask") && operation != "haze sky-mask")
+    c.flags.option("sky-mask")->needs(c.flags.option("sky"));
+  if (c.flags.has("turbidity")) c.flags.option("turbidity")->required();
+  if (c.flags.has("target-turbidity")) c.flags.option("target-turbidity")->required();
 }
 
 }  // namespace
@@ -547,26 +280,18 @@ void add_haze_command(CLI::App& app, Commands& commands) {
       "add/retarget/remove haze, composite, sky-mask");
   haze->require_subcommand(1);
 
-  auto cf = std::make_shared<CoefficientsFlags>();
+  auto cf = std::make_shared<HazeCommand>();
   auto* coeff = haze->add_subcommand(
       "coefficients", "Rayleigh and Mie scattering coefficients and the weather class (Table 2)");
-  cf->air.add(*coeff);
-  add_number(*coeff,
-             {"wavelength", "nm", ParameterKind::number, 300.0, 1000.0, 1, ParameterValue(550.0),
-              "wavelength"},
-             cf->wavelength_nm);
+  add_operation_flags(*coeff, *cf, "haze coefficients");
   coeff->add_flag("--json", cf->json, "write JSON");
   commands.push_back({coeff, [cf] { return run_coefficients(*cf); }});
 
-  auto af = std::make_shared<AttenuationFlags>();
+  auto af = std::make_shared<HazeCommand>();
   auto* att = haze->add_subcommand(
       "attenuation", "the attenuation factor Gamma_c (eq. 11) of a horizontal path for a camera");
-  af->air.add(*att);
-  af->camera.add(*att);
-  add_number(*att,
-             {"distance", "m", ParameterKind::number, 0.0, 1e7, 1, Required{}, "path length s"},
-             af->distance_m)
-      ->required();
+  add_operation_flags(*att, *af, "haze attenuation");
+  af->flags.option("distance")->required();
   att->add_flag("--json", af->json, "write JSON");
   commands.push_back({att, [af] { return run_attenuation(*af); }});
 
@@ -575,35 +300,46 @@ void add_haze_command(CLI::App& app, Commands& commands) {
   cams->add_flag("--json", *json_cameras, "write JSON");
   commands.push_back({cams, [json_cameras] { return run_cameras(*json_cameras); }});
 
-  const std::pair<const char*, haze::HazeOperation> ops[] = {
-      {"add", haze::HazeOperation::add},
-      {"retarget", haze::HazeOperation::retarget},
-      {"remove", haze::HazeOperation::remove}};
-  for (const auto& [name, op] : ops) {
-    auto f = std::make_shared<ImageFlags>();
-    f->operation = op;
-    auto* cmd = haze->add_subcommand(
-        name, op == haze::HazeOperation::add        ? "add haze to an image with depth (eq. 10)"
-              : op == haze::HazeOperation::retarget ? "re-target haze from T to T_t (eq. 26)"
-                                                    : "remove haze (eq. 10 inverted)");
-    add_image_flags(*cmd, *f, false);
+  const std::tuple<const char*, haze::HazeOperation, const char*> ops[] = {
+      {"add", haze::HazeOperation::add, "add haze to an image with depth (eq. 10)"},
+      {"retarget", haze::HazeOperation::retarget, "re-target haze from T to T_t (eq. 26)"},
+      {"remove", haze::HazeOperation::remove, "remove haze (eq. 10 inverted)"}};
+  for (const auto& [name, op, description] : ops) {
+    auto f = std::make_shared<HazeCommand>();
+    auto* cmd = haze->add_subcommand(name, description);
+    cmd->add_option("--image", f->image, "the photo (.exr, .pfm, .hdr; linear RGB)")->required();
+    cmd->add_option("--depth", f->depth,
+                    "depth of every pixel: .exr (Z, Y or R), .pfm or 16-bit .png; metres, or "
+                    "normalised with --near/--far (eq. 19)")
+        ->required();
+    add_operation_flags(*cmd, *f, std::string("haze ") + name);
+    cmd->add_option("-o,--output", f->output, "output image (.exr, .pfm or .hdr)")->required();
     const std::string op_name = name;
-    commands.push_back({cmd, [f, op_name] { return run_image(*f, op_name); }});
+    commands.push_back({cmd, [f, op = op, op_name] { return run_image(*f, op, op_name); }});
   }
 
-  auto sm = std::make_shared<SkyMaskFlags>();
+  auto sm = std::make_shared<HazeCommand>();
   auto* mask_cmd = haze->add_subcommand(
       "sky-mask", "the sky of a photo by a marker-controlled watershed (eq. 12's segmentation)");
-  mask_cmd->add_option("--sky", sm->sky.path, "the sky photo: linear .exr, .hdr or .pfm")
-      ->required();
-  sm->sky.add_projection(*mask_cmd);
+  add_operation_flags(*mask_cmd, *sm, "haze sky-mask");
+  sm->flags.option("sky")->required();
   mask_cmd->add_option("-o,--output", sm->output, "the mask: 8-bit .png, 255 = sky")->required();
   commands.push_back({mask_cmd, [sm] { return run_sky_mask(*sm); }});
 
-  auto comp = std::make_shared<ImageFlags>();
+  auto comp = std::make_shared<HazeCommand>();
   auto* c = haze->add_subcommand(
       "composite", "a virtual object (RGB + depth) given the haze of T, over a background photo");
-  add_image_flags(*c, *comp, true);
+  c->add_option("--background", comp->image, "the background photo (.exr, .pfm, .hdr; linear RGB)")
+      ->required();
+  c->add_option("--object", comp->object, "the virtual object's RGB without haze")->required();
+  c->add_option("--object-depth", comp->object_depth,
+                "its depth: .exr (Z, Y or R), .pfm or 16-bit .png; metres, or normalised with "
+                "--near/--far")
+      ->required();
+  c->add_option("--object-alpha", comp->object_alpha,
+                "its coverage in [0, 1] (one channel); default 1 where the depth is > 0");
+  add_operation_flags(*c, *comp, "haze composite");
+  c->add_option("-o,--output", comp->output, "output image (.exr, .pfm or .hdr)")->required();
   commands.push_back({c, [comp] { return run_composite(*comp); }});
 }
 

@@ -253,6 +253,16 @@ class ParameterSchema {
         std::move(spec), [field](P& p, const ParameterValue& v) { p.*field = std::get<bool>(v); },
         [field](const P& p) -> std::optional<ParameterValue> { return p.*field; });
   }
+  // Every entry of `inner`, bound to the member `field` (a nested options struct).
+  template <class Q>
+  ParameterSchema& nested(Q P::*field, const ParameterSchema<Q>& inner) {
+    for (const auto& e : inner.entries()) {
+      add(
+          e.spec, [field, set = e.set](P& p, const ParameterValue& v) { set(p.*field, v); },
+          [field, get = e.get](const P& p) { return get(p.*field); });
+    }
+    return *this;
+  }
   // Any other mapping (e.g. one value into two fields).
   ParameterSchema& custom(ParameterSpec spec, std::function<void(P&, const ParameterValue&)> set,
                           std::function<std::optional<ParameterValue>(const P&)> get) {

@@ -8,8 +8,8 @@
 #include <cstddef>
 #include <vector>
 
-#include "skylight/haze/camera.h"
 #include "skylight/haze/coefficients.h"
+#include "skylight/haze/sensitivity.h"
 
 namespace skylight::haze {
 

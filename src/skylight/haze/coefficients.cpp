@@ -10,6 +10,7 @@
 #include "skylight/core/error.h"
 #include "skylight/core/math.h"
 #include "skylight/core/numbers.h"
+#include "skylight/models/preetham.h"
 
 namespace skylight::haze {
 
@@ -18,7 +19,8 @@ std::string_view to_string(ScatteringVariant v) {
     case ScatteringVariant::improved:
       return "improved";
     case ScatteringVariant::preetham:
-      return "preetham";
+      // Preetham et al. 1999's coefficients (their Appendix), named as the model is.
+      return PreethamModel::kName;
     case ScatteringVariant::zhao:
       return "zhao";
   }
@@ -28,8 +30,8 @@ std::string_view to_string(ScatteringVariant v) {
 ScatteringVariant parse_scattering_variant(std::string_view text) {
   for (auto v : {ScatteringVariant::improved, ScatteringVariant::preetham, ScatteringVariant::zhao})
     if (text == to_string(v)) return v;
-  throw InvalidArgument(
-      fmt::format("scattering variant '{}' is not improved, preetham or zhao", excerpt(text)));
+  throw InvalidArgument(fmt::format("scattering variant '{}' is not improved, {} or zhao",
+                                    excerpt(text), PreethamModel::kName));
 }
 
 void validate(const Atmosphere& a) {

@@ -19,7 +19,7 @@ enum class ScatteringVariant {
 };
 
 std::string_view to_string(ScatteringVariant v);
-// "improved", "preetham" or "zhao"; InvalidArgument naming the text otherwise.
+// "improved", Preetham's (the model's name) or "zhao"; InvalidArgument naming the text otherwise.
 ScatteringVariant parse_scattering_variant(std::string_view text);
 
 // Constants of eqs. 3 and 4 (Morales 2017 §3.1).

@@ -9,6 +9,7 @@
 #include "skylight/estimate/photo.h"
 #include "skylight/fit/luminance_fit.h"
 #include "skylight/fit/sh_fit.h"
+#include "skylight/haze/request.h"
 #include "skylight/models/evaluation.h"
 #include "skylight/models/sh.h"
 #include "skylight/models/sky_model.h"
@@ -132,10 +133,50 @@ std::vector<OperationInfo> sh_operations() {
        concat({table, fit::ShErrorOptions::schema().specs()}), "fit::ShTableError"}};
 }
 
+// The sky photo of `haze sky-mask` and of --sky: its path and projection.
+Specs sky_photo_specs() {
+  const auto& a = haze::AirlightOptions::schema();
+  return concat({{*a.find("sky")},
+                 image_schema(estimate::photo_image_options(Projection::fisheye, "sky-projection",
+                                                            "--sky: the sky photo's layout"))
+                     .specs()});
+}
+
+std::vector<OperationInfo> haze_operations() {
+  const Specs air = haze::atmosphere_schema().specs();
+  const Specs camera = haze::SensitivityOptions::schema().specs();
+  const auto& h = haze::HazeOptions::schema();
+  const Specs image = concat({air,
+                              camera,
+                              {*h.find("near"), *h.find("far")},
+                              haze::AirlightOptions::schema().specs(),
+                              haze::ImageCameraOptions::schema().specs()});
+  const ParameterSpec gpu =
+      gpu_spec("run the operation as a fragment shader on the headless GL context (docs/GPU.md)");
+  const ParameterSpec min_t = *h.find("min-transmission");
+  ParameterSpec target = *h.find("target-turbidity");
+  target.default_value = Required{};
+  return {{"haze coefficients", "Rayleigh and Mie scattering coefficients and the weather class",
+           concat({air, haze::CoefficientsOptions::schema().specs()}), "per-km coefficients"},
+          {"haze attenuation", "the attenuation factor Gamma_c (eq. 11) of a horizontal path",
+           concat({air, camera, haze::AttenuationOptions::schema().specs()}), "haze::Rgb3"},
+          {"haze add", "haze added to an image with depth (eq. 10)", concat({image, {min_t, gpu}}),
+           "io::ImageF"},
+          {"haze retarget", "haze re-targeted from T to T_t (eq. 26)",
+           concat({image, {target, min_t, gpu}}), "io::ImageF"},
+          {"haze remove", "haze removed (eq. 10 inverted)", concat({image, {min_t, gpu}}),
+           "io::ImageF"},
+          {"haze composite", "a virtual object given the haze of T over a background photo",
+           concat({image, {gpu}}), "io::ImageF"},
+          {"haze sky-mask", "the sky of a photo by a marker-controlled watershed (eq. 12)",
+           sky_photo_specs(), "estimate::SkyMask"}};
+}
+
 const std::vector<OperationInfo>& registry() {
   static const std::vector<OperationInfo> ops = [] {
     std::vector<OperationInfo> ops{render_operation(), eval_operation(), estimate_operation()};
     for (auto& op : sh_operations()) ops.push_back(std::move(op));
+    for (auto& op : haze_operations()) ops.push_back(std::move(op));
     return ops;
   }();
   return ops;

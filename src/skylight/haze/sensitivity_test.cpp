@@ -1,4 +1,4 @@
-#include "skylight/haze/camera.h"
+#include "skylight/haze/sensitivity.h"
 
 #include <gtest/gtest.h>
 

@@ -1,5 +1,5 @@
 // Camera spectral sensitivities: data/camera_sensitivity/PROVENANCE.md; docs/HAZE.md.
-#include "skylight/haze/camera.h"
+#include "skylight/haze/sensitivity.h"
 
 #include <fmt/format.h>
 

@@ -1,0 +1,350 @@
+#include "skylight/haze/request.h"
+
+#include <fmt/format.h>
+
+#include "skylight/core/error.h"
+#include "skylight/core/math.h"
+#include "skylight/core/numbers.h"
+#include "skylight/estimate/photo.h"
+#include "skylight/io/image.h"
+#include "skylight/models/sky_model.h"
+#include "skylight/version.h"
+
+namespace skylight::haze {
+namespace {
+
+// Clip planes of a pinhole image camera when the depth map holds metres (the pixels' directions do
+// not depend on them) [m].
+constexpr double kPinholeNearM = 1.0, kPinholeFarM = 1e4;
+
+Mat4 to_mat4(const std::vector<double>& v) {
+  Mat4 m{};
+  for (std::size_t i = 0; i < 16; ++i) m[i] = v[i];
+  return m;
+}
+
+ParameterSpec matrix_spec(const char* name, const char* help) {
+  return {name, "1", ParameterKind::numbers, -1e30, 1e30, 16, Absent{"no camera"}, help};
+}
+
+ParameterSpec angle_spec(const char* name, double lo, double hi, const char* help) {
+  return {name, "deg", ParameterKind::number, lo, hi, 1, ParameterValue(0.0), help};
+}
+
+}  // namespace
+
+const ParameterSchema<Atmosphere>& atmosphere_schema() {
+  static const ParameterSchema<Atmosphere> s = [] {
+    ParameterSchema<Atmosphere> s;
+    s.number(&Atmosphere::turbidity,
+             {"turbidity", "1", ParameterKind::number, 1.0, 64.0, 1, Required{},
+              "turbidity T of the air (Morales 2017 eq. 5; 1 = pure air)"})
+        .number(&Atmosphere::altitude_m,
+                {"altitude", "m", ParameterKind::number, -500.0, 20000.0, 1, ParameterValue(0.0),
+                 "observer altitude h0 above sea level (horizontal paths at h0)"})
+        .choice(&Atmosphere::variant,
+                {"variant", "", ParameterKind::text, 0, 0, 1,
+                 ParameterValue(std::string(to_string(ScatteringVariant::improved))),
+                 "scattering coefficients: improved (Morales 2017 eqs. 15, 18), Preetham's or "
+                 "Zhao's (eqs. 3, 4)"},
+                {{std::string(to_string(ScatteringVariant::improved)), ScatteringVariant::improved},
+                 {std::string(to_string(ScatteringVariant::preetham)), ScatteringVariant::preetham},
+                 {std::string(to_string(ScatteringVariant::zhao)), ScatteringVariant::zhao}});
+    return s;
+  }();
+  return s;
+}
+
+const ParameterSchema<SensitivityOptions>& SensitivityOptions::schema() {
+  static const ParameterSchema<SensitivityOptions> s = [] {
+    ParameterSchema<SensitivityOptions> s;
+    s.text(&SensitivityOptions::camera,
+           {"camera", "", ParameterKind::text, 0, 0, 1, Absent{"--camera-csv"},
+            "camera spectral sensitivity by name (skylight haze cameras)"})
+        .text(&SensitivityOptions::camera_csv,
+              {"camera-csv", "", ParameterKind::text, 0, 0, 1, Absent{"--camera"},
+               "camera sensitivities: CSV 'nm,r,g,b'"});
+    return s;
+  }();
+  return s;
+}
+
+CameraSensitivity SensitivityOptions::sensitivity() const {
+  if (!camera_csv.empty()) return load_camera_csv(camera_csv);
+  if (camera.empty()) throw InvalidArgument("give --camera NAME or --camera-csv FILE");
+  return find_camera(camera);
+}
+
+const ParameterSchema<ImageCameraOptions>& ImageCameraOptions::schema() {
+  static const ParameterSchema<ImageCameraOptions> s = [] {
+    using C = ImageCameraOptions;
+    ParameterSchema<C> s;
+    s.optional_number(&C::vfov_deg,
+                      {"vfov", "deg", ParameterKind::number, 0.01, 179.0, 1, Absent{"no camera"},
+                       "image camera (pinhole): vertical field of view across the image; gives "
+                       "every pixel its own airlight (--sky, --sky-model)"})
+        .optional_number(&C::hfov_deg,
+                         {"hfov", "deg", ParameterKind::number, 0.01, 179.0, 1, Absent{"no camera"},
+                          "image camera (pinhole): horizontal field of view (instead of --vfov)"})
+        .optional_number(&C::heading_deg,
+                         angle_spec("heading", -360.0, 360.0,
+                                    "image camera: azimuth of the optical axis (north 0, east 90)"))
+        .optional_number(&C::pitch_deg, angle_spec("pitch", -90.0, 90.0,
+                                                   "image camera: elevation of the optical axis"))
+        .optional_number(&C::roll_deg,
+                         angle_spec("roll", -180.0, 180.0,
+                                    "image camera: turn about the optical axis, clockwise as the "
+                                    "camera sees it"))
+        .numbers(&C::view_matrix,
+                 matrix_spec("view-matrix",
+                             "image camera: OpenGL model-view matrix M, 16 numbers row-major, "
+                             "world frame East-North-Up (instead of --heading/--pitch/--roll)"))
+        .numbers(&C::projection_matrix,
+                 matrix_spec("projection-matrix",
+                             "image camera: OpenGL projection matrix P, 16 numbers row-major "
+                             "(instead of --vfov/--hfov)"));
+    return s;
+  }();
+  return s;
+}
+
+bool ImageCameraOptions::given() const {
+  return vfov_deg || hfov_deg || !projection_matrix.empty() || !view_matrix.empty() ||
+         heading_deg || pitch_deg || roll_deg;
+}
+
+std::optional<ImagePositioning> ImageCameraOptions::positioning(int width, int height,
+                                                                double near_m, double far_m) const {
+  if (!given()) return std::nullopt;
+  if (!vfov_deg && !hfov_deg && projection_matrix.empty())
+    throw InvalidArgument(
+        "the image camera needs a field of view: give --vfov, --hfov or --projection-matrix");
+  const Mat4 view = view_matrix.empty()
+                        ? haze::view_matrix(wrap_azimuth(deg_to_rad(heading_deg.value_or(0.0))),
+                                            deg_to_rad(pitch_deg.value_or(0.0)),
+                                            deg_to_rad(roll_deg.value_or(0.0)))
+                        : to_mat4(view_matrix);
+  const double aspect = static_cast<double>(width) / height;
+  Mat4 projection{};
+  if (!projection_matrix.empty()) {
+    projection = to_mat4(projection_matrix);
+  } else {
+    const double fov_y =
+        vfov_deg ? deg_to_rad(*vfov_deg) : vertical_fov(deg_to_rad(*hfov_deg), aspect);
+    projection = perspective_matrix(fov_y, aspect, near_m, far_m);
+  }
+  return ImagePositioning(view, projection, width, height);
+}
+
+const ParameterSchema<CoefficientsOptions>& CoefficientsOptions::schema() {
+  static const ParameterSchema<CoefficientsOptions> s = [] {
+    ParameterSchema<CoefficientsOptions> s;
+    s.number(&CoefficientsOptions::wavelength_nm, {"wavelength", "nm", ParameterKind::number, 300.0,
+                                                   1000.0, 1, ParameterValue(550.0), "wavelength"});
+    return s;
+  }();
+  return s;
+}
+
+const ParameterSchema<AttenuationOptions>& AttenuationOptions::schema() {
+  static const ParameterSchema<AttenuationOptions> s = [] {
+    ParameterSchema<AttenuationOptions> s;
+    s.number(&AttenuationOptions::distance_m,
+             {"distance", "m", ParameterKind::number, 0.0, 1e7, 1, Required{}, "path length s"});
+    return s;
+  }();
+  return s;
+}
+
+std::string_view to_string(HorizonRegion region) {
+  return region == HorizonRegion::watershed ? "watershed" : "band";
+}
+
+const ParameterSchema<AirlightOptions>& AirlightOptions::schema() {
+  static const ParameterSchema<AirlightOptions> s = [] {
+    using A = AirlightOptions;
+    const auto& sun = sun_parameter_specs();
+    ParameterSchema<A> s;
+    s.numbers(&A::airlight, {"airlight", "image units", ParameterKind::numbers, 1e-30, 1e30, 3,
+                             Absent{"from --sky-model"},
+                             "constant airlight I^inf R,G,B (Morales 2017 eq. 10), > 0"})
+        .text(&A::sky_model, {"sky-model", "", ParameterKind::text, 0, 0, 1, Absent{"--airlight"},
+                              "airlight from a spectral sky model with a turbidity (`skylight "
+                              "models`) at the turbidity, seen through the camera (eq. 7)"})
+        .text(&A::sky_photo, {"sky", "", ParameterKind::text, 0, 0, 1, Absent{"--airlight"},
+                              "airlight from a sky photo's horizon region (eqs. 12-13): linear "
+                              ".exr, .hdr or .pfm"})
+        .nested(&A::sky_image,
+                image_schema(estimate::photo_image_options(Projection::fisheye, "sky-projection",
+                                                           "--sky: the sky photo's layout")))
+        .choice(&A::horizon_region,
+                {"horizon-region", "", ParameterKind::text, 0, 0, 1,
+                 ParameterValue(std::string("watershed")),
+                 "--sky: the horizon region over the watershed sky mask (the band above the "
+                 "skyline) or the fixed band above the horizon (docs/HAZE.md)"},
+                {{"watershed", HorizonRegion::watershed}, {"band", HorizonRegion::band}})
+        .text(&A::sky_mask,
+              {"sky-mask", "", ParameterKind::text, 0, 0, 1, Absent{"the watershed's"},
+               "--sky: its sky mask (.png, .pfm, .exr; nonzero = sky, e.g. from "
+               "`skylight haze sky-mask`) instead of the watershed"})
+        .number(&A::sun_zenith_deg, sun[0])
+        .number(&A::sun_azimuth_deg, sun[1])
+        .optional_number(
+            &A::view_elevation_deg,
+            {"view-elevation", "deg", ParameterKind::number, 0.0, 90.0, 1, ParameterValue(0.0),
+             "--sky-model, --sky without an image camera: elevation of the sky seen "
+             "behind the scene"})
+        .optional_number(
+            &A::view_azimuth_deg,
+            {"view-azimuth", "deg", ParameterKind::number, -360.0, 360.0, 1, ParameterValue(0.0),
+             "--sky-model without an image camera: azimuth of that direction "
+             "(north 0, east 90)"});
+    return s;
+  }();
+  return s;
+}
+
+AirlightSource::AirlightSource(AirlightOptions options) : options_(std::move(options)) {}
+
+PhotoAirlight AirlightSource::photo_horizon(double t, double theta) const {
+  const AirlightOptions& o = options_;
+  if (!photo_) {
+    const io::ImageF image = io::read_image(o.sky_photo);
+    const Camera cam = o.sky_image.camera(image.width, image.height);
+    HorizonSettings h;
+    h.region = o.horizon_region;
+    if (h.region == HorizonRegion::band && !o.sky_mask.empty())
+      throw InvalidArgument("--sky-mask goes with --horizon-region watershed");
+    estimate::SkyMask mask;
+    if (!o.sky_mask.empty()) {
+      mask = mask_from_image(estimate::load_mask(o.sky_mask), cam);
+      h.mask = &mask;
+    }
+    photo_ = photo_airlight(image, cam, t, theta, h);
+  }
+  PhotoAirlight out = *photo_;
+  const double z = zeta(t, theta, out.theta_prime);
+  for (std::size_t c = 0; c < 3; ++c) out.airlight[c] = out.horizon[c] * z;
+  return out;
+}
+
+std::unique_ptr<SkyModel> AirlightSource::model_at(double t) const {
+  const ModelInfo* info = find_model(options_.sky_model);
+  if (!info)
+    throw InvalidArgument(fmt::format("unknown --sky-model '{}'", excerpt(options_.sky_model)));
+  SkyParameters p;
+  p.sun = sun_from_degrees(options_.sun_zenith_deg, options_.sun_azimuth_deg);
+  p.values = info->example;
+  bool has_turbidity = false;
+  for (const auto& spec : info->parameters) has_turbidity |= spec.name == "turbidity";
+  if (!has_turbidity)
+    throw InvalidArgument(fmt::format("--sky-model '{}' has no turbidity", info->name));
+  p.values.set("turbidity", t);
+  return make_sky_model(info->name, p);
+}
+
+std::shared_ptr<const AirlightMap> AirlightSource::per_pixel(double t,
+                                                             const CameraSensitivity& camera,
+                                                             const ImagePositioning& image) const {
+  if (options_.view_elevation_deg || options_.view_azimuth_deg)
+    throw InvalidArgument(
+        "--view-elevation and --view-azimuth are for one airlight per image; with an image "
+        "camera every pixel sees its own direction");
+  if (!options_.airlight.empty()) return nullptr;
+  if (!options_.sky_photo.empty()) return photo_airlight_map(image, photo_horizon(t, kPi / 2), t);
+  const AirlightTable table(*model_at(t), camera);
+  return sky_model_airlight_map(image, table);
+}
+
+Rgb3 AirlightSource::at(double t, const CameraSensitivity& camera) const {
+  const AirlightOptions& o = options_;
+  if (!o.airlight.empty()) return {o.airlight[0], o.airlight[1], o.airlight[2]};
+  const double theta = deg_to_rad(90.0 - o.view_elevation_deg.value_or(0.0));
+  if (!o.sky_photo.empty()) return photo_horizon(t, theta).airlight;
+  if (o.sky_model.empty())
+    throw InvalidArgument("give --airlight R,G,B, --sky PHOTO or --sky-model NAME");
+  const auto model = model_at(t);
+  const Vec3 view =
+      direction_from_angles(theta, wrap_azimuth(deg_to_rad(o.view_azimuth_deg.value_or(0.0))));
+  return sky_model_airlight(*model, view, camera);
+}
+
+const ParameterSchema<HazeOptions>& HazeOptions::schema() {
+  static const ParameterSchema<HazeOptions> s = [] {
+    using H = HazeOptions;
+    ParameterSchema<H> s;
+    s.optional_number(&H::target_turbidity,
+                      {"target-turbidity", "1", ParameterKind::number, 1.0, 64.0, 1,
+                       Absent{"required by retarget, refused by the other operations"},
+                       "turbidity T_t to re-target to (eq. 26)"})
+        .optional_number(&H::near_m, {"near", "m", ParameterKind::number, 1e-6, 1e9, 1,
+                                      Absent{"the depth map holds metres"},
+                                      "near plane of a normalised depth map"})
+        .optional_number(&H::far_m, {"far", "m", ParameterKind::number, 1e-6, 1e9, 1,
+                                     Absent{"the depth map holds metres"},
+                                     "far plane of a normalised depth map"})
+        .number(&H::min_transmission,
+                {"min-transmission", "1", ParameterKind::number, 1e-6, 1.0, 1,
+                 ParameterValue(kDefaultMinTransmission),
+                 "remove/retarget: Gamma_s is taken as at least this (bounds the amplification)"});
+    return s;
+  }();
+  return s;
+}
+
+HazeSettings haze_settings(HazeOperation operation, const Atmosphere& air, const HazeOptions& o,
+                           const CameraSensitivity& camera, const AirlightSource& airlight,
+                           const ImageCameraOptions& image_camera, int width, int height) {
+  HazeSettings s;
+  s.operation = operation;
+  s.source = air;
+  validate(s.source);
+  s.min_transmission = o.min_transmission;
+  s.airlight_source = airlight.at(air.turbidity, camera);
+  if (operation == HazeOperation::retarget) {
+    if (!o.target_turbidity) throw InvalidArgument("haze retarget needs --target-turbidity");
+    s.target_turbidity = o.target_turbidity;
+    s.airlight_target = airlight.at(*o.target_turbidity, camera);
+  } else if (o.target_turbidity) {
+    throw InvalidArgument("--target-turbidity is for haze retarget only");
+  }
+  // With an image camera, --sky and --sky-model give every pixel the airlight of its own direction
+  // (Morales 2017 §6.2: eqs. 20-22, then eqs. 12-13 or the model); --airlight stays constant.
+  const std::optional<ImagePositioning> image = image_camera.positioning(
+      width, height, o.near_m.value_or(kPinholeNearM), o.far_m.value_or(kPinholeFarM));
+  if (image) {
+    s.airlight_source_map = airlight.per_pixel(air.turbidity, camera, *image);
+    if (s.airlight_source_map && s.target_turbidity)
+      s.airlight_target_map = airlight.per_pixel(*s.target_turbidity, camera, *image);
+  }
+  return s;
+}
+
+io::ImageF coverage_from_depth(const io::ImageF& depth) {
+  io::ImageF alpha(depth.width, depth.height, 1);
+  for (std::size_t i = 0; i < alpha.data.size(); ++i)
+    alpha.data[i] = depth.data[i] > 0.0f ? 1.0f : 0.0f;
+  return alpha;
+}
+
+std::vector<std::pair<std::string, std::string>> haze_metadata(std::string_view operation,
+                                                               const Atmosphere& air,
+                                                               const CameraSensitivity& camera,
+                                                               const HazeSettings& s) {
+  std::vector<std::pair<std::string, std::string>> md{
+      {"skylight:version", kVersion},
+      {"skylight:haze_operation", std::string(operation)},
+      {"skylight:camera", camera.name},
+      {"skylight:scattering_variant", std::string(to_string(air.variant))},
+      {"skylight:turbidity", fmt::format("{}", air.turbidity)},
+      {"skylight:altitude_m", fmt::format("{}", air.altitude_m)},
+      {"skylight:airlight", s.airlight_source_map
+                                ? std::string("per pixel")
+                                : fmt::format("{},{},{}", s.airlight_source[0],
+                                              s.airlight_source[1], s.airlight_source[2])}};
+  if (s.target_turbidity)
+    md.emplace_back("skylight:target_turbidity", fmt::format("{}", *s.target_turbidity));
+  return md;
+}
+
+}  // namespace skylight::haze
