@@ -6,10 +6,10 @@
 #include <cmath>
 
 #include "skylight/core/error.h"
+#include "skylight/core/icosphere.h"
 #include "skylight/core/parallel.h"
 #include "skylight/gpu/context.h"
 #include "skylight/nn/glsl.h"
-#include "skylight/render/icosphere.h"
 
 namespace skylight::gpu {
 
@@ -122,7 +122,7 @@ PlanetMesh planet_mesh(const nn::PietrasNetwork& net, const NishitaSampler& atmo
   const double r0 = p.ground_radius_m, rt = p.top_radius();
   const double top = rt - r0;
   check_view(view, r0);
-  const render::Icosphere sphere = render::icosphere(view.subdivisions);
+  const Icosphere sphere = icosphere(view.subdivisions);
   const std::size_t n = sphere.vertices.size();
   PlanetMesh m;
   m.ground_vertices = n;

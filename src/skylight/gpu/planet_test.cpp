@@ -7,8 +7,8 @@
 #include <string>
 
 #include "skylight/core/error.h"
+#include "skylight/core/icosphere.h"
 #include "skylight/fit/pietras_training.h"
-#include "skylight/render/icosphere.h"
 #include "support/gpu_context.h"
 
 namespace skylight::gpu {
@@ -132,7 +132,7 @@ TEST(PlanetMesh, GroundVerticesAreTheSurfaceColourOfSectionIV) {
   view.subdivisions = 2;
   view.albedo = 0.2;
   const PlanetMesh mesh = planet_mesh(net, atmosphere, view);
-  const render::Icosphere sphere = render::icosphere(2);
+  const Icosphere sphere = icosphere(2);
   std::size_t visible = 0;
   for (std::size_t i = 0; i < mesh.ground_vertices; ++i) {
     const Vec3 v = planet.ground_radius_m * sphere.vertices[i];

@@ -6,10 +6,13 @@
 #include <array>
 #include <cmath>
 
+#include "skylight/core/camera.h"
 #include "skylight/core/data.h"
+#include "skylight/core/icosphere.h"
 #include "skylight/core/math.h"
 #include "skylight/core/numbers.h"
 #include "skylight/io/file.h"
+#include "skylight/models/neural_sky.h"
 #include "skylight/nn/sky_network.h"
 
 namespace skylight {
@@ -149,6 +152,99 @@ Rgb pietras_surface(const PietrasSkyFunction& sky, const NishitaSampler& atmosph
 
 PietrasSkyFunction sky_function(const nn::PietrasNetwork& net) {
   return [&net](double h, double ca, double cb, double ct) { return net.rgb_at(h, ca, cb, ct); };
+}
+
+NetworkFile read_network_file(const std::filesystem::path& path) {
+  const std::string text = io::read_text_file(path);
+  NetworkFile f;
+  if (nn::is_pietras_json(text))
+    f.pietras = nn::pietras_from_json(text, path.string());
+  else
+    f.sky = nn::sky_network_from_json(text, path.string());
+  return f;
+}
+
+std::unique_ptr<SkyModel> network_model(const NetworkFile& file, const std::string& path,
+                                        const SunPosition& sun, std::optional<double> turbidity,
+                                        std::optional<double> observer_altitude_m) {
+  if (file.pietras) {
+    if (turbidity)
+      throw InvalidArgument(fmt::format(
+          "--turbidity: '{}' is a Pietras network, which has no turbidity input (its atmosphere "
+          "is the training planet's)",
+          excerpt(path)));
+    PietrasParameters p;
+    p.sun = sun;
+    p.weights = path;
+    if (observer_altitude_m) p.observer_altitude_m = *observer_altitude_m;
+    return std::make_unique<PietrasSkyModel>(p, *file.pietras);
+  }
+  if (observer_altitude_m)
+    throw InvalidArgument(
+        fmt::format("--observer-altitude: '{}' is a sky network, which has no altitude input "
+                    "(only Pietras networks take it)",
+                    excerpt(path)));
+  NeuralSkyParameters p;
+  p.sun = sun;
+  p.weights = path;
+  if (turbidity) p.turbidity = *turbidity;
+  return std::make_unique<NeuralSkyModel>(p, file.sky);
+}
+
+const ParameterSchema<PlanetViewOptions>& PlanetViewOptions::schema() {
+  static const ParameterSchema<PlanetViewOptions> s = [] {
+    using V = PlanetViewOptions;
+    const V d;
+    ParameterSchema<V> s;
+    ParameterSpec zenith = sun_parameter_specs()[0];
+    zenith.default_value = ParameterValue(d.sun_zenith_deg);
+    zenith.description = "solar zenith angle at the point below the camera";
+    ParameterSpec azimuth = sun_parameter_specs()[1];
+    azimuth.default_value = ParameterValue(d.sun_azimuth_deg);
+    azimuth.description = "solar azimuth from north towards east (the ground view looks north)";
+    s.choice(&V::orbit,
+             {"view", "", ParameterKind::text, 0, 0, 1, ParameterValue(std::string("orbit")),
+              "from orbit or from the ground"},
+             {{"orbit", true}, {"ground", false}})
+        .number(&V::sun_zenith_deg, zenith)
+        .number(&V::sun_azimuth_deg, azimuth)
+        .optional_number(&V::altitude_m,
+                         {"altitude", "m", ParameterKind::number, 0.0, 1e10, 1,
+                          Absent{"orbit: 2 planet radii; ground: 2 m"}, "camera above the ground"})
+        .number(&V::look_elevation_deg, {"look-elevation", "deg", ParameterKind::number, -90.0,
+                                         90.0, 1, ParameterValue(d.look_elevation_deg),
+                                         "ground view: the view's elevation above the horizon"})
+        .optional_number(&V::fov_deg,
+                         {"fov", "deg", ParameterKind::number, 1.0, 170.0, 1,
+                          Absent{"orbit: the atmosphere's disc fills 85 %; ground: 60"},
+                          "vertical field of view"})
+        .number(&V::albedo,
+                {"albedo", "1", ParameterKind::number, 0.0, 1.0, 1, ParameterValue(d.albedo),
+                 "grey Lambertian albedo of the ground (Pietras §IV)"})
+        .integer(&V::subdivisions,
+                 {"subdivisions", "1", ParameterKind::integer, 0, kMaxIcosphereSubdivisions, 1,
+                  ParameterValue(static_cast<double>(d.subdivisions)),
+                  "icosphere level of the ground and the shell (10 * 4^n + 2 vertices each)"})
+        .integer(&V::width, {"width", "px", ParameterKind::integer, 1, kMaxImageSide, 1,
+                             ParameterValue(static_cast<double>(d.width)), "image width"})
+        .integer(&V::height, {"height", "px", ParameterKind::integer, 1, kMaxImageSide, 1,
+                              ParameterValue(static_cast<double>(d.height)), "image height"});
+    return s;
+  }();
+  return s;
+}
+
+double PlanetViewOptions::altitude(double r0) const {
+  // From orbit, the default camera altitude is two planet radii; from the ground 2 m.
+  constexpr double kOrbitAltitudeRadii = 2.0, kGroundAltitudeM = 2.0;
+  return altitude_m.value_or(orbit ? kOrbitAltitudeRadii * r0 : kGroundAltitudeM);
+}
+
+std::optional<double> PlanetViewOptions::vertical_fov_deg() const {
+  constexpr double kGroundFovDeg = 60.0;
+  if (fov_deg) return fov_deg;
+  if (!orbit) return kGroundFovDeg;
+  return std::nullopt;
 }
 
 ModelInfo PietrasSkyModel::registry_entry() {

@@ -16,6 +16,7 @@
 #include "skylight/models/nishita.h"
 #include "skylight/models/sky_model.h"
 #include "skylight/nn/pietras.h"
+#include "skylight/nn/sky_network.h"
 
 namespace skylight {
 
@@ -38,6 +39,41 @@ struct PietrasParameters {
 nn::PietrasNetwork load_pietras_network_file(const std::filesystem::path& path);
 // The embedded network (parsed once).
 const nn::PietrasNetwork& embedded_pietras_network();
+
+// A weights file of either kind, read once: a Pietras network (`pietras` set) or a sky network
+// (models/neural_sky.h). IoError / InvalidArgument as the loaders.
+struct NetworkFile {
+  std::optional<nn::PietrasNetwork> pietras;
+  nn::SkyNetwork sky;
+};
+NetworkFile read_network_file(const std::filesystem::path& path);
+// The model of a network file for a sun: `pietras` (at the observer altitude) or `nn` (at the
+// turbidity). The option the other kind does not read is refused (InvalidArgument naming it):
+// --turbidity for a Pietras network, --observer-altitude for a sky network.
+std::unique_ptr<SkyModel> network_model(const NetworkFile& file, const std::string& path,
+                                        const SunPosition& sun, std::optional<double> turbidity,
+                                        std::optional<double> observer_altitude_m);
+
+// The planet of a Pietras network seen from orbit or from the ground (`skylight nn planet`, the
+// vertex shader of gpu/planet.h; docs/PIETRAS.md): the view, the sun at the point below the
+// camera, the camera's altitude, look elevation and field of view, the ground's albedo, the
+// icosphere level and the image size.
+struct PlanetViewOptions {
+  bool orbit = true;  // --view orbit|ground
+  double sun_zenith_deg = 30.0, sun_azimuth_deg = 0.0;
+  std::optional<double> altitude_m;  // absent: 2 planet radii (orbit), 2 m (ground)
+  double look_elevation_deg = 10.0;
+  std::optional<double> fov_deg;  // absent: the atmosphere's disc fills 85 % (orbit); 60 (ground)
+  double albedo = 0.3;
+  int subdivisions = 6;
+  int width = 640, height = 480;
+  static const ParameterSchema<PlanetViewOptions>& schema();
+  // The camera's altitude above a planet of radius r0 [m].
+  double altitude(double r0) const;
+  // The vertical field of view [deg]: the given one, 60 from the ground; absent from orbit (the
+  // orbit view's own, the atmosphere's disc filling 85 %).
+  std::optional<double> vertical_fov_deg() const;
+};
 
 // The nishita parameters a network was trained with, from its provenance (its schema's names;
 // InvalidArgument for a name nishita does not have).

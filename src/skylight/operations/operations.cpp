@@ -8,11 +8,15 @@
 #include "skylight/core/error.h"
 #include "skylight/estimate/photo.h"
 #include "skylight/fit/luminance_fit.h"
+#include "skylight/fit/network_training.h"
 #include "skylight/fit/sh_fit.h"
 #include "skylight/haze/request.h"
 #include "skylight/models/evaluation.h"
+#include "skylight/models/neural_sky.h"
+#include "skylight/models/pietras.h"
 #include "skylight/models/sh.h"
 #include "skylight/models/sky_model.h"
+#include "skylight/render/animation.h"
 #include "skylight/render/false_colour.h"
 #include "skylight/sh/irradiance.h"
 #include "skylight/sun/spa.h"
@@ -172,11 +176,43 @@ std::vector<OperationInfo> haze_operations() {
            sky_photo_specs(), "estimate::SkyMask"}};
 }
 
+// The network options of `nn animate`: a sky network's turbidity, a Pietras network's altitude.
+Specs animate_network_specs() {
+  ParameterSpec turbidity = *NeuralSkyParameters::schema().find("turbidity");
+  turbidity.default_value = Absent{"3; sky networks only"};
+  ParameterSpec altitude = *PietrasParameters::schema().find("observer-altitude");
+  altitude.default_value = Absent{"0; Pietras networks only"};
+  altitude.description = "observer above the ground, a Pietras network's density input";
+  return {turbidity, altitude};
+}
+
+std::vector<OperationInfo> nn_operations() {
+  return {
+      {"nn train",
+       "a neural sky network trained on a registered model (the paper's protocol) or on a "
+       "sequence of HDR sky images, or a Pietras network on nishita (docs/NN.md, "
+       "docs/PIETRAS.md)",
+       concat({fit::NetworkTrainingRequest::schema().specs(),
+               fit::ImageTrainingOptions::schema().specs()}),
+       "nn::SkyNetwork or nn::PietrasNetwork (the weights file)"},
+      {"nn validate", "the errors of a weights file on the validation sets of its source",
+       fit::ValidationOptions::schema().specs(), "fit::NeuralValidation or fit::PietrasValidation"},
+      {"nn animate", "an environment-map sequence of a sky or Pietras network with the sun moving",
+       concat({animate_network_specs(), render::AnimationOptions::schema().specs()}),
+       "one render::SkyImage per frame"},
+      {"nn study", "the hidden-layer study of Satilmis et al. 2016 (Fig. 5, eq. 8)",
+       fit::HiddenLayerStudy::schema().specs(), "fit::StudyRow per width"},
+      {"nn planet",
+       "a Pietras network shading an icosphere planet in a GL vertex shader (the GPU module)",
+       PlanetViewOptions::schema().specs(), "linear sRGB image"}};
+}
+
 const std::vector<OperationInfo>& registry() {
   static const std::vector<OperationInfo> ops = [] {
     std::vector<OperationInfo> ops{render_operation(), eval_operation(), estimate_operation()};
     for (auto& op : sh_operations()) ops.push_back(std::move(op));
     for (auto& op : haze_operations()) ops.push_back(std::move(op));
+    for (auto& op : nn_operations()) ops.push_back(std::move(op));
     return ops;
   }();
   return ops;

@@ -1,4 +1,4 @@
-#include "skylight/render/icosphere.h"
+#include "skylight/core/icosphere.h"
 
 #include <fmt/format.h>
 
@@ -8,7 +8,7 @@
 
 #include "skylight/core/error.h"
 
-namespace skylight::render {
+namespace skylight {
 
 Icosphere icosphere(int subdivisions) {
   if (subdivisions < 0 || subdivisions > kMaxIcosphereSubdivisions)
@@ -47,4 +47,4 @@ Icosphere icosphere(int subdivisions) {
   return s;
 }
 
-}  // namespace skylight::render
+}  // namespace skylight

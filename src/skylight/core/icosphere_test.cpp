@@ -1,4 +1,4 @@
-#include "skylight/render/icosphere.h"
+#include "skylight/core/icosphere.h"
 
 #include <gtest/gtest.h>
 
@@ -6,7 +6,7 @@
 
 #include "skylight/core/error.h"
 
-namespace skylight::render {
+namespace skylight {
 namespace {
 
 // Unit length of every vertex: double rounding of normalize().
@@ -44,4 +44,4 @@ TEST(Icosphere, RejectsLevelsOutOfRange) {
 }
 
 }  // namespace
-}  // namespace skylight::render
+}  // namespace skylight

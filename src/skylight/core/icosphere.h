@@ -8,7 +8,7 @@
 
 #include "skylight/core/frame.h"
 
-namespace skylight::render {
+namespace skylight {
 
 struct Icosphere {
   std::vector<Vec3> vertices;     // unit vectors
@@ -19,4 +19,4 @@ struct Icosphere {
 inline constexpr int kMaxIcosphereSubdivisions = 9;
 Icosphere icosphere(int subdivisions);
 
-}  // namespace skylight::render
+}  // namespace skylight

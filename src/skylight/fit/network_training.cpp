@@ -1,0 +1,471 @@
+#include "skylight/fit/network_training.h"
+
+#include <fmt/format.h>
+
+#include <chrono>
+#include <filesystem>
+#include <limits>
+
+#include "skylight/core/error.h"
+#include "skylight/core/math.h"
+#include "skylight/core/numbers.h"
+#include "skylight/io/file.h"
+#include "skylight/models/hosek_wilkie.h"
+#include "skylight/models/nishita.h"
+#include "skylight/models/preetham.h"
+#include "skylight/render/sky_render.h"
+#include "skylight/sun/spa.h"
+#include "skylight/sun/time.h"
+
+namespace skylight::fit {
+namespace {
+
+using Request = NetworkTrainingRequest;
+
+// The nishita parameters of a Pietras network's planet (observer, sun and albedo are not the
+// network's).
+constexpr const char* kPlanetParameters[] = {
+    "ground-radius", "top-radius", "rayleigh-scale-height", "mie-scale-height",
+    "mie-g",         "ozone",      "solar-irradiance"};
+
+ParameterSpec count_spec(const char* name, const char* help) {
+  return {name, "1", ParameterKind::integer, 0, 1000, 1, ParameterValue(0.0), help};
+}
+
+std::vector<std::pair<std::string, nn::Trainer>> trainer_names() {
+  std::vector<std::pair<std::string, nn::Trainer>> out;
+  for (nn::Trainer t : {nn::Trainer::levenberg_marquardt, nn::Trainer::backprop, nn::Trainer::adam,
+                        nn::Trainer::lbfgs})
+    out.emplace_back(std::string(nn::to_string(t)), t);
+  return out;
+}
+
+void add_training_specs(ParameterSchema<Request>& s) {
+  const Request d;
+  s.text(&Request::source, {"source", "", ParameterKind::text, 0, 0, 1,
+                            ParameterValue(std::string(PreethamModel::kName)),
+                            "sky model to learn (any of `skylight models`)"})
+      .integer(&Request::seed, {"seed", "1", ParameterKind::integer, 0, 2147483647, 1,
+                                ParameterValue(static_cast<double>(d.seed)),
+                                "seed of the initial weights (training is deterministic for a "
+                                "seed)"})
+      .integer(&Request::hidden,
+               {"hidden", "1", ParameterKind::integer, 1, 256, 1,
+                ParameterValue(static_cast<double>(d.hidden)), "neurons of the hidden layer"})
+      .custom(
+          {"trainer", "", ParameterKind::text, 0, 0, 1,
+           Absent{fmt::format("{}, with --network {}", nn::to_string(kSkyTrainer),
+                              nn::to_string(kPietrasTrainer))},
+           "lm (Levenberg-Marquardt), backprop (the paper's), adam, lbfgs",
+           [] {
+             std::vector<std::string> c;
+             for (const auto& [n, t] : trainer_names()) c.push_back(n);
+             return c;
+           }()},
+          [](Request& r, const ParameterValue& v) {
+            r.trainer = nn::parse_trainer(std::get<std::string>(v));
+          },
+          [](const Request& r) -> std::optional<ParameterValue> {
+            if (!r.trainer) return std::nullopt;
+            return std::string(nn::to_string(*r.trainer));
+          })
+      .custom(
+          {"inputs", "", ParameterKind::text, 0, 0, 1,
+           ParameterValue(nn::to_string(nn::satilmis_inputs())),
+           "the network's inputs, comma-separated (the paper's V_NN by default; also "
+           "log_chord, sqrt_view_z, aureole, cos_sun_zenith, sun_elevation_cbrt, turbidity)"},
+          [](Request& r, const ParameterValue& v) {
+            r.inputs = nn::parse_inputs(std::get<std::string>(v));
+          },
+          [](const Request& r) -> std::optional<ParameterValue> { return nn::to_string(r.inputs); })
+      .choice(
+          &Request::encoding,
+          {"encoding", "", ParameterKind::text, 0, 0, 1, ParameterValue(std::string("satilmis")),
+           "output encoding: satilmis (the paper's L_s, eq. 7), log, root4, root8 (the last "
+           "three with an identity output layer)"},
+          {{"satilmis", nn::OutputEncoding::satilmis},
+           {"log", nn::OutputEncoding::log},
+           {"root4", nn::OutputEncoding::root4},
+           {"root8", nn::OutputEncoding::root8}})
+      .optional_number(&Request::time_limit_s,
+                       {"time-limit", "s", ParameterKind::number, 0.01, 1e6, 1,
+                        Absent{fmt::format("{} s, with --network {} s per sub-network",
+                                           kSkyTimeLimitS, kPietrasTimeLimitS)},
+                        "stop training after this wall time"})
+      .optional_integer(&Request::iterations,
+                        {"iterations", "1", ParameterKind::integer, 1, 100000000, 1,
+                         Absent{fmt::format("{}, with --network {} per sub-network", kSkyIterations,
+                                            kPietrasIterations)},
+                         "at most this many iterations (LM, L-BFGS) or epochs (backprop, adam)"})
+      .optional_number(&Request::target_scale,
+                       {"target-scale", "1", ParameterKind::number, 1e-30, 1e30, 1,
+                        Absent{"the source's (its registry entry; e.g. hosek 683, preetham 1000)"},
+                        "the network learns the source's rgb() / target-scale"})
+      .integer(&Request::suns, count_spec("suns",
+                                          "sun zenith angles per turbidity (0: the protocol's 20 "
+                                          "for training, 7 for validation)"))
+      .integer(&Request::view_zeniths,
+               count_spec("view-zeniths", "view zenith strata per sky (0: the protocol's 10)"))
+      .integer(&Request::view_azimuths,
+               count_spec("view-azimuths", "view azimuth strata per sky (0: the protocol's 20)"));
+}
+
+void add_pietras_specs(ParameterSchema<Request>& s) {
+  s.custom(
+       {"network",
+        "",
+        ParameterKind::text,
+        0,
+        0,
+        1,
+        Absent{"a sky network (Satilmis)"},
+        "pietras (Pietras's 4 x 4-8-4-1 per-vertex network) or log3 (3 x 4-16-16-1, log "
+        "luminance and chromaticity): learn --source nishita (docs/PIETRAS.md)",
+        {"pietras", "log3"}},
+       [](Request& r, const ParameterValue& v) {
+         r.network = nn::parse_pietras_kind(std::get<std::string>(v));
+       },
+       [](const Request& r) -> std::optional<ParameterValue> {
+         if (!r.network) return std::nullopt;
+         return std::string(nn::to_string(*r.network));
+       })
+      .text(&Request::init,
+            {"init", "", ParameterKind::text, 0, 0, 1, Absent{"random initial weights"},
+             "--network: continue training from this weights file (its network kind, planet and "
+             "max value; iterations and seconds add up in the provenance)"})
+      .optional_integer(&Request::samples,
+                        {"samples", "1", ParameterKind::integer, 16, 100000000, 1,
+                         Absent{fmt::format("{} with --network, {} per image with --images",
+                                            kPietrasSamples, kImageSamples)},
+                         "--network: random samples of nishita to train on; --images: sky pixels "
+                         "sampled per image (all when the mask has fewer)"});
+  for (const char* name : kPlanetParameters) {
+    ParameterSpec spec = *NishitaParameters::schema().find(name);
+    spec.description = "--network: nishita's " + spec.description + " (recorded in the file)";
+    s.custom(
+        spec, [n = std::string(name)](Request& r, const ParameterValue& v) { r.planet.set(n, v); },
+        [n = std::string(name)](const Request& r) -> std::optional<ParameterValue> {
+          if (const ParameterValue* v = r.planet.find(n)) return *v;
+          return std::nullopt;
+        });
+  }
+}
+
+}  // namespace
+
+const ParameterSchema<Request>& Request::schema() {
+  static const ParameterSchema<Request> s = [] {
+    ParameterSchema<Request> s;
+    add_training_specs(s);
+    add_pietras_specs(s);
+    return s;
+  }();
+  return s;
+}
+
+std::string Request::source_model() const {
+  return source.empty() ? std::string(PreethamModel::kName) : source;
+}
+
+NeuralTraining Request::sky_training() const {
+  if (!planet.empty())
+    throw InvalidArgument("the planet flags (--ground-radius, ...) need --network pietras|log3");
+  if (!init.empty()) throw InvalidArgument("--init needs --network pietras|log3");
+  NeuralTraining t;
+  t.source = source_model();
+  t.inputs = inputs;
+  t.encoding = encoding;
+  t.hidden = {hidden};
+  t.target_scale = target_scale;
+  t.sun_count = suns;
+  t.view_zeniths = view_zeniths;
+  t.view_azimuths = view_azimuths;
+  t.options.trainer = trainer.value_or(kSkyTrainer);
+  t.options.seed = static_cast<std::uint64_t>(seed);
+  t.options.time_limit_s = time_limit_s.value_or(kSkyTimeLimitS);
+  t.options.max_iterations = iterations.value_or(kSkyIterations);
+  return t;
+}
+
+PietrasTraining Request::pietras_training(std::optional<nn::PietrasNetwork>& initial,
+                                          const std::string& output) const {
+  SKYLIGHT_CHECK(network.has_value(), "pietras_training: a Pietras network");
+  const std::string kind(nn::to_string(*network));
+  if (source_model() != NishitaModel::kName)
+    throw InvalidArgument(fmt::format("--network {}: --source must be {}, not '{}'", kind,
+                                      NishitaModel::kName, excerpt(source_model())));
+  PietrasTraining t;
+  t.kind = *network;
+  if (!init.empty()) {
+    std::error_code ec;
+    if (init == output || std::filesystem::equivalent(init, output, ec))
+      throw InvalidArgument(
+          fmt::format("-o '{}' is also the --init file; write to another file", excerpt(output)));
+    if (!planet.empty())
+      throw InvalidArgument("--init: the planet is the file's; drop --ground-radius etc.");
+    initial = nn::pietras_from_json(io::read_text_file(init), init);
+    if (initial->kind != *network)
+      throw InvalidArgument(fmt::format("--init {}: a {} network, not --network {}", excerpt(init),
+                                        nn::to_string(initial->kind), kind));
+    t.atmosphere = nishita_parameters_of(*initial);
+    t.initial = &*initial;
+  } else {
+    NishitaParameters::schema().bind(planet, t.atmosphere,
+                                     fmt::format("nn train --source {}", NishitaModel::kName));
+  }
+  if (!(t.atmosphere.top_radius() > t.atmosphere.ground_radius_m))
+    throw InvalidArgument(fmt::format("--top-radius {} m is not above --ground-radius {} m",
+                                      t.atmosphere.top_radius(), t.atmosphere.ground_radius_m));
+  t.samples = static_cast<std::size_t>(samples.value_or(kPietrasSamples));
+  t.options.trainer = trainer.value_or(kPietrasTrainer);
+  t.options.seed = static_cast<std::uint64_t>(seed);
+  t.options.max_iterations = iterations.value_or(kPietrasIterations);
+  t.options.time_limit_s = time_limit_s.value_or(kPietrasTimeLimitS);
+  return t;
+}
+
+// ---- image sequences ----------------------------------------------------------------------------
+
+namespace {
+
+// The list's name in messages: long enough for a path.
+constexpr std::size_t kListNameChars = 240;
+
+ImageSchemaOptions sequence_images() {
+  return estimate::photo_image_options(Projection::equirect, "projection",
+                                       "the images' projection");
+}
+
+std::optional<SunPosition> entry_sun(const ImageTrainingOptions& o,
+                                     const estimate::SequenceEntry& e, std::string& source) {
+  if (e.sun_zenith_deg) {
+    source = "list";
+    return sun_from_degrees(*e.sun_zenith_deg, *e.sun_azimuth_deg);
+  }
+  if (!e.time.empty()) {
+    source = "time";
+    if (!o.lat_deg || !o.lon_deg)
+      throw InvalidArgument(fmt::format("{}:{}: a time needs --lat and --lon",
+                                        excerpt(o.list, kListNameChars), e.line));
+    sun::SpaInput in;
+    try {
+      in.time = sun::parse_iso8601(e.time);
+    } catch (const InvalidArgument& x) {
+      throw InvalidArgument(
+          fmt::format("{}:{}: {}", excerpt(o.list, kListNameChars), e.line, x.what()));
+    }
+    in.latitude = deg_to_rad(*o.lat_deg);
+    in.longitude = deg_to_rad(*o.lon_deg);
+    const sun::SpaResult r = sun::solar_position(in);
+    return sun_from_degrees(rad_to_deg(r.zenith), rad_to_deg(r.azimuth));
+  }
+  source = "image";
+  return std::nullopt;
+}
+
+}  // namespace
+
+const ParameterSchema<ImageTrainingOptions>& ImageTrainingOptions::schema() {
+  static const ParameterSchema<ImageTrainingOptions> s = [] {
+    using O = ImageTrainingOptions;
+    ParameterSchema<O> s;
+    ParameterSpec lat = sun::spa_parameter_spec("lat"), lon = sun::spa_parameter_spec("lon");
+    lat.default_value = Absent{"needed by rows with a time"};
+    lon.default_value = Absent{"needed by rows with a time"};
+    s.text(&O::list, {"images", "", ParameterKind::text, 0, 0, 1, Absent{"--source"},
+                      "train on HDR sky images instead of --source: a CSV list with a header of "
+                      "file[,sun_zenith_deg,sun_azimuth_deg][,time][,mask] (docs/NN.md)"})
+        .nested(&O::image, image_schema(sequence_images()))
+        .text(&O::mask, {"mask", "", ParameterKind::text, 0, 0, 1, Absent{"the automatic rules"},
+                         "sky mask for every image without its own (.png, .pfm, .exr, .hdr): "
+                         "nonzero = sky"})
+        .optional_number(&O::lat_deg, lat)
+        .optional_number(&O::lon_deg, lon)
+        .integer(&O::kfold,
+                 {"kfold", "1", ParameterKind::integer, 0, 100000, 1, ParameterValue(0.0),
+                  "K-fold cross-validation over the images first (K = the number of "
+                  "images: leave one image out; 0: none)"})
+        .nested(&O::mask_settings, estimate::MaskSettings::schema());
+    return s;
+  }();
+  return s;
+}
+
+ImageTrainingResult train_on_images(
+    const ImageTrainingOptions& o, const NeuralTraining& t, int samples_per_image,
+    const std::function<void(int, int, const std::string&)>& progress) {
+  const auto report = [&](int done, int total, const std::string& step) {
+    if (progress) progress(done, total, step);
+  };
+  const std::filesystem::path list_path(o.list);
+  const std::vector<char> text = io::read_file(list_path);
+  const std::vector<estimate::SequenceEntry> entries =
+      estimate::parse_sequence_list(std::string_view(text.data(), text.size()),
+                                    excerpt(o.list, kListNameChars), list_path.parent_path());
+  std::optional<io::ImageF> common_mask;
+  if (!o.mask.empty()) common_mask = estimate::load_mask(o.mask);
+  estimate::SequenceSampling sampling;
+  sampling.mask = o.mask_settings;
+  sampling.samples_per_image = samples_per_image;
+  ImageTrainingResult r;
+  std::vector<nn::ImageSamples> samples;
+  for (std::size_t k = 0; k < entries.size(); ++k) {
+    const estimate::SequenceEntry& e = entries[k];
+    report(static_cast<int>(k), static_cast<int>(entries.size()), e.file.filename().string());
+    LoadedImage li;
+    li.entry = e;
+    const std::optional<SunPosition> sun = entry_sun(o, e, li.sun_source);
+    const io::ImageF image = io::read_image(e.file);
+    const Camera camera = o.image.camera(image.width, image.height);
+    std::optional<io::ImageF> own_mask;
+    if (!e.mask.empty()) own_mask = estimate::load_mask(e.mask);
+    const io::ImageF* mask = own_mask ? &*own_mask : common_mask ? &*common_mask : nullptr;
+    sampling.seed = t.options.seed + k;
+    try {
+      li.sampled = estimate::sample_sky_image(image, camera, sun, sampling, mask);
+    } catch (const InvalidArgument& x) {
+      throw InvalidArgument(fmt::format("{}:{}: {}: {}", excerpt(o.list, kListNameChars), e.line,
+                                        excerpt(e.file.string()), x.what()));
+    }
+    samples.push_back(li.sampled.samples);
+    r.images.push_back(std::move(li));
+  }
+  report(static_cast<int>(entries.size()), static_cast<int>(entries.size()), "images read");
+  r.target_scale = t.target_scale ? *t.target_scale : nn::image_target_scale(samples);
+  const nn::Dataset ds = nn::image_dataset(samples, t.inputs, r.target_scale);
+  r.examples = ds.size();
+  nn::NetworkSetup setup;
+  setup.hidden = t.hidden;
+  setup.encoding = t.encoding;
+  setup.options = t.options;
+  setup.options.progress = nullptr;
+  if (o.kfold > 0) {
+    r.cross_validation = nn::cross_validate(ds, o.kfold, setup, [&](int k, int n) {
+      report(k, n + 1, fmt::format("fold {} of {}", k + 1, n));
+    });
+  }
+  report(o.kfold, o.kfold + 1, "final network on all images");
+  r.trained = nn::train_sky_network(ds, setup);
+  r.errors = nn::evaluate_errors(r.trained.network, ds);
+  return r;
+}
+
+// ---- validation and the hidden-layer study
+// --------------------------------------------------------
+
+const ParameterSchema<ValidationOptions>& ValidationOptions::schema() {
+  static const ParameterSchema<ValidationOptions> s = [] {
+    using V = ValidationOptions;
+    ParameterSchema<V> s;
+    s.integer(&V::suns, count_spec("suns",
+                                   "sun zenith angles per turbidity (0: the protocol's 20 for "
+                                   "training, 7 for validation)"))
+        .integer(&V::view_zeniths,
+                 count_spec("view-zeniths", "view zenith strata per sky (0: the protocol's 10)"))
+        .integer(&V::view_azimuths,
+                 count_spec("view-azimuths", "view azimuth strata per sky (0: the protocol's 20)"))
+        .integer(&V::samples, {"samples", "1", ParameterKind::integer, 1, 100000000, 1,
+                               ParameterValue(static_cast<double>(V{}.samples)),
+                               "Pietras files: random samples per validation set (day, "
+                               "twilight, night)"});
+    return s;
+  }();
+  return s;
+}
+
+const ParameterSchema<HiddenLayerStudy>& HiddenLayerStudy::schema() {
+  static const ParameterSchema<HiddenLayerStudy> s = [] {
+    using H = HiddenLayerStudy;
+    const H d;
+    ParameterSchema<H> s;
+    s.text(&H::source, {"source", "", ParameterKind::text, 0, 0, 1,
+                        ParameterValue(std::string(HosekWilkieModel::kName)),
+                        "sky model to learn (the paper's study used Hosek-Wilkie)"})
+        .numbers(&H::hidden,
+                 {"hidden", "1", ParameterKind::numbers, 1.0, 256.0, 0, ParameterValue(d.hidden),
+                  "hidden-layer widths to compare (integers)"})
+        .integer(&H::seed,
+                 {"seed", "1", ParameterKind::integer, 0, 2147483647, 1,
+                  ParameterValue(static_cast<double>(d.seed)), "seed of the initial weights"})
+        .number(&H::time_limit_s,
+                {"time-limit", "s", ParameterKind::number, 0.01, 1e6, 1,
+                 ParameterValue(d.time_limit_s), "training wall time per network"})
+        .integer(&H::iterations, {"iterations", "1", ParameterKind::integer, 1, 100000000, 1,
+                                  ParameterValue(static_cast<double>(d.iterations)),
+                                  "at most this many LM iterations per network"})
+        .integer(&H::repeats, {"repeats", "1", ParameterKind::integer, 1, 1000, 1,
+                               ParameterValue(static_cast<double>(d.repeats)),
+                               "timing repeats (the best counts)"})
+        .integer(&H::suns,
+                 count_spec("suns", "sun zenith angles per turbidity (0: the protocol's)"))
+        .integer(&H::view_zeniths,
+                 count_spec("view-zeniths", "view zenith strata per sky (0: the protocol's)"))
+        .integer(&H::view_azimuths,
+                 count_spec("view-azimuths", "view azimuth strata per sky (0: the protocol's)"));
+    return s;
+  }();
+  return s;
+}
+
+std::string HiddenLayerStudy::source_model() const {
+  return source.empty() ? std::string(HosekWilkieModel::kName) : source;
+}
+
+namespace {
+
+// Best-of-repeats wall time [s] of the batch path over the grid on the calling thread.
+double grid_seconds(const nn::SkyNetwork& sky, const render::PixelDirections& d, int repeats) {
+  nn::SkyState state;
+  state.turbidity = 3.0;
+  state.sun_zenith = deg_to_rad(40.0);
+  state.sun_azimuth = deg_to_rad(150.0);
+  const nn::SkyNetworkBatch batch(sky, state);
+  const std::size_t n = d.x.size();
+  std::vector<float> r(n), g(n), b(n);
+  double best = std::numeric_limits<double>::infinity();
+  for (int k = 0; k < repeats; ++k) {
+    const auto t0 = std::chrono::steady_clock::now();
+    batch.rgb(d.x.data(), d.y.data(), d.z.data(), r.data(), g.data(), b.data(), n);
+    const auto t1 = std::chrono::steady_clock::now();
+    best = std::min(best, std::chrono::duration<double>(t1 - t0).count());
+  }
+  return best;
+}
+
+}  // namespace
+
+std::vector<StudyRow> study_hidden_layers(const HiddenLayerStudy& f,
+                                          const std::function<void(int, int, int)>& progress) {
+  render::RenderSettings grid;  // 1024 x 512 equirect
+  const render::PixelDirections dirs = render::pixel_directions(grid);
+  std::vector<StudyRow> rows;
+  for (std::size_t k = 0; k < f.hidden.size(); ++k) {
+    const int h = static_cast<int>(f.hidden[k]);
+    if (progress) progress(static_cast<int>(k), static_cast<int>(f.hidden.size()), h);
+    NeuralTraining t;
+    t.source = f.source_model();
+    t.hidden = {h};
+    t.sun_count = f.suns;
+    t.view_zeniths = f.view_zeniths;
+    t.view_azimuths = f.view_azimuths;
+    t.options.seed = static_cast<std::uint64_t>(f.seed);
+    t.options.time_limit_s = f.time_limit_s;
+    t.options.max_iterations = f.iterations;
+    const NeuralTrainingResult r = train_neural_sky(t);
+    const nn::ErrorStats& e = r.validation->errors;
+    StudyRow row;
+    row.hidden = h;
+    row.weights = r.network.net.layout().parameter_count();
+    row.rmse = e.rmse;
+    row.median = e.relative_median;
+    row.p95 = e.relative_p95;
+    row.train_s = r.train.seconds;
+    row.stop = r.train.stop;
+    row.grid_s = grid_seconds(r.network, dirs, f.repeats);
+    row.efficiency = 1.0 / (e.rmse * e.rmse * row.grid_s);
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+}  // namespace skylight::fit

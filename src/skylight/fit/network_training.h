@@ -1,0 +1,118 @@
+// `skylight nn train|validate|study` as a user asks for them (docs/NN.md, docs/PIETRAS.md): every
+// option declared once with its schema, the trainers' defaults, and what turns the options into
+// the library's training: a sky network on a registered model (fit/neural_training.h) or on a
+// sequence of sky images, or a Pietras network on nishita (fit/pietras_training.h).
+#pragma once
+
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "skylight/core/camera.h"
+#include "skylight/core/parameters.h"
+#include "skylight/estimate/photo.h"
+#include "skylight/estimate/sky_sequence.h"
+#include "skylight/fit/neural_training.h"
+#include "skylight/fit/pietras_training.h"
+#include "skylight/nn/image_dataset.h"
+
+namespace skylight::fit {
+
+// Trainer defaults of the sky networks (docs/NN.md): LM, 500 iterations, 60 s.
+inline constexpr nn::Trainer kSkyTrainer = nn::Trainer::levenberg_marquardt;
+inline constexpr int kSkyIterations = 500;
+inline constexpr double kSkyTimeLimitS = 60.0;
+// Sky pixels sampled per image of an image sequence (docs/NN.md: 2000 per image keep a 12-image
+// sequence at 24 000 examples), and Pietras's 800 000 samples of nishita (§VI).
+inline constexpr int kImageSamples = 2000;
+inline constexpr int kPietrasSamples = 800000;
+
+struct NetworkTrainingRequest {
+  std::string source;  // empty: the embedded network's source (the paper's Preetham)
+  int seed = 1;
+  int hidden = 12;
+  std::optional<nn::Trainer> trainer;  // absent: kSkyTrainer, with --network kPietrasTrainer
+  nn::InputSpec inputs = nn::satilmis_inputs();
+  nn::OutputEncoding encoding = nn::OutputEncoding::satilmis;
+  std::optional<double> time_limit_s;  // absent: kSkyTimeLimitS, with --network per sub-network
+  std::optional<int> iterations;       // absent: kSkyIterations, with --network per sub-network
+  std::optional<double> target_scale;  // absent: the source's NeuralPolicy
+  int suns = 0, view_zeniths = 0, view_azimuths = 0;  // 0: the protocol's
+  std::optional<nn::PietrasKind> network;             // a Pietras network instead
+  std::optional<int> samples;  // absent: kPietrasSamples (--network), kImageSamples (images)
+  std::string init;            // --network: a weights file to continue from
+  ParameterValues planet;      // --network: nishita's planet and atmosphere as given
+
+  static const ParameterSchema<NetworkTrainingRequest>& schema();
+  // The model trained on (source, or the default).
+  std::string source_model() const;
+  // A sky network's training (InvalidArgument for the Pietras-only options).
+  NeuralTraining sky_training() const;
+  // A Pietras network's training (InvalidArgument unless the source is nishita, for --init with
+  // the planet options, or an --init file of another kind); `initial` keeps the --init network
+  // that the training points to. `output`: refused when it names the --init file.
+  PietrasTraining pietras_training(std::optional<nn::PietrasNetwork>& initial,
+                                   const std::string& output) const;
+};
+
+// A sky network trained on a sequence of HDR sky images (`nn train --images LIST`): the list
+// (file[,sun_zenith_deg,sun_azimuth_deg][,time][,mask]), its images' projection and lens, a
+// common mask, --lat/--lon for rows with a time, the sky mask's rules, K-fold cross-validation.
+struct ImageTrainingOptions {
+  std::string list, mask;
+  ImageOptions image;  // the images' layout (equirect by default)
+  std::optional<double> lat_deg, lon_deg;
+  int kfold = 0;
+  estimate::MaskSettings mask_settings;
+  static const ParameterSchema<ImageTrainingOptions>& schema();
+};
+
+struct LoadedImage {
+  estimate::SequenceEntry entry;
+  estimate::SampledImage sampled;
+  std::string sun_source;  // "list", "time", "image"
+};
+struct ImageTrainingResult {
+  std::vector<LoadedImage> images;
+  double target_scale = 0.0;
+  std::size_t examples = 0;
+  std::optional<nn::CrossValidation> cross_validation;  // with kfold > 0
+  nn::TrainedSkyNetwork trained;
+  nn::ErrorStats errors;  // of the final network on all images
+};
+// progress(done, total, step) while images are read and folds trained (may be empty).
+ImageTrainingResult train_on_images(
+    const ImageTrainingOptions& options, const NeuralTraining& training, int samples_per_image,
+    const std::function<void(int, int, const std::string&)>& progress = {});
+
+// `nn validate`: the protocol's validation sets (0: their own sizes), Pietras's samples per set.
+struct ValidationOptions {
+  int suns = 0, view_zeniths = 0, view_azimuths = 0;
+  int samples = 20000;
+  static const ParameterSchema<ValidationOptions>& schema();
+};
+
+// The hidden-layer study of Satilmis et al. 2016 §III-B (Fig. 5, eq. 8; `nn study`): per hidden
+// width a network trained with the protocol, its validation error, its evaluation time on the
+// 1024 x 512 equirect grid (batch path, one thread, best of `repeats`) and the efficiency
+// eps = 1 / (Var T), Var = the validation MSE (RMSE^2).
+struct HiddenLayerStudy {
+  std::string source;  // empty: the paper's Hosek-Wilkie
+  std::vector<double> hidden{4, 8, 12, 16, 24, 32};
+  int seed = 1, iterations = kSkyIterations, repeats = 5;
+  double time_limit_s = kSkyTimeLimitS;
+  int suns = 0, view_zeniths = 0, view_azimuths = 0;
+  static const ParameterSchema<HiddenLayerStudy>& schema();
+  std::string source_model() const;
+};
+struct StudyRow {
+  int hidden = 0;
+  std::size_t weights = 0;
+  double rmse = 0, median = 0, p95 = 0, train_s = 0, grid_s = 0, efficiency = 0;
+  std::string stop;
+};
+std::vector<StudyRow> study_hidden_layers(const HiddenLayerStudy& study,
+                                          const std::function<void(int, int, int)>& progress = {});
+
+}  // namespace skylight::fit
