@@ -112,25 +112,6 @@ ParameterValues SchemaFlags::values() const {
   return v;
 }
 
-void FisheyeFlags::add(CLI::App& app, const std::string& fov_default, const std::string& fov_help) {
-  app.add_option(
-         "--lens", lens,
-         "fisheye lens equidistant|equisolid|orthographic|stereographic; default equidistant")
-      ->check(CLI::IsMember({"equidistant", "equisolid", "orthographic", "stereographic"}));
-  add_number(app,
-             {"fov", "deg", ParameterKind::number, 1e-6, 360.0, 1, Absent{fov_default}, fov_help},
-             fov_deg);
-  add_number(app,
-             {"north-angle", "deg", ParameterKind::number, -360.0, 360.0, 1, ParameterValue(0.0),
-              "fisheye: north drawn this many deg counter-clockwise from image up"},
-             north_angle_deg);
-}
-
-FisheyeLayout FisheyeFlags::layout(double default_fov_deg) const {
-  return {*parse_fisheye_lens(lens), deg_to_rad(fov_deg.value_or(default_fov_deg)),
-          deg_to_rad(north_angle_deg)};
-}
-
 CLI::Option* add_integer(CLI::App& app, const ParameterSpec& spec, int& target) {
   ParameterSpec s = spec;
   s.kind = ParameterKind::integer;
@@ -164,33 +145,6 @@ CLI::Option* add_numbers(CLI::App& app, const ParameterSpec& spec, std::vector<d
         return {};
       },
       fmt::format("{} in [{}, {}], comma-separated", s.unit, s.min, s.max)));
-}
-
-// ---- solar position flags ----------------------------------------------------------------------
-
-CLI::Option* SpaOptions::add(CLI::App& app, bool required, const std::vector<std::string>& names) {
-  auto* time = app.add_option("--time", time_,
-                              "date and time, ISO 8601 with seconds and UTC offset, e.g. "
-                              "2003-10-17T12:30:30-07:00 or 2003-10-17T19:30:30Z");
-  if (required) time->required();
-  for (const auto& spec : sun::spa_parameter_specs()) {
-    if (!names.empty() && std::find(names.begin(), names.end(), spec.name) == names.end()) continue;
-    auto* opt = add_number(app, spec, values_[spec.name]);
-    if (required && spec.required()) opt->required();
-    if (!required) opt->needs(time);
-  }
-  return time;
-}
-
-sun::SpaInput SpaOptions::input() const {
-  sun::SpaInput in;
-  in.time = sun::parse_iso8601(time_);
-  ParameterValues values;
-  for (const auto& [name, value] : values_)
-    if (value) values.set(name, *value);
-  sun::spa_input_schema().bind(values, in, "--time");
-  sun::validate(in);
-  return in;
 }
 
 std::optional<sun::SpaInput> solar_position_input(const ParameterValues& given) {

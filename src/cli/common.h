@@ -88,47 +88,6 @@ class SchemaFlags {
   std::map<std::string, CLI::Option*, std::less<>> options_;
 };
 
-// ---- fisheye flags (render, estimate) ---------------------------------------------------------
-
-// Default field of view of a fisheye image [deg]: the upper hemisphere on the image circle.
-inline constexpr double kFisheyeFovDeg = 180.0;
-
-// --lens, --fov and --north-angle of a fisheye image (core/frame.h, docs/CONVENTIONS.md), declared
-// once for the command that draws fisheyes (render) and the one that reads them (estimate), so
-// that a rendered fisheye is read back with the same flags.
-struct FisheyeFlags {
-  std::string lens = "equidistant";
-  std::optional<double> fov_deg;  // absent: the command's default
-  double north_angle_deg = 0.0;
-  // Adds the three flags; `fov_default` and `fov_help` say what --fov means for this command.
-  void add(CLI::App& app, const std::string& fov_default, const std::string& fov_help);
-  // The layout in radians, --fov defaulting to `default_fov_deg`.
-  FisheyeLayout layout(double default_fov_deg = kFisheyeFovDeg) const;
-};
-
-// ---- solar position flags (sun, render, eval)
-// ----------------------------------------------------
-
-// --time (ISO 8601 with UTC offset, sun/time.h) and the SPA's numeric flags, declared by
-// sun::spa_parameter_specs() (--lat, --lon, --elevation, --pressure, --temperature, --delta-t,
-// ...).
-class SpaOptions {
- public:
-  // Adds --time and the flags of the specs named in `names` (all specs if empty). With
-  // `required`, --time, --lat and --lon must be given; otherwise every flag needs --time. Returns
-  // the --time option.
-  CLI::Option* add(CLI::App& app, bool required, const std::vector<std::string>& names = {});
-  bool given() const { return !time_.empty(); }
-  const std::string& time_text() const { return time_; }
-  // The SPA input: the parsed time and the given values over the specs' defaults (InvalidArgument
-  // for a malformed time or a missing --lat/--lon).
-  sun::SpaInput input() const;
-
- private:
-  std::string time_;
-  std::map<std::string, std::optional<double>> values_;  // spec name -> value as given
-};
-
 // The SPA input of --time and its flags among the given values (sun::spa_input_schema() binds
 // them; a missing --lat/--lon throws), nullopt without --time.
 std::optional<sun::SpaInput> solar_position_input(const ParameterValues& given);

@@ -6,14 +6,15 @@
 
 #include "common.h"
 #include "skylight/core/error.h"
+#include "skylight/operations/operations.h"
 #include "skylight/sun/spa.h"
 #include "skylight/sun/time.h"
 
 namespace skylight::cli {
 namespace {
 
-struct SunFlags {
-  SpaOptions spa;
+struct SunCommand {
+  SchemaFlags flags;
   bool json = false;
 };
 
@@ -28,8 +29,8 @@ std::string event_text(const std::optional<sun::SunEvent>& e) {
   return e ? sun::format_iso8601(e->local, 0) : "none on this date";
 }
 
-int run_sun(const SunFlags& f) {
-  const sun::SpaInput in = f.spa.input();
+int run_sun(const SunCommand& f) {
+  const sun::SpaInput in = *solar_position_input(f.flags.values());
   const sun::SpaResult r = sun::solar_position(in);
   const sun::SunEvents ev = sun::sun_events(in);
   const double zenith_deg = rad_to_deg(r.zenith), azimuth_deg = rad_to_deg(r.azimuth);
@@ -85,10 +86,11 @@ int run_sun(const SunFlags& f) {
 }  // namespace
 
 void add_sun_command(CLI::App& app, Commands& commands) {
-  auto f = std::make_shared<SunFlags>();
+  auto f = std::make_shared<SunCommand>();
   auto* cmd = app.add_subcommand(
       "sun", "solar position (NREL SPA): zenith, azimuth, sunrise, transit, sunset");
-  f->spa.add(*cmd, true);
+  f->flags.add(*cmd, operations::find("sun").parameters);
+  for (const char* name : {"time", "lat", "lon"}) f->flags.option(name)->required();
   cmd->add_flag("--json", f->json, "write JSON instead of labelled lines");
   commands.push_back({cmd, [f] { return run_sun(*f); }});
 }

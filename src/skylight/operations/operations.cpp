@@ -18,6 +18,7 @@
 #include "skylight/models/sky_model.h"
 #include "skylight/render/animation.h"
 #include "skylight/render/false_colour.h"
+#include "skylight/report/report.h"
 #include "skylight/sh/irradiance.h"
 #include "skylight/sun/spa.h"
 
@@ -210,6 +211,17 @@ std::vector<OperationInfo> nn_operations() {
 const std::vector<OperationInfo>& registry() {
   static const std::vector<OperationInfo> ops = [] {
     std::vector<OperationInfo> ops{render_operation(), eval_operation(), estimate_operation()};
+    Specs spa{sun::time_spec("")};
+    spa.front().default_value = Required{};
+    for (const auto& spec : sun::spa_parameter_specs()) spa.push_back(spec);
+    ops.push_back({"sun",
+                   "the solar position of the NREL SPA (Reda & Andreas 2004) for a time and "
+                   "place: topocentric zenith and azimuth, and the day's sunrise, transit, sunset",
+                   spa, "sun::SpaResult and sun::SunEvents"});
+    ops.push_back({"report",
+                   "the validation and comparison report: Zotti et al. 2007's analyses for every "
+                   "model, a sky-luminance scan (docs/REPORT.md)",
+                   report::ReportOptions::schema().specs(), "report::ReportSummary"});
     for (auto& op : sh_operations()) ops.push_back(std::move(op));
     for (auto& op : haze_operations()) ops.push_back(std::move(op));
     for (auto& op : nn_operations()) ops.push_back(std::move(op));

@@ -2,6 +2,8 @@
 // helpers, the HTML page and report.json. The sections are in section_*.cpp.
 #include "skylight/report/report.h"
 
+#include "skylight/core/math.h"
+
 #include <algorithm>
 #include <optional>
 #include <system_error>
@@ -10,6 +12,52 @@
 #include "skylight/report/detail/writer.h"
 
 namespace skylight::report {
+
+const ParameterSchema<ReportOptions>& ReportOptions::schema() {
+  static const ParameterSchema<ReportOptions> s = [] {
+    using O = ReportOptions;
+    ParameterSchema<O> s;
+    s.custom(
+         {"measurements", "", ParameterKind::text, 0, 0, 1, Absent{"the shipped synthetic example"},
+          "sky-luminance scan CSV (azimuth_deg,elevation_deg,luminance_cd_m2)"},
+         [](O& o, const ParameterValue& v) { o.measurements = std::get<std::string>(v); },
+         [](const O& o) -> std::optional<ParameterValue> {
+           if (!o.measurements) return std::nullopt;
+           return o.measurements->string();
+         })
+        .custom(
+            {"sun-azimuth", "deg", ParameterKind::number, -360.0, 360.0, 1,
+             Absent{"the file's '# sun_azimuth_deg'"},
+             "sun azimuth of the scan from north towards east"},
+            [](O& o, const ParameterValue& v) {
+              o.measurement_sun_azimuth = wrap_azimuth(deg_to_rad(std::get<double>(v)));
+            },
+            [](const O& o) -> std::optional<ParameterValue> {
+              if (!o.measurement_sun_azimuth) return std::nullopt;
+              return rad_to_deg(*o.measurement_sun_azimuth);
+            })
+        .custom(
+            {"sun-elevation", "deg", ParameterKind::number, 0.0, 90.0, 1,
+             Absent{"the file's '# sun_elevation_deg'"}, "sun elevation of the scan"},
+            [](O& o, const ParameterValue& v) {
+              o.measurement_sun_elevation = deg_to_rad(std::get<double>(v));
+            },
+            [](const O& o) -> std::optional<ParameterValue> {
+              if (!o.measurement_sun_elevation) return std::nullopt;
+              return rad_to_deg(*o.measurement_sun_elevation);
+            })
+        .flag(&O::quick, {"quick",
+                          "",
+                          ParameterKind::flag,
+                          0,
+                          0,
+                          1,
+                          {},
+                          "reduced resolution and fewer sun positions (seconds; for tests)"});
+    return s;
+  }();
+  return s;
+}
 namespace detail {
 
 Config make_config(bool quick) {

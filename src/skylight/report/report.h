@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "skylight/analysis/comparison.h"
+#include "skylight/core/parameters.h"
 
 namespace skylight::report {
 
@@ -36,6 +37,9 @@ struct ReportOptions {
   bool quick = false;
   // Progress: step `done` of `total` finished (called on the calling thread).
   std::function<void(int done, int total, std::string_view step)> progress;
+
+  // --measurements, --sun-azimuth, --sun-elevation (degrees; both or neither), --quick.
+  static const ParameterSchema<ReportOptions>& schema();
 };
 
 // One finding of Zotti et al. 2007 set against our numbers (report.json `zotti_findings`; the
