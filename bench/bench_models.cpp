@@ -18,20 +18,11 @@
 #include <chrono>
 #include <vector>
 
-#include "estimate_fixture.h"
 #include "skylight/core/parallel.h"
-#include "skylight/fit/luminance_fit.h"
-#include "skylight/fit/sh_fit.h"
-#include "skylight/haze/airlight_field.h"
 #include "skylight/haze/image_haze.h"
-#include "skylight/models/neural_sky.h"
 #include "skylight/models/nishita.h"
-#include "skylight/models/pietras.h"
-#include "skylight/models/preetham.h"
 #include "skylight/models/sh.h"
-#include "skylight/models/sky_model.h"
-#include "skylight/render/sky_render.h"
-#include "skylight/sh/polynomial.h"
+#include "skylight/perf/workloads.h"
 #ifdef SKYLIGHT_HAVE_GPU
 #include "skylight/gpu/planet.h"
 #include "skylight/gpu/sky_render.h"
@@ -41,64 +32,41 @@ namespace {
 
 using namespace skylight;
 
-struct Grid {
-  render::PixelDirections d;
-  std::vector<float> X, Y, Z;
-  Grid() {
-    render::RenderSettings s;  // 1024 x 512 equirect
-    d = render::pixel_directions(s);
-    X.resize(d.x.size());
-    Y.resize(d.x.size());
-    Z.resize(d.x.size());
-  }
-};
-
-Grid& grid() {
-  static Grid g;
+// The workloads are perf/workloads.h's, shared with `skylight bench`: each model at its defaults
+// plus the registry's example values, the sun at zenith 45 deg, azimuth 180 deg.
+perf::DirectionGrid& grid() {
+  static perf::DirectionGrid g;
   return g;
 }
 
-// Each model at its defaults (T = 3, albedo 0.3, CIE type 12) plus the registry's example values
-// for required parameters, the sun at zenith 45 deg, azimuth 180 deg: as `skylight bench`. Only
-// the model's own parameters: the registry refuses names a model does not read.
-std::unique_ptr<SkyModel> model(const char* name) {
-  SkyParameters p;
-  p.values = find_model(name)->example;
-  p.sun = {deg_to_rad(45.0), deg_to_rad(180.0)};
-  return make_sky_model(name, p);
-}
-
 void Scalar(benchmark::State& state, const char* name) {
-  const auto m = model(name);
-  Grid& g = grid();
+  const auto m = perf::bench_model(name);
+  perf::DirectionGrid& g = grid();
   for (auto _ : state) {
-    for (std::size_t i = 0; i < g.X.size(); ++i) {
-      const Xyz c = m->tristimulus({g.d.x[i], g.d.y[i], g.d.z[i]});
-      g.Y[i] = static_cast<float>(c.Y);
-    }
+    g.scalar(*m);
     benchmark::DoNotOptimize(g.Y.data());
   }
-  state.SetItemsProcessed(state.iterations() * static_cast<int64_t>(g.X.size()));
+  state.SetItemsProcessed(state.iterations() * static_cast<int64_t>(g.size()));
 }
 
 void Batch(benchmark::State& state, const char* name) {
-  const auto m = model(name);
-  Grid& g = grid();
+  const auto m = perf::bench_model(name);
+  perf::DirectionGrid& g = grid();
   for (auto _ : state) {
-    m->tristimulus_batch({g.d.x, g.d.y, g.d.z}, {g.X, g.Y, g.Z});
+    g.batch(*m);
     benchmark::DoNotOptimize(g.Y.data());
   }
-  state.SetItemsProcessed(state.iterations() * static_cast<int64_t>(g.X.size()));
+  state.SetItemsProcessed(state.iterations() * static_cast<int64_t>(g.size()));
 }
 
 void Threads(benchmark::State& state, const char* name) {
-  const auto m = model(name);
-  Grid& g = grid();
+  const auto m = perf::bench_model(name);
+  perf::DirectionGrid& g = grid();
   for (auto _ : state) {
-    tristimulus_parallel(*m, {g.d.x, g.d.y, g.d.z}, {g.X, g.Y, g.Z});
+    g.threads(*m);
     benchmark::DoNotOptimize(g.Y.data());
   }
-  state.SetItemsProcessed(state.iterations() * static_cast<int64_t>(g.X.size()));
+  state.SetItemsProcessed(state.iterations() * static_cast<int64_t>(g.size()));
   state.counters["threads"] = thread_count();
 }
 
@@ -108,36 +76,32 @@ void NishitaReference(benchmark::State& state) {
   NishitaParameters p;
   p.sun = {deg_to_rad(45.0), deg_to_rad(180.0)};
   const NishitaModel m(p);
-  render::RenderSettings s;
-  s.width = 64;
-  s.height = 32;
-  const auto d = render::pixel_directions(s);
-  std::vector<float> Y(d.x.size());
+  const perf::DirectionGrid g(64, 32);
+  std::vector<float> Y(g.size());
   double seconds = 0.0;
   for (auto _ : state) {
     const auto t0 = std::chrono::steady_clock::now();
-    parallel_for(d.x.size(), 16, [&](std::size_t b, std::size_t e) {
+    parallel_for(g.size(), 16, [&](std::size_t b, std::size_t e) {
       for (std::size_t i = b; i < e; ++i)
-        Y[i] = static_cast<float>(m.tristimulus_reference({d.x[i], d.y[i], d.z[i]}).Y);
+        Y[i] = static_cast<float>(m.tristimulus_reference({g.d.x[i], g.d.y[i], g.d.z[i]}).Y);
     });
     benchmark::DoNotOptimize(Y.data());
     seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   }
   state.counters["s_per_1024x512_frame"] = seconds / static_cast<double>(state.iterations()) *
-                                           (1024.0 * 512.0) / static_cast<double>(d.x.size());
+                                           (1024.0 * 512.0) / static_cast<double>(g.size());
 }
 
 void EstimateFisheye1Mpx(benchmark::State& state) {
-  const bench::EstimateFixture f = bench::estimate_fixture();
+  const perf::EstimatePhoto photo = perf::estimate_photo();
   for (auto _ : state) {
-    const auto e =
-        fit::estimate_from_photo(PreethamModel::kName, f.photo, f.camera, std::nullopt, {}, {});
+    const auto e = perf::estimate_once(photo);
     benchmark::DoNotOptimize(e.fit.log_scale);
   }
 }
 
 void SetUp(benchmark::State& state, const char* name) {
-  for (auto _ : state) benchmark::DoNotOptimize(model(name));
+  for (auto _ : state) benchmark::DoNotOptimize(perf::bench_model(name));
 }
 
 }  // namespace
@@ -162,15 +126,13 @@ BENCHMARK_CAPTURE(Threads, nishita, "nishita")->Unit(benchmark::kMillisecond)->U
 // Pietras §III: the pietras model with a Pietras network (trainer's initial weights, the cost of a
 // trained one), observer on the ground, sun at zenith 45 deg; compare with Batch/nishita.
 void PietrasBatch(benchmark::State& state, nn::PietrasKind kind) {
-  PietrasParameters p;
-  p.sun = {deg_to_rad(45.0), deg_to_rad(180.0)};
-  const PietrasSkyModel m(p, nn::initial_pietras_network(kind, 1));
-  Grid& g = grid();
+  const auto m = perf::pietras_bench_model(kind);
+  perf::DirectionGrid& g = grid();
   for (auto _ : state) {
-    m.tristimulus_batch({g.d.x, g.d.y, g.d.z}, {g.X, g.Y, g.Z});
+    g.batch(*m);
     benchmark::DoNotOptimize(g.Y.data());
   }
-  state.SetItemsProcessed(state.iterations() * static_cast<int64_t>(g.X.size()));
+  state.SetItemsProcessed(state.iterations() * static_cast<int64_t>(g.size()));
 }
 BENCHMARK_CAPTURE(PietrasBatch, pietras, nn::PietrasKind::pietras)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(PietrasBatch, log3, nn::PietrasKind::log3)->Unit(benchmark::kMillisecond);
@@ -185,31 +147,29 @@ BENCHMARK_CAPTURE(SetUp, nn, "nn")->Unit(benchmark::kMicrosecond);
 BENCHMARK_CAPTURE(SetUp, nishita, "nishita")->Unit(benchmark::kMillisecond);
 
 // Habel 2008 §4: one sky's 7 bands x 3 channels from the embedded (17, 12) table, eq. 1 + rotation
-// (eq. 4) + ringing filter (eq. 5); against the direct projection of the model (ShProjectPreetham).
+// (eq. 4) + ringing filter (eq. 5); against the direct projection of the table's model
+// (ShProjectModel).
 void ShEvaluateTable(benchmark::State& state) {
   const sh::PolynomialTable table = load_sh_table({});
   double theta = 0.1;
   for (auto _ : state) {
     theta = theta > 1.4 ? 0.1 : theta + 1e-3;
-    benchmark::DoNotOptimize(sh::evaluate_table(table, theta, 3.0, 0.5, 7, true));
+    benchmark::DoNotOptimize(perf::evaluate_sh_table(table, theta));
   }
 }
 
-void ShProjectPreetham(benchmark::State& state) {
-  SkyParameters p;
-  p.sun = {deg_to_rad(45.0), 0.5};
-  p.values.set("turbidity", 3.0);
-  const auto m = make_sky_model("preetham", p);
-  for (auto _ : state) benchmark::DoNotOptimize(fit::project_model(*m, sh::Channels::xyz, 7));
+void ShProjectModel(benchmark::State& state) {
+  const sh::PolynomialTable table = load_sh_table({});
+  for (auto _ : state) benchmark::DoNotOptimize(perf::project_sh_model(table));
 }
 
 BENCHMARK(ShEvaluateTable)->Unit(benchmark::kMicrosecond);
-BENCHMARK(ShProjectPreetham)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(ShProjectModel)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 #ifdef SKYLIGHT_HAVE_GPU
 void GpuNnFrame(benchmark::State& state, bool readback) {
   gpu::Context context;
-  const auto m = model("nn");
+  const auto m = perf::bench_model("nn");
   render::RenderSettings s;  // 1024 x 512 equirect
   gpu::SkyRenderer r(*m, s);
   for (auto _ : state) {
@@ -259,27 +219,11 @@ void PlanetTerms(benchmark::State& state) {
 }
 BENCHMARK(PlanetTerms)->Unit(benchmark::kMillisecond)->UseRealTime();
 #endif
-// A 1920 x 1080 frame with a depth ramp (100 m .. 20 km).
-struct HazeFrame {
-  io::ImageF image, depth;
-  haze::HazeSettings settings;
-  explicit HazeFrame(int height = 1080) : image(1920, height, 3), depth(1920, height, 1) {
-    for (std::size_t i = 0; i < depth.data.size(); ++i) {
-      depth.data[i] = 100.0f + 19900.0f * static_cast<float>(i / 1920) / static_cast<float>(height);
-      for (std::size_t c = 0; c < 3; ++c)
-        image.data[3 * i + c] = 0.2f + 0.6f * static_cast<float>((i * (c + 3)) % 97) / 97.0f;
-    }
-    settings.operation = haze::HazeOperation::retarget;
-    settings.source = {1.9, 40.0};
-    settings.target_turbidity = 4.36;
-  }
-};
 
 void HazeRetarget1080p(benchmark::State& state) {
-  HazeFrame f;
-  const auto& cam = haze::find_camera("canon-eos-5d");
+  perf::HazeFrame f;
   for (auto _ : state) {
-    haze::apply_haze_in_place(f.image, f.depth, cam, f.settings);  // repeated on one buffer
+    haze::apply_haze_in_place(f.image, f.depth, perf::haze_camera(), f.settings);  // one buffer
     benchmark::DoNotOptimize(f.image.data.data());
   }
   state.counters["frames/s"] =
@@ -287,25 +231,17 @@ void HazeRetarget1080p(benchmark::State& state) {
 }
 
 void HazeRetargetExact(benchmark::State& state) {
-  const HazeFrame f(54);
-  const auto& cam = haze::find_camera("canon-eos-5d");
+  const perf::HazeFrame f(54);
   for (auto _ : state)
-    benchmark::DoNotOptimize(haze::apply_haze_exact(f.image, f.depth, cam, f.settings));
+    benchmark::DoNotOptimize(
+        haze::apply_haze_exact(f.image, f.depth, perf::haze_camera(), f.settings));
 }
 
 void HazeRetarget1080pPerPixel(benchmark::State& state) {
-  HazeFrame f;
-  const haze::ImagePositioning camera(
-      haze::view_matrix(3.0, 0.05, 0.0),
-      haze::perspective_matrix(60.0 * kDegree, 1920.0 / 1080.0, 1.0, 1e4), 1920, 1080);
-  haze::PhotoAirlight horizon;
-  horizon.horizon = {0.7, 0.8, 0.95};
-  horizon.theta_prime = 80.0 * kDegree;
-  f.settings.airlight_source_map = haze::photo_airlight_map(camera, horizon, 1.9);
-  f.settings.airlight_target_map = haze::photo_airlight_map(camera, horizon, 4.36);
-  const auto& cam = haze::find_camera("canon-eos-5d");
+  perf::HazeFrame f;
+  perf::add_per_pixel_airlight(f);
   for (auto _ : state) {
-    haze::apply_haze_in_place(f.image, f.depth, cam, f.settings);
+    haze::apply_haze_in_place(f.image, f.depth, perf::haze_camera(), f.settings);
     benchmark::DoNotOptimize(f.image.data.data());
   }
   state.counters["frames/s"] =
@@ -315,6 +251,6 @@ void HazeRetarget1080pPerPixel(benchmark::State& state) {
 BENCHMARK(HazeRetarget1080p)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(HazeRetargetExact)->Unit(benchmark::kMillisecond);
 BENCHMARK(HazeRetarget1080pPerPixel)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(EstimateFisheye1Mpx)->Unit(benchmark::kMillisecond);
 
 BENCHMARK_MAIN();
-BENCHMARK(EstimateFisheye1Mpx)->Unit(benchmark::kMillisecond);

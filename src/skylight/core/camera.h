@@ -34,11 +34,11 @@ inline constexpr int kMaxImageSide = 32768;
 
 struct Camera {
   Projection projection = Projection::equirect;
-  int width = 1024;       // [px], [1, kMaxImageSide]
-  int height = 512;       // [px], [1, kMaxImageSide]; cubemap: width = 6 height
-  FisheyeLayout fisheye;  // Projection::fisheye: image circle of diameter min(width, height),
-                          // centred, optical axis at the zenith
-  PinholeLayout pinhole;  // Projection::camera
+  int width = 1024;         // [px], [1, kMaxImageSide]
+  int height = 512;         // [px], [1, kMaxImageSide]; cubemap: width = 6 height
+  FisheyeLayout fisheye{};  // Projection::fisheye: image circle of diameter min(width, height),
+                            // centred, optical axis at the zenith
+  PinholeLayout pinhole{};  // Projection::camera
 
   // Direction seen at continuous pixel position (col, row) (pixel centres at +0.5, row 0 at the
   // top); nullopt where the layout images nothing (outside a fisheye's image circle, outside an

@@ -292,6 +292,7 @@ ModelInfo CieSkyModel::registry_entry() {
                                      .ranking_key = "type"},
       // In the sun zenith, the type (--set cie-type=N) held fixed.
       .sh_fit = ShFitPolicy{},
+      .bench = BenchPolicy{.by_default = true},
   };
 }
 

@@ -734,6 +734,7 @@ ModelInfo HosekWilkieModel::registry_entry() {
                             .degrees = std::array<int, 2>{17, 2},
                             .grid_tau = 4,
                             .theta_axis = sh::ThetaAxis::theta},
+      .bench = BenchPolicy{.by_default = true},
   };
 }
 

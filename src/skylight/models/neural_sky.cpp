@@ -8,6 +8,7 @@
 #include "skylight/core/data.h"
 #include "skylight/core/math.h"
 #include "skylight/io/file.h"
+#include "skylight/models/hosek_wilkie.h"
 #include "skylight/nn/pietras.h"
 
 namespace skylight {
@@ -146,6 +147,8 @@ ModelInfo NeuralSkyModel::registry_entry() {
       // T = 1..10 of the turbidity input
       .neural = NeuralPolicy::over_turbidity(1.0, 10.0),
       .sh_fit = ShFitPolicy{.parameter = "turbidity"},
+      // Satilmis et al. 2016 compare the network with the Hosek-Wilkie model it replaces.
+      .bench = BenchPolicy{.by_default = true, .baseline = std::string(HosekWilkieModel::kName)},
   };
 }
 

@@ -269,6 +269,9 @@ ModelInfo PietrasSkyModel::registry_entry() {
       .make = model_factory<PietrasSkyModel, PietrasParameters>(),
       .neural = NeuralPolicy{},
       .sh_fit = ShFitPolicy{},
+      // Pietras §III: the network replaces nishita's fast path.
+      .bench = BenchPolicy{.baseline = std::string(NishitaModel::kName),
+                           .extra = BenchPolicy::Extra::network_kinds},
   };
 }
 

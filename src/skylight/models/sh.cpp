@@ -149,6 +149,8 @@ ModelInfo ShSkyModel::registry_entry() {
       .unclamped = true,
       // T = 1..10 (a table of turbidity must cover them)
       .neural = NeuralPolicy::over_turbidity(1.0, 10.0),
+      // Habel 2008 §4: evaluating the table against projecting its model.
+      .bench = BenchPolicy{.extra = BenchPolicy::Extra::sh_table},
   };
 }
 

@@ -192,7 +192,7 @@ struct EstimationPolicy {
   struct Axis {
     std::string parameter;          // the schema's name, e.g. "turbidity"
     std::string label;              // in the text output, e.g. "CIE sky type"
-    std::string note;               // after the value in the text output, e.g. "(of 15, CIE S 011)"
+    std::string note{};             // after the value in the text output, e.g. "(of 15, CIE S 011)"
     double min = 0.0, max = 0.0;    // the range searched (the fit's box)
     int grid_points = 2;            // the starting grid (ranking: max - min + 1 values)
     double derivative_step = 1e-4;  // central differences of ln L
@@ -209,7 +209,7 @@ struct EstimationPolicy {
   bool is_default = false;  // the model `skylight estimate` fits without --model (one model)
   // ranking: the JSON array of every value, best first, and the key of each entry's value (e.g.
   // "cie_ranking" of {"type": 12, ...}).
-  std::string ranking_field, ranking_key;
+  std::string ranking_field{}, ranking_key{};
 };
 
 // How `skylight sh fit` fits the model's SH polynomial table (Habel et al. 2008 eq. 1;
@@ -227,6 +227,17 @@ struct ShFitPolicy {
   std::optional<std::array<int, 2>> degrees{};
   int grid_tau = 0;
   sh::ThetaAxis theta_axis = sh::ThetaAxis::theta;
+};
+
+// How the benchmarks use the model (`skylight bench`, bench/bench_models.cpp; perf/workloads.h).
+struct BenchPolicy {
+  bool by_default = false;  // timed by `skylight bench` without --models
+  // A model whose batch path this one is compared with (the cost it replaces); empty: none.
+  std::string baseline{};
+  // A further workload of perf/workloads.h: the SH table's evaluation against projecting the
+  // table's model, or each network kind (with the trainer's initial weights) against nishita.
+  enum class Extra { none, sh_table, network_kinds };
+  Extra extra = Extra::none;
 };
 
 // Binds the generic values into the model's typed parameters (its schema applies defaults and
@@ -254,6 +265,7 @@ struct ModelInfo {
   std::optional<EstimationPolicy> estimation{};
   // Absent: no SH table is fitted to this model (`sh`: a table is not fitted to a table).
   std::optional<ShFitPolicy> sh_fit{};
+  BenchPolicy bench{};
 };
 
 // The factory of a model class built from its typed parameters P (bind_parameters).

@@ -16,6 +16,7 @@
 #include "skylight/models/pietras.h"
 #include "skylight/models/sh.h"
 #include "skylight/models/sky_model.h"
+#include "skylight/perf/bench.h"
 #include "skylight/render/animation.h"
 #include "skylight/render/false_colour.h"
 #include "skylight/report/report.h"
@@ -218,6 +219,10 @@ const std::vector<OperationInfo>& registry() {
                    "the solar position of the NREL SPA (Reda & Andreas 2004) for a time and "
                    "place: topocentric zenith and azimuth, and the day's sunrise, transit, sunset",
                    spa, "sun::SpaResult and sun::SunEvents"});
+    ops.push_back({"bench",
+                   "each model's batch path timed against its scalar loop, with the comparisons "
+                   "and workloads its registry entry declares; --estimate, --haze",
+                   perf::BenchSettings::schema().specs(), "text: medians and ratios"});
     ops.push_back({"report",
                    "the validation and comparison report: Zotti et al. 2007's analyses for every "
                    "model, a sky-luminance scan (docs/REPORT.md)",
