@@ -266,9 +266,8 @@ SkyParameters ModelOptions::parameters() const {
   }
   for (const auto& [name, text] : raw_) {
     if (!text) continue;
-    const auto spec = std::find_if(m.parameters.begin(), m.parameters.end(),
-                                   [&](const ParameterSpec& s) { return s.name == name; });
-    if (spec == m.parameters.end()) {
+    const ParameterSpec* spec = m.find_parameter(name);
+    if (spec == nullptr) {
       warn(fmt::format("--{} is not a parameter of model '{}'; ignored", name, m.name));
       continue;
     }

@@ -8,6 +8,7 @@
 #include <numeric>
 
 #include "skylight/core/error.h"
+#include "skylight/core/numbers.h"
 #include "skylight/core/parallel.h"
 #include "skylight/models/cie_sky.h"
 #include "skylight/models/preetham.h"
@@ -129,34 +130,40 @@ LuminanceRatio absolute_luminance_ratio(const RelativeSamples& a, const Relative
   return r;
 }
 
-ModelSpec cie_spec(int type) {
-  ModelSpec s{"cie", {}, fmt::format("CIE type {}", type)};
-  s.params.values.set("cie-type", type);
+namespace {
+const ReportPolicy& report_policy(std::string_view model) {
+  const ModelInfo* info = find_model(model);
+  if (info == nullptr || info->report.title.empty())
+    throw InvalidArgument(fmt::format("model '{}' is not in the report", excerpt(model)));
+  return info->report;
+}
+}  // namespace
+
+ModelSpec comparison_spec(std::string_view model, std::optional<double> value) {
+  const ReportPolicy& r = report_policy(model);
+  if (r.axis.empty() == value.has_value())
+    throw InvalidArgument(fmt::format("model '{}': the report {} a value of {}", model,
+                                      value ? "takes no" : "needs",
+                                      r.axis.empty() ? "an axis" : r.axis));
+  ModelSpec s{std::string(model), {}, r.title};
+  s.params.values = find_model(model)->example;
+  for (const auto& [name, v] : r.fixed.all()) s.params.values.set(name, v);
+  if (value) {
+    s.params.values.set(r.axis, *value);
+    s.label += fmt::format(" {}{:g}", r.axis_label, *value);
+  }
   return s;
 }
 
-ModelSpec preetham_spec(double T) {
-  ModelSpec s{"preetham", {}, fmt::format("Preetham T = {:g}", T)};
-  s.params.values.set("turbidity", T);
-  return s;
-}
-
-ModelSpec hosek_spec(double T) {
-  ModelSpec s{"hosek", {}, fmt::format("Hosek-Wilkie T = {:g}", T)};
-  s.params.values.set("turbidity", T);
-  s.params.values.set("albedo", 0.3);
-  return s;
-}
-
-ModelSpec nishita_spec() {
-  return {"nishita", {}, "Nishita (Earth defaults)"};
+std::string comparison_colour(std::string_view model) {
+  return report_policy(model).colour;
 }
 
 std::vector<RelativeSamples> cie_type_samples(const ComparisonSettings& s,
                                               const HemisphereGrid& grid) {
   std::vector<RelativeSamples> out;
   for (int type = 1; type <= kCieTypeCount; ++type)
-    out.push_back(relative_samples(cie_spec(type), s, grid));
+    out.push_back(relative_samples(comparison_spec(CieSkyModel::kName, type), s, grid));
   return out;
 }
 
@@ -195,7 +202,8 @@ std::vector<CieTypeMatch> best_cie_type_per_turbidity(const std::vector<double>&
   const auto cie = cie_type_samples(s, grid);
   std::vector<CieTypeMatch> out;
   for (double T : turbidities) {
-    CieTypeMatch m = rank_against(relative_samples(preetham_spec(T), s, grid), cie, grid);
+    CieTypeMatch m = rank_against(
+        relative_samples(comparison_spec(PreethamModel::kName, T), s, grid), cie, grid);
     m.turbidity = T;
     out.push_back(m);
   }
@@ -209,9 +217,11 @@ TurbidityFit best_preetham_turbidity_for_cie(int cie_type, double t_min, double 
   require_in_range("t_max", t_max, t_min, 64.0);
   require_in_range("t_step", t_step, 1e-4, 64.0);
   const HemisphereGrid grid = hemisphere_grid(s.n_theta, s.n_phi);
-  const RelativeSamples cie = relative_samples(cie_spec(cie_type), s, grid);
+  const RelativeSamples cie =
+      relative_samples(comparison_spec(CieSkyModel::kName, cie_type), s, grid);
   auto rms = [&](double T) {
-    return relative_log_rms(relative_samples(preetham_spec(T), s, grid), cie, grid);
+    return relative_log_rms(relative_samples(comparison_spec(PreethamModel::kName, T), s, grid),
+                            cie, grid);
   };
   TurbidityFit fit;
   const int n = std::max(1, static_cast<int>(std::lround((t_max - t_min) / t_step)));
@@ -258,8 +268,8 @@ std::vector<AntisolarRow> antisolar_horizon_ratios(double turbidity,
   std::vector<AntisolarRow> out;
   for (double ts : sun_zeniths) {
     // Sun in the south (azimuth pi); the antisolar direction is north (azimuth 0).
-    const auto pr = make_model(preetham_spec(turbidity), ts, kPi);
-    const auto cie = make_model(cie_spec(12), ts, kPi);
+    const auto pr = make_model(comparison_spec(PreethamModel::kName, turbidity), ts, kPi);
+    const auto cie = make_model(comparison_spec(CieSkyModel::kName, 12), ts, kPi);
     const double pz = pr->tristimulus({0, 0, 1}).Y, cz = cie->tristimulus({0, 0, 1}).Y;
     for (double e : view_elevations) {
       const Vec3 v = direction_from_angles(kPi / 2 - e, 0.0);
@@ -345,9 +355,9 @@ RatioBand preetham_cie_ratio_band(double turbidity, int cie_type, const Comparis
   for (double ts : s.sun_zeniths) {
     ComparisonSettings one = s;
     one.sun_zeniths = {ts};
-    const LuminanceRatio r =
-        absolute_luminance_ratio(relative_samples(preetham_spec(turbidity), one, grid),
-                                 relative_samples(cie_spec(cie_type), one, grid), grid);
+    const LuminanceRatio r = absolute_luminance_ratio(
+        relative_samples(comparison_spec(PreethamModel::kName, turbidity), one, grid),
+        relative_samples(comparison_spec(CieSkyModel::kName, cie_type), one, grid), grid);
     const ZenithLuminanceBand band = kittler_darula_zenith_luminance_band(cie_type, kPi / 2 - ts);
     if (!std::isfinite(r.mean) || !(band.low > 0.0)) continue;
     // The CIE luminance is proportional to its zenith luminance: rescale the ratio.

@@ -7,7 +7,9 @@
 #include <array>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "skylight/analysis/hemisphere.h"
@@ -37,11 +39,14 @@ struct ModelSpec {
 };
 std::unique_ptr<SkyModel> make_model(const ModelSpec& spec, double sun_zenith, double sun_azimuth);
 
-// Specs of the models compared by the report (labels for legends and tables).
-ModelSpec cie_spec(int type);
-ModelSpec preetham_spec(double turbidity);
-ModelSpec hosek_spec(double turbidity);  // albedo 0.3
-ModelSpec nishita_spec();                // Earth defaults
+// One sky of a registered model as the report compares it (its entry's ReportPolicy): the model's
+// example values, the values the policy holds, and `value` of the policy's axis (required when the
+// policy has an axis, refused when it has none); labelled "<title> <axis_label><value>", e.g.
+// "Preetham T = 3", "CIE type 12", "Nishita (Earth defaults)". Throws InvalidArgument for a
+// model without a report policy.
+ModelSpec comparison_spec(std::string_view model, std::optional<double> value = std::nullopt);
+// The colour of the model's curves (its ReportPolicy).
+std::string comparison_colour(std::string_view model);
 
 // How two luminance distributions are compared (Zotti's normalisation: to the zenith).
 struct ComparisonSettings {

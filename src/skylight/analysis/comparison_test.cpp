@@ -9,6 +9,7 @@
 
 #include "skylight/core/error.h"
 #include "skylight/models/cie_sky.h"
+#include "skylight/models/hosek_wilkie.h"
 #include "skylight/models/preetham.h"
 
 namespace skylight::analysis {
@@ -79,9 +80,11 @@ TEST(PreethamNegativeSky, BoundaryIsTheRootOfOnePlusAExpB) {
 TEST(RegionRatio, AntisolarHalfMatchesADirectRecomputation) {
   const HemisphereGrid grid = hemisphere_grid(6, 24);
   const double ts = deg_to_rad(70.0), T = 2.4;
-  const RegionRatio r = region_ratio(preetham_spec(T), cie_spec(12), ts, grid, in_antisolar_half);
-  const auto pr = make_model(preetham_spec(T), ts, kPi);
-  const auto ci = make_model(cie_spec(12), ts, kPi);
+  const RegionRatio r =
+      region_ratio(comparison_spec(PreethamModel::kName, T),
+                   comparison_spec(CieSkyModel::kName, 12), ts, grid, in_antisolar_half);
+  const auto pr = make_model(comparison_spec(PreethamModel::kName, T), ts, kPi);
+  const auto ci = make_model(comparison_spec(CieSkyModel::kName, 12), ts, kPi);
   const double pz = pr->tristimulus({0, 0, 1}).Y, cz = ci->tristimulus({0, 0, 1}).Y;
   double amin = 1e300, amax = 0.0, rmin = 1e300, rmax = 0.0;
   int n = 0;
@@ -112,9 +115,9 @@ TEST(RatioBand, TypicalMatchesTheLuminanceRatioAndTheBandBracketsIt) {
   const HemisphereGrid grid = hemisphere_grid(s.n_theta, s.n_phi);
   for (const auto& [T, type] : {std::pair{2.9, 10}, std::pair{10.0, 6}}) {
     const RatioBand b = preetham_cie_ratio_band(T, type, s);
-    const LuminanceRatio r =
-        absolute_luminance_ratio(relative_samples(preetham_spec(T), s, grid),
-                                 relative_samples(cie_spec(type), s, grid), grid);
+    const LuminanceRatio r = absolute_luminance_ratio(
+        relative_samples(comparison_spec(PreethamModel::kName, T), s, grid),
+        relative_samples(comparison_spec(CieSkyModel::kName, type), s, grid), grid);
     EXPECT_NEAR(b.typical, r.mean, kRatioBandTol * r.mean);
     EXPECT_LE(b.against_cie_high, b.typical);
     EXPECT_GE(b.against_cie_low, b.typical);
@@ -182,8 +185,9 @@ TEST(Comparison, EachCieTypeBestMatchesItself) {
 TEST(Comparison, RmsIsSymmetricAndScaleFree) {
   const auto s = small_settings();
   const auto g = hemisphere_grid(s.n_theta, s.n_phi);
-  const ModelSpec a = cie_spec(12), b = cie_spec(13);
-  ModelSpec b10 = cie_spec(13);
+  const ModelSpec a = comparison_spec(CieSkyModel::kName, 12),
+                  b = comparison_spec(CieSkyModel::kName, 13);
+  ModelSpec b10 = comparison_spec(CieSkyModel::kName, 13);
   b10.params.values.set("zenith-luminance",
                         10.0 * kittler_darula_zenith_luminance(13, deg_to_rad(60.0)));
   const auto sa = relative_samples(a, s, g), sb = relative_samples(b, s, g);
@@ -238,7 +242,7 @@ TEST(Comparison, AntisolarHorizonRatioIsTheModelsRatio) {
 }
 
 TEST(ValidityGrid, GridReportsTheModelsDomain) {
-  const ModelSpec spec = preetham_spec(3.0);  // the rows set the turbidity
+  const ModelSpec spec = comparison_spec(PreethamModel::kName, 3.0);  // the rows set the turbidity
   const auto g =
       validity_grid(spec, {deg_to_rad(45.0), deg_to_rad(100.0)}, {3.0, 8.0, 20.0}, "turbidity");
   ASSERT_EQ(g.size(), 3u);
@@ -247,7 +251,7 @@ TEST(ValidityGrid, GridReportsTheModelsDomain) {
   EXPECT_EQ(g[2][0], Validity::unphysical);
   EXPECT_EQ(g[0][1], Validity::undefined);  // sun below the horizon
   // Parameters the model rejects are drawn as undefined.
-  const ModelSpec hosek = hosek_spec(5.0);
+  const ModelSpec hosek = comparison_spec(HosekWilkieModel::kName, 5.0);
   const auto h = validity_grid(hosek, {deg_to_rad(45.0)}, {5.0, 20.0}, "turbidity");
   EXPECT_EQ(h[0][0], Validity::valid);
   EXPECT_EQ(h[1][0], Validity::undefined);

@@ -9,6 +9,7 @@
 
 #include "skylight/core/error.h"
 #include "skylight/core/random.h"
+#include "skylight/models/cie_sky.h"
 
 namespace skylight::analysis {
 
@@ -29,7 +30,7 @@ SkyScan synthetic_tregenza_scan(const SyntheticScanSettings& s) {
   SkyParameters p;
   p.values.set("cie-type", s.cie_type);
   p.sun = {kPi / 2 - s.sun_elevation, wrap_azimuth(s.sun_azimuth)};
-  const auto sky = make_sky_model("cie", p);
+  const auto sky = make_sky_model(CieSkyModel::kName, p);
   SplitMix64 rng(s.seed);
   SkyScan scan;
   scan.source = "synthetic";

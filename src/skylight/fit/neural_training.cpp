@@ -16,12 +16,6 @@ const ModelInfo& source_info(std::string_view source) {
   return *info;
 }
 
-const ParameterSpec* find_spec(const ModelInfo& info, std::string_view name) {
-  const auto it = std::find_if(info.parameters.begin(), info.parameters.end(),
-                               [&](const ParameterSpec& s) { return s.name == name; });
-  return it == info.parameters.end() ? nullptr : &*it;
-}
-
 void apply_overrides(nn::SamplingSpec& spec, const NeuralTraining& t) {
   if (t.sun_count > 0) spec.sun_count = t.sun_count;
   if (t.view_zeniths > 0) spec.view_zeniths = t.view_zeniths;
@@ -36,8 +30,8 @@ double default_target_scale(std::string_view source) {
 
 nn::SkySource sky_model_source(std::string_view model) {
   const ModelInfo& info = source_info(model);
-  const bool has_turbidity = find_spec(info, "turbidity") != nullptr;
-  const bool has_albedo = find_spec(info, "albedo") != nullptr;
+  const bool has_turbidity = info.find_parameter("turbidity") != nullptr;
+  const bool has_albedo = info.find_parameter("albedo") != nullptr;
   return [&info, has_turbidity, has_albedo](const nn::SkyState& s) -> nn::SkyFunction {
     SkyParameters p;
     p.sun = {s.sun_zenith, s.sun_azimuth};

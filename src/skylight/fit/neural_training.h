@@ -10,6 +10,7 @@
 #include <string_view>
 #include <vector>
 
+#include "skylight/models/preetham.h"
 #include "skylight/nn/dataset.h"
 #include "skylight/nn/metrics.h"
 #include "skylight/nn/sky_network.h"
@@ -34,7 +35,7 @@ nn::SamplingSpec neural_training_spec(std::string_view source);
 nn::SamplingSpec neural_validation_spec(std::string_view source);
 
 struct NeuralTraining {
-  std::string source = "preetham";
+  std::string source = std::string(PreethamModel::kName);
   std::vector<int> hidden{12};  // hidden layer widths (the paper: one layer of 12)
   nn::InputSpec inputs = nn::satilmis_inputs();
   nn::OutputEncoding encoding = nn::OutputEncoding::satilmis;

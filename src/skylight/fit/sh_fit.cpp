@@ -220,12 +220,6 @@ const ParameterSchema<ShFitRequest>& ShFitRequest::schema() {
 
 namespace {
 
-const ParameterSpec* spec_of(const ModelInfo& info, const std::string& name) {
-  for (const auto& s : info.parameters)
-    if (s.name == name) return &s;
-  return nullptr;
-}
-
 int integer_intervals(double lo, double hi) {
   return std::clamp(static_cast<int>(std::lround(hi - lo)), 1, sh::kMaxTauPieces);
 }
@@ -235,7 +229,8 @@ ParameterValues fixed_parameters(const ModelInfo& info, const std::vector<std::s
   ParameterValues fixed;
   for (const auto& kv : set) {
     const auto eq = kv.find('=');
-    const ParameterSpec* spec = eq == std::string::npos ? nullptr : spec_of(info, kv.substr(0, eq));
+    const ParameterSpec* spec =
+        eq == std::string::npos ? nullptr : info.find_parameter(kv.substr(0, eq));
     if (!spec) {
       throw InvalidArgument(
           fmt::format("--set {}: expected NAME=VALUE with NAME a parameter of model '{}'",
@@ -294,7 +289,7 @@ ShFitSettings sh_fit_settings(const ShFitRequest& r) {
   s.model = info->name;
   sh::PolynomialFitSettings& p = s.polynomial;
   p.parameter = r.parameter.empty() ? policy.parameter : r.parameter == "none" ? "" : r.parameter;
-  const ParameterSpec* tau = p.parameter.empty() ? nullptr : spec_of(*info, p.parameter);
+  const ParameterSpec* tau = p.parameter.empty() ? nullptr : info->find_parameter(p.parameter);
   if (!p.parameter.empty() && (!tau || tau->kind != ParameterKind::number)) {
     throw InvalidArgument(fmt::format("--parameter: '{}' is not a number parameter of model '{}'",
                                       excerpt(p.parameter), info->name));

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "skylight/core/parameters.h"
+#include "skylight/models/preetham.h"
 #include "skylight/models/sky_model.h"
 #include "skylight/sh/polynomial.h"
 #include "skylight/sh/projection.h"
@@ -37,7 +38,7 @@ sh::Triple minimum_over_sky(const SkyModel& model, sh::Channels channels, int n_
 // A table of eq. 1 fitted to a registry model: the model, its parameters held fixed (e.g. hosek's
 // albedo, cie's type; the rest at their defaults), the polynomial and the projections.
 struct ShFitSettings {
-  std::string model = "preetham";
+  std::string model = std::string(PreethamModel::kName);
   ParameterValues fixed;
   sh::PolynomialFitSettings polynomial{};
   sh::ProjectionOptions projection{};

@@ -235,9 +235,7 @@ std::unique_ptr<SkyModel> AirlightSource::model_at(double t) const {
   SkyParameters p;
   p.sun = sun_from_degrees(options_.sun_zenith_deg, options_.sun_azimuth_deg);
   p.values = info->example;
-  bool has_turbidity = false;
-  for (const auto& spec : info->parameters) has_turbidity |= spec.name == "turbidity";
-  if (!has_turbidity)
+  if (info->find_parameter("turbidity") == nullptr)
     throw InvalidArgument(fmt::format("--sky-model '{}' has no turbidity", info->name));
   p.values.set("turbidity", t);
   return make_sky_model(info->name, p);

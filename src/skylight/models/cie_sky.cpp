@@ -293,6 +293,9 @@ ModelInfo CieSkyModel::registry_entry() {
       // In the sun zenith, the type (--set cie-type=N) held fixed.
       .sh_fit = ShFitPolicy{},
       .bench = BenchPolicy{.by_default = true},
+      .report =
+          ReportPolicy{
+              .title = "CIE", .axis = "cie-type", .axis_label = "type ", .colour = "#d62728"},
   };
 }
 

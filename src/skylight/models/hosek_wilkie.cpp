@@ -735,6 +735,12 @@ ModelInfo HosekWilkieModel::registry_entry() {
                             .grid_tau = 4,
                             .theta_axis = sh::ThetaAxis::theta},
       .bench = BenchPolicy{.by_default = true},
+      // The report's Hosek skies are over the ground albedo 0.3 of Hosek & Wilkie's figures.
+      .report = ReportPolicy{.title = "Hosek-Wilkie",
+                             .axis = "turbidity",
+                             .axis_label = "T = ",
+                             .fixed = ParameterValues().set("albedo", 0.3),
+                             .colour = "#1f77b4"},
   };
 }
 

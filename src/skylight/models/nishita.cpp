@@ -269,6 +269,7 @@ ModelInfo NishitaModel::registry_entry() {
       .make = model_factory<NishitaModel, NishitaParameters>(),
       .neural = NeuralPolicy{},
       .sh_fit = ShFitPolicy{},
+      .report = ReportPolicy{.title = "Nishita (Earth defaults)", .colour = "#2ca02c"},
   };
 }
 

@@ -116,6 +116,8 @@ ModelInfo PerezModel::registry_entry() {
                      .set("zenith-luminance", 5000.0),
       .neural = NeuralPolicy{},
       .sh_fit = ShFitPolicy{},
+      // The report's Perez sky: the example's clear-sky coefficients.
+      .report = ReportPolicy{.title = "Perez (example coefficients)", .colour = "#8c564b"},
   };
 }
 

@@ -381,6 +381,9 @@ ModelInfo PreethamModel::registry_entry() {
       // Habel 2008 §2.2: the Preetham fit covers T in [2.5, 6].
       .sh_fit = ShFitPolicy{.parameter = "turbidity", .range = std::array<double, 2>{2.5, 6.0}},
       .bench = BenchPolicy{.by_default = true},
+      .report =
+          ReportPolicy{
+              .title = "Preetham", .axis = "turbidity", .axis_label = "T = ", .colour = "#000000"},
   };
 }
 

@@ -134,6 +134,12 @@ void require_in_range(std::string_view name, double value, double min, double ma
   }
 }
 
+const ParameterSpec* ModelInfo::find_parameter(std::string_view parameter) const {
+  for (const auto& s : parameters)
+    if (s.name == parameter) return &s;
+  return nullptr;
+}
+
 std::vector<ParameterSpec> all_parameters(const ModelInfo& model) {
   std::vector<ParameterSpec> out = sun_parameter_specs();
   out.insert(out.end(), model.parameters.begin(), model.parameters.end());

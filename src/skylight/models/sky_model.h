@@ -240,6 +240,17 @@ struct BenchPolicy {
   Extra extra = Extra::none;
 };
 
+// How the validation report (src/skylight/report/, docs/REPORT.md) labels and draws the model:
+// one sky of it is "<title> <axis_label><value>" (e.g. "Preetham T = 3", "CIE type 12"), or the
+// title alone for a model the report does not vary. A model without a title is not in the report.
+struct ReportPolicy {
+  std::string title{};
+  std::string axis{};        // the parameter the report varies ("turbidity", "cie-type"), or ""
+  std::string axis_label{};  // before the value in labels: "T = ", "type "
+  ParameterValues fixed{};   // values the report holds (e.g. Hosek's ground albedo 0.3)
+  std::string colour{};      // of its curves and markers in the report's plots (#rrggbb)
+};
+
 // Binds the generic values into the model's typed parameters (its schema applies defaults and
 // checks them) and builds the model.
 using ModelFactory = std::function<std::unique_ptr<SkyModel>(const SkyParameters&)>;
@@ -266,6 +277,10 @@ struct ModelInfo {
   // Absent: no SH table is fitted to this model (`sh`: a table is not fitted to a table).
   std::optional<ShFitPolicy> sh_fit{};
   BenchPolicy bench{};
+  ReportPolicy report{};
+
+  // The model's own parameter of that name (not the sun's); nullptr if it has none.
+  const ParameterSpec* find_parameter(std::string_view parameter) const;
 };
 
 // The factory of a model class built from its typed parameters P (bind_parameters).

@@ -21,7 +21,7 @@ namespace skylight::nn {
 
 // Where a network came from (informative; written into and read from the weights file).
 struct SkyNetworkProvenance {
-  std::string source;               // the source model's registry name ("preetham", "hosek")
+  std::string source;               // the registry name of the model it learned
   std::vector<double> turbidities;  // the training sky states (empty: the source has none)
   double ground_albedo = 0.5;
   int sun_count = 0;  // sun zenith angles per turbidity, in [0, pi/2]

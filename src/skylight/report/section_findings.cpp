@@ -6,6 +6,8 @@
 
 #include "skylight/core/error.h"
 #include "skylight/models/cie_sky.h"
+#include "skylight/models/hosek_wilkie.h"
+#include "skylight/models/nishita.h"
 #include "skylight/models/preetham.h"
 #include "skylight/report/detail/writer.h"
 
@@ -191,9 +193,11 @@ void ReportWriter::section_findings() {
     Range abs_fit, rel_fit, rel_low, abs_low;
     Json rows = Json::array();
     for (double d : cfg_.zone_sun_zeniths_deg) {
-      const RegionRatio a = region_ratio(preetham_spec(fit_t), cie_spec(12), d * kDegree, zone_grid,
-                                         in_antisolar_half);
-      const RegionRatio b = region_ratio(preetham_spec(kLowTurbidity), cie_spec(12), d * kDegree,
+      const RegionRatio a = region_ratio(comparison_spec(PreethamModel::kName, fit_t),
+                                         comparison_spec(CieSkyModel::kName, 12), d * kDegree,
+                                         zone_grid, in_antisolar_half);
+      const RegionRatio b = region_ratio(comparison_spec(PreethamModel::kName, kLowTurbidity),
+                                         comparison_spec(CieSkyModel::kName, 12), d * kDegree,
                                          zone_grid, in_antisolar_half);
       abs_fit.add(a.absolute_min, a.absolute_max, rad_to_deg(a.absolute_min_elevation));
       rel_fit.add(a.relative_min, a.relative_max, rad_to_deg(a.relative_min_elevation));
@@ -348,10 +352,12 @@ void ReportWriter::section_findings() {
     Range cs_rel, hz_rel, hz_abs;
     for (double d : cfg_.low_sun_zeniths_deg) {
       const RegionRatio c =
-          region_ratio(preetham_spec(fit_t), cie_spec(12), d * kDegree, zone_grid, ring);
+          region_ratio(comparison_spec(PreethamModel::kName, fit_t),
+                       comparison_spec(CieSkyModel::kName, 12), d * kDegree, zone_grid, ring);
       cs_rel.add(c.relative_min, c.relative_max);
-      const RegionRatio h = region_ratio(preetham_spec(kHorizonTurbidity), cie_spec(12),
-                                         d * kDegree, zone_grid, horizon);
+      const RegionRatio h =
+          region_ratio(comparison_spec(PreethamModel::kName, kHorizonTurbidity),
+                       comparison_spec(CieSkyModel::kName, 12), d * kDegree, zone_grid, horizon);
       hz_rel.add(h.relative_min, h.relative_max);
       hz_abs.add(h.absolute_min, h.absolute_max);
     }

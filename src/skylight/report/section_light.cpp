@@ -6,6 +6,9 @@
 #include "skylight/core/error.h"
 #include "skylight/core/parallel.h"
 #include "skylight/models/cie_sky.h"
+#include "skylight/models/hosek_wilkie.h"
+#include "skylight/models/nishita.h"
+#include "skylight/models/perez.h"
 #include "skylight/models/preetham.h"
 #include "skylight/report/detail/writer.h"
 
@@ -19,12 +22,19 @@ void ReportWriter::section_illumination() {
     std::string colour;
     bool spectral;
   };
-  std::vector<Row> models = {{preetham_spec(3.0), std::string(kPreethamColour), true},
-                             {cie_spec(12), std::string(kCieColour), false},
-                             {cie_spec(16), std::string(kCie16Colour), false}};
+  // Spectral: the irradiance comes from the model's spectral radiance (its registry entry).
+  auto row = [](ModelSpec spec) {
+    const std::string colour = comparison_colour(spec.name);
+    const bool spectral = find_model(spec.name)->spectral;
+    return Row{std::move(spec), colour, spectral};
+  };
+  std::vector<Row> models = {row(comparison_spec(PreethamModel::kName, 3.0)),
+                             row(comparison_spec(CieSkyModel::kName, 12)),
+                             row(comparison_spec(CieSkyModel::kName, 16)),
+                             row(comparison_spec(HosekWilkieModel::kName, 3.0)),
+                             row(comparison_spec(NishitaModel::kName))};
   models[2].spec.label = "CIE type 16 (traditional overcast)";
-  if (has_model("hosek")) models.push_back({hosek_spec(3.0), std::string(kHosekColour), true});
-  if (has_model("nishita")) models.push_back({nishita_spec(), std::string(kNishitaColour), true});
+  models[2].colour = kCie16Colour;
   const auto& el = cfg_.illum_elevations_deg;
   svg::Plot lx, wm;
   lx.id = "illum";
@@ -147,12 +157,11 @@ void ReportWriter::section_measurements() {
     std::unique_ptr<SkyModel> model;
   };
   std::vector<Entry> entries;
-  auto best_t = [&](const std::string& name, double t0, double t1) {
+  // The value of the model's report axis with the lowest zenith-normalised RMS over [t0, t1].
+  auto best_t = [&](std::string_view name, double t0, double t1) {
     double best = t0, best_rms = kInf;
     for (double T = t0; T <= t1 + 1e-9; T += cfg_.scan_t_step) {
-      ModelSpec s{name, {}, ""};
-      s.params.values.set("turbidity", T);
-      const auto m = make_model(s, ts, az);
+      const auto m = make_model(comparison_spec(name, T), ts, az);
       const double r = compare_to_scan(*m, scan, excl).rms_log10_relative;
       if (r < best_rms) {
         best_rms = r;
@@ -167,32 +176,32 @@ void ReportWriter::section_measurements() {
   for (const auto& smp : scan.samples)
     if (smp.elevation > top->elevation) top = &smp;
   for (int t = 1; t <= kCieTypeCount; ++t) {
-    ModelSpec spec = cie_spec(t);
+    ModelSpec spec = comparison_spec(CieSkyModel::kName, t);
     auto m = make_model(spec, ts, az);
     if (!(m->tristimulus({0.0, 0.0, 1.0}).Y > 0.0)) {
       spec.params.values.set("zenith-luminance", top->luminance);
       spec.label += " (Lz from the scan: Kittler-Darula gives 0)";
       m = make_model(spec, ts, az);
     }
-    entries.push_back({spec.label, std::string(kCieColour), compare_to_scan(*m, scan, excl),
-                       std::move(m)});
+    entries.push_back(
+        {spec.label, comparison_colour(spec.name), compare_to_scan(*m, scan, excl), std::move(m)});
+  }
+  // Preetham over the report's fit range; Hosek-Wilkie over the turbidities it accepts.
+  const ParameterSpec& hosek_t = *find_model(HosekWilkieModel::kName)->find_parameter("turbidity");
+  for (const auto& [name, range] :
+       {std::pair{PreethamModel::kName, std::array{cfg_.fit_t_min, cfg_.fit_t_max}},
+        std::pair{HosekWilkieModel::kName, std::array{hosek_t.min, hosek_t.max}}}) {
+    const double T = best_t(name, range[0], range[1]);
+    const ModelSpec spec = comparison_spec(name, T);
+    auto m = make_model(spec, ts, az);
+    entries.push_back({fmt::format("{} T = {:.2f} (best)", find_model(name)->report.title, T),
+                       comparison_colour(name), compare_to_scan(*m, scan, excl), std::move(m)});
   }
   {
-    const double T = best_t("preetham", cfg_.fit_t_min, cfg_.fit_t_max);
-    auto m = make_model(preetham_spec(T), ts, az);
-    entries.push_back({fmt::format("Preetham T = {:.2f} (best)", T), std::string(kPreethamColour),
-                       compare_to_scan(*m, scan, excl), std::move(m)});
-  }
-  if (has_model("hosek")) {
-    const double T = best_t("hosek", 1.0, 10.0);
-    auto m = make_model(hosek_spec(T), ts, az);
-    entries.push_back({fmt::format("Hosek-Wilkie T = {:.2f} (best)", T), std::string(kHosekColour),
-                       compare_to_scan(*m, scan, excl), std::move(m)});
-  }
-  if (has_model("nishita")) {
-    auto m = make_model(nishita_spec(), ts, az);
-    entries.push_back({nishita_spec().label, std::string(kNishitaColour),
-                       compare_to_scan(*m, scan, excl), std::move(m)});
+    const ModelSpec spec = comparison_spec(NishitaModel::kName);
+    auto m = make_model(spec, ts, az);
+    entries.push_back(
+        {spec.label, comparison_colour(spec.name), compare_to_scan(*m, scan, excl), std::move(m)});
   }
   // The best CIE type by relative RMS goes into the plot with the other families.
   std::size_t best_cie = 0;
@@ -290,112 +299,129 @@ void ReportWriter::section_measurements() {
 
 // ---- validity ----------------------------------------------------------------------------------
 
+namespace {
+
+// Cells span halfway to the neighbouring samples.
+std::vector<double> cell_edges(const std::vector<double>& v, double lo, double hi) {
+  std::vector<double> e{lo};
+  for (std::size_t i = 1; i < v.size(); ++i) e.push_back(0.5 * (v[i - 1] + v[i]));
+  e.push_back(hi);
+  return e;
+}
+
+}  // namespace
+
+void ReportWriter::validity_map(const ValidityMap& map, const std::vector<double>& zen_deg) {
+  const std::string& key = map.spec.name;
+  const std::string& row_parameter = find_model(key)->report.axis;
+  std::vector<double> zen_rad;
+  for (double v : zen_deg) zen_rad.push_back(v * kDegree);
+  const auto grid =
+      validity_grid(map.spec, zen_rad, map.rows, map.rows.empty() ? "" : row_parameter);
+  const auto xe = cell_edges(zen_deg, 0.0, 110.0);
+  const auto ye = map.rows.empty() ? std::vector<double>{map.row_lo, map.row_hi}
+                                   : cell_edges(map.rows, map.row_lo, map.row_hi);
+  svg::Plot p;
+  p.id = "valid-" + key;
+  p.title = fmt::format("{}: domain() over {}", key, map.over);
+  p.x = {0,
+         110,
+         false,
+         "sun zenith angle theta_s [deg] (> 90: sun below the horizon)",
+         {0, 10, 20, 30, 40, 50, 60, 70, 80, 90, 100, 110}};
+  p.y = map.rows.empty() ? one_row_axis() : map.y;
+  p.width = 760;
+  p.height = map.rows.empty() ? 200 : 340;
+  p.legend_outside = true;
+  std::array<int, 4> hist{};
+  for (const auto& row : grid)
+    for (auto v : row) ++hist[static_cast<int>(v)];
+  Json counts = Json::object();
+  for (int v = 0; v < 4; ++v) {
+    counts[validity_name(static_cast<Validity>(v))] = hist[v];
+    if (hist[v] > 0)
+      p.swatches.push_back(
+          {validity_name(static_cast<Validity>(v)), std::string(kValidityColours[v])});
+  }
+  // One rectangle per run of equal cells in a row.
+  for (std::size_t r = 0; r < grid.size(); ++r) {
+    std::size_t k = 0;
+    while (k < grid[r].size()) {
+      std::size_t e = k;
+      while (e + 1 < grid[r].size() && grid[r][e + 1] == grid[r][k]) ++e;
+      p.regions.push_back({xe[k], xe[e + 1], ye[r], ye[r + 1],
+                           std::string(kValidityColours[static_cast<int>(grid[r][k])])});
+      k = e + 1;
+    }
+  }
+  html_validity_ += figure("validity_" + key + ".svg", svg::draw(p), map.caption);
+  json_["validity"][key] = counts;
+}
+
 void ReportWriter::section_validity() {
   std::vector<double> zen_deg;
   for (double d = 0.0; d <= 110.0 + 1e-9; d += cfg_.validity_step_deg) zen_deg.push_back(d);
-  auto to_rad = [](const std::vector<double>& d) {
-    std::vector<double> r;
-    for (double v : d) r.push_back(v * kDegree);
-    return r;
-  };
-  // Cells span halfway to the neighbouring samples.
-  auto edges = [](const std::vector<double>& v, double lo, double hi) {
-    std::vector<double> e;
-    e.push_back(lo);
-    for (std::size_t i = 1; i < v.size(); ++i) e.push_back(0.5 * (v[i - 1] + v[i]));
-    e.push_back(hi);
-    return e;
-  };
-  auto draw_map = [&](const std::string& key, const std::string& title, const ModelSpec& spec,
-                      const std::vector<double>& cols_deg, const std::vector<double>& rows,
-                      const std::string& row_parameter, const svg::Axis& yaxis, double row_lo,
-                      double row_hi, const std::string& caption) {
-    const auto grid = validity_grid(spec, to_rad(cols_deg), rows, row_parameter);
-    const auto xe = edges(cols_deg, 0.0, 110.0);
-    const auto ye =
-        rows.empty() ? std::vector<double>{row_lo, row_hi} : edges(rows, row_lo, row_hi);
-    svg::Plot p;
-    p.id = "valid-" + key;
-    p.title = title;
-    p.x = {0,
-           110,
-           false,
-           "sun zenith angle theta_s [deg] (> 90: sun below the horizon)",
-           {0, 10, 20, 30, 40, 50, 60, 70, 80, 90, 100, 110}};
-    p.y = yaxis;
-    p.width = 760;
-    p.height = rows.empty() ? 200 : 340;
-    p.legend_outside = true;
-    std::array<int, 4> hist{};
-    for (const auto& row : grid)
-      for (auto v : row) ++hist[static_cast<int>(v)];
-    Json counts = Json::object();
-    for (int v = 0; v < 4; ++v) {
-      counts[validity_name(static_cast<Validity>(v))] = hist[v];
-      if (hist[v] > 0)
-        p.swatches.push_back(
-            {validity_name(static_cast<Validity>(v)), std::string(kValidityColours[v])});
-    }
-    // One rectangle per run of equal cells in a row.
-    for (std::size_t r = 0; r < grid.size(); ++r) {
-      std::size_t k = 0;
-      while (k < grid[r].size()) {
-        std::size_t e = k;
-        while (e + 1 < grid[r].size() && grid[r][e + 1] == grid[r][k]) ++e;
-        p.regions.push_back({xe[k], xe[e + 1], ye[r], ye[r + 1],
-                             std::string(kValidityColours[static_cast<int>(grid[r][k])])});
-        k = e + 1;
-      }
-    }
-    html_validity_ += figure("validity_" + key + ".svg", svg::draw(p), caption);
-    json_["validity"][key] = counts;
-  };
-
-  {
-    // T on a log grid 1-64 (what `preetham` accepts).
-    std::vector<double> ts;
-    const int n = cfg_.validity_preetham_rows;
-    for (int i = 0; i < n; ++i) ts.push_back(std::pow(64.0, (i + 0.5) / n));
-    draw_map("preetham", "preetham: domain() over (theta_s, T)", preetham_spec(3), zen_deg, ts,
-             "turbidity",
-             {1, 64, true, "turbidity T", {1, 1.5, 2, 3, 5, 7, 10, 15, 20, 30, 50, 64}}, 1.0, 64.0,
-             "Preetham: valid for the fitted T 2-6; extrapolated 1.9-2 and 6-10; unphysical "
-             "outside 1.9-10 (Zotti) and wherever Yz &lt; 0; undefined with the sun below the "
-             "horizon.");
-  }
-  if (has_model("hosek")) {
-    std::vector<double> ts;
-    for (double T = 1.0; T <= 10.0 + 1e-9; T += cfg_.validity_hosek_step) ts.push_back(T);
-    draw_map("hosek", "hosek: domain() over (theta_s, T)", hosek_spec(3), zen_deg, ts, "turbidity",
-             {1, 10, false, "turbidity T", {}}, 1.0 - 0.5 * cfg_.validity_hosek_step,
-             10.0 + 0.5 * cfg_.validity_hosek_step,
-             "Hosek-Wilkie (albedo 0.3): T 1-10 (larger values are rejected by the model).");
-  }
-  {
-    std::vector<double> types;
-    for (int t = 1; t <= kCieTypeCount; ++t) types.push_back(t);
-    draw_map(
-        "cie", "cie: domain() over (theta_s, type)", cie_spec(12), zen_deg, types, "cie-type",
-        {0.5, 16.5, false, "CIE type", {1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 16}},
-        0.5, 16.5,
-        "CIE general sky with the Kittler-Darula typical zenith luminance (recommended for "
-        "sun elevations 10-80 deg).");
-  }
-  if (has_model("nishita"))
-    draw_map("nishita", "nishita: domain() over theta_s (Earth defaults)", nishita_spec(),
-             cfg_.validity_nishita_deg, {}, "", one_row_axis(), 0.0, 1.0,
-             "Nishita single scattering: domain() depends on the sun zenith only; sampled at the "
-             "marked sun zenith angles (each cell spans halfway to its neighbours).");
-  {
-    ModelSpec perez;
-    perez.name = "perez";
-    perez.label = "perez";
-    perez.params.values = find_model("perez")->example;  // the main job's clear-sky coefficients
-    draw_map("perez", "perez: domain() over theta_s (coefficients -1,-0.32,10,-3,0.45)", perez,
-             zen_deg, {}, "", one_row_axis(), 0.0, 1.0,
-             "Perez with the main job's clear-sky coefficients (A..E = -1, -0.32, 10, -3, 0.45); "
-             "its domain depends on the coefficients and the sun zenith only.");
-  }
+  // Preetham: T on a log grid over every value `preetham` accepts.
+  const ParameterSpec& pt = *find_model(PreethamModel::kName)->find_parameter("turbidity");
+  std::vector<double> preetham_t;
+  const int n = cfg_.validity_preetham_rows;
+  for (int i = 0; i < n; ++i)
+    preetham_t.push_back(pt.min * std::pow(pt.max / pt.min, (i + 0.5) / n));
+  validity_map({comparison_spec(PreethamModel::kName, 3),
+                "(theta_s, T)",
+                preetham_t,
+                {pt.min, pt.max, true, "turbidity T", {1, 1.5, 2, 3, 5, 7, 10, 15, 20, 30, 50, 64}},
+                pt.min,
+                pt.max,
+                "Preetham: valid for the fitted T 2-6; extrapolated 1.9-2 and 6-10; unphysical "
+                "outside 1.9-10 (Zotti) and wherever Yz &lt; 0; undefined with the sun below the "
+                "horizon."},
+               zen_deg);
+  // Hosek-Wilkie: every turbidity it accepts.
+  const ParameterSpec& ht = *find_model(HosekWilkieModel::kName)->find_parameter("turbidity");
+  std::vector<double> hosek_t;
+  const double step = cfg_.validity_hosek_step;
+  for (double T = ht.min; T <= ht.max + 1e-9; T += step) hosek_t.push_back(T);
+  validity_map({comparison_spec(HosekWilkieModel::kName, 3),
+                "(theta_s, T)",
+                hosek_t,
+                {ht.min, ht.max, false, "turbidity T", {}},
+                ht.min - 0.5 * step,
+                ht.max + 0.5 * step,
+                fmt::format("Hosek-Wilkie (albedo 0.3): T {:g}-{:g} (larger values are rejected "
+                            "by the model).",
+                            ht.min, ht.max)},
+               zen_deg);
+  std::vector<double> types;
+  for (int t = 1; t <= kCieTypeCount; ++t) types.push_back(t);
+  validity_map(
+      {comparison_spec(CieSkyModel::kName, 12),
+       "(theta_s, type)",
+       types,
+       {0.5, 16.5, false, "CIE type", {1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 16}},
+       0.5,
+       16.5,
+       "CIE general sky with the Kittler-Darula typical zenith luminance (recommended for "
+       "sun elevations 10-80 deg)."},
+      zen_deg);
+  validity_map({comparison_spec(NishitaModel::kName),
+                "theta_s (Earth defaults)",
+                {},
+                {},
+                0.0,
+                1.0,
+                "Nishita single scattering: domain() depends on the sun zenith only; sampled at "
+                "the marked sun zenith angles (each cell spans halfway to its neighbours)."},
+               cfg_.validity_nishita_deg);
+  validity_map({comparison_spec(PerezModel::kName),
+                "theta_s (coefficients -1,-0.32,10,-3,0.45)",
+                {},
+                {},
+                0.0,
+                1.0,
+                "Perez with the main job's clear-sky coefficients (A..E = -1, -0.32, 10, -3, "
+                "0.45); its domain depends on the coefficients and the sun zenith only."},
+               zen_deg);
 }
 
 }  // namespace skylight::report::detail

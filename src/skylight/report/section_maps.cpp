@@ -5,6 +5,8 @@
 #include "skylight/core/error.h"
 #include "skylight/core/parallel.h"
 #include "skylight/models/cie_sky.h"
+#include "skylight/models/hosek_wilkie.h"
+#include "skylight/models/nishita.h"
 #include "skylight/models/preetham.h"
 #include "skylight/report/detail/writer.h"
 
@@ -157,12 +159,13 @@ void ReportWriter::section_zenith() {
 
 // ---- Figs. 4-7 ---------------------------------------------------------------------------------
 
-void ReportWriter::mosaic(const std::string& key, const std::string& title, const std::string& what,
+void ReportWriter::mosaic(const std::string& title, const std::string& what,
                           const std::string& row_header, const std::vector<ModelSpec>& rows,
                           const std::vector<std::string>& row_labels,
                           const std::vector<ModelSpec>& relative_rows) {
-  SKYLIGHT_CHECK(relative_rows.empty() || relative_rows.size() == rows.size(),
-                 "one relative spec per row");
+  SKYLIGHT_CHECK(!rows.empty() && (relative_rows.empty() || relative_rows.size() == rows.size()),
+                 "rows, and one relative spec per row");
+  const std::string& key = rows.front().name;  // the files' and plots' names
   RenderSettings rs;
   rs.projection = Projection::fisheye;
   rs.width = rs.height = cfg_.tile_px;
@@ -252,14 +255,14 @@ void ReportWriter::section_maps() {
     std::vector<ModelSpec> rows;
     std::vector<std::string> labels;
     for (int t = 1; t <= kCieTypeCount; ++t) {
-      rows.push_back(cie_spec(t));
+      rows.push_back(comparison_spec(CieSkyModel::kName, t));
       labels.push_back(t == 16 ? "16 (trad.)" : fmt::format("{}", t));
     }
     // The relative map does not depend on the zenith luminance; an explicit one keeps it
     // defined where the Kittler-Darula value is 0 (overcast types with the sun at the horizon).
     std::vector<ModelSpec> relative = rows;
     for (auto& r : relative) r.params.values.set("zenith-luminance", 1e4);
-    mosaic("cie", "CIE general sky, types 1-16",
+    mosaic("CIE general sky, types 1-16",
            "CIE standard general sky, types 1-15 and 16 = traditional overcast (Zotti Figs. 4, 5); "
            "absolute: the Kittler-Darula typical zenith luminance (0 for the overcast types 1-6 "
            "with the sun at the horizon, hence the dark tiles)",
@@ -304,25 +307,24 @@ void ReportWriter::section_maps() {
     std::vector<ModelSpec> rows;
     std::vector<std::string> labels;
     for (double T : cfg_.map_preetham_t) {
-      rows.push_back(preetham_spec(T));
+      rows.push_back(comparison_spec(PreethamModel::kName, T));
       labels.push_back(fmt::format("{:.1f}", T));
     }
-    mosaic("preetham", "Preetham", "Preetham (Zotti Figs. 6, 7, upper halves)", "T", rows, labels);
+    mosaic("Preetham", "Preetham (Zotti Figs. 6, 7, upper halves)", "T", rows, labels);
   }
   step("Preetham luminance maps");
-  if (has_model("hosek")) {
+  {
     std::vector<ModelSpec> rows;
     std::vector<std::string> labels;
     for (double T : cfg_.map_hosek_t) {
-      rows.push_back(hosek_spec(T));
+      rows.push_back(comparison_spec(HosekWilkieModel::kName, T));
       labels.push_back(fmt::format("{:.1f}", T));
     }
-    mosaic("hosek", "Hosek-Wilkie", "Hosek-Wilkie (ground albedo 0.3)", "T", rows, labels);
+    mosaic("Hosek-Wilkie", "Hosek-Wilkie (ground albedo 0.3)", "T", rows, labels);
   }
-  if (has_model("nishita"))
-    mosaic("nishita", "Nishita",
-           "Nishita single scattering (Earth defaults, no ground reflection, ASTM G-173 sun)", "",
-           {nishita_spec()}, {"Earth"});
+  mosaic("Nishita",
+         "Nishita single scattering (Earth defaults, no ground reflection, ASTM G-173 sun)", "",
+         {comparison_spec(NishitaModel::kName)}, {"Earth"});
   step("Hosek-Wilkie and Nishita luminance maps");
 }
 

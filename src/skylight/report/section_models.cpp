@@ -5,6 +5,8 @@
 #include "skylight/core/error.h"
 #include "skylight/core/parallel.h"
 #include "skylight/models/cie_sky.h"
+#include "skylight/models/hosek_wilkie.h"
+#include "skylight/models/nishita.h"
 #include "skylight/models/preetham.h"
 #include "skylight/report/detail/writer.h"
 
@@ -54,8 +56,9 @@ void ReportWriter::section_matching() {
     if (it != zotti.end()) {
       z = fmt::format("CIE {}, Y_Pr/Y_CIE {}", it->second, zotti_ratio.at(it->second));
       // Our numbers for Zotti's pairing.
-      const auto pr = relative_samples(preetham_spec(m.turbidity), cs, grid);
-      const auto ci = relative_samples(cie_spec(it->second), cs, grid);
+      const auto pr =
+          relative_samples(comparison_spec(PreethamModel::kName, m.turbidity), cs, grid);
+      const auto ci = relative_samples(comparison_spec(CieSkyModel::kName, it->second), cs, grid);
       const LuminanceRatio r = absolute_luminance_ratio(pr, ci, grid);
       int rank = 1;
       for (int k = 0; k < kCieTypeCount; ++k)
@@ -106,10 +109,11 @@ void ReportWriter::section_matching() {
     if (std::isfinite(v)) ymax = std::max(ymax, v);
   p.y = {
       0.0, std::max(0.05, 1.1 * ymax), false, "RMS log10(L_Pr / L_CIE12) (zenith-normalised)", {}};
-  p.series.push_back(
-      svg::line_series("RMS(T)", fit.curve_t, fit.curve_rms, std::string(kPreethamColour)));
+  p.series.push_back(svg::line_series("RMS(T)", fit.curve_t, fit.curve_rms,
+                                      comparison_colour(PreethamModel::kName)));
   p.series.push_back(svg::marker_series(fmt::format("best T = {:.3f}", fit.turbidity),
-                                        {fit.turbidity}, {fit.rms}, std::string(kCieColour), 4));
+                                        {fit.turbidity}, {fit.rms},
+                                        comparison_colour(CieSkyModel::kName), 4));
   p.series.push_back(svg::line_series("Zotti: T = 2.3-2.5", {2.3, 2.3, 2.5, 2.5},
                                       {0, p.y.max, p.y.max, 0}, "#888888", 1.0, "4 3"));
   p.width = 640;
@@ -230,16 +234,17 @@ void ReportWriter::section_vertical() {
     if (T < 0) T = summary_.best_turbidity_for_cie12.turbidity;
     ++index;
     const double ts = tsd * kDegree;
-    std::vector<ModelSpec> specs = {preetham_spec(T), cie_spec(12)};
-    std::vector<std::string> colours = {std::string(kPreethamColour), std::string(kCieColour)};
-    if (has_model("hosek") && T <= 10.0) {
-      specs.push_back(hosek_spec(T));
-      colours.emplace_back(kHosekColour);
-    }
-    if (has_model("nishita")) {
-      specs.push_back(nishita_spec());
-      colours.emplace_back(kNishitaColour);
-    }
+    // specs[kReference] is CIE type 12, the ratio plot's denominator; Hosek-Wilkie joins where it
+    // accepts the turbidity.
+    constexpr std::size_t kReference = 1;
+    std::vector<ModelSpec> specs = {comparison_spec(PreethamModel::kName, T),
+                                    comparison_spec(CieSkyModel::kName, 12)};
+    specs[kReference].label = "CIE type 12 (Kittler-Darula typical Lz)";
+    if (T <= find_model(HosekWilkieModel::kName)->find_parameter("turbidity")->max)
+      specs.push_back(comparison_spec(HosekWilkieModel::kName, T));
+    specs.push_back(comparison_spec(NishitaModel::kName));
+    std::vector<std::string> colours;
+    for (const auto& s : specs) colours.push_back(comparison_colour(s.name));
     std::vector<double> xs;
     std::vector<Vec3> dirs;
     const int n = static_cast<int>(std::lround(180.0 / cfg_.vertical_step_deg));
@@ -264,9 +269,7 @@ void ReportWriter::section_vertical() {
           lo = std::min(lo, v);
           hi = std::max(hi, v);
         }
-      std::string label = specs[m].label;
-      if (specs[m].name == "cie") label = "CIE type 12 (Kittler-Darula typical Lz)";
-      lum.series.push_back(svg::line_series(label, xs, values.back(), colours[m], 1.6));
+      lum.series.push_back(svg::line_series(specs[m].label, xs, values.back(), colours[m], 1.6));
     }
     lum.x = {-90,
              90,
@@ -283,10 +286,11 @@ void ReportWriter::section_vertical() {
     ratio.x = lum.x;
     ratio.y = {0.1, 10.0, true, "model / CIE type 12", {0.1, 0.2, 0.5, 1, 2, 5, 10}};
     for (std::size_t m = 0; m < specs.size(); ++m) {
-      if (specs[m].name == "cie") continue;
+      if (m == kReference) continue;
       std::vector<double> r(xs.size(), kNaN);
       for (std::size_t i = 0; i < xs.size(); ++i)
-        if (values[1][i] > 0.0 && values[m][i] > 0.0) r[i] = values[m][i] / values[1][i];
+        if (values[kReference][i] > 0.0 && values[m][i] > 0.0)
+          r[i] = values[m][i] / values[kReference][i];
       ratio.series.push_back(
           svg::line_series(specs[m].label + " / CIE 12", xs, r, colours[m], 1.6));
     }

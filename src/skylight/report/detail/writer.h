@@ -47,10 +47,6 @@ inline constexpr std::array<std::uint8_t, 3> kNegativeYzColour = {230, 0, 0};  /
 inline constexpr double kRelativeLog10Min = 0.0, kRelativeLog10Max = 4.0;  // % of zenith luminance
 inline constexpr double kAbsoluteLog10Min = 2.0, kAbsoluteLog10Max = 6.0;  // cd/m^2
 // Model colours in line plots.
-inline constexpr std::string_view kPreethamColour = "#000000";
-inline constexpr std::string_view kCieColour = "#d62728";
-inline constexpr std::string_view kHosekColour = "#1f77b4";
-inline constexpr std::string_view kNishitaColour = "#2ca02c";
 inline constexpr std::string_view kCie16Colour = "#9467bd";
 // Within this distance of an integer, a log10 value is taken as that integer: the float batch
 // path (relative error ~1e-7, i.e. ~4e-8 in log10) must not flip a value that is exactly on a
@@ -126,8 +122,6 @@ class ReportWriter {
         caption, name);
   }
 
-  bool has_model(std::string_view name) const { return find_model(name) != nullptr; }
-
   void section_zenith();
   void section_maps();
   void section_matching();
@@ -135,17 +129,27 @@ class ReportWriter {
   void section_illumination();
   void section_measurements();
   void section_validity();
+  // A validity map of one model over the sun zenith (columns) and, with rows, the values of its
+  // report axis (ReportPolicy::axis): its rows' y axis and the range the cells span.
+  struct ValidityMap {
+    ModelSpec spec;
+    std::string over;  // the title's "over ...", e.g. "(theta_s, T)"
+    std::vector<double> rows;
+    svg::Axis y;
+    double row_lo = 0.0, row_hi = 1.0;
+    std::string caption;
+  };
+  void validity_map(const ValidityMap& map, const std::vector<double>& zen_deg);
   void section_findings();
   // The summary (generated from summary_.findings) and the findings table.
   std::string findings_summary_html() const;
   std::string findings_table_html() const;
   void write_html_and_json();
 
-  // Renders one family of tiles into a relative and an absolute mosaic.
-  // relative_rows (optional): the specs whose L / L(zenith) the relative map shows.
-  void mosaic(const std::string& key, const std::string& title, const std::string& what,
-              const std::string& row_header, const std::vector<ModelSpec>& rows,
-              const std::vector<std::string>& row_labels,
+  // Renders one family of tiles into a relative and an absolute mosaic (files named after the
+  // rows' model). relative_rows (optional): the specs whose L / L(zenith) the relative map shows.
+  void mosaic(const std::string& title, const std::string& what, const std::string& row_header,
+              const std::vector<ModelSpec>& rows, const std::vector<std::string>& row_labels,
               const std::vector<ModelSpec>& relative_rows = {});
 
   static constexpr int kSteps = 17;
