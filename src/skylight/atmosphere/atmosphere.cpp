@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "skylight/atmosphere/detail/scatter_kernel.h"
 #include "skylight/core/data.h"
 #include "skylight/core/error.h"
 #include "skylight/core/math.h"
@@ -339,6 +340,10 @@ Spectral make_spectral(const AtmosphereParameters& p, std::span<const double> nm
 // of Pietras' running sum of layer segments S[rho, c], which would add the interpolation error of
 // every layer).
 
+Atmosphere::~Atmosphere() = default;
+Atmosphere::Atmosphere(Atmosphere&&) noexcept = default;
+Atmosphere& Atmosphere::operator=(Atmosphere&&) noexcept = default;
+
 Atmosphere::Atmosphere(const AtmosphereParameters& p, const FastSettings& s)
     : params_(p), settings_(s) {
   params_.validate();
@@ -370,6 +375,7 @@ Atmosphere::Atmosphere(const AtmosphereParameters& p, const FastSettings& s)
     }
     tables_.push_back(std::move(t));
   }
+  kernel_tables_ = std::make_unique<detail::KernelTable[]>(p.components.size());
   for (std::size_t i = 0; i < p.components.size(); ++i) {
     const Component& c = p.components[i];
     detail::KernelTable& t = kernel_tables_[i];
@@ -500,8 +506,7 @@ void Atmosphere::single_scattering(Vec3 p, Vec3 view, Vec3 sun, const Spectral& 
       s_k[k] = s_k[n - 1];
       w_k[k] = 0.0;
     }
-    detail::scatter_piece(kernel_tables_.data(), nc, t0, ps, spec.extinction_padded.data(), np,
-                          acc);
+    detail::scatter_piece(kernel_tables_.get(), nc, t0, ps, spec.extinction_padded.data(), np, acc);
   }
   const double mu = dot(view, sun);
   for (std::size_t i = 0; i < nc; ++i) {

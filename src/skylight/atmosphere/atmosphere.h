@@ -20,14 +20,18 @@
 #include <array>
 #include <cstddef>
 #include <limits>
+#include <memory>
 #include <span>
 #include <vector>
 
 #include "skylight/atmosphere/parameters.h"
-#include "skylight/atmosphere/scatter_kernel.h"
 #include "skylight/core/frame.h"
 
 namespace skylight::atmosphere {
+
+namespace detail {
+struct KernelTable;
+}  // namespace detail
 
 // ---- phase functions [sr^-1], mu = cos(scattering angle) ----------------------------------------
 double phase_rayleigh(double mu);                     // 3/(16 pi) (1 + mu^2)
@@ -95,7 +99,7 @@ struct FastSettings {
   // Gauss-Legendre samples per lit piece of the view ray, rounded up to a multiple of 4 (4-point
   // panels). 12 keeps the fast path within 0.2 % of the reference in the tests' sweep; 8 does not
   // (0.9 %), 16 changes the worst case by < 1e-5.
-  int view_steps = 12;  // 1 .. detail::kMaxPieceSamples
+  int view_steps = 12;  // 1 .. 64 (the SIMD kernel's samples per piece)
 };
 
 // Spectral quantities for one list of wavelengths, prepared once per model.
@@ -121,11 +125,12 @@ struct ReferenceSettings {
 class Atmosphere {
  public:
   explicit Atmosphere(const AtmosphereParameters& p, const FastSettings& s = {});
+  ~Atmosphere();
   // Not copyable (kernel_tables_ point into tables_); moving keeps the tables' buffers.
   Atmosphere(const Atmosphere&) = delete;
   Atmosphere& operator=(const Atmosphere&) = delete;
-  Atmosphere(Atmosphere&&) = default;
-  Atmosphere& operator=(Atmosphere&&) = default;
+  Atmosphere(Atmosphere&&) noexcept;
+  Atmosphere& operator=(Atmosphere&&) noexcept;
 
   const AtmosphereParameters& parameters() const { return params_; }
   const FastSettings& settings() const { return settings_; }
@@ -195,7 +200,8 @@ class Atmosphere {
   std::vector<double> coord_top_;    // per component, level coordinate at the top radius
   std::vector<double> coord_scale_;  // per component, (table_rho - 1) / (1 - coord_top)
   std::vector<std::vector<float>> tables_;  // per component, [level index][mu index]
-  std::array<detail::KernelTable, kMaxComponents> kernel_tables_{};  // views for the SIMD kernel
+  // Views of tables_ for the SIMD kernel (detail/scatter_kernel.h), one per component.
+  std::unique_ptr<detail::KernelTable[]> kernel_tables_;
 };
 
 }  // namespace skylight::atmosphere

@@ -11,7 +11,7 @@
 #include <hwy/highway.h>
 
 #include "skylight/atmosphere/atmosphere.h"
-#include "skylight/atmosphere/scatter_kernel.h"
+#include "skylight/atmosphere/detail/scatter_kernel.h"
 
 HWY_BEFORE_NAMESPACE();
 namespace skylight::atmosphere {

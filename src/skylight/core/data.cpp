@@ -5,6 +5,7 @@
 #include <charconv>
 #include <cmath>
 
+#include "skylight/core/detail/embedded_files.h"
 #include "skylight/core/error.h"
 #include "skylight/core/numbers.h"
 

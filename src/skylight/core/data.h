@@ -10,15 +10,6 @@
 
 namespace skylight::data {
 
-namespace detail {
-struct EmbeddedFile {
-  const char* path;
-  const char* content;
-};
-extern const EmbeddedFile kEmbeddedFiles[];
-extern const std::size_t kEmbeddedFileCount;
-}  // namespace detail
-
 // Content of an embedded data file by its path relative to data/, e.g.
 // "cie_colorimetry/CIE_xyz_1931_2deg.csv". Throws skylight::IoError for an unknown path.
 std::string_view embedded_file(std::string_view relative_path);

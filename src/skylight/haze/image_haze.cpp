@@ -14,7 +14,7 @@
 #include "skylight/core/math.h"
 #include "skylight/core/parallel.h"
 #include "skylight/estimate/photo.h"
-#include "skylight/haze/pixel_kernel.h"
+#include "skylight/haze/detail/pixel_kernel.h"
 
 namespace skylight::haze {
 namespace {

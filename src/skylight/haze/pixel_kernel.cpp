@@ -9,7 +9,7 @@
 #include <algorithm>
 #include <cstddef>
 
-#include "skylight/haze/pixel_kernel.h"
+#include "skylight/haze/detail/pixel_kernel.h"
 
 HWY_BEFORE_NAMESPACE();
 namespace skylight::haze::detail {

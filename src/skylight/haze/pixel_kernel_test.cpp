@@ -1,4 +1,4 @@
-#include "skylight/haze/pixel_kernel.h"
+#include "skylight/haze/detail/pixel_kernel.h"
 
 #include <gtest/gtest.h>
 

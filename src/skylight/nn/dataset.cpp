@@ -7,7 +7,7 @@
 #include "skylight/core/error.h"
 #include "skylight/core/numbers.h"
 #include "skylight/core/parallel.h"
-#include "skylight/nn/mlp_kernel.h"
+#include "skylight/nn/detail/mlp_kernel.h"
 #include "skylight/nn/random.h"
 
 namespace skylight::nn {

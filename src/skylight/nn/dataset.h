@@ -42,16 +42,16 @@ using SkySource = std::function<SkyFunction(const SkyState&)>;
 // The elements of the input vector. Satilmis et al. 2016 use V_NN = {sqrt t, theta_sun, v_x, v_y,
 // v_z, d} (§III-B-1); the others are extensions for the architecture study.
 enum class Input {
-  sqrt_turbidity,      // sqrt(t): "replacing t with sqrt(t)" linearises the turbidity dependence
-  sun_zenith,          // theta_sun [rad]
-  view_x,              // v_x of the view rotated by eq. 10 (sun moved to azimuth pi)
-  view_y,              // v_y of the rotated view
-  view_z,              // v_z = cos theta_view
-  chord,               // d = |omega_sun - omega_view| = 2 sin(gamma/2)
-  log_chord,           // ln(d + kLogChordOffset) (mlp_kernel.h): resolves the aureole
-  sqrt_view_z,         // sqrt(max(v_z, 0)) (the Hosek-Wilkie zenith term)
-  aureole,             // 1 / (d^2 + kAureoleOffset) (mlp_kernel.h), the shape of a Mie peak
-  cos_sun_zenith,      // cos theta_sun
+  sqrt_turbidity,  // sqrt(t): "replacing t with sqrt(t)" linearises the turbidity dependence
+  sun_zenith,      // theta_sun [rad]
+  view_x,          // v_x of the view rotated by eq. 10 (sun moved to azimuth pi)
+  view_y,          // v_y of the rotated view
+  view_z,          // v_z = cos theta_view
+  chord,           // d = |omega_sun - omega_view| = 2 sin(gamma/2)
+  log_chord,       // ln(d + kLogChordOffset) (nn/detail/mlp_kernel.h): resolves the aureole
+  sqrt_view_z,     // sqrt(max(v_z, 0)) (the Hosek-Wilkie zenith term)
+  aureole,         // 1 / (d^2 + kAureoleOffset) (nn/detail/mlp_kernel.h), the shape of a Mie peak
+  cos_sun_zenith,  // cos theta_sun
   sun_elevation_cbrt,  // (elevation / (pi/2))^(1/3), the Hosek-Wilkie Bezier variable
   turbidity,           // t
 };

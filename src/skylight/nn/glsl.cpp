@@ -7,7 +7,7 @@
 #include <set>
 
 #include "skylight/core/error.h"
-#include "skylight/nn/mlp_kernel.h"
+#include "skylight/nn/detail/mlp_kernel.h"
 
 namespace skylight::nn {
 

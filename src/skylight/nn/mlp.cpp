@@ -6,7 +6,7 @@
 #include <sstream>
 
 #include "skylight/core/error.h"
-#include "skylight/nn/mlp_kernel.h"
+#include "skylight/nn/detail/mlp_kernel.h"
 
 namespace skylight::nn {
 

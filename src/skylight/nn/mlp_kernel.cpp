@@ -11,7 +11,7 @@
 #include <numbers>
 #include <utility>
 
-#include "skylight/nn/mlp_kernel.h"
+#include "skylight/nn/detail/mlp_kernel.h"
 
 // Layout of the per-vector scratch: activation i of the current layer for lane l is at
 // buf[i * N + l] (N = lanes of the target), so each neuron is one aligned vector load. A layer

@@ -9,7 +9,7 @@
 #include "skylight/core/detail/json_reader.h"
 #include "skylight/core/error.h"
 #include "skylight/core/math.h"
-#include "skylight/nn/mlp_kernel.h"
+#include "skylight/nn/detail/mlp_kernel.h"
 #include "skylight/nn/random.h"
 #include "skylight/nn/train.h"
 

@@ -8,6 +8,7 @@
 #include "skylight/core/detail/json_reader.h"
 #include "skylight/core/error.h"
 #include "skylight/core/numbers.h"
+#include "skylight/nn/detail/mlp_kernel.h"
 
 namespace skylight::nn {
 
@@ -194,9 +195,22 @@ SkyNetwork sky_network_from_json(std::string_view s, const std::string& where) {
 // ---- batch
 // ---------------------------------------------------------------------------------------
 
-SkyNetworkBatch::SkyNetworkBatch(const SkyNetwork& sky, const SkyState& state,
-                                 bool allow_unrolled) {
+// The kernel's parameters: p points into the vectors (a move of the Kernel's owner keeps them).
+struct SkyNetworkBatch::Kernel {
+  std::vector<float> params;
+  std::vector<detail::BatchLayer> layers;
+  std::vector<detail::DirectionInput> inputs;
+  detail::SkyBatchParams p;
+};
+
+SkyNetworkBatch::~SkyNetworkBatch() = default;
+SkyNetworkBatch::SkyNetworkBatch(SkyNetworkBatch&&) noexcept = default;
+SkyNetworkBatch& SkyNetworkBatch::operator=(SkyNetworkBatch&&) noexcept = default;
+
+SkyNetworkBatch::SkyNetworkBatch(const SkyNetwork& sky, const SkyState& state, bool allow_unrolled)
+    : kernel_(std::make_unique<Kernel>()) {
   using detail::DirectionInput;
+  Kernel& kern = *kernel_;
   const MlpLayout& l = sky.net.layout();
   SKYLIGHT_CHECK(l.outputs() == 3, "SkyNetworkBatch: the network needs 3 outputs");
   const auto p = sky.net.parameters();
@@ -212,19 +226,19 @@ SkyNetworkBatch::SkyNetworkBatch(const SkyNetwork& sky, const SkyState& state,
   };
   int col_x = -1, col_y = -1, col_ry = -1, col_z = -1;
   if (has(Input::view_x)) {
-    col_x = static_cast<int>(inputs_.size());
-    inputs_.push_back(DirectionInput::x);
-    col_y = static_cast<int>(inputs_.size());
-    inputs_.push_back(DirectionInput::y);
+    col_x = static_cast<int>(kern.inputs.size());
+    kern.inputs.push_back(DirectionInput::x);
+    col_y = static_cast<int>(kern.inputs.size());
+    kern.inputs.push_back(DirectionInput::y);
   } else if (has(Input::view_y)) {
-    col_ry = static_cast<int>(inputs_.size());
-    inputs_.push_back(DirectionInput::reference_y);
-    p_.ry_x = static_cast<float>(s);  // v_y = y' c + x' s
-    p_.ry_y = static_cast<float>(c);
+    col_ry = static_cast<int>(kern.inputs.size());
+    kern.inputs.push_back(DirectionInput::reference_y);
+    kern.p.ry_x = static_cast<float>(s);  // v_y = y' c + x' s
+    kern.p.ry_y = static_cast<float>(c);
   }
   if (has(Input::view_z)) {
-    col_z = static_cast<int>(inputs_.size());
-    inputs_.push_back(DirectionInput::z);
+    col_z = static_cast<int>(kern.inputs.size());
+    kern.inputs.push_back(DirectionInput::z);
   }
   std::vector<int> column(n0, -1);  // kernel input fed by a non-linear spec input
   for (int i = 0; i < n0; ++i) {
@@ -245,10 +259,10 @@ SkyNetworkBatch::SkyNetworkBatch(const SkyNetwork& sky, const SkyState& state,
       default:
         continue;
     }
-    column[i] = static_cast<int>(inputs_.size());
-    inputs_.push_back(k);
+    column[i] = static_cast<int>(kern.inputs.size());
+    kern.inputs.push_back(k);
   }
-  const int nk = static_cast<int>(inputs_.size());
+  const int nk = static_cast<int>(kern.inputs.size());
 
   // Layer 1 folded (double, then rounded): W'(n1 x nk), b'.
   std::vector<double> W1(static_cast<std::size_t>(n1) * nk, 0.0), b1(n1);
@@ -301,60 +315,60 @@ SkyNetworkBatch::SkyNetworkBatch(const SkyNetwork& sky, const SkyState& state,
                           : fold_root8 ? std::pow(sky.target_scale, 0.125)
                                        : 1.0;
   if (fold_square) {
-    p_.output = detail::SkyBatchOutput::squared;
+    kern.p.output = detail::SkyBatchOutput::squared;
   } else if (fold_root4) {
-    p_.output = detail::SkyBatchOutput::power4;
+    kern.p.output = detail::SkyBatchOutput::power4;
   } else if (fold_root8) {
-    p_.output = detail::SkyBatchOutput::power8;
+    kern.p.output = detail::SkyBatchOutput::power8;
   } else if (sky.encoding == OutputEncoding::log && f_out == Activation::identity) {
-    p_.output = detail::SkyBatchOutput::exp;
+    kern.p.output = detail::SkyBatchOutput::exp;
   } else if (sky.encoding == OutputEncoding::satilmis) {
-    p_.output = detail::SkyBatchOutput::inverse_ls;
+    kern.p.output = detail::SkyBatchOutput::inverse_ls;
   } else {
     throw InvalidArgument("SkyNetworkBatch: the " + std::string(to_string(sky.encoding)) +
                           " encoding needs an identity output activation");
   }
-  p_.scale = static_cast<float>(sky.target_scale);
+  kern.p.scale = static_cast<float>(sky.target_scale);
 
   // Float parameters: layer 1 folded, layers 2..L as trained (the last one scaled).
   std::vector<std::size_t> w_off(L + 1), b_off(L + 1);
   for (int k = 1; k <= L; ++k) {
     const int n_in = k == 1 ? nk : l.widths[k - 1], n_out = l.widths[k];
-    w_off[k] = params_.size();
+    w_off[k] = kern.params.size();
     const double gain = k == L ? out_gain : 1.0;
     for (int j = 0; j < n_out; ++j) {
       for (int i = 0; i < n_in; ++i) {
         const double v = k == 1 ? W1[static_cast<std::size_t>(j) * nk + i]
                                 : p[l.weight_offset(k) + static_cast<std::size_t>(j) * n_in + i];
-        params_.push_back(static_cast<float>(gain * v));
+        kern.params.push_back(static_cast<float>(gain * v));
       }
     }
-    b_off[k] = params_.size();
+    b_off[k] = kern.params.size();
     for (int j = 0; j < n_out; ++j) {
-      params_.push_back(static_cast<float>(gain * (k == 1 ? b1[j] : p[l.bias_offset(k) + j])));
+      kern.params.push_back(static_cast<float>(gain * (k == 1 ? b1[j] : p[l.bias_offset(k) + j])));
     }
   }
-  layers_.resize(L);
+  kern.layers.resize(L);
   for (int k = 1; k <= L; ++k) {
     Activation f = l.activations[k - 1];
     if (k == L && fold_square) f = Activation::identity;
-    layers_[k - 1] = {k == 1 ? nk : l.widths[k - 1], l.widths[k], f, params_.data() + w_off[k],
-                      params_.data() + b_off[k]};
+    kern.layers[k - 1] = {k == 1 ? nk : l.widths[k - 1], l.widths[k], f,
+                          kern.params.data() + w_off[k], kern.params.data() + b_off[k]};
   }
-  p_.layers = layers_.data();
-  p_.n_layers = L;
-  p_.inputs = inputs_.data();
-  p_.n_inputs = nk;
-  p_.allow_unrolled = allow_unrolled;
+  kern.p.layers = kern.layers.data();
+  kern.p.n_layers = L;
+  kern.p.inputs = kern.inputs.data();
+  kern.p.n_inputs = nk;
+  kern.p.allow_unrolled = allow_unrolled;
   const Vec3 sun = direction_from_angles(state.sun_zenith, state.sun_azimuth);
-  p_.sx = static_cast<float>(sun.x);
-  p_.sy = static_cast<float>(sun.y);
-  p_.sz = static_cast<float>(sun.z);
+  kern.p.sx = static_cast<float>(sun.x);
+  kern.p.sy = static_cast<float>(sun.y);
+  kern.p.sz = static_cast<float>(sun.z);
 }
 
 void SkyNetworkBatch::rgb(const float* x, const float* y, const float* z, float* r, float* g,
                           float* b, std::size_t n) const {
-  detail::sky_batch(p_, x, y, z, r, g, b, n);
+  detail::sky_batch(kernel_->p, x, y, z, r, g, b, n);
 }
 
 }  // namespace skylight::nn

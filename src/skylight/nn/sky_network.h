@@ -6,6 +6,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -15,7 +16,6 @@
 #include "skylight/core/frame.h"
 #include "skylight/nn/dataset.h"
 #include "skylight/nn/mlp.h"
-#include "skylight/nn/mlp_kernel.h"
 
 namespace skylight::nn {
 
@@ -76,21 +76,20 @@ class SkyNetworkBatch {
  public:
   // allow_unrolled = false forces the generic kernel (tests, timing).
   SkyNetworkBatch(const SkyNetwork& sky, const SkyState& state, bool allow_unrolled = true);
-  // Move-only: p_ points into the vectors below (a move keeps their buffers).
+  ~SkyNetworkBatch();
+  // Move-only: the kernel's parameters point into its own buffers.
   SkyNetworkBatch(const SkyNetworkBatch&) = delete;
   SkyNetworkBatch& operator=(const SkyNetworkBatch&) = delete;
-  SkyNetworkBatch(SkyNetworkBatch&&) = default;
-  SkyNetworkBatch& operator=(SkyNetworkBatch&&) = default;
+  SkyNetworkBatch(SkyNetworkBatch&&) noexcept;
+  SkyNetworkBatch& operator=(SkyNetworkBatch&&) noexcept;
   // r/g/b[i] for directions (x, y, z)[i], unit vectors in the world frame; 0 below the horizon.
   // Calling thread only.
   void rgb(const float* x, const float* y, const float* z, float* r, float* g, float* b,
            std::size_t n) const;
 
  private:
-  std::vector<float> params_;
-  std::vector<detail::BatchLayer> layers_;
-  std::vector<detail::DirectionInput> inputs_;
-  detail::SkyBatchParams p_;
+  struct Kernel;  // the SIMD kernel's layers and inputs (sky_network.cpp, detail/mlp_kernel.h)
+  std::unique_ptr<Kernel> kernel_;
 };
 
 }  // namespace skylight::nn

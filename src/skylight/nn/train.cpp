@@ -12,9 +12,9 @@
 #include "skylight/core/error.h"
 #include "skylight/core/math.h"
 #include "skylight/core/parallel.h"
+#include "skylight/nn/detail/train_gradient.h"
+#include "skylight/nn/detail/train_kernel.h"
 #include "skylight/nn/random.h"
-#include "skylight/nn/train_gradient.h"
-#include "skylight/nn/train_kernel.h"
 
 namespace skylight::nn {
 

@@ -10,7 +10,7 @@
 //    (J^T J + lambda diag(J^T J)) delta = -J^T r. J^T J and J^T r are accumulated over a fixed
 //    set of example slices on the library's thread pool and summed in slice order; the last
 //    layer's block sparsity is used (output c's weights move output c only) and the products run
-//    in a Highway kernel (train_kernel.h). Eigen only solves the P x P system (Cholesky).
+//    in a Highway kernel (detail/train_kernel.h). Eigen only solves the P x P system (Cholesky).
 //  * adam: mini-batch Adam (Kingma & Ba 2015).
 //  * lbfgs: full-batch L-BFGS (m = 10) with a backtracking Armijo line search (quadratic
 //    interpolation; rejected trials evaluate E only). Its and Adam's gradient run the layers of
@@ -135,17 +135,6 @@ TrainResult train(const MlpLayout& layout, const Examples& examples, const Train
 
 // E / (count x outputs) of net on examples (parallel, deterministic).
 double mean_squared_error(const Mlp& net, const Examples& examples);
-
-namespace detail {
-// The Gauss-Newton system as the Levenberg-Marquardt trainer assembles it (block-sparse output
-// layer, SIMD products): A = J^T J (P x P, column-major, both triangles), g = J^T r, e = r^T r,
-// r = Psi(inputs) - targets over all examples (inputs used as given). For tests.
-void gauss_newton_system(const Mlp& net, const Examples& examples, std::vector<double>& A,
-                         std::vector<double>& g, double& e);
-// E = sum (Psi - t)^2 over all examples and grad = dE/d(parameters) as the L-BFGS trainer computes
-// them (blocks of examples as matrix products); inputs used as given. For tests.
-double loss_gradient(const Mlp& net, const Examples& examples, std::vector<double>& grad);
-}  // namespace detail
 
 // Machine-readable log: CSV with header
 // "restart,iteration,seconds,mse,validation_mse,step".

@@ -1,4 +1,4 @@
-#include "skylight/nn/train_gradient.h"
+#include "skylight/nn/detail/train_gradient.h"
 
 #include <Eigen/Dense>
 #include <algorithm>

@@ -7,7 +7,7 @@
 
 #include <algorithm>
 
-#include "skylight/nn/train_kernel.h"
+#include "skylight/nn/detail/train_kernel.h"
 
 // Register tile: 2 vectors of rows of C (2N rows, contiguous in a column) x up to 4 columns, 8
 // accumulators; per step k two vector loads of A's column k and four broadcasts of B's feed 8

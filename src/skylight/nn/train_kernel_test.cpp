@@ -1,4 +1,4 @@
-#include "skylight/nn/train_kernel.h"
+#include "skylight/nn/detail/train_kernel.h"
 
 #include <gtest/gtest.h>
 

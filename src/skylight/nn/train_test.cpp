@@ -9,6 +9,7 @@
 
 #include "skylight/core/error.h"
 #include "skylight/core/parallel.h"
+#include "skylight/nn/detail/train_gradient.h"
 #include "skylight/nn/random.h"
 
 namespace skylight::nn {

@@ -7,7 +7,7 @@
 
 #include <cstddef>
 
-#include "skylight/sh/evaluate_kernel.h"
+#include "skylight/sh/detail/evaluate_kernel.h"
 
 HWY_BEFORE_NAMESPACE();
 namespace skylight::sh::detail {

@@ -1,4 +1,4 @@
-#include "skylight/sh/evaluate_kernel.h"
+#include "skylight/sh/detail/evaluate_kernel.h"
 
 #include <gtest/gtest.h>
 

@@ -8,7 +8,7 @@
 
 #include "skylight/core/error.h"
 #include "skylight/sh/basis.h"
-#include "skylight/sh/evaluate_kernel.h"
+#include "skylight/sh/detail/evaluate_kernel.h"
 #include "skylight/sh/rotation.h"
 
 namespace skylight::sh {

@@ -94,7 +94,7 @@ PolynomialTable fit_polynomial(const PolynomialFitSettings& settings,
 // filter for `bands` bands): the first `bands` <= table.bands bands. theta and tau outside the
 // fitted ranges throw InvalidArgument.
 // Fast path: the Chebyshev product vector in float, all stored coefficients as one float
-// matrix-vector product (SIMD, sh/evaluate_kernel.h), rotation and filter fused (the fitting
+// matrix-vector product (SIMD, sh/detail/evaluate_kernel.h), rotation and filter fused (the fitting
 // frame's c_l,-m are zero). Within ~1e-6 of |c_00| of evaluate_table_reference
 // (sh/polynomial_test.cpp), far below the fits' own error (docs/SH.md).
 Coefficients evaluate_table(const PolynomialTable& table, double theta, double tau, double phi,

@@ -6,7 +6,10 @@
 #include <cstddef>
 #include <span>
 
+#include <vector>
+
 #include "skylight/nn/mlp.h"
+#include "skylight/nn/train.h"
 
 namespace skylight::nn::detail {
 
@@ -24,5 +27,14 @@ double gradient(const Mlp& net, std::span<const double> x, std::span<const doubl
                 std::span<const std::size_t> idx, std::size_t n, std::span<double> grad);
 // E over the first n examples (the forward pass of gradient()'s blocks).
 double sse(const Mlp& net, std::span<const double> x, std::span<const double> t, std::size_t n);
+
+// The Gauss-Newton system as the Levenberg-Marquardt trainer assembles it (block-sparse output
+// layer, SIMD products): A = J^T J (P x P, column-major, both triangles), g = J^T r, e = r^T r,
+// r = Psi(inputs) - targets over all examples (inputs used as given). For tests (train.cpp).
+void gauss_newton_system(const Mlp& net, const Examples& examples, std::vector<double>& A,
+                         std::vector<double>& g, double& e);
+// E = sum (Psi - t)^2 over all examples and grad = dE/d(parameters) as the L-BFGS trainer computes
+// them (blocks of examples as matrix products); inputs used as given. For tests (train.cpp).
+double loss_gradient(const Mlp& net, const Examples& examples, std::vector<double>& grad);
 
 }  // namespace skylight::nn::detail
