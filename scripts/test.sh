@@ -21,7 +21,7 @@ build/consumer/consumer
 example="$(build/consumer/readme_example)"
 echo "$example"
 grep -qx 'zenith luminance 7320.4 cd/m^2' <<<"$example"
-grep -qF -- '--turbidity = 100 is outside [1, 64] (model '"'preetham'"')' <<<"$example"
+grep -qxF -- 'turbidity = 100 is outside [1, 64] (model '"'preetham'"')' <<<"$example"
 echo "== libFuzzer targets, 5 s each on a copy of the seed corpus, fixed seed (docs/TESTING.md)"
 # A fixed -seed makes the test command's fuzz pass reproducible: a finding here recurs on rerun.
 SKYLIGHT_FUZZ_FLAGS="-seed=1 ${SKYLIGHT_FUZZ_FLAGS:-}" bash scripts/fuzz.sh 5

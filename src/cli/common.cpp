@@ -28,6 +28,10 @@ std::string without_flag(const std::string& message, const std::string& flag) {
 
 }  // namespace
 
+std::string flag_spelling(std::string_view name) {
+  return name == "output" ? "-o" : "--" + std::string(name);
+}
+
 CLI::Validator number_in(const ParameterSpec& spec) {
   return CLI::Validator(
       [spec](std::string& text) -> std::string {

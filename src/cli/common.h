@@ -51,6 +51,10 @@ void add_haze_command(CLI::App& app, Commands& commands);
 
 // ---- flags from the schema ----------------------------------------------------------------------
 
+// How the library's messages name a parameter here (set_parameter_spelling): its flag, "--name";
+// "output" is every command's -o.
+std::string flag_spelling(std::string_view name);
+
 // A CLI11 check that the text is a number (strict parser) in the spec's range; the help text shows
 // the unit and range.
 CLI::Validator number_in(const ParameterSpec& spec);

@@ -12,12 +12,15 @@
 #include "skylight/core/error.h"
 #include "skylight/core/numbers.h"
 #include "skylight/core/parallel.h"
+#include "skylight/core/parameters.h"
 #include "skylight/io/file.h"
 #include "skylight/version.h"
 
 namespace cli = skylight::cli;
 
 int main(int argc, char** argv) {
+  // The library's messages name parameters; here they read as the flags the user typed.
+  skylight::set_parameter_spelling(cli::flag_spelling);
   CLI::App app{"skylight: daylight sky models, renders and checks"};
   app.set_version_flag("--version", std::string("skylight ") + skylight::kVersion);
   app.require_subcommand(1);

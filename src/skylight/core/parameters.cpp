@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <atomic>
 
 #include "skylight/core/error.h"
 #include "skylight/core/numbers.h"
@@ -50,6 +51,19 @@ std::string_view to_string(ParameterKind kind) {
   return "number";
 }
 
+namespace {
+std::atomic<ParameterSpelling> g_spelling{nullptr};
+}  // namespace
+
+void set_parameter_spelling(ParameterSpelling spelling) {
+  g_spelling.store(spelling);
+}
+
+std::string spelled(std::string_view name) {
+  const ParameterSpelling f = g_spelling.load();
+  return f ? f(name) : std::string(name);
+}
+
 std::string ParameterSpec::metadata_key() const {
   std::string key = "skylight:" + name;
   std::replace(key.begin(), key.end(), '-', '_');
@@ -95,17 +109,18 @@ std::string ParameterSpec::help() const {
 ParameterValue ParameterSpec::parse(std::string_view text) const {
   switch (kind) {
     case ParameterKind::number:
-      return parse_number(text, flag());
+      return parse_number(text, spelled(name));
     case ParameterKind::integer:
-      return static_cast<double>(parse_integer(text, flag()));
+      return static_cast<double>(parse_integer(text, spelled(name)));
     case ParameterKind::numbers:
-      return parse_number_list(text, flag());
+      return parse_number_list(text, spelled(name));
     case ParameterKind::text:
       return std::string(text);
     case ParameterKind::flag:
       if (text == "true" || text == "1") return true;
       if (text == "false" || text == "0") return false;
-      throw InvalidArgument(fmt::format("{}: '{}' is not true or false", flag(), excerpt(text)));
+      throw InvalidArgument(
+          fmt::format("{}: '{}' is not true or false", spelled(name), excerpt(text)));
   }
   return {};
 }
@@ -120,11 +135,11 @@ std::string ParameterSpec::format(const ParameterValue& value) const {
 void ParameterSpec::check(const ParameterValue& value, std::string_view context) const {
   auto wrong_kind = [&] {
     throw InvalidArgument(
-        fmt::format("{}{} must be of kind '{}'", flag(), where(context), to_string(kind)));
+        fmt::format("{}{} must be of kind '{}'", spelled(name), where(context), to_string(kind)));
   };
   auto in_range = [&](double v, std::string_view shown) {
     if (!std::isfinite(v) || v < min || v > max)
-      throw InvalidArgument(fmt::format("{} = {} is outside [{}, {}]{}", flag(), shown,
+      throw InvalidArgument(fmt::format("{} = {} is outside [{}, {}]{}", spelled(name), shown,
                                         format_number(min), format_number(max), where(context)));
   };
   switch (kind) {
@@ -134,18 +149,19 @@ void ParameterSpec::check(const ParameterValue& value, std::string_view context)
       if (!d) wrong_kind();
       in_range(*d, format_number(*d));
       if (kind == ParameterKind::integer && std::trunc(*d) != *d)
-        throw InvalidArgument(
-            fmt::format("{} = {} is not an integer{}", flag(), format_number(*d), where(context)));
+        throw InvalidArgument(fmt::format("{} = {} is not an integer{}", spelled(name),
+                                          format_number(*d), where(context)));
       return;
     }
     case ParameterKind::numbers: {
       const auto* l = std::get_if<std::vector<double>>(&value);
       if (!l) wrong_kind();
       if (count > 0 && l->size() != count)
-        throw InvalidArgument(
-            fmt::format("{} needs {} values, got {}{}", flag(), count, l->size(), where(context)));
+        throw InvalidArgument(fmt::format("{} needs {} values, got {}{}", spelled(name), count,
+                                          l->size(), where(context)));
       if (l->empty())
-        throw InvalidArgument(fmt::format("{} needs at least one value{}", flag(), where(context)));
+        throw InvalidArgument(
+            fmt::format("{} needs at least one value{}", spelled(name), where(context)));
       for (std::size_t i = 0; i < l->size(); ++i)
         in_range((*l)[i], fmt::format("{} (value {})", format_number((*l)[i]), i + 1));
       return;
@@ -154,8 +170,8 @@ void ParameterSpec::check(const ParameterValue& value, std::string_view context)
       const auto* s = std::get_if<std::string>(&value);
       if (!s) wrong_kind();
       if (!choices.empty() && std::find(choices.begin(), choices.end(), *s) == choices.end())
-        throw InvalidArgument(fmt::format("{} = '{}' is not one of {}{}", flag(), excerpt(*s),
-                                          range_text(), where(context)));
+        throw InvalidArgument(fmt::format("{} = '{}' is not one of {}{}", spelled(name),
+                                          excerpt(*s), range_text(), where(context)));
       return;
     }
     case ParameterKind::flag:
@@ -230,14 +246,14 @@ namespace detail {
 
 void throw_missing_parameter(const ParameterSpec& spec, std::string_view context) {
   throw InvalidArgument(
-      fmt::format("{} is required{}: {}", spec.flag(), where(context), spec.description));
+      fmt::format("{} is required{}: {}", spelled(spec.name), where(context), spec.description));
 }
 
 void throw_unknown_parameter(std::string_view name, std::string_view context,
                              const std::vector<std::string>& known) {
   std::string list;
-  for (const auto& k : known) list += (list.empty() ? "--" : ", --") + k;
-  throw InvalidArgument(fmt::format("--{} is not a parameter{} (parameters: {})", name,
+  for (const auto& k : known) list += (list.empty() ? "" : ", ") + spelled(k);
+  throw InvalidArgument(fmt::format("{} is not a parameter{} (parameters: {})", spelled(name),
                                     where(context), list.empty() ? "none" : list));
 }
 

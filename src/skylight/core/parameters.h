@@ -61,6 +61,7 @@ struct ParameterSpec {
   // (join_repeated, split_repeated).
   bool repeated = false;
 
+  // The command line's flag, "--" + name (the CLI's flags and the docs' tables of them).
   std::string flag() const { return "--" + name; }
   bool required() const { return std::holds_alternative<Required>(default_value); }
   // "skylight:" + name with '-' -> '_' + a unit suffix ("_deg", "_m", "_cd_m2", "_W_m2_nm",
@@ -82,6 +83,14 @@ struct ParameterSpec {
   // "model 'hosek'", when not empty) if the value has the wrong kind or is outside the range.
   void check(const ParameterValue& value, std::string_view context = {}) const;
 };
+
+// How the library's messages name a parameter or an operation's option: by its name as the schema
+// declares it ("top-radius"), unless a front end has installed its own spelling once, before any
+// call (the CLI: the flag "--top-radius"; the Python package: the argument "top_radius"), so that
+// each message names what the user wrote. set_parameter_spelling(nullptr) restores the names.
+using ParameterSpelling = std::string (*)(std::string_view name);
+void set_parameter_spelling(ParameterSpelling spelling);
+std::string spelled(std::string_view name);
 
 // An operation of the library with options (render, estimate, sh fit, nn train, haze add, ...):
 // its name as the command line spells it, what it does, and its parameters, built from the

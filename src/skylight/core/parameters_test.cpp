@@ -79,26 +79,26 @@ TEST(Parameters, BindRejectsUnknownMissingAndOutOfRange) {
   Example e;
   const auto& s = Example::schema();
   EXPECT_EQ(error_of([&] { s.bind(ParameterValues(), e, "model 'x'"); }),
-            "--pair is required (model 'x'): two values");
+            "pair is required (model 'x'): two values");
   const auto pair = ParameterValue(std::vector<double>{0, 0});
   EXPECT_EQ(
       error_of([&] { s.bind(ParameterValues().set("pair", pair).set("bogus", 1.0), e, "t"); }),
-      "--bogus is not a parameter (t) (parameters: --height, --angle, --scale, --count, "
-      "--pair, --path, --fast)");
+      "bogus is not a parameter (t) (parameters: height, angle, scale, count, "
+      "pair, path, fast)");
   EXPECT_EQ(
       error_of([&] { s.bind(ParameterValues().set("pair", pair).set("height", 11.0), e, "t"); }),
-      "--height = 11 is outside [0, 10] (t)");
+      "height = 11 is outside [0, 10] (t)");
   EXPECT_EQ(
       error_of([&] { s.bind(ParameterValues().set("pair", pair).set("count", 2.5), e, "t"); }),
-      "--count = 2.5 is not an integer (t)");
+      "count = 2.5 is not an integer (t)");
   EXPECT_EQ(error_of([&] {
               s.bind(ParameterValues().set("pair", std::vector<double>{0, 0, 0}), e, "t");
             }),
-            "--pair needs 2 values, got 3 (t)");
+            "pair needs 2 values, got 3 (t)");
   EXPECT_EQ(error_of([&] {
               s.bind(ParameterValues().set("pair", std::vector<double>{0, 1.5}), e, "t");
             }),
-            "--pair = 1.5 (value 2) is outside [-1, 1] (t)");
+            "pair = 1.5 (value 2) is outside [-1, 1] (t)");
   EXPECT_NE(error_of([&] {
               s.bind(ParameterValues().set("pair", pair).set("height", std::nan("")), e, "t");
             }),
@@ -113,11 +113,30 @@ TEST(Parameters, ValidateChecksAStructBuiltInCode) {
   EXPECT_NO_THROW(Example::schema().validate(e, "t"));
   e.angle = 100 * kDegree;
   EXPECT_EQ(error_of([&] { Example::schema().validate(e, "t"); }),
-            "--angle = 100 is outside [-90, 90] (t)");
+            "angle = 100 is outside [-90, 90] (t)");
   e.angle = 0;
   e.pair.reset();
   EXPECT_EQ(error_of([&] { Example::schema().validate(e, "t"); }),
-            "--pair is required (t): two values");
+            "pair is required (t): two values");
+}
+
+// A front end's spelling (the CLI's flags) reaches every message of the schema; the library's own
+// is the name.
+TEST(Parameters, MessagesUseTheFrontEndsSpelling) {
+  Example e;
+  e.pair = std::array<double, 2>{0.0, 0.0};
+  e.angle = 100 * kDegree;
+  set_parameter_spelling([](std::string_view name) { return "<" + std::string(name) + ">"; });
+  const std::string spelled_by_front_end = error_of([&] { Example::schema().validate(e, "t"); });
+  const std::string unknown = error_of([&] {
+    Example::schema().bind(ParameterValues().set("pair", std::vector<double>{0, 0}).set("x", 1.0),
+                           e, "t");
+  });
+  set_parameter_spelling(nullptr);
+  EXPECT_EQ(spelled_by_front_end, "<angle> = 100 is outside [-90, 90] (t)");
+  EXPECT_EQ(unknown.rfind("<x> is not a parameter (t) (parameters: <height>, <angle>", 0), 0u)
+      << unknown;
+  EXPECT_EQ(spelled("angle"), "angle");
 }
 
 TEST(Parameters, TextFormsAndMetadataKeys) {

@@ -9,6 +9,7 @@
 #include "skylight/core/error.h"
 #include "skylight/core/math.h"
 #include "skylight/core/numbers.h"
+#include "skylight/core/parameters.h"
 #include "skylight/io/file.h"
 #include "skylight/models/hosek_wilkie.h"
 #include "skylight/models/nishita.h"
@@ -169,8 +170,11 @@ std::string Request::source_model() const {
 
 NeuralTraining Request::sky_training() const {
   if (!planet.empty())
-    throw InvalidArgument("the planet flags (--ground-radius, ...) need --network pietras|log3");
-  if (!init.empty()) throw InvalidArgument("--init needs --network pietras|log3");
+    throw InvalidArgument(fmt::format("the planet flags ({}, ...) need {} pietras|log3",
+                                      spelled("ground-radius"), spelled("network")));
+  if (!init.empty())
+    throw InvalidArgument(
+        fmt::format("{} needs {} pietras|log3", spelled("init"), spelled("network")));
   NeuralTraining t;
   t.source = source_model();
   t.inputs = inputs;
@@ -192,30 +196,35 @@ PietrasTraining Request::pietras_training(std::optional<nn::PietrasNetwork>& ini
   SKYLIGHT_CHECK(network.has_value(), "pietras_training: a Pietras network");
   const std::string kind(nn::to_string(*network));
   if (source_model() != NishitaModel::kName)
-    throw InvalidArgument(fmt::format("--network {}: --source must be {}, not '{}'", kind,
-                                      NishitaModel::kName, excerpt(source_model())));
+    throw InvalidArgument(fmt::format("{} {}: {} must be {}, not '{}'", spelled("network"), kind,
+                                      spelled("source"), NishitaModel::kName,
+                                      excerpt(source_model())));
   PietrasTraining t;
   t.kind = *network;
   if (!init.empty()) {
     std::error_code ec;
     if (init == output || std::filesystem::equivalent(init, output, ec))
-      throw InvalidArgument(
-          fmt::format("-o '{}' is also the --init file; write to another file", excerpt(output)));
+      throw InvalidArgument(fmt::format("{} '{}' is also the {} file; write to another file",
+                                        spelled("output"), excerpt(output), spelled("init")));
     if (!planet.empty())
-      throw InvalidArgument("--init: the planet is the file's; drop --ground-radius etc.");
+      throw InvalidArgument(fmt::format("{}: the planet is the file's; drop {} etc.",
+                                        spelled("init"), spelled("ground-radius")));
     initial = nn::pietras_from_json(io::read_text_file(init), init);
     if (initial->kind != *network)
-      throw InvalidArgument(fmt::format("--init {}: a {} network, not --network {}", excerpt(init),
-                                        nn::to_string(initial->kind), kind));
+      throw InvalidArgument(fmt::format("{} {}: a {} network, not {} {}", spelled("init"),
+                                        excerpt(init), nn::to_string(initial->kind),
+                                        spelled("network"), kind));
     t.atmosphere = nishita_parameters_of(*initial);
     t.initial = &*initial;
   } else {
-    NishitaParameters::schema().bind(planet, t.atmosphere,
-                                     fmt::format("nn train --source {}", NishitaModel::kName));
+    NishitaParameters::schema().bind(
+        planet, t.atmosphere,
+        fmt::format("nn train {} {}", spelled("source"), NishitaModel::kName));
   }
   if (!(t.atmosphere.top_radius() > t.atmosphere.ground_radius_m))
-    throw InvalidArgument(fmt::format("--top-radius {} m is not above --ground-radius {} m",
-                                      t.atmosphere.top_radius(), t.atmosphere.ground_radius_m));
+    throw InvalidArgument(fmt::format("{} {} m is not above {} {} m", spelled("top-radius"),
+                                      t.atmosphere.top_radius(), spelled("ground-radius"),
+                                      t.atmosphere.ground_radius_m));
   t.samples = static_cast<std::size_t>(samples.value_or(kPietrasSamples));
   t.options.trainer = trainer.value_or(kPietrasTrainer);
   t.options.seed = static_cast<std::uint64_t>(seed);
@@ -245,8 +254,9 @@ std::optional<SunPosition> entry_sun(const ImageTrainingOptions& o,
   if (!e.time.empty()) {
     source = "time";
     if (!o.lat_deg || !o.lon_deg)
-      throw InvalidArgument(fmt::format("{}:{}: a time needs --lat and --lon",
-                                        excerpt(o.list, kListNameChars), e.line));
+      throw InvalidArgument(fmt::format("{}:{}: a time needs {} and {}",
+                                        excerpt(o.list, kListNameChars), e.line, spelled("lat"),
+                                        spelled("lon")));
     sun::SpaInput in;
     try {
       in.time = sun::parse_iso8601(e.time);

@@ -13,6 +13,7 @@
 #include "skylight/core/error.h"
 #include "skylight/core/math.h"
 #include "skylight/core/numbers.h"
+#include "skylight/core/parameters.h"
 #include "skylight/core/statistics.h"
 #include "skylight/sh/approximation_error.h"
 #include "skylight/sh/basis.h"
@@ -233,8 +234,8 @@ ParameterValues fixed_parameters(const ModelInfo& info, const std::vector<std::s
         eq == std::string::npos ? nullptr : info.find_parameter(kv.substr(0, eq));
     if (!spec) {
       throw InvalidArgument(
-          fmt::format("--set {}: expected NAME=VALUE with NAME a parameter of model '{}'",
-                      excerpt(kv), info.name));
+          fmt::format("{} {}: expected NAME=VALUE with NAME a parameter of model '{}'",
+                      spelled("set"), excerpt(kv), info.name));
     }
     const ParameterValue v = spec->parse(kv.substr(eq + 1));
     spec->check(v, model_context(info.name));
@@ -256,9 +257,10 @@ void set_tau_range(sh::PolynomialFitSettings& p, const ShFitRequest& r, const Pa
     p.tau_min = tau.min;
     p.tau_max = tau.max;
   }
-  if (!(p.tau_min < p.tau_max)) throw InvalidArgument("--range LO,HI: LO must be below HI");
-  tau.check(p.tau_min, "--range");
-  tau.check(p.tau_max, "--range");
+  if (!(p.tau_min < p.tau_max))
+    throw InvalidArgument(spelled("range") + " LO,HI: LO must be below HI");
+  tau.check(p.tau_min, spelled("range"));
+  tau.check(p.tau_max, spelled("range"));
 }
 
 // The policy's table structure (Hosek's pieces) where the fit varies the policy's parameter.
@@ -278,12 +280,14 @@ void apply_structure(sh::PolynomialFitSettings& p, const ShFitRequest& r,
 
 ShFitSettings sh_fit_settings(const ShFitRequest& r) {
   const ModelInfo* info = find_model(r.model);
-  if (!info) throw InvalidArgument(fmt::format("--model: unknown model '{}'", excerpt(r.model)));
+  if (!info)
+    throw InvalidArgument(
+        fmt::format("{}: unknown model '{}'", spelled("model"), excerpt(r.model)));
   if (!info->sh_fit)
     throw InvalidArgument(
-        fmt::format("--model {}: no SH table is fitted to this model (a table "
+        fmt::format("{} {}: no SH table is fitted to this model (a table "
                     "cannot be fitted to a table)",
-                    info->name));
+                    spelled("model"), info->name));
   const ShFitPolicy& policy = *info->sh_fit;
   ShFitSettings s;
   s.model = info->name;
@@ -291,8 +295,8 @@ ShFitSettings sh_fit_settings(const ShFitRequest& r) {
   p.parameter = r.parameter.empty() ? policy.parameter : r.parameter == "none" ? "" : r.parameter;
   const ParameterSpec* tau = p.parameter.empty() ? nullptr : info->find_parameter(p.parameter);
   if (!p.parameter.empty() && (!tau || tau->kind != ParameterKind::number)) {
-    throw InvalidArgument(fmt::format("--parameter: '{}' is not a number parameter of model '{}'",
-                                      excerpt(p.parameter), info->name));
+    throw InvalidArgument(fmt::format("{}: '{}' is not a number parameter of model '{}'",
+                                      spelled("parameter"), excerpt(p.parameter), info->name));
   }
   s.fixed = fixed_parameters(*info, r.set);
   const std::vector<double> degrees =
@@ -302,13 +306,14 @@ ShFitSettings sh_fit_settings(const ShFitRequest& r) {
   p.degree_theta = static_cast<int>(degrees[0]);
   p.degree_tau = tau ? static_cast<int>(degrees[1]) : 0;
   if (!tau && !r.degrees.empty() && degrees[1] != 0.0)
-    throw InvalidArgument("--degrees I,J: J must be 0 for a fit in the sun zenith only");
+    throw InvalidArgument(spelled("degrees") +
+                          " I,J: J must be 0 for a fit in the sun zenith only");
   if (degrees[0] != std::floor(degrees[0]) || degrees[1] != std::floor(degrees[1]))
-    throw InvalidArgument("--degrees I,J: whole numbers expected");
+    throw InvalidArgument(spelled("degrees") + " I,J: whole numbers expected");
   p.theta_min = deg_to_rad(r.theta_range_deg[0]);
   p.theta_max = deg_to_rad(r.theta_range_deg[1]);
   if (!(r.theta_range_deg[0] < r.theta_range_deg[1]))
-    throw InvalidArgument("--theta-range LO,HI: LO must be below HI");
+    throw InvalidArgument(spelled("theta-range") + " LO,HI: LO must be below HI");
   if (tau) set_tau_range(p, r, *tau, policy);
   if (!r.grid.empty()) {
     p.grid_theta = static_cast<int>(r.grid[0]);
@@ -318,7 +323,7 @@ ShFitSettings sh_fit_settings(const ShFitRequest& r) {
   p.tau_pieces = r.tau_pieces.value_or(1);
   if (tau) apply_structure(p, r, policy);
   if (!tau && p.tau_pieces != 1)
-    throw InvalidArgument("--tau-pieces: a fit in the sun zenith only has one piece");
+    throw InvalidArgument(spelled("tau-pieces") + ": a fit in the sun zenith only has one piece");
   s.projection.tolerance = r.tolerance;
   s.projection.ground_albedo = r.ground_albedo;
   return s;

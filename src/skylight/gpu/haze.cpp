@@ -41,12 +41,8 @@ double checked_max_depth(const io::ImageF& depth, const haze::DepthEncoding& e, 
         fmt::format("the depth map is {}x{} with {} channel(s) but the image is "
                     "{}x{} (one channel expected)",
                     depth.width, depth.height, depth.channels, width, height));
-  if (e.near_m.has_value() != e.far_m.has_value())
-    throw InvalidArgument("--near and --far go together (normalised depth, eq. 19)");
+  haze::validate(e);
   const bool normalised = e.near_m.has_value();
-  if (normalised && !(*e.near_m > 0.0 && *e.far_m > *e.near_m))
-    throw InvalidArgument(
-        fmt::format("near {} m and far {} m must satisfy 0 < near < far", *e.near_m, *e.far_m));
   float m = 0.0f;
   for (std::size_t i = 0; i < depth.data.size(); ++i) {
     const float v = depth.data[i];

@@ -13,6 +13,7 @@
 #include "skylight/core/frame.h"
 #include "skylight/core/math.h"
 #include "skylight/core/parallel.h"
+#include "skylight/core/parameters.h"
 #include "skylight/estimate/photo.h"
 #include "skylight/haze/detail/pixel_kernel.h"
 
@@ -121,17 +122,22 @@ double depth_from_normalised(double s_bar, double near_m, double far_m) {
   return near_m / (1.0 - s_bar * (1.0 - near_m / far_m));
 }
 
+void validate(const DepthEncoding& encoding) {
+  if (encoding.near_m.has_value() != encoding.far_m.has_value())
+    throw InvalidArgument(fmt::format("{} and {} go together (normalised depth, eq. 19)",
+                                      spelled("near"), spelled("far")));
+  if (encoding.near_m && !(*encoding.near_m > 0.0 && *encoding.far_m > *encoding.near_m))
+    throw InvalidArgument(fmt::format("near {} m and far {} m must satisfy 0 < near < far",
+                                      *encoding.near_m, *encoding.far_m));
+}
+
 io::ImageF depth_in_metres(const io::ImageF& depth, const DepthEncoding& encoding, int image_width,
                            int image_height, std::string_view what) {
   if (depth.width != image_width || depth.height != image_height)
     throw InvalidArgument(fmt::format("{} is {}x{} but the image is {}x{}", what, depth.width,
                                       depth.height, image_width, image_height));
-  if (encoding.near_m.has_value() != encoding.far_m.has_value())
-    throw InvalidArgument("--near and --far go together (normalised depth, eq. 19)");
+  validate(encoding);
   const bool normalised = encoding.near_m.has_value();
-  if (normalised && !(*encoding.near_m > 0.0 && *encoding.far_m > *encoding.near_m))
-    throw InvalidArgument(fmt::format("near {} m and far {} m must satisfy 0 < near < far",
-                                      *encoding.near_m, *encoding.far_m));
   io::ImageF out(depth.width, depth.height, 1);
   for (int y = 0; y < depth.height; ++y)
     for (int x = 0; x < depth.width; ++x) {

@@ -24,6 +24,8 @@ namespace skylight::haze {
 struct DepthEncoding {
   std::optional<double> near_m, far_m;  // both or neither; 0 < near < far
 };
+// Throws InvalidArgument unless near and far are both absent or 0 < near < far.
+void validate(const DepthEncoding& encoding);
 
 // Eq. 19: s = s_near / (1 - s_bar (1 - s_near / s_far)) [m].
 double depth_from_normalised(double s_bar, double near_m, double far_m);

@@ -5,6 +5,7 @@
 #include "skylight/core/error.h"
 #include "skylight/core/math.h"
 #include "skylight/core/numbers.h"
+#include "skylight/core/parameters.h"
 #include "skylight/estimate/photo.h"
 #include "skylight/io/image.h"
 #include "skylight/models/sky_model.h"
@@ -71,7 +72,9 @@ const ParameterSchema<SensitivityOptions>& SensitivityOptions::schema() {
 
 CameraSensitivity SensitivityOptions::sensitivity() const {
   if (!camera_csv.empty()) return load_camera_csv(camera_csv);
-  if (camera.empty()) throw InvalidArgument("give --camera NAME or --camera-csv FILE");
+  if (camera.empty())
+    throw InvalidArgument(
+        fmt::format("give {} NAME or {} FILE", spelled("camera"), spelled("camera-csv")));
   return find_camera(camera);
 }
 
@@ -117,8 +120,9 @@ std::optional<ImagePositioning> ImageCameraOptions::positioning(int width, int h
                                                                 double near_m, double far_m) const {
   if (!given()) return std::nullopt;
   if (!vfov_deg && !hfov_deg && projection_matrix.empty())
-    throw InvalidArgument(
-        "the image camera needs a field of view: give --vfov, --hfov or --projection-matrix");
+    throw InvalidArgument(fmt::format("the image camera needs a field of view: give {}, {} or {}",
+                                      spelled("vfov"), spelled("hfov"),
+                                      spelled("projection-matrix")));
   const Mat4 view = view_matrix.empty()
                         ? haze::view_matrix(wrap_azimuth(deg_to_rad(heading_deg.value_or(0.0))),
                                             deg_to_rad(pitch_deg.value_or(0.0)),
@@ -214,7 +218,8 @@ PhotoAirlight AirlightSource::photo_horizon(double t, double theta) const {
     HorizonSettings h;
     h.region = o.horizon_region;
     if (h.region == HorizonRegion::band && !o.sky_mask.empty())
-      throw InvalidArgument("--sky-mask goes with --horizon-region watershed");
+      throw InvalidArgument(
+          fmt::format("{} goes with {} watershed", spelled("sky-mask"), spelled("horizon-region")));
     estimate::SkyMask mask;
     if (!o.sky_mask.empty()) {
       mask = mask_from_image(estimate::load_mask(o.sky_mask), cam);
@@ -231,12 +236,14 @@ PhotoAirlight AirlightSource::photo_horizon(double t, double theta) const {
 std::unique_ptr<SkyModel> AirlightSource::model_at(double t) const {
   const ModelInfo* info = find_model(options_.sky_model);
   if (!info)
-    throw InvalidArgument(fmt::format("unknown --sky-model '{}'", excerpt(options_.sky_model)));
+    throw InvalidArgument(
+        fmt::format("unknown {} '{}'", spelled("sky-model"), excerpt(options_.sky_model)));
   SkyParameters p;
   p.sun = sun_from_degrees(options_.sun_zenith_deg, options_.sun_azimuth_deg);
   p.values = info->example;
   if (info->find_parameter("turbidity") == nullptr)
-    throw InvalidArgument(fmt::format("--sky-model '{}' has no turbidity", info->name));
+    throw InvalidArgument(
+        fmt::format("{} '{}' has no turbidity", spelled("sky-model"), info->name));
   p.values.set("turbidity", t);
   return make_sky_model(info->name, p);
 }
@@ -246,8 +253,9 @@ std::shared_ptr<const AirlightMap> AirlightSource::per_pixel(double t,
                                                              const ImagePositioning& image) const {
   if (options_.view_elevation_deg || options_.view_azimuth_deg)
     throw InvalidArgument(
-        "--view-elevation and --view-azimuth are for one airlight per image; with an image "
-        "camera every pixel sees its own direction");
+        fmt::format("{} and {} are for one airlight per image; with an image camera every "
+                    "pixel sees its own direction",
+                    spelled("view-elevation"), spelled("view-azimuth")));
   if (!options_.airlight.empty()) return nullptr;
   if (!options_.sky_photo.empty()) return photo_airlight_map(image, photo_horizon(t, kPi / 2), t);
   const AirlightTable table(*model_at(t), camera);
@@ -260,7 +268,8 @@ Rgb3 AirlightSource::at(double t, const CameraSensitivity& camera) const {
   const double theta = deg_to_rad(90.0 - o.view_elevation_deg.value_or(0.0));
   if (!o.sky_photo.empty()) return photo_horizon(t, theta).airlight;
   if (o.sky_model.empty())
-    throw InvalidArgument("give --airlight R,G,B, --sky PHOTO or --sky-model NAME");
+    throw InvalidArgument(fmt::format("give {} R,G,B, {} PHOTO or {} NAME", spelled("airlight"),
+                                      spelled("sky"), spelled("sky-model")));
   const auto model = model_at(t);
   const Vec3 view =
       direction_from_angles(theta, wrap_azimuth(deg_to_rad(o.view_azimuth_deg.value_or(0.0))));
@@ -300,11 +309,12 @@ HazeSettings haze_settings(HazeOperation operation, const Atmosphere& air, const
   s.min_transmission = o.min_transmission;
   s.airlight_source = airlight.at(air.turbidity, camera);
   if (operation == HazeOperation::retarget) {
-    if (!o.target_turbidity) throw InvalidArgument("haze retarget needs --target-turbidity");
+    if (!o.target_turbidity)
+      throw InvalidArgument("haze retarget needs " + spelled("target-turbidity"));
     s.target_turbidity = o.target_turbidity;
     s.airlight_target = airlight.at(*o.target_turbidity, camera);
   } else if (o.target_turbidity) {
-    throw InvalidArgument("--target-turbidity is for haze retarget only");
+    throw InvalidArgument(spelled("target-turbidity") + " is for haze retarget only");
   }
   // With an image camera, --sky and --sky-model give every pixel the airlight of its own direction
   // (Morales 2017 §6.2: eqs. 20-22, then eqs. 12-13 or the model); --airlight stays constant.

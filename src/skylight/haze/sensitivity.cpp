@@ -12,6 +12,7 @@
 #include "skylight/core/data.h"
 #include "skylight/core/error.h"
 #include "skylight/core/numbers.h"
+#include "skylight/core/parameters.h"
 #include "skylight/io/file.h"
 
 namespace skylight::haze {
@@ -86,8 +87,8 @@ const CameraSensitivity& find_camera(std::string_view name) {
   if (it != cameras.end()) return it->second;
   std::string known;
   for (const auto& [key, cam] : cameras) known += (known.empty() ? "" : ", ") + key;
-  throw InvalidArgument(
-      fmt::format("unknown camera '{}' (known: {}; or --camera-csv)", excerpt(name), known));
+  throw InvalidArgument(fmt::format("unknown camera '{}' (known: {}; or {})", excerpt(name), known,
+                                    spelled("camera-csv")));
 }
 
 CameraSensitivity parse_camera_csv(std::string_view text, const std::string& source) {

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include "skylight/core/error.h"
+#include "skylight/core/parameters.h"
 
 namespace skylight {
 
@@ -46,8 +47,8 @@ const ParameterSchema<SolarDisc>& SolarDisc::schema() {
 
 void check_sun_mode(const SkyModel& model, SunMode mode) {
   if (mode != SunMode::sky && !model.has_sun())
-    throw InvalidArgument(
-        fmt::format("--include-sun/--sun-only: model '{}' has no sun", model.name()));
+    throw InvalidArgument(fmt::format("{}/{}: model '{}' has no sun", spelled("include-sun"),
+                                      spelled("sun-only"), model.name()));
 }
 
 ParameterSpec model_spec() {
@@ -99,17 +100,19 @@ const ParameterSchema<EvaluationOptions>& EvaluationOptions::schema() {
 void validate(const EvaluationOptions& o) {
   const bool spectral = o.quantity == Quantity::spectral;
   if (spectral && o.wavelengths_nm.empty())
-    throw InvalidArgument("--quantity spectral needs --wavelengths NM[,NM...]");
+    throw InvalidArgument(fmt::format("{} spectral needs {} NM[,NM...]", spelled("quantity"),
+                                      spelled("wavelengths")));
   if (!spectral && !o.wavelengths_nm.empty())
-    throw InvalidArgument("--wavelengths is only used with --quantity spectral");
+    throw InvalidArgument(fmt::format("{} is only used with {} spectral", spelled("wavelengths"),
+                                      spelled("quantity")));
 }
 
 void validate(const EvaluationOptions& o, const SkyModel& model) {
   validate(o);
   check_sun_mode(model, o.sun);
   if (o.quantity == Quantity::spectral && !find_model(model.name())->spectral)
-    throw InvalidArgument(
-        fmt::format("--quantity spectral: model '{}' has no spectral output", model.name()));
+    throw InvalidArgument(fmt::format("{} spectral: model '{}' has no spectral output",
+                                      spelled("quantity"), model.name()));
 }
 
 std::vector<std::string> quantity_columns(const EvaluationOptions& o) {
@@ -138,15 +141,15 @@ std::vector<double> evaluate(const SkyModel& model, Vec3 v, const EvaluationOpti
       if (sky) {
         const auto s = model.spectral_radiance(v, nm);
         if (!s)
-          throw InvalidArgument(fmt::format(
-              "--wavelengths: {} nm is outside the range of model '{}'", nm, model.name()));
+          throw InvalidArgument(fmt::format("{}: {} nm is outside the range of model '{}'",
+                                            spelled("wavelengths"), nm, model.name()));
         L += *s;
       }
       if (sun) {
         const auto s = model.sun_spectral_radiance(v, nm);
         if (!s)
-          throw InvalidArgument(fmt::format(
-              "--wavelengths: {} nm is outside the sun's range of model '{}'", nm, model.name()));
+          throw InvalidArgument(fmt::format("{}: {} nm is outside the sun's range of model '{}'",
+                                            spelled("wavelengths"), nm, model.name()));
         L += *s;
       }
       out.push_back(L);

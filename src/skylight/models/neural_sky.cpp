@@ -148,7 +148,9 @@ ModelInfo NeuralSkyModel::registry_entry() {
       .neural = NeuralPolicy::over_turbidity(1.0, 10.0),
       .sh_fit = ShFitPolicy{.parameter = "turbidity"},
       // Satilmis et al. 2016 compare the network with the Hosek-Wilkie model it replaces.
-      .bench = BenchPolicy{.by_default = true, .baseline = std::string(HosekWilkieModel::kName)},
+      .bench = BenchPolicy{.by_default = true,
+                           .baseline = std::string(HosekWilkieModel::kName),
+                           .label = "nn (6-12-3)"},
   };
 }
 

@@ -8,6 +8,7 @@
 
 #include "skylight/core/data.h"
 #include "skylight/core/error.h"
+#include "skylight/core/parameters.h"
 
 namespace skylight {
 namespace {
@@ -82,8 +83,8 @@ NishitaSetup NishitaParameters::setup() const {
   a.ground_radius_m = ground_radius_m;
   a.top_radius_m = top_radius();
   if (!(a.top_radius_m > a.ground_radius_m))
-    throw InvalidArgument(fmt::format("--top-radius {} must exceed --ground-radius {}",
-                                      a.top_radius_m, a.ground_radius_m));
+    throw InvalidArgument(fmt::format("{} {} must exceed {} {}", spelled("top-radius"),
+                                      a.top_radius_m, spelled("ground-radius"), a.ground_radius_m));
   a.components[0].scale_height_m = rayleigh_scale_height_m;
   a.components[1].scale_height_m = mie_scale_height_m;
   a.components[1].g = mie_g;

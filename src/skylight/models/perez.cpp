@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "skylight/core/error.h"
+#include "skylight/core/parameters.h"
 
 namespace skylight {
 
@@ -51,11 +52,11 @@ PerezModel::PerezModel(const PerezParameters& p) : SkyModel(p.sun), params_(p) {
   if (grad_bound > kPerezMaxFactor || ind_bound > kPerezMaxFactor ||
       !(max_luminance <= kPerezMaxLuminance))
     throw InvalidArgument(fmt::format(
-        "--perez {},{},{},{},{} with --zenith-luminance {} overflows: F's factors reach {:.3g} "
-        "(gradation) and {:.3g} (indicatrix), the luminance up to {:.3g} cd/m^2 (limits {:g} and "
-        "{:g})",
-        k[0], k[1], k[2], k[3], k[4], *p.zenith_luminance, grad_bound, ind_bound, max_luminance,
-        kPerezMaxFactor, kPerezMaxLuminance));
+        "{} {},{},{},{},{} with {} {} overflows: F's factors reach {:.3g} (gradation) and {:.3g} "
+        "(indicatrix), the luminance up to {:.3g} cd/m^2 (limits {:g} and {:g})",
+        spelled("perez"), k[0], k[1], k[2], k[3], k[4], spelled("zenith-luminance"),
+        *p.zenith_luminance, grad_bound, ind_bound, max_luminance, kPerezMaxFactor,
+        kPerezMaxLuminance));
   distribution_.mode = PerezDistribution::Mode::luminance;
   distribution_.coefficients[0] = c;
   distribution_.sun = p.sun.direction();

@@ -11,6 +11,7 @@
 #include "skylight/core/icosphere.h"
 #include "skylight/core/math.h"
 #include "skylight/core/numbers.h"
+#include "skylight/core/parameters.h"
 #include "skylight/io/file.h"
 #include "skylight/models/neural_sky.h"
 #include "skylight/nn/sky_network.h"
@@ -169,10 +170,10 @@ std::unique_ptr<SkyModel> network_model(const NetworkFile& file, const std::stri
                                         std::optional<double> observer_altitude_m) {
   if (file.pietras) {
     if (turbidity)
-      throw InvalidArgument(fmt::format(
-          "--turbidity: '{}' is a Pietras network, which has no turbidity input (its atmosphere "
-          "is the training planet's)",
-          excerpt(path)));
+      throw InvalidArgument(
+          fmt::format("{}: '{}' is a Pietras network, which has no turbidity input (its atmosphere "
+                      "is the training planet's)",
+                      spelled("turbidity"), excerpt(path)));
     PietrasParameters p;
     p.sun = sun;
     p.weights = path;
@@ -181,9 +182,9 @@ std::unique_ptr<SkyModel> network_model(const NetworkFile& file, const std::stri
   }
   if (observer_altitude_m)
     throw InvalidArgument(
-        fmt::format("--observer-altitude: '{}' is a sky network, which has no altitude input "
+        fmt::format("{}: '{}' is a sky network, which has no altitude input "
                     "(only Pietras networks take it)",
-                    excerpt(path)));
+                    spelled("observer-altitude"), excerpt(path)));
   NeuralSkyParameters p;
   p.sun = sun;
   p.weights = path;

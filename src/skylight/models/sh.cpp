@@ -1,11 +1,13 @@
 #include "skylight/models/sh.h"
 
-#include "skylight/core/camera.h"
+#include <fmt/format.h>
 
 #include <string>
 #include <vector>
 
+#include "skylight/core/camera.h"
 #include "skylight/core/data.h"
+#include "skylight/core/parameters.h"
 #include "skylight/io/file.h"
 #include "skylight/sh/basis.h"
 #include "skylight/sh/rotation.h"
@@ -66,13 +68,13 @@ ShSkyModel::ShSkyModel(const ShParameters& p, std::shared_ptr<const sh::Polynomi
   const sh::PolynomialTable& t = *table_;
   if (params_.bands == 0) params_.bands = t.bands;
   if (params_.bands > t.bands) {
-    throw InvalidArgument(model_context(kName) + ": --bands " + std::to_string(params_.bands) +
-                          " exceeds the table's " + std::to_string(t.bands));
+    throw InvalidArgument(fmt::format("{}: {} {} exceeds the table's {}", model_context(kName),
+                                      spelled("bands"), params_.bands, t.bands));
   }
   if (t.parameter.empty()) {
     if (params_.turbidity) {
-      throw InvalidArgument(model_context(kName) +
-                            ": --turbidity given, but the table varies the sun zenith only");
+      throw InvalidArgument(fmt::format("{}: {} given, but the table varies the sun zenith only",
+                                        model_context(kName), spelled("turbidity")));
     }
   } else if (!params_.turbidity) {
     params_.turbidity = 0.5 * (t.tau_min + t.tau_max);

@@ -234,6 +234,8 @@ struct BenchPolicy {
   bool by_default = false;  // timed by `skylight bench` without --models
   // A model whose batch path this one is compared with (the cost it replaces); empty: none.
   std::string baseline{};
+  // How that comparison names the benchmarked sky (default: the model's name).
+  std::string label{};
   // A further workload of perf/workloads.h: the SH table's evaluation against projecting the
   // table's model, or each network kind (with the trainer's initial weights) against nishita.
   enum class Extra { none, sh_table, network_kinds };

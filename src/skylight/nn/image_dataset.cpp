@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "skylight/core/error.h"
+#include "skylight/core/parameters.h"
 #include "skylight/core/statistics.h"
 
 namespace skylight::nn {
@@ -120,8 +121,8 @@ CrossValidation cross_validate(const Dataset& ds, int folds, const NetworkSetup&
                                const std::function<void(int, int)>& on_fold) {
   const int n = static_cast<int>(ds.states.size());
   if (folds < 2 || folds > n)
-    throw InvalidArgument(
-        fmt::format("--kfold {}: needs 2 to {} folds (the number of images)", folds, n));
+    throw InvalidArgument(fmt::format("{} {}: needs 2 to {} folds (the number of images)",
+                                      spelled("kfold"), folds, n));
   CrossValidation cv;
   for (int k = 0; k < folds; ++k) {
     if (on_fold) on_fold(k, folds);

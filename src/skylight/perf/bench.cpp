@@ -7,6 +7,7 @@
 
 #include "skylight/core/error.h"
 #include "skylight/core/parallel.h"
+#include "skylight/core/parameters.h"
 #include "skylight/core/statistics.h"
 #include "skylight/models/sh.h"
 #include "skylight/perf/workloads.h"
@@ -60,7 +61,8 @@ void bench_estimate(int repeats, const Output& out) {
 // Habel 2008 §4: one sky's SH from the table against projecting its model.
 void bench_sh_table(int repeats, const std::string& table_path, const Output& out) {
   const sh::PolynomialTable table = load_sh_table(table_path);
-  if (table.bands < 7) throw InvalidArgument("--sh-table: the table has fewer than 7 bands");
+  if (table.bands < 7)
+    throw InvalidArgument(spelled("sh-table") + ": the table has fewer than 7 bands");
   constexpr int kCalls = 2000;
   volatile double sink = 0.0;
   // Wall and thread CPU time: on a loaded machine the wall time includes waiting for a core.
@@ -165,7 +167,8 @@ std::vector<const ModelInfo*> bench_infos(const BenchSettings& s) {
     if (!m) {
       std::string known;
       for (const auto& r : model_registry()) known += (known.empty() ? "" : ", ") + r.name;
-      throw InvalidArgument(fmt::format("--models: unknown model '{}' (known: {})", name, known));
+      throw InvalidArgument(
+          fmt::format("{}: unknown model '{}' (known: {})", spelled("models"), name, known));
     }
     models.push_back(m);
   }
@@ -252,7 +255,8 @@ double run_bench(const BenchSettings& s, const Output& out) {
       out(fmt::format(
           "{} batch on one thread: {:.2f}x faster than the {} batch, {:.1f}x faster than its own "
           "scalar loop\n",
-          info->name, timed[base].second / timed[info->name].second, base,
+          info->bench.label.empty() ? info->name : info->bench.label,
+          timed[base].second / timed[info->name].second, base,
           timed[info->name].first / timed[info->name].second));
     if (info->bench.extra == BenchPolicy::Extra::network_kinds)
       bench_network_kinds(*info, s.repeats, grid, out);

@@ -7,6 +7,7 @@
 #include "skylight/core/error.h"
 #include "skylight/core/math.h"
 #include "skylight/core/numbers.h"
+#include "skylight/core/parameters.h"
 #include "skylight/models/sky_model.h"
 #include "skylight/sun/spa.h"
 #include "skylight/sun/time.h"
@@ -49,11 +50,15 @@ void AnimationOptions::validate() const {
   const bool by_time = !from_time.empty() || !to_time.empty();
   if (by_time) {
     if (from_time.empty() || to_time.empty() || !from.empty() || !to.empty())
-      throw InvalidArgument("give --from-time and --to-time, or --from and --to");
-    if (!lat_deg || !lon_deg) throw InvalidArgument("--from-time/--to-time need --lat and --lon");
+      throw InvalidArgument(fmt::format("give {} and {}, or {} and {}", spelled("from-time"),
+                                        spelled("to-time"), spelled("from"), spelled("to")));
+    if (!lat_deg || !lon_deg)
+      throw InvalidArgument(fmt::format("{}/{} need {} and {}", spelled("from-time"),
+                                        spelled("to-time"), spelled("lat"), spelled("lon")));
   } else if (from.empty() || to.empty()) {
-    throw InvalidArgument(
-        "give --from and --to (sun zenith,azimuth in deg), or --from-time and --to-time");
+    throw InvalidArgument(fmt::format("give {} and {} (sun zenith,azimuth in deg), or {} and {}",
+                                      spelled("from"), spelled("to"), spelled("from-time"),
+                                      spelled("to-time")));
   }
 }
 
@@ -78,8 +83,9 @@ SunPosition AnimationOptions::frame_sun(int k) const {
 std::string frame_path(const std::string& pattern, int frame, int frames) {
   const std::size_t a = pattern.find('#');
   if (a == std::string::npos)
-    throw InvalidArgument(fmt::format(
-        "-o '{}': the pattern needs a run of '#' for the frame number", excerpt(pattern)));
+    throw InvalidArgument(
+        fmt::format("{} '{}': the pattern needs a run of '#' for the frame number",
+                    spelled("output"), excerpt(pattern)));
   const std::size_t b = pattern.find_first_not_of('#', a);
   const std::size_t run = (b == std::string::npos ? pattern.size() : b) - a;
   const std::size_t digits = std::max(run, fmt::format("{}", frames - 1).size());

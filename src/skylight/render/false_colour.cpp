@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "skylight/core/error.h"
+#include "skylight/core/parameters.h"
 #include "skylight/render/false_colour.h"
 
 // stb_easy_font.h is a header of static functions; we use only some of them.
@@ -30,8 +31,8 @@ const ParameterSchema<FalseColourOptions>& FalseColourOptions::schema() {
         [](F& f, const ParameterValue& v) {
           const auto& r = std::get<std::vector<double>>(v);
           if (!(r[0] < r[1]))
-            throw InvalidArgument(
-                fmt::format("--false-colour-range {},{}: LO must be below HI", r[0], r[1]));
+            throw InvalidArgument(fmt::format("{} {},{}: LO must be below HI",
+                                              spelled("false-colour-range"), r[0], r[1]));
           f.log10_min = r[0];
           f.log10_max = r[1];
         },

@@ -5,6 +5,7 @@
 #include "skylight/core/data.h"
 #include "skylight/core/error.h"
 #include "skylight/core/parallel.h"
+#include "skylight/core/parameters.h"
 #include "skylight/models/cie_sky.h"
 #include "skylight/models/hosek_wilkie.h"
 #include "skylight/models/nishita.h"
@@ -146,8 +147,8 @@ void ReportWriter::section_measurements() {
   if (!scan.sun_azimuth || !scan.sun_elevation)
     throw InvalidArgument(fmt::format(
         "{}: no sun position: add '# sun_azimuth_deg = A' and '# sun_elevation_deg = E' lines or "
-        "pass --sun-azimuth and --sun-elevation",
-        scan.source));
+        "pass {} and {}",
+        scan.source, spelled("sun-azimuth"), spelled("sun-elevation")));
   const double ts = kPi / 2 - *scan.sun_elevation, az = *scan.sun_azimuth;
   const double excl = cfg_.comparison.sun_exclusion;
 

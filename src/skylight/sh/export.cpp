@@ -8,6 +8,7 @@
 
 #include "skylight/core/error.h"
 #include "skylight/core/numbers.h"
+#include "skylight/core/parameters.h"
 #include "skylight/sh/polynomial.h"
 
 namespace skylight::sh {
@@ -176,7 +177,8 @@ const ParameterSchema<ExportOptions>& ExportOptions::schema() {
 }
 
 std::string export_table(const PolynomialTable& table, const ExportOptions& o) {
-  if (o.monomial && !o.c_header) throw InvalidArgument("--monomial needs --c-header");
+  if (o.monomial && !o.c_header)
+    throw InvalidArgument(spelled("monomial") + " needs " + spelled("c-header"));
   return o.c_header ? table_to_c_header(table, o.name, o.monomial) : table_to_json(table);
 }
 
