@@ -159,6 +159,20 @@ double snapped_log10(double v) {
 
 // The y axis of a validity map with a single row (the model has no second parameter): no ticks
 // (the one requested lies outside the range).
+HtmlTable::HtmlTable(const std::vector<std::string>& headers, std::vector<bool> left)
+    : text_("<table><tr>"), left_(std::move(left)) {
+  for (const auto& h : headers) text_ += "<th>" + h + "</th>";
+  text_ += "</tr>\n";
+}
+
+void HtmlTable::row(const std::vector<std::string>& cells, std::string_view row_attributes) {
+  text_ += fmt::format("<tr{}>", row_attributes);
+  for (std::size_t i = 0; i < cells.size(); ++i)
+    text_ += (i < left_.size() && left_[i] ? "<td style=\"text-align:left\">" : "<td>") + cells[i] +
+             "</td>";
+  text_ += "</tr>\n";
+}
+
 svg::Axis one_row_axis() {
   return {0.0, 1.0, false, "", {-1.0}};
 }

@@ -17,82 +17,92 @@ namespace skylight::report::detail {
 
 // ---- illuminance / irradiance -----------------------------------------------------------------
 
-void ReportWriter::section_illumination() {
-  struct Row {
-    ModelSpec spec;
-    std::string colour;
-    bool spectral;
-  };
-  // Spectral: the irradiance comes from the model's spectral radiance (its registry entry).
-  auto row = [](ModelSpec spec) {
-    const std::string colour = comparison_colour(spec.name);
-    const bool spectral = find_model(spec.name)->spectral;
-    return Row{std::move(spec), colour, spectral};
-  };
-  std::vector<Row> models = {row(comparison_spec(PreethamModel::kName, 3.0)),
-                             row(comparison_spec(CieSkyModel::kName, 12)),
-                             row(comparison_spec(CieSkyModel::kName, 16)),
-                             row(comparison_spec(HosekWilkieModel::kName, 3.0)),
-                             row(comparison_spec(NishitaModel::kName))};
-  models[2].spec.label = "CIE type 16 (traditional overcast)";
-  models[2].colour = kCie16Colour;
-  const auto& el = cfg_.illum_elevations_deg;
+namespace {
+
+// One model of the illumination section, with its colour and whether it is spectral.
+struct IlluminationModel {
+  ModelSpec spec;
+  std::string colour;
+  bool spectral;
+};
+// Spectral: the irradiance comes from the model's spectral radiance (its registry entry).
+IlluminationModel illumination_model(ModelSpec spec) {
+  const std::string colour = comparison_colour(spec.name);
+  const bool spectral = find_model(spec.name)->spectral;
+  return {std::move(spec), colour, spectral};
+}
+
+// The section's two plots, its table and report.json's rows, filled one model at a time.
+struct IlluminationFigures {
   svg::Plot lx, wm;
-  lx.id = "illum";
-  wm.id = "irrad";
-  lx.title = "Horizontal illuminance against sun elevation";
-  wm.title = fmt::format("Horizontal irradiance {:g}-{:g} nm against sun elevation",
-                         cfg_.illum.nm_min, cfg_.illum.nm_max);
   double lx_max = 0.0, wm_max = 0.0;
-  std::string table =
-      "<table><tr><th>model</th><th>sun elevation [deg]</th><th>diffuse "
-      "[lx]</th><th>direct [lx]</th><th>global [lx]</th><th>diffuse "
-      "[W/m2]</th><th>direct [W/m2]</th><th>global [W/m2]</th></tr>\n";
-  Json out = Json::array();
-  for (const auto& m : models) {
+  HtmlTable table{{"model", "sun elevation [deg]", "diffuse [lx]", "direct [lx]", "global [lx]",
+                   "diffuse [W/m2]", "direct [W/m2]", "global [W/m2]"}};
+  Json rows = Json::array();
+
+  void add(const IlluminationModel& m, const std::vector<double>& el,
+           const IlluminationSettings& settings) {
     std::vector<double> d, g, dw, gw;
     bool has_sun = false, spectral = false;
     for (double e : el) {
       const auto model = make_model(m.spec, (90.0 - e) * kDegree, kPi);
-      const auto h = horizontal_illumination(*model, cfg_.illum, m.spectral);
+      const auto h = horizontal_illumination(*model, settings, m.spectral);
       has_sun = h.has_sun;
       d.push_back(h.diffuse_lx);
       g.push_back(h.global_lx());
       const double dwv = h.diffuse_w_m2.value_or(kNaN);
-      const double gwv = dwv + (h.has_sun ? h.direct_w_m2.value_or(kNaN) : 0.0);
+      const double direct_w = h.direct_w_m2.value_or(kNaN);
+      const double gwv = dwv + (h.has_sun ? direct_w : 0.0);
       spectral = spectral || h.diffuse_w_m2.has_value();
       dw.push_back(dwv);
       gw.push_back(gwv);
       lx_max = std::max(lx_max, h.global_lx());
       if (std::isfinite(gwv)) wm_max = std::max(wm_max, gwv);
-      table += fmt::format(
-          "<tr><td>{}</td><td>{:g}</td><td>{:.0f}</td><td>{}</td><td>{:.0f}</td>"
-          "<td>{}</td><td>{}</td><td>{}</td></tr>\n",
-          m.spec.label, e, h.diffuse_lx, h.has_sun ? fmt::format("{:.0f}", h.direct_lx) : "no sun",
-          h.global_lx(), g3(dwv), h.has_sun ? g3(h.direct_w_m2.value_or(kNaN)) : "no sun", g3(gwv));
-      out.push_back({{"model", m.spec.label},
-                     {"sun_elevation_deg", e},
-                     {"diffuse_lx", num(h.diffuse_lx)},
-                     {"direct_lx", h.has_sun ? num(h.direct_lx) : Json(nullptr)},
-                     {"global_lx", num(h.global_lx())},
-                     {"diffuse_w_m2", num(dwv)},
-                     {"direct_w_m2", h.has_sun ? num(h.direct_w_m2.value_or(kNaN)) : Json(nullptr)},
-                     {"global_w_m2", num(gwv)}});
+      table.row({m.spec.label, fmt::format("{:g}", e), fmt::format("{:.0f}", h.diffuse_lx),
+                 h.has_sun ? fmt::format("{:.0f}", h.direct_lx) : "no sun",
+                 fmt::format("{:.0f}", h.global_lx()), g3(dwv), h.has_sun ? g3(direct_w) : "no sun",
+                 g3(gwv)});
+      rows.push_back({{"model", m.spec.label},
+                      {"sun_elevation_deg", e},
+                      {"diffuse_lx", num(h.diffuse_lx)},
+                      {"direct_lx", h.has_sun ? num(h.direct_lx) : Json(nullptr)},
+                      {"global_lx", num(h.global_lx())},
+                      {"diffuse_w_m2", num(dwv)},
+                      {"direct_w_m2", h.has_sun ? num(direct_w) : Json(nullptr)},
+                      {"global_w_m2", num(gwv)}});
     }
     lx.series.push_back(svg::line_series(m.spec.label + " diffuse", el, d, m.colour, 1.6));
     if (has_sun)
       lx.series.push_back(svg::line_series(m.spec.label + " global", el, g, m.colour, 1.6, "6 3"));
-    if (spectral) {
-      wm.series.push_back(svg::line_series(m.spec.label + " diffuse", el, dw, m.colour, 1.6));
-      if (has_sun)
-        wm.series.push_back(
-            svg::line_series(m.spec.label + " global", el, gw, m.colour, 1.6, "6 3"));
-    }
+    if (!spectral) return;
+    wm.series.push_back(svg::line_series(m.spec.label + " diffuse", el, dw, m.colour, 1.6));
+    if (has_sun)
+      wm.series.push_back(svg::line_series(m.spec.label + " global", el, gw, m.colour, 1.6, "6 3"));
   }
-  table += "</table>\n";
+};
+
+}  // namespace
+
+void ReportWriter::section_illumination() {
+  std::vector<IlluminationModel> models = {
+      illumination_model(comparison_spec(PreethamModel::kName, 3.0)),
+      illumination_model(comparison_spec(CieSkyModel::kName, 12)),
+      illumination_model(comparison_spec(CieSkyModel::kName, 16)),
+      illumination_model(comparison_spec(HosekWilkieModel::kName, 3.0)),
+      illumination_model(comparison_spec(NishitaModel::kName))};
+  models[2].spec.label = "CIE type 16 (traditional overcast)";
+  models[2].colour = kCie16Colour;
+  IlluminationFigures f;
+  for (const auto& m : models) f.add(m, cfg_.illum_elevations_deg, cfg_.illum);
+  svg::Plot &lx = f.lx, &wm = f.wm;
+  lx.id = "illum";
+  wm.id = "irrad";
+  lx.title = "Horizontal illuminance against sun elevation";
+  wm.title = fmt::format("Horizontal irradiance {:g}-{:g} nm against sun elevation",
+                         cfg_.illum.nm_min, cfg_.illum.nm_max);
   lx.x = wm.x = {0, 90, false, "sun elevation [deg]", {0, 10, 20, 30, 40, 50, 60, 70, 80, 90}};
-  lx.y = {0, std::max(1.0, lx_max * 1.05), false, "horizontal illuminance [lx]", {}};
-  wm.y = {0, std::max(1.0, wm_max * 1.05), false, "horizontal irradiance [W/m2]", {}};
+  lx.y = {0, std::max(1.0, f.lx_max * 1.05), false, "horizontal illuminance [lx]", {}};
+  wm.y = {0, std::max(1.0, f.wm_max * 1.05), false, "horizontal irradiance [W/m2]", {}};
   lx.width = wm.width = 900;
   lx.height = wm.height = 420;
   lx.legend_outside = wm.legend_outside = true;
@@ -116,23 +126,26 @@ void ReportWriter::section_illumination() {
              fmt::format("Horizontal irradiance {:g}-{:g} nm of the spectral models: diffuse "
                          "(solid) and global (dashed).",
                          cfg_.illum.nm_min, cfg_.illum.nm_max)) +
-      table;
+      f.table.html();
   json_["horizontal_illumination"] = {
       {"irradiance_wavelength_range_nm", {cfg_.illum.nm_min, cfg_.illum.nm_max}},
       {"note",
        "CIE and nishita have no solar disc: diffuse only; irradiance only for spectral "
        "models"},
-      {"rows", out}};
+      {"rows", f.rows}};
 }
 
 // ---- measurements ------------------------------------------------------------------------------
 
-void ReportWriter::section_measurements() {
+namespace {
+
+// The scan of the report: the user's or the shipped synthetic one, with the sun position the
+// options give; origin: how the page names it.
+SkyScan report_scan(const ReportOptions& opt, std::string& origin) {
   SkyScan scan;
-  std::string origin;
-  if (opt_.measurements) {
-    scan = read_sky_scan(*opt_.measurements);
-    origin = fmt::format("the scan <code>{}</code>", svg::escape(opt_.measurements->string()));
+  if (opt.measurements) {
+    scan = read_sky_scan(*opt.measurements);
+    origin = fmt::format("the scan <code>{}</code>", svg::escape(opt.measurements->string()));
   } else {
     scan = parse_sky_scan(data::embedded_file(kSyntheticScanDataPath),
                           std::string("data/") + std::string(kSyntheticScanDataPath));
@@ -142,26 +155,32 @@ void ReportWriter::section_measurements() {
         "should win)",
         kSyntheticScanDataPath);
   }
-  if (opt_.measurement_sun_azimuth) scan.sun_azimuth = *opt_.measurement_sun_azimuth;
-  if (opt_.measurement_sun_elevation) scan.sun_elevation = *opt_.measurement_sun_elevation;
+  if (opt.measurement_sun_azimuth) scan.sun_azimuth = *opt.measurement_sun_azimuth;
+  if (opt.measurement_sun_elevation) scan.sun_elevation = *opt.measurement_sun_elevation;
   if (!scan.sun_azimuth || !scan.sun_elevation)
     throw InvalidArgument(fmt::format(
         "{}: no sun position: add '# sun_azimuth_deg = A' and '# sun_elevation_deg = E' lines or "
         "pass {} and {}",
         scan.source, spelled("sun-azimuth"), spelled("sun-elevation")));
-  const double ts = kPi / 2 - *scan.sun_elevation, az = *scan.sun_azimuth;
-  const double excl = cfg_.comparison.sun_exclusion;
+  return scan;
+}
 
-  struct Entry {
-    std::string label, colour;
-    ScanErrors e;
-    std::unique_ptr<SkyModel> model;
-  };
-  std::vector<Entry> entries;
+// One model compared with the scan.
+struct ScanEntry {
+  std::string label, colour;
+  ScanErrors e;
+  std::unique_ptr<SkyModel> model;
+};
+
+// The 16 CIE types (entries 0-15), the best-turbidity Preetham and Hosek-Wilkie skies, Nishita.
+std::vector<ScanEntry> scan_entries(const Config& cfg, const SkyScan& scan) {
+  const double ts = kPi / 2 - *scan.sun_elevation, az = *scan.sun_azimuth;
+  const double excl = cfg.comparison.sun_exclusion;
+  std::vector<ScanEntry> entries;
   // The value of the model's report axis with the lowest zenith-normalised RMS over [t0, t1].
   auto best_t = [&](std::string_view name, double t0, double t1) {
     double best = t0, best_rms = kInf;
-    for (double T = t0; T <= t1 + 1e-9; T += cfg_.scan_t_step) {
+    for (double T = t0; T <= t1 + 1e-9; T += cfg.scan_t_step) {
       const auto m = make_model(comparison_spec(name, T), ts, az);
       const double r = compare_to_scan(*m, scan, excl).rms_log10_relative;
       if (r < best_rms) {
@@ -171,6 +190,11 @@ void ReportWriter::section_measurements() {
     }
     return best;
   };
+  auto add = [&](std::string label, const ModelSpec& spec) {
+    auto m = make_model(spec, ts, az);
+    entries.push_back({std::move(label), comparison_colour(spec.name),
+                       compare_to_scan(*m, scan, excl), std::move(m)});
+  };
   // With the sun at the horizon the Kittler-Darula typical zenith luminance is 0 for most types:
   // those types are then scaled to the scan's highest sample (their absolute errors are labelled).
   const LuminanceSample* top = &scan.samples.front();
@@ -178,43 +202,29 @@ void ReportWriter::section_measurements() {
     if (smp.elevation > top->elevation) top = &smp;
   for (int t = 1; t <= kCieTypeCount; ++t) {
     ModelSpec spec = comparison_spec(CieSkyModel::kName, t);
-    auto m = make_model(spec, ts, az);
-    if (!(m->tristimulus({0.0, 0.0, 1.0}).Y > 0.0)) {
+    if (!(make_model(spec, ts, az)->tristimulus({0.0, 0.0, 1.0}).Y > 0.0)) {
       spec.params.values.set("zenith-luminance", top->luminance);
       spec.label += " (Lz from the scan: Kittler-Darula gives 0)";
-      m = make_model(spec, ts, az);
     }
-    entries.push_back(
-        {spec.label, comparison_colour(spec.name), compare_to_scan(*m, scan, excl), std::move(m)});
+    add(spec.label, spec);
   }
   // Preetham over the report's fit range; Hosek-Wilkie over the turbidities it accepts.
   const ParameterSpec& hosek_t = *find_model(HosekWilkieModel::kName)->find_parameter("turbidity");
   for (const auto& [name, range] :
-       {std::pair{PreethamModel::kName, std::array{cfg_.fit_t_min, cfg_.fit_t_max}},
+       {std::pair{PreethamModel::kName, std::array{cfg.fit_t_min, cfg.fit_t_max}},
         std::pair{HosekWilkieModel::kName, std::array{hosek_t.min, hosek_t.max}}}) {
     const double T = best_t(name, range[0], range[1]);
-    const ModelSpec spec = comparison_spec(name, T);
-    auto m = make_model(spec, ts, az);
-    entries.push_back({fmt::format("{} T = {:.2f} (best)", find_model(name)->report.title, T),
-                       comparison_colour(name), compare_to_scan(*m, scan, excl), std::move(m)});
+    add(fmt::format("{} T = {:.2f} (best)", find_model(name)->report.title, T),
+        comparison_spec(name, T));
   }
-  {
-    const ModelSpec spec = comparison_spec(NishitaModel::kName);
-    auto m = make_model(spec, ts, az);
-    entries.push_back(
-        {spec.label, comparison_colour(spec.name), compare_to_scan(*m, scan, excl), std::move(m)});
-  }
-  // The best CIE type by relative RMS goes into the plot with the other families.
-  std::size_t best_cie = 0;
-  for (std::size_t i = 1; i < static_cast<std::size_t>(kCieTypeCount); ++i)
-    if (entries[i].e.rms_log10_relative < entries[best_cie].e.rms_log10_relative) best_cie = i;
-  std::size_t best_all = 0;
-  for (std::size_t i = 1; i < entries.size(); ++i)
-    if (entries[i].e.rms_log10_relative < entries[best_all].e.rms_log10_relative) best_all = i;
-  scan_best_ = entries[best_all].label;
-  scan_best_cie_type_ = static_cast<int>(best_cie) + 1;
-  scan_synthetic_ = !opt_.measurements.has_value();
+  const ModelSpec nishita = comparison_spec(NishitaModel::kName);
+  add(nishita.label, nishita);
+  return entries;
+}
 
+// Measured against modelled luminance: the best CIE type, CIE 12 and the other families.
+svg::Plot scan_plot(const SkyScan& scan, const std::vector<ScanEntry>& entries,
+                    std::size_t best_cie, double excl) {
   svg::Plot p;
   p.id = "scan";
   p.title = "Measured against modelled luminance";
@@ -251,19 +261,40 @@ void ReportWriter::section_measurements() {
   p.width = 900;
   p.height = 480;
   p.legend_outside = true;
+  return p;
+}
 
-  std::string t =
-      "<table><tr><th>model</th><th>samples</th><th>RMS log10, absolute</th><th>bias "
-      "log10, absolute</th><th>RMS log10, zenith-normalised</th><th>bias log10, "
-      "zenith-normalised</th></tr>\n";
+}  // namespace
+
+void ReportWriter::section_measurements() {
+  std::string origin;
+  const SkyScan scan = report_scan(opt_, origin);
+  const double az = *scan.sun_azimuth;
+  const double excl = cfg_.comparison.sun_exclusion;
+  const std::vector<ScanEntry> entries = scan_entries(cfg_, scan);
+  // The best CIE type by relative RMS goes into the plot with the other families.
+  std::size_t best_cie = 0;
+  for (std::size_t i = 1; i < static_cast<std::size_t>(kCieTypeCount); ++i)
+    if (entries[i].e.rms_log10_relative < entries[best_cie].e.rms_log10_relative) best_cie = i;
+  std::size_t best_all = 0;
+  for (std::size_t i = 1; i < entries.size(); ++i)
+    if (entries[i].e.rms_log10_relative < entries[best_all].e.rms_log10_relative) best_all = i;
+  scan_best_ = entries[best_all].label;
+  scan_best_cie_type_ = static_cast<int>(best_cie) + 1;
+  scan_synthetic_ = !opt_.measurements.has_value();
+  const svg::Plot p = scan_plot(scan, entries, best_cie, excl);
+
+  HtmlTable t({"model", "samples", "RMS log10, absolute", "bias log10, absolute",
+               "RMS log10, zenith-normalised", "bias log10, zenith-normalised"});
   Json rows = Json::array();
   for (std::size_t i = 0; i < entries.size(); ++i) {
     const auto& e = entries[i].e;
-    t += fmt::format(
-        "<tr{}><td>{}</td><td>{}</td><td>{:.3f}</td><td>{:+.3f}</td><td>{:.3f}</td>"
-        "<td>{:+.3f}</td></tr>\n",
-        i == best_all ? " class=\"best\"" : "", entries[i].label, e.samples_used,
-        e.rms_log10_absolute, e.bias_log10_absolute, e.rms_log10_relative, e.bias_log10_relative);
+    t.row(
+        {entries[i].label, fmt::format("{}", e.samples_used),
+         fmt::format("{:.3f}", e.rms_log10_absolute), fmt::format("{:+.3f}", e.bias_log10_absolute),
+         fmt::format("{:.3f}", e.rms_log10_relative),
+         fmt::format("{:+.3f}", e.bias_log10_relative)},
+        i == best_all ? " class=\"best\"" : "");
     rows.push_back({{"model", entries[i].label},
                     {"samples", e.samples_used},
                     {"rms_log10_absolute", num(e.rms_log10_absolute)},
@@ -271,7 +302,6 @@ void ReportWriter::section_measurements() {
                     {"rms_log10_zenith_normalised", num(e.rms_log10_relative)},
                     {"bias_log10_zenith_normalised", num(e.bias_log10_relative)}});
   }
-  t += "</table>\n";
   html_scan_ =
       fmt::format(
           "<p>Compared with {}: {} samples, sun azimuth {:.4g} deg, elevation {:.4g} deg; "
@@ -287,7 +317,7 @@ void ReportWriter::section_measurements() {
       figure("measurements.svg", svg::draw(p),
              "Each sample's measured luminance against the models' (best CIE type, CIE 12, and the "
              "best-turbidity Preetham and Hosek-Wilkie skies, Nishita).") +
-      t;
+      t.html();
   json_["measurements"] = {{"source", scan.source},
                            {"synthetic", !opt_.measurements.has_value()},
                            {"samples", scan.samples.size()},

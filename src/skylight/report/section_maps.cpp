@@ -14,13 +14,118 @@ namespace skylight::report::detail {
 
 // ---- Fig. 1 ------------------------------------------------------------------------------------
 
+namespace {
+
+constexpr double kTMin = 1.0, kTMax = 64.0;  // the turbidity range `preetham` accepts
+
+// Fig. 1 on the log-T axis: the PNG map behind it and the boundary Yz = 0.
+svg::Plot fig1_plot(const std::vector<ZenithRoot>& roots) {
+  svg::Plot p;
+  p.id = "fig1";
+  p.title = "Preetham zenith luminance Yz(theta_s, T) (Zotti et al. 2007, Fig. 1)";
+  p.x = {0, 90, false, "sun zenith angle theta_s [deg]", {0, 10, 20, 30, 40, 50, 60, 70, 80, 90}};
+  p.y = {kTMin, kTMax, true, "turbidity T", {1, 1.5, 2, 3, 5, 7, 10, 15, 20, 30, 50, 64}};
+  p.background_image = "fig1_preetham_zenith_luminance.png";
+  p.width = 900;
+  p.height = 460;
+  p.has_colour_bar = true;
+  p.colour_bar = {kAbsoluteLog10Min, kAbsoluteLog10Max, "Yz [cd/m2]", ""};
+  p.legend_outside = true;
+  svg::Series lo = svg::marker_series("Yz = 0 (T below: Yz < 0)", {}, {}, "#ffffff", 2.2);
+  lo.marker_stroke = "#000000";
+  svg::Series hi = svg::marker_series("Yz = 0 (T above: Yz < 0)", {}, {}, "#000000", 2.2);
+  for (const auto& r : roots) {
+    auto& s = r.negative_above ? hi : lo;
+    s.x.push_back(rad_to_deg(r.sun_zenith));
+    s.y.push_back(r.turbidity);
+  }
+  p.series = {lo, hi};
+  p.swatches = {{"Yz < 0 (negative)", svg::hex_colour(kNegativeYzColour)}};
+  return p;
+}
+
+// Zotti's view of Fig. 1: T lt0-lt1 on a linear axis, the boundary points inside it.
+svg::Plot fig1_linear_plot(const svg::Plot& p, double lt0, double lt1) {
+  svg::Plot q = p;
+  q.id = "fig1lin";
+  q.title =
+      fmt::format("Preetham zenith luminance, T {:g}-{:g} linear (as Zotti's Fig. 1)", lt0, lt1);
+  q.y = {lt0, lt1, false, "turbidity T", {1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12}};
+  q.background_image = "fig1_preetham_zenith_luminance_linear.png";
+  for (auto& series : q.series) {
+    svg::Series kept = series;
+    kept.x.clear();
+    kept.y.clear();
+    for (std::size_t i = 0; i < series.x.size(); ++i)
+      if (series.y[i] >= lt0 && series.y[i] <= lt1) {
+        kept.x.push_back(series.x[i]);
+        kept.y.push_back(series.y[i]);
+      }
+    series = kept;
+  }
+  return q;
+}
+
+}  // namespace
+
 void ReportWriter::section_zenith() {
-  constexpr double kTMin = 1.0, kTMax = 64.0;  // the turbidity range `preetham` accepts
   std::vector<double> zeniths;
   for (double d = 0.0; d <= 90.0 + 1e-9; d += cfg_.root_step_deg) zeniths.push_back(d * kDegree);
   summary_.negative_zenith_boundary = preetham_zenith_roots(zeniths, kTMin, kTMax);
   const auto& roots = summary_.negative_zenith_boundary;
+  fig1_maps();
+  zenith_branches();
+  const double lt0 = cfg_.fig1_linear_t.front(), lt1 = cfg_.fig1_linear_t.back();
+  const svg::Plot p = fig1_plot(roots);
+  const svg::Plot q = fig1_linear_plot(p, lt0, lt1);
+  HtmlTable table({"theta_s [deg]", "T where Yz = 0", "Yz &lt; 0 for"});
+  for (const auto& r : roots) {
+    const double d = rad_to_deg(r.sun_zenith);
+    if (std::abs(std::remainder(d, 10.0)) > 1e-6 && std::abs(d - 85.0) > 1e-6) continue;
+    table.row({fmt::format("{:g}", d), fmt::format("{:.4f}", r.turbidity),
+               fmt::format("T {} {:.4f}", r.negative_above ? "&gt;" : "&lt;", r.turbidity)});
+  }
+  html_zenith_ =
+      figure("fig1_preetham_zenith_luminance.svg", svg::draw(p),
+             "Preetham's zenith luminance Yz (Preetham 1999 A.2; Zotti eq. 1) over the sun zenith "
+             "angle and the turbidity range the model accepts (1-64, log scale; Zotti shows 1-12). "
+             "Red: Yz &lt; 0. Dots: the boundary Yz = 0 found by bisection (report.json "
+             "<code>preetham_negative_zenith</code>).");
+  html_zenith_ +=
+      figure(
+          "fig1_preetham_zenith_luminance_linear.svg", svg::draw(q),
+          fmt::format("The same on Zotti's axes: T {:g}-{:g}, linear. Yz alone is negative "
+                      "only in the corners (T &lt; {:.3g} with a high sun, T &gt; {:.3g} with "
+                      "the sun at the horizon); the whole sky is negative somewhere for {:.3g} "
+                      "&lt; T &lt; {:.4g} at every sun position (summary, first finding).",
+                      lt0, lt1, low_branch_t_at_zenith_, high_branch_t_at_horizon_,
+                      preetham_negative_sky_range().t_low, preetham_negative_sky_range().t_high)) +
+      "<p>Boundary points every 10 deg (and 85 deg); all points at " +
+      fmt::format("{:g}", cfg_.root_step_deg) + " deg steps are in report.json.</p>\n" +
+      table.html();
+  Json pts = Json::array();
+  for (const auto& r : roots)
+    pts.push_back({{"sun_zenith_deg", rad_to_deg(r.sun_zenith)},
+                   {"turbidity", r.turbidity},
+                   {"negative_for", r.negative_above ? "turbidity above" : "turbidity below"}});
+  json_["preetham_negative_zenith"] = pts;
+  json_["preetham_negative_zenith_details"] = {
+      {"formula",
+       "Yz = 1000 [(4.0453 T - 4.9710) tan chi - 0.2155 T + 2.4192] cd/m^2, chi = "
+       "(4/9 - T/120)(pi - 2 theta_s) (Preetham 1999 A.2)"},
+      {"turbidity_range", {kTMin, kTMax}},
+      {"sun_zenith_step_deg", cfg_.root_step_deg},
+      {"low_turbidity_branch",
+       {{"description", "Yz < 0 for T below the boundary, high sun"},
+        {"turbidity_at_sun_zenith_0", num(low_branch_t_at_zenith_)},
+        {"ends_at_sun_zenith_deg_for_T_1", num(rad_to_deg(low_branch_max_sun_zenith_))}}},
+      {"high_turbidity_branch",
+       {{"description", "Yz < 0 for T above the boundary"},
+        {"turbidity_at_sun_zenith_0", num(high_branch_t_at_zenith_)},
+        {"turbidity_at_sun_zenith_90", num(high_branch_t_at_horizon_)}}}};
+}
 
+void ReportWriter::fig1_maps() {
   // The map: theta_s across, T (log) up; Yz on the absolute false-colour scale, Yz < 0 red.
   const int W = cfg_.yz_width, H = cfg_.yz_height;
   const FalseColourOptions fo{kAbsoluteLog10Min, kAbsoluteLog10Max, "cd/m2", false};
@@ -45,31 +150,10 @@ void ReportWriter::section_zenith() {
   const double lt0 = cfg_.fig1_linear_t.front(), lt1 = cfg_.fig1_linear_t.back();
   yz_map("fig1_preetham_zenith_luminance_linear.png",
          [&](int y) { return lt1 - (y + 0.5) / H * (lt1 - lt0); });
+}
 
-  svg::Plot p;
-  p.id = "fig1";
-  p.title = "Preetham zenith luminance Yz(theta_s, T) (Zotti et al. 2007, Fig. 1)";
-  p.x = {0, 90, false, "sun zenith angle theta_s [deg]", {0, 10, 20, 30, 40, 50, 60, 70, 80, 90}};
-  p.y = {kTMin, kTMax, true, "turbidity T", {1, 1.5, 2, 3, 5, 7, 10, 15, 20, 30, 50, 64}};
-  p.background_image = "fig1_preetham_zenith_luminance.png";
-  p.width = 900;
-  p.height = 460;
-  p.has_colour_bar = true;
-  p.colour_bar = {kAbsoluteLog10Min, kAbsoluteLog10Max, "Yz [cd/m2]", ""};
-  p.legend_outside = true;
-  svg::Series lo = svg::marker_series("Yz = 0 (T below: Yz < 0)", {}, {}, "#ffffff", 2.2);
-  lo.marker_stroke = "#000000";
-  svg::Series hi = svg::marker_series("Yz = 0 (T above: Yz < 0)", {}, {}, "#000000", 2.2);
-  for (const auto& r : roots) {
-    auto& s = r.negative_above ? hi : lo;
-    s.x.push_back(rad_to_deg(r.sun_zenith));
-    s.y.push_back(r.turbidity);
-  }
-  p.series = {lo, hi};
-  p.swatches = {{"Yz < 0 (negative)", svg::hex_colour(kNegativeYzColour)}};
-
-  // Branch summaries.
-  for (const auto& r : roots) {
+void ReportWriter::zenith_branches() {
+  for (const auto& r : summary_.negative_zenith_boundary) {
     if (!r.negative_above) {
       low_branch_max_sun_zenith_ = std::isnan(low_branch_max_sun_zenith_)
                                        ? r.sun_zenith
@@ -89,72 +173,6 @@ void ReportWriter::section_zenith() {
     }
     low_branch_max_sun_zenith_ = 0.5 * (end_lo + end_hi);
   }
-
-  // Zotti's view: T 1-12 on a linear axis.
-  svg::Plot q = p;
-  q.id = "fig1lin";
-  q.title =
-      fmt::format("Preetham zenith luminance, T {:g}-{:g} linear (as Zotti's Fig. 1)", lt0, lt1);
-  q.y = {lt0, lt1, false, "turbidity T", {1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12}};
-  q.background_image = "fig1_preetham_zenith_luminance_linear.png";
-  for (auto& series : q.series) {
-    svg::Series kept = series;
-    kept.x.clear();
-    kept.y.clear();
-    for (std::size_t i = 0; i < series.x.size(); ++i)
-      if (series.y[i] >= lt0 && series.y[i] <= lt1) {
-        kept.x.push_back(series.x[i]);
-        kept.y.push_back(series.y[i]);
-      }
-    series = kept;
-  }
-
-  std::string table =
-      "<table><tr><th>theta_s [deg]</th><th>T where Yz = 0</th><th>Yz &lt; 0 for</th></tr>\n";
-  for (const auto& r : roots) {
-    const double d = rad_to_deg(r.sun_zenith);
-    if (std::abs(std::remainder(d, 10.0)) > 1e-6 && std::abs(d - 85.0) > 1e-6) continue;
-    table += fmt::format("<tr><td>{:g}</td><td>{:.4f}</td><td>T {} {:.4f}</td></tr>\n", d,
-                         r.turbidity, r.negative_above ? "&gt;" : "&lt;", r.turbidity);
-  }
-  table += "</table>\n";
-  html_zenith_ =
-      figure("fig1_preetham_zenith_luminance.svg", svg::draw(p),
-             "Preetham's zenith luminance Yz (Preetham 1999 A.2; Zotti eq. 1) over the sun zenith "
-             "angle and the turbidity range the model accepts (1-64, log scale; Zotti shows 1-12). "
-             "Red: Yz &lt; 0. Dots: the boundary Yz = 0 found by bisection (report.json "
-             "<code>preetham_negative_zenith</code>).") +
-      figure(
-          "fig1_preetham_zenith_luminance_linear.svg", svg::draw(q),
-          fmt::format("The same on Zotti's axes: T {:g}-{:g}, linear. Yz alone is negative "
-                      "only in the corners (T &lt; {:.3g} with a high sun, T &gt; {:.3g} with "
-                      "the sun at the horizon); the whole sky is negative somewhere for {:.3g} "
-                      "&lt; T &lt; {:.4g} at every sun position (summary, first finding).",
-                      lt0, lt1, low_branch_t_at_zenith_, high_branch_t_at_horizon_,
-                      preetham_negative_sky_range().t_low, preetham_negative_sky_range().t_high)) +
-      "<p>Boundary points every 10 deg (and 85 deg); all points at " +
-      fmt::format("{:g}", cfg_.root_step_deg) + " deg steps are in report.json.</p>\n" + table;
-
-  Json pts = Json::array();
-  for (const auto& r : roots)
-    pts.push_back({{"sun_zenith_deg", rad_to_deg(r.sun_zenith)},
-                   {"turbidity", r.turbidity},
-                   {"negative_for", r.negative_above ? "turbidity above" : "turbidity below"}});
-  json_["preetham_negative_zenith"] = pts;
-  json_["preetham_negative_zenith_details"] = {
-      {"formula",
-       "Yz = 1000 [(4.0453 T - 4.9710) tan chi - 0.2155 T + 2.4192] cd/m^2, chi = "
-       "(4/9 - T/120)(pi - 2 theta_s) (Preetham 1999 A.2)"},
-      {"turbidity_range", {kTMin, kTMax}},
-      {"sun_zenith_step_deg", cfg_.root_step_deg},
-      {"low_turbidity_branch",
-       {{"description", "Yz < 0 for T below the boundary, high sun"},
-        {"turbidity_at_sun_zenith_0", num(low_branch_t_at_zenith_)},
-        {"ends_at_sun_zenith_deg_for_T_1", num(rad_to_deg(low_branch_max_sun_zenith_))}}},
-      {"high_turbidity_branch",
-       {{"description", "Yz < 0 for T above the boundary"},
-        {"turbidity_at_sun_zenith_0", num(high_branch_t_at_zenith_)},
-        {"turbidity_at_sun_zenith_90", num(high_branch_t_at_horizon_)}}}};
 }
 
 // ---- Figs. 4-7 ---------------------------------------------------------------------------------

@@ -14,92 +14,26 @@ namespace skylight::report::detail {
 
 // ---- matching tables ---------------------------------------------------------------------------
 
-void ReportWriter::section_matching() {
-  const auto& cs = cfg_.comparison;
-  summary_.cie_matches = best_cie_type_per_turbidity(cfg_.match_turbidities, cs);
-  step("best CIE type per Preetham turbidity");
-  summary_.best_turbidity_for_cie12 =
-      best_preetham_turbidity_for_cie(12, cfg_.fit_t_min, cfg_.fit_t_max, cfg_.fit_t_step, cs);
-  const TurbidityFit& fit = summary_.best_turbidity_for_cie12;
-  step("best Preetham turbidity for CIE 12");
+namespace {
 
-  std::string zs;
-  for (double z : cs.sun_zeniths)
-    zs += (zs.empty() ? "" : ", ") + fmt::format("{:g}", rad_to_deg(z));
-  const std::string method = fmt::format(
-      "Relative distributions L/L(zenith) of both models on a {}x{} midpoint grid over the "
-      "hemisphere (zenith-angle rings x azimuth sectors), directions within {:g} deg of the sun "
-      "left out, at sun zenith angles {} deg (sun azimuth 180 deg); RMS of log10(L_Preetham / "
-      "L_CIE) weighted by solid angle and pooled over the sun positions.",
-      cs.n_theta, cs.n_phi, rad_to_deg(cs.sun_exclusion), zs);
+// Zotti's pairs (T 10 / 5 / 2.9 <-> CIE 6 / 7 / 10) and his Y_Pr / Y_CIE for each.
+const std::map<double, int> kZottiPairs = {{10.0, 6}, {5.0, 7}, {2.9, 10}};
+const std::map<int, std::string> kZottiPairRatio = {{6, "&gt; 2"}, {7, "≈ 1"}, {10, "&gt; 1.25"}};
 
-  // Zotti's pairs (T 10 / 5 / 2.9 <-> CIE 6 / 7 / 10).
-  const std::map<double, int> zotti = {{10.0, 6}, {5.0, 7}, {2.9, 10}};
-  const std::map<int, std::string> zotti_ratio = {{6, "&gt; 2"}, {7, "≈ 1"}, {10, "&gt; 1.25"}};
-  std::string t =
-      "<table><tr><th>Preetham T</th><th>best CIE type</th><th>RMS log10</th>"
-      "<th>2nd best</th><th>RMS log10</th><th>Y_Pr / Y_CIE (best type): mean "
-      "[min, max over theta_s]</th><th>Zotti 2007</th></tr>\n";
-  Json matches = Json::array();
-  const HemisphereGrid grid = hemisphere_grid(cs.n_theta, cs.n_phi);
-  std::string pairs_html;
-  Json pairs = Json::array();
-  // Zotti's sun range (15 < theta_s < 70) and the Kittler-Darula band, for every pair.
-  ComparisonSettings ps = cs;
-  ps.sun_zeniths.clear();
-  for (double d : cfg_.pair_sun_zeniths_deg) ps.sun_zeniths.push_back(d * kDegree);
-  pair_bands_.clear();
-  for (const auto& [T, type] : zotti) pair_bands_[T] = preetham_cie_ratio_band(T, type, ps);
-  for (const auto& m : summary_.cie_matches) {
-    std::string z;
-    const auto it = zotti.find(m.turbidity);
-    if (it != zotti.end()) {
-      z = fmt::format("CIE {}, Y_Pr/Y_CIE {}", it->second, zotti_ratio.at(it->second));
-      // Our numbers for Zotti's pairing.
-      const auto pr =
-          relative_samples(comparison_spec(PreethamModel::kName, m.turbidity), cs, grid);
-      const auto ci = relative_samples(comparison_spec(CieSkyModel::kName, it->second), cs, grid);
-      const LuminanceRatio r = absolute_luminance_ratio(pr, ci, grid);
-      int rank = 1;
-      for (int k = 0; k < kCieTypeCount; ++k)
-        if (m.rms_by_type[k] < m.rms_by_type[it->second - 1]) ++rank;
-      const RatioBand& band = pair_bands_.at(m.turbidity);
-      pairs_html += fmt::format(
-          "<tr><td>{:g}</td><td>{}</td><td>{}</td><td>{} of 16</td><td>{} [{}, "
-          "{}]</td><td>{} [{}, {}]</td><td>{}</td></tr>\n",
-          m.turbidity, it->second, f2(m.rms_by_type[it->second - 1]), rank, g3(r.mean), g3(r.min),
-          g3(r.max), g3(band.typical), g3(band.against_cie_high), g3(band.against_cie_low),
-          zotti_ratio.at(it->second));
-      pairs.push_back({{"turbidity", m.turbidity},
-                       {"cie_type", it->second},
-                       {"rms_log10", num(m.rms_by_type[it->second - 1])},
-                       {"rank_of_16", rank},
-                       {"luminance_ratio_preetham_over_cie", num(r.mean)},
-                       {"luminance_ratio_min", num(r.min)},
-                       {"luminance_ratio_max", num(r.max)}});
-    }
-    t += fmt::format(
-        "<tr><td>{:g}</td><td><b>{}</b></td><td>{}</td><td>{}</td><td>{}</td><td>{} [{}, "
-        "{}]</td><td>{}</td></tr>\n",
-        m.turbidity, m.best_type, f2(m.best_rms), m.second_type, f2(m.second_rms),
-        g3(m.ratio_best.mean), g3(m.ratio_best.min), g3(m.ratio_best.max), z);
-    Json rms = Json::object();
-    for (int k = 0; k < kCieTypeCount; ++k) rms[fmt::format("{}", k + 1)] = num(m.rms_by_type[k]);
-    matches.push_back({{"turbidity", m.turbidity},
-                       {"cie_type", m.best_type},
-                       {"rms_log10", num(m.best_rms)},
-                       {"second_cie_type", m.second_type},
-                       {"second_rms_log10", num(m.second_rms)},
-                       {"luminance_ratio_preetham_over_cie", num(m.ratio_best.mean)},
-                       {"luminance_ratio_min", num(m.ratio_best.min)},
-                       {"luminance_ratio_max", num(m.ratio_best.max)},
-                       {"rms_log10_by_cie_type", rms}});
-  }
-  t += "</table>\n";
-  json_["best_cie_type_per_preetham_turbidity"] = matches;
-  json_["zotti_pairs"] = pairs;
+std::string joined_degrees(const std::vector<double>& deg) {
+  std::string z;
+  for (double d : deg) z += (z.empty() ? "" : ", ") + fmt::format("{:g}", d);
+  return z;
+}
 
-  // RMS(T) curve for CIE 12.
+std::vector<double> zeniths_deg(const ComparisonSettings& cs) {
+  std::vector<double> d;
+  for (double z : cs.sun_zeniths) d.push_back(rad_to_deg(z));
+  return d;
+}
+
+// The RMS(T) curve of the best Preetham turbidity for CIE 12.
+svg::Plot cie12_fit_plot(const TurbidityFit& fit) {
   svg::Plot p;
   p.id = "cie12fit";
   p.title = "Preetham vs CIE type 12: RMS of log10 relative luminance over T";
@@ -118,56 +52,135 @@ void ReportWriter::section_matching() {
                                       {0, p.y.max, p.y.max, 0}, "#888888", 1.0, "4 3"));
   p.width = 640;
   p.height = 360;
+  return p;
+}
 
-  html_match_ =
-      "<p>" + method + "</p>\n<h3>Best-matching CIE type for each Preetham turbidity</h3>\n" + t +
-      "<p>Y_Pr / Y_CIE: ratio of absolute luminances, Preetham over the CIE type with "
-      "the Kittler-Darula typical zenith luminance: per sun position the solid-angle "
-      "weighted geometric mean over the same directions, then the geometric mean over "
-      "the sun positions (min and max over the sun positions in brackets).</p>\n"
-      "<h3>Zotti's pairs</h3>\n<table><tr><th>Preetham T</th><th>CIE type</th><th>RMS "
-      "log10</th><th>rank of this type</th><th>Y_Pr / Y_CIE mean [min, "
-      "max]</th><th>" +
-      fmt::format(
-          "Y_Pr / Y_CIE at theta_s {} deg: Kittler-Darula typical [CIE at the band's "
-          "high, low end]",
-          [&] {
-            std::string z;
-            for (double d : cfg_.pair_sun_zeniths_deg)
-              z += (z.empty() ? "" : ", ") + fmt::format("{:g}", d);
-            return z;
-          }()) +
-      "</th><th>Zotti: Y_Pr/Y_CIE for 15 &lt; theta_s &lt; 70</th></tr>\n" + pairs_html +
-      "</table>\n<p>The band of the CIE zenith luminance is tabulated with the absolute CIE "
-      "maps (our derivation from Kittler &amp; Darula's typical parameters; docs/REPORT.md). "
-      "Whether each pair agrees, and why, is in the summary.</p>\n" +
-      "<h3>Preetham turbidity that best matches CIE 12</h3>\n" +
-      fmt::format(
-          "<p>Best T = <b>{:.3f}</b> (RMS log10 = {:.3f}), searched over T "
-          "{:g}-{:g} on a {:g} grid refined by golden-section search; Zotti "
-          "et al. 2007: T ≈ 2.3-2.5.</p>\n",
-          fit.turbidity, fit.rms, cfg_.fit_t_min, cfg_.fit_t_max, cfg_.fit_t_step) +
-      figure("cie12_fit.svg", svg::draw(p),
-             "RMS of the log10 ratio of zenith-normalised luminance, Preetham(T) vs CIE "
-             "type 12, over the grid and sun positions above.");
+}  // namespace
+
+void ReportWriter::section_matching() {
+  const auto& cs = cfg_.comparison;
+  summary_.cie_matches = best_cie_type_per_turbidity(cfg_.match_turbidities, cs);
+  step("best CIE type per Preetham turbidity");
+  summary_.best_turbidity_for_cie12 =
+      best_preetham_turbidity_for_cie(12, cfg_.fit_t_min, cfg_.fit_t_max, cfg_.fit_t_step, cs);
+  step("best Preetham turbidity for CIE 12");
+  // Zotti's sun range (15 < theta_s < 70) and the Kittler-Darula band, for every pair.
+  ComparisonSettings ps = cs;
+  ps.sun_zeniths.clear();
+  for (double d : cfg_.pair_sun_zeniths_deg) ps.sun_zeniths.push_back(d * kDegree);
+  pair_bands_.clear();
+  for (const auto& [T, type] : kZottiPairs) pair_bands_[T] = preetham_cie_ratio_band(T, type, ps);
+  // In this order: each part adds to report.json and the list of files.
+  html_match_ = matching_tables();
+  html_match_ += cie12_fit_html();
+  html_match_ += antisolar_horizon_html();
+}
+
+std::string ReportWriter::matching_tables() {
+  const auto& cs = cfg_.comparison;
+  HtmlTable t({"Preetham T", "best CIE type", "RMS log10", "2nd best", "RMS log10",
+               "Y_Pr / Y_CIE (best type): mean [min, max over theta_s]", "Zotti 2007"});
+  HtmlTable pt({"Preetham T", "CIE type", "RMS log10", "rank of this type",
+                "Y_Pr / Y_CIE mean [min, max]",
+                fmt::format("Y_Pr / Y_CIE at theta_s {} deg: Kittler-Darula typical [CIE at the "
+                            "band's high, low end]",
+                            joined_degrees(cfg_.pair_sun_zeniths_deg)),
+                "Zotti: Y_Pr/Y_CIE for 15 &lt; theta_s &lt; 70"});
+  Json matches = Json::array(), pairs = Json::array();
+  const HemisphereGrid grid = hemisphere_grid(cs.n_theta, cs.n_phi);
+  for (const auto& m : summary_.cie_matches) {
+    std::string z;
+    const auto it = kZottiPairs.find(m.turbidity);
+    if (it != kZottiPairs.end()) {
+      const int type = it->second;
+      z = fmt::format("CIE {}, Y_Pr/Y_CIE {}", type, kZottiPairRatio.at(type));
+      // Our numbers for Zotti's pairing.
+      const auto pr =
+          relative_samples(comparison_spec(PreethamModel::kName, m.turbidity), cs, grid);
+      const auto ci = relative_samples(comparison_spec(CieSkyModel::kName, type), cs, grid);
+      const LuminanceRatio r = absolute_luminance_ratio(pr, ci, grid);
+      int rank = 1;
+      for (int k = 0; k < kCieTypeCount; ++k)
+        if (m.rms_by_type[k] < m.rms_by_type[type - 1]) ++rank;
+      const RatioBand& band = pair_bands_.at(m.turbidity);
+      pt.row({fmt::format("{:g}", m.turbidity), fmt::format("{}", type),
+              f2(m.rms_by_type[type - 1]), fmt::format("{} of 16", rank),
+              fmt::format("{} [{}, {}]", g3(r.mean), g3(r.min), g3(r.max)),
+              fmt::format("{} [{}, {}]", g3(band.typical), g3(band.against_cie_high),
+                          g3(band.against_cie_low)),
+              kZottiPairRatio.at(type)});
+      pairs.push_back({{"turbidity", m.turbidity},
+                       {"cie_type", type},
+                       {"rms_log10", num(m.rms_by_type[type - 1])},
+                       {"rank_of_16", rank},
+                       {"luminance_ratio_preetham_over_cie", num(r.mean)},
+                       {"luminance_ratio_min", num(r.min)},
+                       {"luminance_ratio_max", num(r.max)}});
+    }
+    t.row({fmt::format("{:g}", m.turbidity), fmt::format("<b>{}</b>", m.best_type), f2(m.best_rms),
+           fmt::format("{}", m.second_type), f2(m.second_rms),
+           fmt::format("{} [{}, {}]", g3(m.ratio_best.mean), g3(m.ratio_best.min),
+                       g3(m.ratio_best.max)),
+           z});
+    Json rms = Json::object();
+    for (int k = 0; k < kCieTypeCount; ++k) rms[fmt::format("{}", k + 1)] = num(m.rms_by_type[k]);
+    matches.push_back({{"turbidity", m.turbidity},
+                       {"cie_type", m.best_type},
+                       {"rms_log10", num(m.best_rms)},
+                       {"second_cie_type", m.second_type},
+                       {"second_rms_log10", num(m.second_rms)},
+                       {"luminance_ratio_preetham_over_cie", num(m.ratio_best.mean)},
+                       {"luminance_ratio_min", num(m.ratio_best.min)},
+                       {"luminance_ratio_max", num(m.ratio_best.max)},
+                       {"rms_log10_by_cie_type", rms}});
+  }
+  json_["best_cie_type_per_preetham_turbidity"] = matches;
+  json_["zotti_pairs"] = pairs;
+  const std::string method = fmt::format(
+      "Relative distributions L/L(zenith) of both models on a {}x{} midpoint grid over the "
+      "hemisphere (zenith-angle rings x azimuth sectors), directions within {:g} deg of the sun "
+      "left out, at sun zenith angles {} deg (sun azimuth 180 deg); RMS of log10(L_Preetham / "
+      "L_CIE) weighted by solid angle and pooled over the sun positions.",
+      cs.n_theta, cs.n_phi, rad_to_deg(cs.sun_exclusion), joined_degrees(zeniths_deg(cs)));
+  return "<p>" + method + "</p>\n<h3>Best-matching CIE type for each Preetham turbidity</h3>\n" +
+         t.html() +
+         "<p>Y_Pr / Y_CIE: ratio of absolute luminances, Preetham over the CIE type with "
+         "the Kittler-Darula typical zenith luminance: per sun position the solid-angle "
+         "weighted geometric mean over the same directions, then the geometric mean over "
+         "the sun positions (min and max over the sun positions in brackets).</p>\n"
+         "<h3>Zotti's pairs</h3>\n" +
+         pt.html() +
+         "<p>The band of the CIE zenith luminance is tabulated with the absolute CIE "
+         "maps (our derivation from Kittler &amp; Darula's typical parameters; docs/REPORT.md). "
+         "Whether each pair agrees, and why, is in the summary.</p>\n";
+}
+
+std::string ReportWriter::cie12_fit_html() {
+  const auto& cs = cfg_.comparison;
+  const TurbidityFit& fit = summary_.best_turbidity_for_cie12;
   json_["best_preetham_turbidity_for_cie12"] = fit.turbidity;
   json_["best_preetham_turbidity_for_cie12_details"] = {
       {"rms_log10", num(fit.rms)},
       {"search_range", {cfg_.fit_t_min, cfg_.fit_t_max}},
       {"grid_step", cfg_.fit_t_step},
       {"normalisation", "luminance relative to the zenith (Zotti 2007)"},
-      {"sun_zeniths_deg",
-       [&] {
-         Json a = Json::array();
-         for (double z : cs.sun_zeniths) a.push_back(rad_to_deg(z));
-         return a;
-       }()},
+      {"sun_zeniths_deg", zeniths_deg(cs)},
       {"sun_exclusion_deg", rad_to_deg(cs.sun_exclusion)},
       {"grid", fmt::format("{} zenith rings x {} azimuth sectors", cs.n_theta, cs.n_phi)},
       {"zotti_2007", {2.3, 2.5}}};
+  return "<h3>Preetham turbidity that best matches CIE 12</h3>\n" +
+         fmt::format(
+             "<p>Best T = <b>{:.3f}</b> (RMS log10 = {:.3f}), searched over T "
+             "{:g}-{:g} on a {:g} grid refined by golden-section search; Zotti "
+             "et al. 2007: T ≈ 2.3-2.5.</p>\n",
+             fit.turbidity, fit.rms, cfg_.fit_t_min, cfg_.fit_t_max, cfg_.fit_t_step) +
+         figure("cie12_fit.svg", svg::draw(cie12_fit_plot(fit)),
+                "RMS of the log10 ratio of zenith-normalised luminance, Preetham(T) vs CIE "
+                "type 12, over the grid and sun positions above.");
+}
 
-  // Antisolar horizon.
-  const double T = fit.turbidity;
+std::string ReportWriter::antisolar_horizon_html() {
+  const double T = summary_.best_turbidity_for_cie12.turbidity;
   std::vector<double> tz, el;
   for (double d : cfg_.antisolar_sun_zeniths_deg) tz.push_back(d * kDegree);
   for (double d : cfg_.antisolar_elevations_deg) el.push_back(d * kDegree);
@@ -180,16 +193,13 @@ void ReportWriter::section_matching() {
   summary_.antisolar_ratio = head.front().ratio;
   antisolar_relative_ = head.front().relative_ratio;
   antisolar_zenith_ratio_ = head.front().ratio / head.front().relative_ratio;
-  std::string at =
-      "<table><tr><th>theta_s [deg]</th><th>view elevation [deg]</th><th>Preetham "
-      "[cd/m2]</th><th>CIE 12 [cd/m2]</th><th>ratio</th><th>ratio of "
-      "zenith-normalised values</th></tr>\n";
+  HtmlTable at({"theta_s [deg]", "view elevation [deg]", "Preetham [cd/m2]", "CIE 12 [cd/m2]",
+                "ratio", "ratio of zenith-normalised values"});
   Json rows = Json::array();
   for (const auto& r : antisolar_) {
-    at += fmt::format(
-        "<tr><td>{:g}</td><td>{:g}</td><td>{}</td><td>{}</td><td><b>{}</b></td><td>{}</td></tr>\n",
-        rad_to_deg(r.sun_zenith), rad_to_deg(r.view_elevation), g3(r.preetham), g3(r.cie),
-        g3(r.ratio), g3(r.relative_ratio));
+    at.row({fmt::format("{:g}", rad_to_deg(r.sun_zenith)),
+            fmt::format("{:g}", rad_to_deg(r.view_elevation)), g3(r.preetham), g3(r.cie),
+            fmt::format("<b>{}</b>", g3(r.ratio)), g3(r.relative_ratio)});
     rows.push_back({{"sun_zenith_deg", rad_to_deg(r.sun_zenith)},
                     {"view_elevation_deg", rad_to_deg(r.view_elevation)},
                     {"preetham_cd_m2", num(r.preetham)},
@@ -197,8 +207,7 @@ void ReportWriter::section_matching() {
                     {"ratio", num(r.ratio)},
                     {"ratio_zenith_normalised", num(r.relative_ratio)}});
   }
-  at += "</table>\n";
-  html_match_ +=
+  const std::string html =
       fmt::format(
           "<h3>Antisolar horizon: Preetham / CIE 12 at low sun</h3>\n<p>Luminance at the azimuth "
           "opposite the sun, near the horizon, Preetham at T = {:.3f} (the best match to CIE 12 "
@@ -212,7 +221,7 @@ void ReportWriter::section_matching() {
           "the finding is measured over the whole antisolar half in the summary.</p>\n",
           T, cfg_.antisolar_headline_sun_zenith_deg, 90 - cfg_.antisolar_headline_sun_zenith_deg,
           cfg_.antisolar_headline_elevation_deg, summary_.antisolar_ratio) +
-      at;
+      at.html();
   json_["antisolar_horizon_ratio_preetham_vs_cie12"] = num(summary_.antisolar_ratio);
   json_["antisolar_horizon_ratio_details"] = {
       {"sun_zenith_deg", cfg_.antisolar_headline_sun_zenith_deg},
@@ -224,94 +233,114 @@ void ReportWriter::section_matching() {
       {"quantity", "ratio of absolute luminances Preetham / CIE 12"},
       {"zotti_2007", "2-5 times too high"},
       {"table", rows}};
+  return html;
 }
 
 // ---- Fig. 3 ------------------------------------------------------------------------------------
+
+namespace {
+
+// specs[kVerticalReference] is CIE type 12, the ratio plot's denominator.
+constexpr std::size_t kVerticalReference = 1;
+
+// Each model's luminance along the solar vertical divided by CIE 12's, on the x axis of lum.
+svg::Plot vertical_ratio_plot(const svg::Plot& lum, const std::vector<ModelSpec>& specs,
+                              const std::vector<double>& xs,
+                              const std::vector<std::vector<double>>& values) {
+  svg::Plot ratio;
+  ratio.x = lum.x;
+  ratio.y = {0.1, 10.0, true, "model / CIE type 12", {0.1, 0.2, 0.5, 1, 2, 5, 10}};
+  const auto& reference = values[kVerticalReference];
+  for (std::size_t m = 0; m < specs.size(); ++m) {
+    if (m == kVerticalReference) continue;
+    std::vector<double> r(xs.size(), kNaN);
+    for (std::size_t i = 0; i < xs.size(); ++i)
+      if (reference[i] > 0.0 && values[m][i] > 0.0) r[i] = values[m][i] / reference[i];
+    ratio.series.push_back(svg::line_series(specs[m].label + " / CIE 12", xs, r,
+                                            comparison_colour(specs[m].name), 1.6));
+  }
+  ratio.series.push_back(svg::line_series("2x and 5x", {-90, 90}, {2, 2}, "#888888", 1.0, "4 3"));
+  ratio.series.push_back(svg::line_series("", {-90, 90}, {5, 5}, "#888888", 1.0, "4 3"));
+  ratio.series.push_back(svg::line_series("", {-90, 90}, {1, 1}, "#444444", 0.8));
+  ratio.width = 900;
+  ratio.height = 300;
+  ratio.legend_outside = true;
+  return ratio;
+}
+
+}  // namespace
 
 void ReportWriter::section_vertical() {
   int index = 0;
   for (auto [T, tsd] : cfg_.vertical_cases) {
     if (T < 0) T = summary_.best_turbidity_for_cie12.turbidity;
-    ++index;
-    const double ts = tsd * kDegree;
-    // specs[kReference] is CIE type 12, the ratio plot's denominator; Hosek-Wilkie joins where it
-    // accepts the turbidity.
-    constexpr std::size_t kReference = 1;
-    std::vector<ModelSpec> specs = {comparison_spec(PreethamModel::kName, T),
-                                    comparison_spec(CieSkyModel::kName, 12)};
-    specs[kReference].label = "CIE type 12 (Kittler-Darula typical Lz)";
-    if (T <= find_model(HosekWilkieModel::kName)->find_parameter("turbidity")->max)
-      specs.push_back(comparison_spec(HosekWilkieModel::kName, T));
-    specs.push_back(comparison_spec(NishitaModel::kName));
-    std::vector<std::string> colours;
-    for (const auto& s : specs) colours.push_back(comparison_colour(s.name));
-    std::vector<double> xs;
-    std::vector<Vec3> dirs;
-    const int n = static_cast<int>(std::lround(180.0 / cfg_.vertical_step_deg));
-    for (int i = 0; i <= n; ++i) {
-      const double x = -90.0 + i * cfg_.vertical_step_deg;
-      xs.push_back(x);
-      // Positive x: towards the sun (sun azimuth pi); negative: the antisolar side.
-      dirs.push_back(direction_from_angles(std::abs(x) * kDegree, x >= 0 ? kPi : 0.0));
-    }
-    svg::Plot lum, ratio;
-    lum.id = fmt::format("vert{}", index);
-    ratio.id = fmt::format("vertratio{}", index);
-    lum.title = fmt::format("Solar vertical, theta_s = {:g} deg, T = {:.3g}", tsd, T);
-    ratio.title = fmt::format("Ratio to CIE type 12, theta_s = {:g} deg, T = {:.3g}", tsd, T);
-    std::vector<std::vector<double>> values;
-    double lo = kInf, hi = 0.0;
-    for (std::size_t m = 0; m < specs.size(); ++m) {
-      const auto model = make_model(specs[m], ts, kPi);
-      values.push_back(sky_luminance(*model, dirs));
-      for (double v : values.back())
-        if (v > 0.0) {
-          lo = std::min(lo, v);
-          hi = std::max(hi, v);
-        }
-      lum.series.push_back(svg::line_series(specs[m].label, xs, values.back(), colours[m], 1.6));
-    }
-    lum.x = {-90,
-             90,
-             false,
-             "view zenith angle in the solar vertical [deg] (negative: antisolar side)",
-             {-90, -75, -60, -45, -30, -15, 0, 15, 30, 45, 60, 75, 90}};
-    lum.y = {std::pow(10.0, std::floor(std::log10(lo))),
-             std::pow(10.0, std::ceil(std::log10(hi))),
-             true,
-             "luminance [cd/m2]",
-             {}};
-    lum.series.push_back(
-        svg::marker_series("sun", {tsd}, {std::sqrt(lum.y.min * lum.y.max)}, "#ff9800", 5));
-    ratio.x = lum.x;
-    ratio.y = {0.1, 10.0, true, "model / CIE type 12", {0.1, 0.2, 0.5, 1, 2, 5, 10}};
-    for (std::size_t m = 0; m < specs.size(); ++m) {
-      if (m == kReference) continue;
-      std::vector<double> r(xs.size(), kNaN);
-      for (std::size_t i = 0; i < xs.size(); ++i)
-        if (values[kReference][i] > 0.0 && values[m][i] > 0.0)
-          r[i] = values[m][i] / values[kReference][i];
-      ratio.series.push_back(
-          svg::line_series(specs[m].label + " / CIE 12", xs, r, colours[m], 1.6));
-    }
-    ratio.series.push_back(svg::line_series("2x and 5x", {-90, 90}, {2, 2}, "#888888", 1.0, "4 3"));
-    ratio.series.push_back(svg::line_series("", {-90, 90}, {5, 5}, "#888888", 1.0, "4 3"));
-    ratio.series.push_back(svg::line_series("", {-90, 90}, {1, 1}, "#444444", 0.8));
-    lum.width = ratio.width = 900;
-    lum.height = 400;
-    ratio.height = 300;
-    lum.legend_outside = ratio.legend_outside = true;
-    html_vertical_ +=
-        figure(fmt::format("solar_vertical_{}.svg", index), svg::draw(lum),
-               fmt::format("Sky luminance along the solar vertical (sky only, no solar disc) for "
-                           "theta_s = {:g} deg, T = {:.3g} (Zotti Fig. 3: theta_s = 72 deg, T = "
-                           "1.8). CIE 12 uses the Kittler-Darula typical zenith luminance (the "
-                           "band of zenith luminances is tabulated with the absolute CIE maps).",
-                           tsd, T)) +
-        figure(fmt::format("solar_vertical_{}_ratio.svg", index), svg::draw(ratio),
-               "The same, each model divided by CIE type 12 (Zotti: Preetham is 2-5x too "
-               "bright on the antisolar side at low sun).");
+    vertical_case(++index, T, tsd);
   }
+}
+
+void ReportWriter::vertical_case(int index, double T, double tsd) {
+  const double ts = tsd * kDegree;
+  // Hosek-Wilkie joins where it accepts the turbidity.
+  std::vector<ModelSpec> specs = {comparison_spec(PreethamModel::kName, T),
+                                  comparison_spec(CieSkyModel::kName, 12)};
+  specs[kVerticalReference].label = "CIE type 12 (Kittler-Darula typical Lz)";
+  if (T <= find_model(HosekWilkieModel::kName)->find_parameter("turbidity")->max)
+    specs.push_back(comparison_spec(HosekWilkieModel::kName, T));
+  specs.push_back(comparison_spec(NishitaModel::kName));
+  std::vector<double> xs;
+  std::vector<Vec3> dirs;
+  const int n = static_cast<int>(std::lround(180.0 / cfg_.vertical_step_deg));
+  for (int i = 0; i <= n; ++i) {
+    const double x = -90.0 + i * cfg_.vertical_step_deg;
+    xs.push_back(x);
+    // Positive x: towards the sun (sun azimuth pi); negative: the antisolar side.
+    dirs.push_back(direction_from_angles(std::abs(x) * kDegree, x >= 0 ? kPi : 0.0));
+  }
+  svg::Plot lum;
+  lum.id = fmt::format("vert{}", index);
+  lum.title = fmt::format("Solar vertical, theta_s = {:g} deg, T = {:.3g}", tsd, T);
+  std::vector<std::vector<double>> values;
+  double lo = kInf, hi = 0.0;
+  for (const auto& spec : specs) {
+    const auto model = make_model(spec, ts, kPi);
+    values.push_back(sky_luminance(*model, dirs));
+    for (double v : values.back())
+      if (v > 0.0) {
+        lo = std::min(lo, v);
+        hi = std::max(hi, v);
+      }
+    lum.series.push_back(
+        svg::line_series(spec.label, xs, values.back(), comparison_colour(spec.name), 1.6));
+  }
+  lum.x = {-90,
+           90,
+           false,
+           "view zenith angle in the solar vertical [deg] (negative: antisolar side)",
+           {-90, -75, -60, -45, -30, -15, 0, 15, 30, 45, 60, 75, 90}};
+  lum.y = {std::pow(10.0, std::floor(std::log10(lo))),
+           std::pow(10.0, std::ceil(std::log10(hi))),
+           true,
+           "luminance [cd/m2]",
+           {}};
+  lum.series.push_back(
+      svg::marker_series("sun", {tsd}, {std::sqrt(lum.y.min * lum.y.max)}, "#ff9800", 5));
+  lum.width = 900;
+  lum.height = 400;
+  lum.legend_outside = true;
+  svg::Plot ratio = vertical_ratio_plot(lum, specs, xs, values);
+  ratio.id = fmt::format("vertratio{}", index);
+  ratio.title = fmt::format("Ratio to CIE type 12, theta_s = {:g} deg, T = {:.3g}", tsd, T);
+  html_vertical_ +=
+      figure(fmt::format("solar_vertical_{}.svg", index), svg::draw(lum),
+             fmt::format("Sky luminance along the solar vertical (sky only, no solar disc) for "
+                         "theta_s = {:g} deg, T = {:.3g} (Zotti Fig. 3: theta_s = 72 deg, T = "
+                         "1.8). CIE 12 uses the Kittler-Darula typical zenith luminance (the "
+                         "band of zenith luminances is tabulated with the absolute CIE maps).",
+                         tsd, T));
+  html_vertical_ +=
+      figure(fmt::format("solar_vertical_{}_ratio.svg", index), svg::draw(ratio),
+             "The same, each model divided by CIE type 12 (Zotti: Preetham is 2-5x too "
+             "bright on the antisolar side at low sun).");
 }
 
 }  // namespace skylight::report::detail

@@ -284,63 +284,55 @@ void draw_colour_bar(Canvas& c, double x, double y, double w, double h, const Co
 
 // ---- plots -----------------------------------------------------------------------------------
 
-Canvas draw(const Plot& p) {
-  check_axis(p.x, "x");
-  check_axis(p.y, "y");
-  Canvas c(p.width, p.height, p.id.empty() ? std::string("plot") : p.id);
+namespace {
 
-  // Legend entries and their width.
-  std::vector<const Series*> named;
-  for (const auto& s : p.series)
-    if (!s.name.empty()) named.push_back(&s);
-  double legend_w = 0;
-  for (const auto* s : named) legend_w = std::max(legend_w, 34 + text_width(s->name, 11));
-  for (const auto& s : p.swatches) legend_w = std::max(legend_w, 22 + text_width(s.name, 11));
-  legend_w += 10;
-  const int legend_rows = static_cast<int>(named.size() + p.swatches.size());
+// The plot area of a Plot in canvas pixels and the map from axis values into it.
+struct PlotArea {
+  const Plot& p;
+  double left, top, pw, ph;
+  double x0, x1, y0, y1;  // the axes' ends, through axis_value
+  PlotArea(const Plot& plot, double l, double t, double w, double h)
+      : p(plot), left(l), top(t), pw(w), ph(h) {
+    x0 = axis_value(p.x, p.x.min);
+    x1 = axis_value(p.x, p.x.max);
+    y0 = axis_value(p.y, p.y.min);
+    y1 = axis_value(p.y, p.y.max);
+  }
+  double px(double v) const { return left + (axis_value(p.x, v) - x0) / (x1 - x0) * pw; }
+  double py(double v) const { return top + ph - (axis_value(p.y, v) - y0) / (y1 - y0) * ph; }
+};
 
-  const double left = 68, top = p.title.empty() ? 14 : 32, bottom = 46;
-  double right = 16;
-  if (p.has_colour_bar) right += 74;
-  if (p.legend_outside && legend_rows > 0) right += legend_w + 8;
-  const double pw = p.width - left - right, ph = p.height - top - bottom;
-  if (!(pw > 10 && ph > 10))
-    throw InvalidArgument(fmt::format("plot '{}': {}x{} px is too small", p.id, p.width, p.height));
-
-  const double x0 = axis_value(p.x, p.x.min), x1 = axis_value(p.x, p.x.max);
-  const double y0 = axis_value(p.y, p.y.min), y1 = axis_value(p.y, p.y.max);
-  auto px = [&](double v) { return left + (axis_value(p.x, v) - x0) / (x1 - x0) * pw; };
-  auto py = [&](double v) { return top + ph - (axis_value(p.y, v) - y0) / (y1 - y0) * ph; };
-
-  if (!p.title.empty()) c.text(left, 20, p.title, 13, "start", 0, "bold");
-  if (!p.background_image.empty()) c.image(left, top, pw, ph, p.background_image, p.pixelated);
-
-  // Grid, ticks and labels.
+// Grid, ticks and axis labels.
+void draw_axes(Canvas& c, const PlotArea& a) {
+  const Plot& p = a.p;
   const auto xt = p.x.ticks.empty() ? auto_ticks(p.x) : p.x.ticks;
   const auto yt = p.y.ticks.empty() ? auto_ticks(p.y) : p.y.ticks;
   const bool grid = p.background_image.empty() && p.regions.empty();
   for (double v : xt) {
     if (v < p.x.min || v > p.x.max) continue;
-    const double X = px(v);
-    if (grid) c.line(X, top, X, top + ph, kGrid, 0.8);
-    c.line(X, top + ph, X, top + ph + 5, kInk, 1.0);
-    c.text(X, top + ph + 18, tick_label(v), 11, "middle");
+    const double X = a.px(v);
+    if (grid) c.line(X, a.top, X, a.top + a.ph, kGrid, 0.8);
+    c.line(X, a.top + a.ph, X, a.top + a.ph + 5, kInk, 1.0);
+    c.text(X, a.top + a.ph + 18, tick_label(v), 11, "middle");
   }
   for (double v : yt) {
     if (v < p.y.min || v > p.y.max) continue;
-    const double Y = py(v);
-    if (grid) c.line(left, Y, left + pw, Y, kGrid, 0.8);
-    c.line(left - 5, Y, left, Y, kInk, 1.0);
-    c.text(left - 8, Y + 4, tick_label(v), 11, "end");
+    const double Y = a.py(v);
+    if (grid) c.line(a.left, Y, a.left + a.pw, Y, kGrid, 0.8);
+    c.line(a.left - 5, Y, a.left, Y, kInk, 1.0);
+    c.text(a.left - 8, Y + 4, tick_label(v), 11, "end");
   }
-  c.text(left + pw / 2, p.height - 8, p.x.label, 12, "middle");
-  c.text(16, top + ph / 2, p.y.label, 12, "middle", -90);
+  c.text(a.left + a.pw / 2, p.height - 8, p.x.label, 12, "middle");
+  c.text(16, a.top + a.ph / 2, p.y.label, 12, "middle", -90);
+}
 
-  // Series, clipped to the plot area; gaps at values the axes cannot show.
+// Regions and series, clipped to the plot area; gaps at values the axes cannot show.
+void draw_series(Canvas& c, const PlotArea& a) {
+  const Plot& p = a.p;
   const std::string clip = c.new_id("clip");
-  c.clip_rect(clip, left, top, pw, ph);
+  c.clip_rect(clip, a.left, a.top, a.pw, a.ph);
   for (const auto& r : p.regions) {
-    const double xa = px(r.x0), xb = px(r.x1), ya = py(r.y0), yb = py(r.y1);
+    const double xa = a.px(r.x0), xb = a.px(r.x1), ya = a.py(r.y0), yb = a.py(r.y1);
     if (!std::isfinite(xa) || !std::isfinite(xb) || !std::isfinite(ya) || !std::isfinite(yb))
       continue;
     c.rect(std::min(xa, xb), std::min(ya, yb), std::abs(xb - xa), std::abs(yb - ya), r.colour);
@@ -355,47 +347,82 @@ Canvas draw(const Plot& p) {
       run.clear();
     };
     for (std::size_t i = 0; i < s.x.size(); ++i) {
-      const double X = px(s.x[i]), Y = py(s.y[i]);
+      const double X = a.px(s.x[i]), Y = a.py(s.y[i]);
       if (!std::isfinite(X) || !std::isfinite(Y)) {
         flush();
         continue;
       }
       // Keep far-off points finite but outside the area (the clip path hides them).
       run.push_back({std::clamp(X, -1e5, 1e5), std::clamp(Y, -1e5, 1e5)});
-      if (s.marker == Marker::circle && X >= left - 1 && X <= left + pw + 1 && Y >= top - 1 &&
-          Y <= top + ph + 1)
+      if (s.marker == Marker::circle && X >= a.left - 1 && X <= a.left + a.pw + 1 &&
+          Y >= a.top - 1 && Y <= a.top + a.ph + 1)
         c.circle(X, Y, s.marker_radius, s.colour, s.marker_stroke, clip);
     }
     flush();
   }
-  c.rect(left, top, pw, ph, "none", std::string(kInk), 1.0);
+}
 
-  // Legend.
-  if (legend_rows > 0) {
-    const double row_h = 16;
-    const double lh = legend_rows * row_h + 8;
-    // Outside: right of the plot area and of the colour bar.
-    const double lx =
-        p.legend_outside ? left + pw + (p.has_colour_bar ? 84 : 10) : left + pw - legend_w - 6;
-    const double ly = p.legend_outside ? top : top + 6;
-    c.rect(lx, ly, legend_w, lh, "white", "#999999", 0.8);
-    double ry = ly + 4 + row_h / 2;
-    for (const auto* s : named) {
-      if (s->line) c.line(lx + 6, ry, lx + 28, ry, s->colour, s->width, s->dash);
-      if (s->marker == Marker::circle)
-        c.circle(lx + 17, ry, s->marker_radius, s->colour, s->marker_stroke);
-      c.text(lx + 34, ry + 4, s->name, 11);
-      ry += row_h;
-    }
-    for (const auto& sw : p.swatches) {
-      c.rect(lx + 6, ry - 6, 12, 12, sw.colour, "#555555", 0.6);
-      c.text(lx + 22, ry + 4, sw.name, 11);
-      ry += row_h;
-    }
+// The named series and the swatches: what the legend lists, and its width.
+struct Legend {
+  std::vector<const Series*> named;
+  double width = 0.0;
+  int rows = 0;
+  explicit Legend(const Plot& p) {
+    for (const auto& s : p.series)
+      if (!s.name.empty()) named.push_back(&s);
+    for (const auto* s : named) width = std::max(width, 34 + text_width(s->name, 11));
+    for (const auto& s : p.swatches) width = std::max(width, 22 + text_width(s.name, 11));
+    width += 10;
+    rows = static_cast<int>(named.size() + p.swatches.size());
   }
-  if (p.has_colour_bar) {
-    draw_colour_bar(c, left + pw + 16, top + 14, 14, ph - 14, p.colour_bar);
+};
+
+void draw_legend(Canvas& c, const PlotArea& a, const Legend& legend) {
+  const Plot& p = a.p;
+  const double row_h = 16;
+  const double lh = legend.rows * row_h + 8;
+  // Outside: right of the plot area and of the colour bar.
+  const double lx = p.legend_outside ? a.left + a.pw + (p.has_colour_bar ? 84 : 10)
+                                     : a.left + a.pw - legend.width - 6;
+  const double ly = p.legend_outside ? a.top : a.top + 6;
+  c.rect(lx, ly, legend.width, lh, "white", "#999999", 0.8);
+  double ry = ly + 4 + row_h / 2;
+  for (const auto* s : legend.named) {
+    if (s->line) c.line(lx + 6, ry, lx + 28, ry, s->colour, s->width, s->dash);
+    if (s->marker == Marker::circle)
+      c.circle(lx + 17, ry, s->marker_radius, s->colour, s->marker_stroke);
+    c.text(lx + 34, ry + 4, s->name, 11);
+    ry += row_h;
   }
+  for (const auto& sw : p.swatches) {
+    c.rect(lx + 6, ry - 6, 12, 12, sw.colour, "#555555", 0.6);
+    c.text(lx + 22, ry + 4, sw.name, 11);
+    ry += row_h;
+  }
+}
+
+}  // namespace
+
+Canvas draw(const Plot& p) {
+  check_axis(p.x, "x");
+  check_axis(p.y, "y");
+  Canvas c(p.width, p.height, p.id.empty() ? std::string("plot") : p.id);
+  const Legend legend(p);
+  const double left = 68, top = p.title.empty() ? 14 : 32, bottom = 46;
+  double right = 16;
+  if (p.has_colour_bar) right += 74;
+  if (p.legend_outside && legend.rows > 0) right += legend.width + 8;
+  const double pw = p.width - left - right, ph = p.height - top - bottom;
+  if (!(pw > 10 && ph > 10))
+    throw InvalidArgument(fmt::format("plot '{}': {}x{} px is too small", p.id, p.width, p.height));
+  const PlotArea area(p, left, top, pw, ph);
+  if (!p.title.empty()) c.text(left, 20, p.title, 13, "start", 0, "bold");
+  if (!p.background_image.empty()) c.image(left, top, pw, ph, p.background_image, p.pixelated);
+  draw_axes(c, area);
+  draw_series(c, area);
+  c.rect(left, top, pw, ph, "none", std::string(kInk), 1.0);
+  if (legend.rows > 0) draw_legend(c, area, legend);
+  if (p.has_colour_bar) draw_colour_bar(c, left + pw + 16, top + 14, 14, ph - 14, p.colour_bar);
   return c;
 }
 

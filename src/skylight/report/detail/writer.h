@@ -95,6 +95,21 @@ double snapped_log10(double v);
 svg::Axis one_row_axis();
 std::string validity_name(Validity v);
 
+// One table of index.html: a header row, then rows of cells already formatted as text or HTML.
+class HtmlTable {
+ public:
+  // left: the columns whose cells are left-aligned (the style sheet right-aligns all but the
+  // first).
+  explicit HtmlTable(const std::vector<std::string>& headers, std::vector<bool> left = {});
+  // row_attributes: e.g. " class=\"best\"" (with its leading space).
+  void row(const std::vector<std::string>& cells, std::string_view row_attributes = "");
+  std::string html() const { return text_ + "</table>\n"; }
+
+ private:
+  std::string text_;
+  std::vector<bool> left_;
+};
+
 class ReportWriter {
  public:
   ReportWriter(const ReportOptions& o) : opt_(o), cfg_(make_config(o.quick)) {}
@@ -123,9 +138,16 @@ class ReportWriter {
   }
 
   void section_zenith();
+  void fig1_maps();        // the two PNG maps behind Fig. 1
+  void zenith_branches();  // the branch summaries of the boundary Yz = 0 (closing note)
   void section_maps();
   void section_matching();
+  // The parts of section_matching's HTML (each also fills its part of report.json).
+  std::string matching_tables();
+  std::string cie12_fit_html();
+  std::string antisolar_horizon_html();
   void section_vertical();
+  void vertical_case(int index, double turbidity, double sun_zenith_deg);  // one pair of plots
   void section_illumination();
   void section_measurements();
   void section_validity();
@@ -141,6 +163,15 @@ class ReportWriter {
   };
   void validity_map(const ValidityMap& map, const std::vector<double>& zen_deg);
   void section_findings();
+  // Zotti's findings, one builder each (section_findings.cpp): each appends its records to
+  // summary_.findings and, where the page has a table of them, its rows to json_.
+  void finding_negative_clear();
+  void finding_negative_turbid();
+  void finding_best_turbidity();
+  void finding_antisolar(const HemisphereGrid& zone_grid);
+  void finding_pairs();
+  void finding_low_sun(const HemisphereGrid& zone_grid);
+  void finding_measurements();
   // The summary (generated from summary_.findings) and the findings table.
   std::string findings_summary_html() const;
   std::string findings_table_html() const;
