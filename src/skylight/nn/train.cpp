@@ -167,16 +167,20 @@ void run_adam(Context& ctx, Mlp& net, int last, Rng& rng) {
   }
 }
 
-void run_lbfgs(Context& ctx, Mlp& net, int last) {
-  const std::size_t P = net.layout().parameter_count();
-  constexpr int kHistory = 10;
-  auto params = net.parameters();
-  std::vector<double> g(P), g_new(P), d(P), x_old(P);
+// L-BFGS's memory of the last kHistory steps s and gradient changes y, rho = 1 / (s . y).
+struct LbfgsMemory {
+  static constexpr std::size_t kHistory = 10;
   std::vector<std::vector<double>> S, Y;
   std::vector<double> rho;
-  double f = gradient(net, ctx.x, ctx.t, {}, ctx.n, g);
-  for (;;) {
-    // Two-loop recursion: d = -H g.
+
+  void clear() {
+    S.clear();
+    Y.clear();
+    rho.clear();
+  }
+  // Two-loop recursion: d = -H g; returns gamma, the scale of the initial H.
+  double direction(const std::vector<double>& g, std::vector<double>& d) const {
+    const std::size_t P = g.size();
     std::vector<double> q(g.begin(), g.end()), alpha(S.size());
     for (int k = static_cast<int>(S.size()) - 1; k >= 0; --k) {
       alpha[k] = rho[k] * std::inner_product(S[k].begin(), S[k].end(), q.begin(), 0.0);
@@ -193,42 +197,79 @@ void run_lbfgs(Context& ctx, Mlp& net, int last) {
       for (std::size_t p = 0; p < P; ++p) q[p] += S[k][p] * (alpha[k] - beta);
     }
     for (std::size_t p = 0; p < P; ++p) d[p] = -q[p];
+    return gamma;
+  }
+  // Keeps the pair when the curvature s . y is positive (relative to |s| |y|).
+  void add(std::vector<double> s, std::vector<double> y) {
+    const double sy = std::inner_product(s.begin(), s.end(), y.begin(), 0.0);
+    if (!(sy > 1e-12 * std::sqrt(std::inner_product(y.begin(), y.end(), y.begin(), 0.0) *
+                                 std::inner_product(s.begin(), s.end(), s.begin(), 0.0))))
+      return;
+    if (S.size() == kHistory) {
+      S.erase(S.begin());
+      Y.erase(Y.begin());
+      rho.erase(rho.begin());
+    }
+    S.push_back(std::move(s));
+    Y.push_back(std::move(y));
+    rho.push_back(1.0 / sy);
+  }
+};
+
+// Backtracking Armijo line search from x_old along d. The first trial (step 1, accepted on most
+// iterations) evaluates E and its gradient in one pass; after a rejection the step is the
+// minimiser of the quadratic through f, slope and the rejected E (kept in [0.1, 0.5] of the last
+// step), trials evaluate E alone (no backward pass) and the gradient is computed once, at the
+// accepted step. Leaves the parameters at the last trial; ok false: no step accepted.
+struct LineSearch {
+  bool ok = false;
+  double step = 1.0, f_new = 0.0;
+};
+LineSearch armijo(const Context& ctx, Mlp& net, const std::vector<double>& x_old,
+                  const std::vector<double>& d, double f, double slope,
+                  std::vector<double>& g_new) {
+  auto params = net.parameters();
+  LineSearch ls;
+  ls.f_new = f;
+  bool have_gradient = false;
+  for (int k = 0; k < 30; ++k) {
+    for (std::size_t p = 0; p < params.size(); ++p) params[p] = x_old[p] + ls.step * d[p];
+    have_gradient = k == 0;
+    ls.f_new = have_gradient ? gradient(net, ctx.x, ctx.t, {}, ctx.n, g_new)
+                             : sse(net, ctx.x, ctx.t, ctx.n);
+    if (ls.f_new <= f + 1e-4 * ls.step * slope) {
+      ls.ok = true;
+      break;
+    }
+    const double curvature = ls.f_new - f - slope * ls.step;  // > 0 after a rejection
+    const double q = std::isfinite(ls.f_new) && curvature > 0.0
+                         ? -slope * ls.step * ls.step / (2.0 * curvature)
+                         : 0.1 * ls.step;
+    ls.step = std::clamp(q, 0.1 * ls.step, 0.5 * ls.step);
+  }
+  if (ls.ok && !have_gradient) ls.f_new = gradient(net, ctx.x, ctx.t, {}, ctx.n, g_new);
+  return ls;
+}
+
+void run_lbfgs(Context& ctx, Mlp& net, int last) {
+  const std::size_t P = net.layout().parameter_count();
+  auto params = net.parameters();
+  std::vector<double> g(P), g_new(P), d(P), x_old(P);
+  LbfgsMemory memory;
+  double f = gradient(net, ctx.x, ctx.t, {}, ctx.n, g);
+  for (;;) {
+    const double gamma = memory.direction(g, d);
     double slope = std::inner_product(g.begin(), g.end(), d.begin(), 0.0);
     if (!(slope < 0.0)) {  // not a descent direction: reset to steepest descent
-      S.clear();
-      Y.clear();
-      rho.clear();
+      memory.clear();
       for (std::size_t p = 0; p < P; ++p) d[p] = -g[p] * gamma;
       slope = std::inner_product(g.begin(), g.end(), d.begin(), 0.0);
     }
-    // Backtracking Armijo line search. The first trial (step 1, accepted on most iterations)
-    // evaluates E and its gradient in one pass; after a rejection the step is the minimiser of the
-    // quadratic through f, slope and the rejected E (kept in [0.1, 0.5] of the last step), trials
-    // evaluate E alone (no backward pass) and the gradient is computed once, at the accepted step.
     std::copy(params.begin(), params.end(), x_old.begin());
-    double step = 1.0, f_new = f;
-    bool ok = false, have_gradient = false;
-    for (int k = 0; k < 30; ++k) {
-      for (std::size_t p = 0; p < P; ++p) params[p] = x_old[p] + step * d[p];
-      have_gradient = k == 0;
-      f_new = have_gradient ? gradient(net, ctx.x, ctx.t, {}, ctx.n, g_new)
-                            : sse(net, ctx.x, ctx.t, ctx.n);
-      if (f_new <= f + 1e-4 * step * slope) {
-        ok = true;
-        break;
-      }
-      const double curvature = f_new - f - slope * step;  // > 0 after a rejection
-      const double q = std::isfinite(f_new) && curvature > 0.0
-                           ? -slope * step * step / (2.0 * curvature)
-                           : 0.1 * step;
-      step = std::clamp(q, 0.1 * step, 0.5 * step);
-    }
-    if (ok && !have_gradient) f_new = gradient(net, ctx.x, ctx.t, {}, ctx.n, g_new);
-    if (!ok) {
+    const LineSearch ls = armijo(ctx, net, x_old, d, f, slope, g_new);
+    if (!ls.ok) {
       std::copy(x_old.begin(), x_old.end(), params.begin());
-      S.clear();
-      Y.clear();
-      rho.clear();
+      memory.clear();
       if (!log_iteration(ctx, net, f, 0.0, last)) return;
       continue;
     }
@@ -237,21 +278,10 @@ void run_lbfgs(Context& ctx, Mlp& net, int last) {
       s[p] = params[p] - x_old[p];
       y[p] = g_new[p] - g[p];
     }
-    const double sy = std::inner_product(s.begin(), s.end(), y.begin(), 0.0);
-    if (sy > 1e-12 * std::sqrt(std::inner_product(y.begin(), y.end(), y.begin(), 0.0) *
-                               std::inner_product(s.begin(), s.end(), s.begin(), 0.0))) {
-      if (S.size() == kHistory) {
-        S.erase(S.begin());
-        Y.erase(Y.begin());
-        rho.erase(rho.begin());
-      }
-      S.push_back(std::move(s));
-      Y.push_back(std::move(y));
-      rho.push_back(1.0 / sy);
-    }
+    memory.add(std::move(s), std::move(y));
     g.swap(g_new);
-    f = f_new;
-    if (!log_iteration(ctx, net, f, step, last)) return;
+    f = ls.f_new;
+    if (!log_iteration(ctx, net, f, ls.step, last)) return;
   }
 }
 
@@ -292,45 +322,95 @@ class ScratchPool {
   std::vector<std::unique_ptr<LmScratch>> free_;
 };
 
+// The shapes of normal_equations' blocks. With S shared parameters (all layers but the last) and
+// O = n_(L-1) + 1 per output, a residual row of output c has S + O non-zeros; J holds B examples'
+// rows per output, columns ldj apart; jo the output block, ldo apart.
+struct BlockShape {
+  Eigen::Index P, S, Hl, O, B, ldj, ldo;
+  int n_in, n_out;
+  Eigen::Index bias_last;  // parameter index of the last layer's first bias
+  explicit BlockShape(const MlpLayout& l) {
+    const int L = l.layers();
+    P = static_cast<Eigen::Index>(l.parameter_count());
+    n_in = l.inputs();
+    n_out = l.outputs();
+    S = static_cast<Eigen::Index>(l.weight_offset(L));
+    Hl = static_cast<Eigen::Index>(l.widths[L - 1]);  // n_(L-1)
+    O = Hl + 1;
+    B = static_cast<Eigen::Index>(kJacobianBlock);
+    const auto pad = static_cast<Eigen::Index>(detail::gemm_abt_row_padding());
+    ldj = (P + pad - 1) / pad * pad;
+    ldo = (O + pad - 1) / pad * pad;
+    bias_last = static_cast<Eigen::Index>(l.bias_offset(L));
+  }
+  // Parameter index of output c's a-th parameter (a < Hl: weights, a = Hl: bias).
+  Eigen::Index out_index(int c, Eigen::Index a) const {
+    return a < Hl ? S + c * Hl + a : bias_last + c;
+  }
+};
+
+// Adds examples i0 .. i0 + m - 1 to the blocks a_ss, a_so, a_oo of sc and to ne.g and ne.e.
+void add_block(const Context& ctx, const Mlp& net, const BlockShape& sh, MlpWorkspace& ws,
+               LmScratch& sc, std::size_t i0, Eigen::Index m, NormalEquations& ne) {
+  const Eigen::Index P = sh.P, S = sh.S, O = sh.O, B = sh.B, ldj = sh.ldj, ldo = sh.ldo;
+  Eigen::Map<MatrixXd, 0, Eigen::OuterStride<>> J(sc.j.data(), P, B * sh.n_out,
+                                                  Eigen::OuterStride<>(ldj));
+  Eigen::Map<VectorXd> r(sc.r.data(), B * sh.n_out);
+  for (Eigen::Index k = 0; k < m; ++k) {
+    const std::size_t i = i0 + static_cast<std::size_t>(k);
+    forward(net, std::span<const double>(ctx.x).subspan(i * sh.n_in, sh.n_in), ws);
+    jacobian(net, ws, sc.row);
+    for (int c = 0; c < sh.n_out; ++c) {
+      const double res = ws.output()[c] - ctx.t[i * sh.n_out + c];
+      r[c * B + k] = res;
+      ne.e += res * res;
+      std::copy_n(sc.row.data() + c * P, P, J.col(c * B + k).data());
+    }
+  }
+  for (int c = 0; c < sh.n_out; ++c) {
+    const double* Js = J.col(c * B).data();
+    for (Eigen::Index k = 0; k < m; ++k) {
+      for (Eigen::Index a = 0; a < O; ++a) sc.jo[k * ldo + a] = Js[k * ldj + sh.out_index(c, a)];
+    }
+    const auto um = static_cast<std::size_t>(m);
+    detail::gemm_abt(Js, ldj, Js, ldj, S, S, um, sc.a_ss.data(), S, true);
+    detail::gemm_abt(Js, ldj, sc.jo.data(), ldo, S, O, um, sc.a_so.col(c * O).data(), S, false);
+    detail::gemm_abt(sc.jo.data(), ldo, sc.jo.data(), ldo, O, O, um, sc.a_oo.col(c * O).data(), O,
+                     true);
+    const auto rc = r.segment(c * B, m);
+    ne.g.head(S).noalias() += J.block(0, c * B, S, m) * rc;
+    for (Eigen::Index a = 0; a < O; ++a) {
+      double dot = 0.0;
+      for (Eigen::Index k = 0; k < m; ++k) dot += sc.jo[k * ldo + a] * rc[k];
+      ne.g[sh.out_index(c, a)] += dot;
+    }
+  }
+}
+
 // J^T J exploits that the last layer's parameters of output c (row c of W^L and bias w^L_{c 0})
-// move output c only: with S shared parameters (all layers but the last) and O = n_(L-1) + 1 per
-// output, a residual row of output c has S + O non-zeros, not P = S + n_L O. The blocks are
+// move output c only: a residual row of output c has S + O non-zeros, not P = S + n_L O. The
+// blocks are
 //   A_SS += sum_c J_S,c J_S,c^T,  A_{S O_c} += J_S,c J_O,c^T,  A_{O_c O_c} += J_O,c J_O,c^T
 // (6-12-3: 1.6x fewer multiply-adds than the dense rank-k update), computed by gemm_abt
 // (train_kernel.h).
 void normal_equations(const Context& ctx, const Mlp& net, ScratchPool& pool,
                       std::vector<NormalEquations>& part, NormalEquations& total) {
   const MlpLayout& l = net.layout();
-  const auto P = static_cast<Eigen::Index>(l.parameter_count());
-  const int n_in = l.inputs(), n_out = l.outputs(), L = l.layers();
-  const auto S = static_cast<Eigen::Index>(l.weight_offset(L));
-  const auto Hl = static_cast<Eigen::Index>(l.widths[L - 1]);  // n_(L-1)
-  const Eigen::Index O = Hl + 1;
-  const auto B = static_cast<Eigen::Index>(kJacobianBlock);
-  const auto pad = static_cast<Eigen::Index>(detail::gemm_abt_row_padding());
-  const Eigen::Index ldj = (P + pad - 1) / pad * pad, ldo = (O + pad - 1) / pad * pad;
-  // Parameter index of output c's a-th parameter (a < Hl: weights, a = Hl: bias).
-  auto out_index = [&](int c, Eigen::Index a) {
-    return a < Hl ? S + c * Hl + a : static_cast<Eigen::Index>(l.bias_offset(L)) + c;
-  };
+  const BlockShape sh(l);
+  const Eigen::Index P = sh.P, S = sh.S, O = sh.O;
   parallel_for(kSlices, 1, [&](std::size_t b, std::size_t e) {
     MlpWorkspace ws(l);
     std::unique_ptr<LmScratch> scratch = pool.take();
-    auto& jo_buf = scratch->jo;
-    auto& row_buf = scratch->row;
-    scratch->j.resize(static_cast<std::size_t>(ldj * B * n_out));
-    scratch->r.resize(static_cast<std::size_t>(B * n_out));
-    row_buf.resize(static_cast<std::size_t>(P * n_out));
-    jo_buf.resize(static_cast<std::size_t>(ldo * B));
-    Eigen::Map<MatrixXd, 0, Eigen::OuterStride<>> J(scratch->j.data(), P, B * n_out,
-                                                    Eigen::OuterStride<>(ldj));
-    Eigen::Map<VectorXd> r(scratch->r.data(), B * n_out);
+    scratch->j.resize(static_cast<std::size_t>(sh.ldj * sh.B * sh.n_out));
+    scratch->r.resize(static_cast<std::size_t>(sh.B * sh.n_out));
+    scratch->row.resize(static_cast<std::size_t>(P * sh.n_out));
+    scratch->jo.resize(static_cast<std::size_t>(sh.ldo * sh.B));
     MatrixXd& a_ss = scratch->a_ss;
     MatrixXd& a_so = scratch->a_so;
     MatrixXd& a_oo = scratch->a_oo;
     a_ss.resize(S, S);
-    a_so.resize(S, O * n_out);
-    a_oo.resize(O, O * n_out);
+    a_so.resize(S, O * sh.n_out);
+    a_oo.resize(O, O * sh.n_out);
     for (std::size_t s = b; s < e; ++s) {
       NormalEquations& ne = part[s];
       ne.A.setZero(P, P);
@@ -340,46 +420,16 @@ void normal_equations(const Context& ctx, const Mlp& net, ScratchPool& pool,
       a_so.setZero();
       a_oo.setZero();
       const std::size_t end = slice_begin(s + 1, ctx.n, kSlices);
-      for (std::size_t i0 = slice_begin(s, ctx.n, kSlices); i0 < end; i0 += kJacobianBlock) {
-        const auto m = static_cast<Eigen::Index>(std::min(kJacobianBlock, end - i0));
-        for (Eigen::Index k = 0; k < m; ++k) {
-          const std::size_t i = i0 + static_cast<std::size_t>(k);
-          forward(net, std::span<const double>(ctx.x).subspan(i * n_in, n_in), ws);
-          jacobian(net, ws, row_buf);
-          for (int c = 0; c < n_out; ++c) {
-            const double res = ws.output()[c] - ctx.t[i * n_out + c];
-            r[c * B + k] = res;
-            ne.e += res * res;
-            std::copy_n(row_buf.data() + c * P, P, J.col(c * B + k).data());
-          }
-        }
-        for (int c = 0; c < n_out; ++c) {
-          const double* Js = J.col(c * B).data();
-          for (Eigen::Index k = 0; k < m; ++k) {
-            for (Eigen::Index a = 0; a < O; ++a)
-              jo_buf[k * ldo + a] = Js[k * ldj + out_index(c, a)];
-          }
-          const auto um = static_cast<std::size_t>(m);
-          detail::gemm_abt(Js, ldj, Js, ldj, S, S, um, a_ss.data(), S, true);
-          detail::gemm_abt(Js, ldj, jo_buf.data(), ldo, S, O, um, a_so.col(c * O).data(), S, false);
-          detail::gemm_abt(jo_buf.data(), ldo, jo_buf.data(), ldo, O, O, um, a_oo.col(c * O).data(),
-                           O, true);
-          const auto rc = r.segment(c * B, m);
-          ne.g.head(S).noalias() += J.block(0, c * B, S, m) * rc;
-          for (Eigen::Index a = 0; a < O; ++a) {
-            double dot = 0.0;
-            for (Eigen::Index k = 0; k < m; ++k) dot += jo_buf[k * ldo + a] * rc[k];
-            ne.g[out_index(c, a)] += dot;
-          }
-        }
-      }
+      for (std::size_t i0 = slice_begin(s, ctx.n, kSlices); i0 < end; i0 += kJacobianBlock)
+        add_block(ctx, net, sh, ws, *scratch, i0,
+                  static_cast<Eigen::Index>(std::min(kJacobianBlock, end - i0)), ne);
       // Assemble the lower triangle (output indices are all >= S, increasing in a).
       ne.A.topLeftCorner(S, S).triangularView<Eigen::Lower>() = a_ss;
-      for (int c = 0; c < n_out; ++c) {
+      for (int c = 0; c < sh.n_out; ++c) {
         for (Eigen::Index a = 0; a < O; ++a) {
-          const Eigen::Index ia = out_index(c, a);
+          const Eigen::Index ia = sh.out_index(c, a);
           ne.A.row(ia).head(S) += a_so.col(c * O + a).transpose();
-          for (Eigen::Index q = 0; q <= a; ++q) ne.A(ia, out_index(c, q)) += a_oo(a, c * O + q);
+          for (Eigen::Index q = 0; q <= a; ++q) ne.A(ia, sh.out_index(c, q)) += a_oo(a, c * O + q);
         }
       }
     }
@@ -516,6 +566,114 @@ double mean_squared_error(const Mlp& net, const Examples& ex) {
          (static_cast<double>(ex.count) * net.layout().outputs());
 }
 
+namespace {
+
+// Standardisation x~ = (x - mean) / std per input (std of a constant input: 1).
+struct Standardisation {
+  std::vector<double> mean, stdev;
+  Standardisation(const Examples& ex, int n_in, bool on) : mean(n_in, 0.0), stdev(n_in, 1.0) {
+    if (!on) return;
+    for (int k = 0; k < n_in; ++k) {
+      double s = 0.0, s2 = 0.0;
+      for (std::size_t i = 0; i < ex.count; ++i) s += ex.inputs[i * n_in + k];
+      mean[k] = s / static_cast<double>(ex.count);
+      for (std::size_t i = 0; i < ex.count; ++i) {
+        const double dv = ex.inputs[i * n_in + k] - mean[k];
+        s2 += dv * dv;
+      }
+      const double sd = std::sqrt(s2 / static_cast<double>(ex.count));
+      stdev[k] = sd > 1e-12 ? sd : 1.0;
+    }
+  }
+  void apply(std::span<const double> in, std::vector<double>& out) const {
+    const auto n_in = mean.size();
+    out.resize(in.size());
+    for (std::size_t i = 0; i < in.size(); ++i) {
+      const std::size_t k = i % n_in;
+      out[i] = (in[i] - mean[k]) / stdev[k];
+    }
+  }
+  // f(w_ji, w_j0, i) for every weight of layer 1 (the standardisation's fold and unfold).
+  template <class F>
+  static void first_layer(Mlp& m, const F& f) {
+    const MlpLayout& layout = m.layout();
+    auto p = m.parameters();
+    double* W = p.data() + layout.weight_offset(1);
+    double* bias = p.data() + layout.bias_offset(1);
+    for (int j = 0; j < layout.widths[1]; ++j)
+      for (int i = 0; i < layout.inputs(); ++i)
+        f(W[static_cast<std::size_t>(j) * layout.inputs() + i], bias[j], i);
+  }
+  // The standardisation unfolded from a network of raw inputs (the inverse of fold):
+  // w~_ji = w_ji std_i, w~_j0 = w_j0 + sum_i w_ji mean_i.
+  void unfold(Mlp& net) const {
+    first_layer(net, [&](double& w, double& bias, int i) {
+      bias += w * mean[i];
+      w *= stdev[i];
+    });
+  }
+  // Folded into layer 1: w_ji <- w~_ji / std_i, w_j0 <- w~_j0 - sum_i w~_ji mean_i / std_i.
+  void fold(Mlp& net) const {
+    first_layer(net, [&](double& w, double& bias, int i) {
+      w /= stdev[i];
+      bias -= w * mean[i];
+    });
+  }
+};
+
+// A random start; the output layer from the targets' mean (TrainOptions::init_output_from_targets).
+Mlp initial_for_targets(const MlpLayout& layout, const Examples& ex, const TrainOptions& opt,
+                        Rng& rng) {
+  Mlp net = initial_network(layout, rng, opt.init_gain);
+  if (!opt.init_output_from_targets) return net;
+  const int n_out = layout.outputs(), L = layout.layers();
+  std::vector<double> target_mean(n_out, 0.0);
+  for (std::size_t i = 0; i < ex.count; ++i) {
+    for (int c = 0; c < n_out; ++c) target_mean[c] += ex.targets[i * n_out + c];
+  }
+  for (double& m : target_mean) m /= static_cast<double>(ex.count);
+  auto p = net.parameters();
+  for (std::size_t i = layout.weight_offset(L); i < layout.bias_offset(L); ++i) {
+    p[i] *= opt.output_weight_gain;
+  }
+  for (int c = 0; c < n_out; ++c) {
+    p[layout.bias_offset(L) + c] = inverse_activation(layout.activations[L - 1], target_mean[c]);
+  }
+  return net;
+}
+
+// TrainOptions::restarts short runs from different starts; the one of lowest training error,
+// its log entries counted in ctx.iteration. Every run's log goes to result.log.
+Mlp best_of_restarts(Context& ctx, const Examples& ex, int last, TrainResult& result) {
+  const TrainOptions& opt = ctx.opt;
+  Mlp net;
+  double best = std::numeric_limits<double>::infinity();
+  std::vector<TrainLogEntry> kept;
+  for (int r = 0; r < opt.restarts; ++r) {
+    Rng rng = Rng::stream(opt.seed, static_cast<std::uint64_t>(r));
+    Mlp candidate = initial_for_targets(ctx.layout, ex, opt, rng);
+    ctx.restart = r + 1;
+    ctx.iteration = 0;
+    std::vector<TrainLogEntry> log;
+    ctx.log = &log;
+    run_trainer(ctx, candidate, std::min(opt.restart_iterations, last), rng);
+    const double e = sse(candidate, ctx.x, ctx.t, ctx.n);
+    result.log.insert(result.log.end(), log.begin(), log.end());
+    if (e < best) {
+      best = e;
+      net = candidate;
+      kept = log;
+    }
+    if (ctx.stop == "time_limit" || ctx.stop == "callback") break;
+  }
+  ctx.log = &result.log;
+  ctx.restart = 0;
+  ctx.iteration = static_cast<int>(kept.size());
+  return net;
+}
+
+}  // namespace
+
 TrainResult train(const MlpLayout& layout, const Examples& ex, const TrainOptions& opt) {
   layout.validate();
   const int n_in = layout.inputs(), n_out = layout.outputs();
@@ -529,66 +687,13 @@ TrainResult train(const MlpLayout& layout, const Examples& ex, const TrainOption
   ctx.log = &result.log;
   ctx.n = ex.count;
   ctx.t = ex.targets;
-
-  // Standardisation x~ = (x - mean) / std (std of a constant input: 1).
-  std::vector<double> mean(n_in, 0.0), stdev(n_in, 1.0);
-  if (opt.standardise_inputs) {
-    for (int k = 0; k < n_in; ++k) {
-      double s = 0.0, s2 = 0.0;
-      for (std::size_t i = 0; i < ex.count; ++i) s += ex.inputs[i * n_in + k];
-      mean[k] = s / static_cast<double>(ex.count);
-      for (std::size_t i = 0; i < ex.count; ++i) {
-        const double dv = ex.inputs[i * n_in + k] - mean[k];
-        s2 += dv * dv;
-      }
-      const double sd = std::sqrt(s2 / static_cast<double>(ex.count));
-      stdev[k] = sd > 1e-12 ? sd : 1.0;
-    }
-  }
-  auto standardise = [&](std::span<const double> in, std::vector<double>& out) {
-    out.resize(in.size());
-    for (std::size_t i = 0; i < in.size(); ++i) {
-      const int k = static_cast<int>(i % n_in);
-      out[i] = (in[i] - mean[k]) / stdev[k];
-    }
-  };
-  standardise(ex.inputs, ctx.x);
+  const Standardisation standard(ex, n_in, opt.standardise_inputs);
+  standard.apply(ex.inputs, ctx.x);
   if (opt.validation && opt.validation->count > 0) {
-    standardise(opt.validation->inputs, ctx.vx);
+    standard.apply(opt.validation->inputs, ctx.vx);
     ctx.vt = opt.validation->targets;
     ctx.vn = opt.validation->count;
   }
-
-  // Start of the output layer (see TrainOptions::init_output_from_targets).
-  std::vector<double> target_mean(n_out, 0.0);
-  for (std::size_t i = 0; i < ex.count; ++i) {
-    for (int c = 0; c < n_out; ++c) target_mean[c] += ex.targets[i * n_out + c];
-  }
-  for (double& m : target_mean) m /= static_cast<double>(ex.count);
-  auto initial = [&](Rng& rng) {
-    Mlp net = initial_network(layout, rng, opt.init_gain);
-    if (opt.init_output_from_targets) {
-      const int L = layout.layers();
-      auto p = net.parameters();
-      for (std::size_t i = layout.weight_offset(L); i < layout.bias_offset(L); ++i) {
-        p[i] *= opt.output_weight_gain;
-      }
-      for (int c = 0; c < n_out; ++c) {
-        p[layout.bias_offset(L) + c] =
-            inverse_activation(layout.activations[L - 1], target_mean[c]);
-      }
-    }
-    return net;
-  };
-
-  // f(w_ji, w_j0, i) for every weight of layer 1 (the standardisation's fold and unfold).
-  auto first_layer = [&](Mlp& m, const auto& f) {
-    auto p = m.parameters();
-    double* W = p.data() + layout.weight_offset(1);
-    double* bias = p.data() + layout.bias_offset(1);
-    for (int j = 0; j < layout.widths[1]; ++j)
-      for (int i = 0; i < n_in; ++i) f(W[static_cast<std::size_t>(j) * n_in + i], bias[j], i);
-  };
   Mlp net;
   const int last = std::max(1, opt.max_iterations);
   if (opt.initial != nullptr) {
@@ -596,52 +701,20 @@ TrainResult train(const MlpLayout& layout, const Examples& ex, const TrainOption
     if (given.widths != layout.widths || given.activations != layout.activations)
       throw InvalidArgument("train: the initial network " + given.describe() +
                             " is not the layout trained, " + layout.describe());
-    // The standardisation unfolded (the inverse of the fold below): w~_ji = w_ji std_i,
-    // w~_j0 = w_j0 + sum_i w_ji mean_i.
     net = *opt.initial;
-    first_layer(net, [&](double& w, double& bias, int i) {
-      bias += w * mean[i];
-      w *= stdev[i];
-    });
+    standard.unfold(net);
   } else if (opt.restarts > 1) {
-    double best = std::numeric_limits<double>::infinity();
-    std::vector<TrainLogEntry> kept;
-    for (int r = 0; r < opt.restarts; ++r) {
-      Rng rng = Rng::stream(opt.seed, static_cast<std::uint64_t>(r));
-      Mlp candidate = initial(rng);
-      ctx.restart = r + 1;
-      ctx.iteration = 0;
-      std::vector<TrainLogEntry> log;
-      ctx.log = &log;
-      run_trainer(ctx, candidate, std::min(opt.restart_iterations, last), rng);
-      const double e = sse(candidate, ctx.x, ctx.t, ctx.n);
-      result.log.insert(result.log.end(), log.begin(), log.end());
-      if (e < best) {
-        best = e;
-        net = candidate;
-        kept = log;
-      }
-      if (ctx.stop == "time_limit" || ctx.stop == "callback") break;
-    }
-    ctx.log = &result.log;
-    ctx.restart = 0;
-    ctx.iteration = static_cast<int>(kept.size());
+    net = best_of_restarts(ctx, ex, last, result);
   } else {
     Rng rng = Rng::stream(opt.seed, 0);
-    net = initial(rng);
+    net = initial_for_targets(layout, ex, opt, rng);
   }
   if (ctx.stop != "time_limit" && ctx.stop != "callback" && ctx.iteration < last) {
     ctx.stop.clear();
     Rng rng = Rng::stream(opt.seed, 1000);
     run_trainer(ctx, net, last, rng);
   }
-
-  // Fold the standardisation into layer 1: w_ji <- w~_ji / std_i,
-  // w_j0 <- w~_j0 - sum_i w~_ji mean_i / std_i.
-  first_layer(net, [&](double& w, double& bias, int i) {
-    w /= stdev[i];
-    bias -= w * mean[i];
-  });
+  standard.fold(net);
   result.net = std::move(net);
   result.seconds = ctx.seconds();
   result.mse = mean_squared_error(result.net, ex);
