@@ -89,6 +89,96 @@ std::vector<std::pair<std::string, double>> recorded(const NishitaParameters& p)
   return v;
 }
 
+// The value a sample's colour is scaled by: max(R, G, B) for the paper's network, the
+// luminance for log3.
+double pietras_value(const Rgb& c, nn::PietrasKind kind) {
+  return kind == nn::PietrasKind::pietras ? std::max({c.r, c.g, c.b}) : luminance(c);
+}
+
+// The sub-networks' inputs (all samples) and targets: M on all samples (§III: M = 0 at night),
+// the others (R, G, B; l, r, b) on the lit ones only. log3 leaves the dark samples to the shadow
+// test (lit(), exact where nishita is 0), so its l spends no weights on the step at the shadow's
+// edge.
+struct PietrasTargets {
+  std::vector<double> all_in, day_in;  // 4 inputs per sample
+  std::size_t day = 0;                 // lit samples
+  std::vector<std::vector<double>> targets;
+};
+PietrasTargets pietras_targets(const PietrasSamples& s, nn::PietrasKind kind, double max_value,
+                               std::size_t subnets) {
+  const bool paper = kind == nn::PietrasKind::pietras;
+  const std::size_t n = s.size();
+  PietrasTargets p;
+  p.all_in.resize(4 * n);
+  p.targets.resize(subnets);
+  for (std::size_t i = 0; i < n; ++i) {
+    const nn::PietrasInput& x = s.inputs[i];
+    const double in[4] = {x.cos_view_zenith, x.cos_view_sun, x.cos_sun_zenith, x.density};
+    std::copy(in, in + 4, p.all_in.begin() + 4 * i);
+    const Rgb& c = s.rgb[i];
+    const double v = pietras_value(c, kind);
+    if (paper) {
+      p.targets[3].push_back(
+          v > 0.0 ? std::min(nn::kPietrasMScale * v / max_value + nn::kPietrasMOffset, 0.999)
+                  : 0.0);
+    }
+    if (!(v > 0.0)) continue;
+    p.day_in.insert(p.day_in.end(), in, in + 4);
+    ++p.day;
+    if (paper) {
+      p.targets[0].push_back(std::clamp(c.r / v, 0.0, 1.0));
+      p.targets[1].push_back(std::clamp(c.g / v, 0.0, 1.0));
+      p.targets[2].push_back(std::clamp(c.b / v, 0.0, 1.0));
+    } else {
+      const double sum = std::max(c.r + c.g + c.b, 1e-300);
+      p.targets[0].push_back(std::log(v / max_value + nn::kLog3Epsilon));
+      p.targets[1].push_back(c.r / sum);
+      p.targets[2].push_back(c.b / sum);
+    }
+  }
+  return p;
+}
+
+// Checks that the network training continues from is of this kind and planet.
+void check_initial(const nn::PietrasNetwork& initial, nn::PietrasKind kind, std::size_t subnets,
+                   const NishitaParameters& p) {
+  if (initial.kind != kind || initial.subnets.size() != subnets)
+    throw InvalidArgument(fmt::format("nn train: the initial network is {}, not {}",
+                                      nn::to_string(initial.kind), nn::to_string(kind)));
+  auto given = initial.provenance.source_parameters, here = recorded(p);
+  std::sort(given.begin(), given.end());
+  std::sort(here.begin(), here.end());
+  if (given != here)
+    throw InvalidArgument(
+        "nn train: the initial network was trained on another planet or atmosphere");
+}
+
+// What the network records of its training data and trainer.
+void record_provenance(nn::PietrasNetwork& net, const PietrasTraining& t,
+                       const NishitaParameters& p, std::size_t samples, double seconds) {
+  net.provenance.source = std::string(NishitaModel::kName);
+  net.provenance.colour =
+      "nishita rgb(): linear sRGB (D65) on the photometric scale, Y in cd/m^2 for the ASTM G-173 "
+      "sun (or per W m^-2 nm^-1 with --solar-irradiance); no ground reflection";
+  net.provenance.geometry =
+      "consistent geometry: cos alpha0, cos theta0 uniform in [-1, 1], view azimuth relative to "
+      "the sun uniform; rho0 = exp(-h/H0) uniform in [0, 1], h clamped to the top of the "
+      "atmosphere";
+  net.provenance.source_parameters = recorded(p);
+  net.provenance.samples = samples;
+  net.provenance.seed = t.options.seed;
+  net.provenance.trainer = std::string(nn::to_string(t.options.trainer));
+  net.provenance.training_seconds = seconds;
+  if (t.initial != nullptr) {
+    net.provenance.training_seconds += t.initial->provenance.training_seconds;
+    // Oldest first, so repeated continuations read as one chain: "lbfgs (to 100/90/80
+    // iterations), then lbfgs (to 150/130/120 iterations), then lbfgs".
+    net.provenance.trainer =
+        fmt::format("{} (to {} iterations), then {}", t.initial->provenance.trainer,
+                    fmt::join(t.initial->provenance.iterations, "/"), net.provenance.trainer);
+  }
+}
+
 }  // namespace
 
 nn::PietrasNetwork train_pietras(const PietrasTraining& t) {
@@ -105,67 +195,23 @@ nn::PietrasNetwork train_pietras(const PietrasTraining& t) {
   net.ground_radius_m = p.ground_radius_m;
   const bool paper = t.kind == nn::PietrasKind::pietras;
   const std::size_t n = s.size();
-  auto value = [&](const Rgb& c) { return paper ? std::max({c.r, c.g, c.b}) : luminance(c); };
   double max_value = 0.0;
   for (std::size_t i = 0; i < std::min(n, kMaxNSamples); ++i)
-    max_value = std::max(max_value, value(s.rgb[i]));
+    max_value = std::max(max_value, pietras_value(s.rgb[i], t.kind));
   if (!(max_value > 0.0)) throw InvalidArgument("nn train: every sample of nishita is dark");
   const auto layouts = nn::pietras_layouts(t.kind);
   if (t.initial != nullptr) {
-    if (t.initial->kind != t.kind || t.initial->subnets.size() != layouts.size())
-      throw InvalidArgument(fmt::format("nn train: the initial network is {}, not {}",
-                                        nn::to_string(t.initial->kind), nn::to_string(t.kind)));
-    auto given = t.initial->provenance.source_parameters, here = recorded(p);
-    std::sort(given.begin(), given.end());
-    std::sort(here.begin(), here.end());
-    if (given != here)
-      throw InvalidArgument(
-          "nn train: the initial network was trained on another planet or atmosphere");
+    check_initial(*t.initial, t.kind, layouts.size(), p);
     max_value = t.initial->max_value;
   }
   net.max_value = max_value;
-
-  std::vector<double> all_in(4 * n), day_in;
-  std::size_t day = 0;
-  for (std::size_t i = 0; i < n; ++i) {
-    const nn::PietrasInput& x = s.inputs[i];
-    const double v[4] = {x.cos_view_zenith, x.cos_view_sun, x.cos_sun_zenith, x.density};
-    std::copy(v, v + 4, all_in.begin() + 4 * i);
-    if (value(s.rgb[i]) > 0.0) {
-      day_in.insert(day_in.end(), v, v + 4);
-      ++day;
-    }
-  }
-  // Targets per sub-network: M on all samples (§III: M = 0 at night), the others (R, G, B; l, r,
-  // b) on the lit ones only. log3 leaves the dark samples to the shadow test (lit(), exact where
-  // nishita is 0), so its l spends no weights on the step at the shadow's edge.
-  const std::size_t k_all = paper ? 3 : layouts.size();
-  std::vector<std::vector<double>> targets(layouts.size());
-  for (std::size_t i = 0; i < n; ++i) {
-    const Rgb& c = s.rgb[i];
-    const double v = value(c);
-    if (paper) {
-      targets[3].push_back(
-          v > 0.0 ? std::min(nn::kPietrasMScale * v / max_value + nn::kPietrasMOffset, 0.999)
-                  : 0.0);
-    }
-    if (!(v > 0.0)) continue;
-    if (!paper) targets[0].push_back(std::log(v / max_value + nn::kLog3Epsilon));
-    if (paper) {
-      targets[0].push_back(std::clamp(c.r / v, 0.0, 1.0));
-      targets[1].push_back(std::clamp(c.g / v, 0.0, 1.0));
-      targets[2].push_back(std::clamp(c.b / v, 0.0, 1.0));
-    } else {
-      const double sum = std::max(c.r + c.g + c.b, 1e-300);
-      targets[1].push_back(c.r / sum);
-      targets[2].push_back(c.b / sum);
-    }
-  }
+  const PietrasTargets d = pietras_targets(s, t.kind, max_value, layouts.size());
+  const std::size_t k_all = paper ? 3 : layouts.size();  // the sub-network trained on all samples
   net.provenance.iterations.clear();
   for (std::size_t k = 0; k < layouts.size(); ++k) {
     const bool all = k == k_all;
-    nn::Examples ex{all ? std::span<const double>(all_in) : std::span<const double>(day_in),
-                    targets[k], all ? n : day};
+    nn::Examples ex{all ? std::span<const double>(d.all_in) : std::span<const double>(d.day_in),
+                    d.targets[k], all ? n : d.day};
     nn::TrainOptions o = t.options;
     o.seed = t.options.seed + k;
     o.init_output_from_targets = paper;
@@ -182,28 +228,9 @@ nn::PietrasNetwork train_pietras(const PietrasTraining& t) {
                            : 0;
     net.provenance.iterations.push_back(before + r.iterations);
   }
-  net.provenance.source = std::string(NishitaModel::kName);
-  net.provenance.colour =
-      "nishita rgb(): linear sRGB (D65) on the photometric scale, Y in cd/m^2 for the ASTM G-173 "
-      "sun (or per W m^-2 nm^-1 with --solar-irradiance); no ground reflection";
-  net.provenance.geometry =
-      "consistent geometry: cos alpha0, cos theta0 uniform in [-1, 1], view azimuth relative to "
-      "the sun uniform; rho0 = exp(-h/H0) uniform in [0, 1], h clamped to the top of the "
-      "atmosphere";
-  net.provenance.source_parameters = recorded(p);
-  net.provenance.samples = n;
-  net.provenance.seed = t.options.seed;
-  net.provenance.trainer = std::string(nn::to_string(t.options.trainer));
-  net.provenance.training_seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  if (t.initial != nullptr) {
-    net.provenance.training_seconds += t.initial->provenance.training_seconds;
-    // Oldest first, so repeated continuations read as one chain: "lbfgs (to 100/90/80
-    // iterations), then lbfgs (to 150/130/120 iterations), then lbfgs".
-    net.provenance.trainer =
-        fmt::format("{} (to {} iterations), then {}", t.initial->provenance.trainer,
-                    fmt::join(t.initial->provenance.iterations, "/"), net.provenance.trainer);
-  }
+  record_provenance(
+      net, t, p, n,
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
   return net;
 }
 

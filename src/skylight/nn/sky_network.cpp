@@ -96,13 +96,10 @@ std::string to_json(const SkyNetwork& sky) {
   return j.dump(1) + "\n";
 }
 
-SkyNetwork sky_network_from_json(std::string_view s, const std::string& where) {
-  const nlohmann::json j = skylight::detail::json::parse_object(s, where);
-  if (text(field(j, where, "format"), where, "format") != kSkyNetworkFormat)
-    bad(where, "format", "is not '" + std::string(kSkyNetworkFormat) + "'");
-  if (integer(field(j, where, "version"), where, "version", 0, 1000000) != kSkyNetworkVersion)
-    bad(where, "version", "is not " + std::to_string(kSkyNetworkVersion));
+namespace {
 
+// The "architecture" object of a sky-network file.
+MlpLayout read_architecture(const nlohmann::json& j, const std::string& where) {
   const auto& arch = field(j, where, "architecture");
   if (!arch.is_object()) bad(where, "architecture", "is not an object");
   MlpLayout layout;
@@ -125,35 +122,14 @@ SkyNetwork sky_network_from_json(std::string_view s, const std::string& where) {
   }
   if (static_cast<int>(layout.activations.size()) != layout.layers())
     bad(where, "architecture.activations", "needs one activation per layer");
+  return layout;
+}
 
-  SkyNetwork sky;
-  sky.inputs.clear();
-  for (const auto& in : array(field(j, where, "inputs"), where, "inputs")) {
-    const std::string name = text(in, where, "inputs");
-    const auto parsed = parse_input(name);
-    if (!parsed) bad(where, "inputs", "has an unknown input '" + excerpt(name) + "'");
-    sky.inputs.push_back(*parsed);
-  }
-  if (static_cast<int>(sky.inputs.size()) != layout.inputs())
-    bad(where, "inputs",
-        "has " + std::to_string(sky.inputs.size()) + " entries but the first layer has " +
-            std::to_string(layout.inputs()));
-  text(field(j, where, "input_transform"), where, "input_transform");
-  const std::string enc = text(field(j, where, "output_encoding"), where, "output_encoding");
-  const auto encoding = parse_output_encoding(enc);
-  if (!encoding) bad(where, "output_encoding", "is not a known encoding: '" + excerpt(enc) + "'");
-  sky.encoding = *encoding;
-  sky.target_scale = number(field(j, where, "target_scale"), where, "target_scale");
-  if (!(sky.target_scale > 0.0)) bad(where, "target_scale", "is not positive");
-  std::vector<double> params = numbers(field(j, where, "parameters"), where, "parameters");
-  if (params.size() != layout.parameter_count())
-    bad(where, "parameters",
-        "has " + std::to_string(params.size()) + " values, the architecture " +
-            std::to_string(layout.parameter_count()));
-
+// The "provenance" object of a sky-network file.
+SkyNetworkProvenance read_provenance(const nlohmann::json& j, const std::string& where) {
   const auto& pj = field(j, where, "provenance");
   if (!pj.is_object()) bad(where, "provenance", "is not an object");
-  SkyNetworkProvenance& pv = sky.provenance;
+  SkyNetworkProvenance pv;
   pv.source = text(field(pj, where, "source", "provenance."), where, "provenance.source");
   pv.turbidities =
       numbers(field(pj, where, "turbidities", "provenance."), where, "provenance.turbidities");
@@ -187,7 +163,45 @@ SkyNetwork sky_network_from_json(std::string_view s, const std::string& where) {
   optional_number("relative_p95", pv.validation_relative_p95);
   pv.date = text(field(pj, where, "date", "provenance."), where, "provenance.date");
   pv.software = text(field(pj, where, "software", "provenance."), where, "provenance.software");
+  return pv;
+}
 
+}  // namespace
+
+SkyNetwork sky_network_from_json(std::string_view s, const std::string& where) {
+  const nlohmann::json j = skylight::detail::json::parse_object(s, where);
+  if (text(field(j, where, "format"), where, "format") != kSkyNetworkFormat)
+    bad(where, "format", "is not '" + std::string(kSkyNetworkFormat) + "'");
+  if (integer(field(j, where, "version"), where, "version", 0, 1000000) != kSkyNetworkVersion)
+    bad(where, "version", "is not " + std::to_string(kSkyNetworkVersion));
+
+  MlpLayout layout = read_architecture(j, where);
+  SkyNetwork sky;
+  sky.inputs.clear();
+  for (const auto& in : array(field(j, where, "inputs"), where, "inputs")) {
+    const std::string name = text(in, where, "inputs");
+    const auto parsed = parse_input(name);
+    if (!parsed) bad(where, "inputs", "has an unknown input '" + excerpt(name) + "'");
+    sky.inputs.push_back(*parsed);
+  }
+  if (static_cast<int>(sky.inputs.size()) != layout.inputs())
+    bad(where, "inputs",
+        "has " + std::to_string(sky.inputs.size()) + " entries but the first layer has " +
+            std::to_string(layout.inputs()));
+  text(field(j, where, "input_transform"), where, "input_transform");
+  const std::string enc = text(field(j, where, "output_encoding"), where, "output_encoding");
+  const auto encoding = parse_output_encoding(enc);
+  if (!encoding) bad(where, "output_encoding", "is not a known encoding: '" + excerpt(enc) + "'");
+  sky.encoding = *encoding;
+  sky.target_scale = number(field(j, where, "target_scale"), where, "target_scale");
+  if (!(sky.target_scale > 0.0)) bad(where, "target_scale", "is not positive");
+  std::vector<double> params = numbers(field(j, where, "parameters"), where, "parameters");
+  if (params.size() != layout.parameter_count())
+    bad(where, "parameters",
+        "has " + std::to_string(params.size()) + " values, the architecture " +
+            std::to_string(layout.parameter_count()));
+
+  sky.provenance = read_provenance(j, where);
   sky.net = Mlp(std::move(layout), std::move(params));
   return sky;
 }
@@ -207,68 +221,73 @@ SkyNetworkBatch::~SkyNetworkBatch() = default;
 SkyNetworkBatch::SkyNetworkBatch(SkyNetworkBatch&&) noexcept = default;
 SkyNetworkBatch& SkyNetworkBatch::operator=(SkyNetworkBatch&&) noexcept = default;
 
-SkyNetworkBatch::SkyNetworkBatch(const SkyNetwork& sky, const SkyState& state, bool allow_unrolled)
-    : kernel_(std::make_unique<Kernel>()) {
-  using detail::DirectionInput;
-  Kernel& kern = *kernel_;
-  const MlpLayout& l = sky.net.layout();
-  SKYLIGHT_CHECK(l.outputs() == 3, "SkyNetworkBatch: the network needs 3 outputs");
-  const auto p = sky.net.parameters();
-  const int L = l.layers(), n0 = l.inputs(), n1 = l.widths[1];
+namespace {
 
-  // Kernel inputs: the view's linear inputs in the world frame (x and y when v_x is used, the
-  // rotated v_y alone when only v_y is: one input instead of two), z, then the non-linear
-  // direction inputs in spec order.
+// Kernel inputs: the view's linear inputs in the world frame (x and y when v_x is used, the
+// rotated v_y alone when only v_y is: one input instead of two), z, then the non-linear direction
+// inputs in spec order. The columns of each in the kernel's input list (-1: not used).
+struct KernelColumns {
+  int x = -1, y = -1, ry = -1, z = -1;
+  std::vector<int> column;  // per spec input: the kernel input a non-linear one feeds
+  double c = 1.0, s = 0.0;  // cos and sin of the frame's rotation, eq. 10
+};
+KernelColumns kernel_inputs(const SkyNetwork& sky, const SkyState& state,
+                            std::vector<detail::DirectionInput>& inputs,
+                            detail::SkyBatchParams& kp) {
+  using detail::DirectionInput;
+  KernelColumns k;
   const double r = state.sun_azimuth - kPi;  // eq. 10
-  const double c = std::cos(r), s = std::sin(r);
+  k.c = std::cos(r);
+  k.s = std::sin(r);
   auto has = [&](Input in) {
     return std::find(sky.inputs.begin(), sky.inputs.end(), in) != sky.inputs.end();
   };
-  int col_x = -1, col_y = -1, col_ry = -1, col_z = -1;
+  auto add = [&](DirectionInput in) {
+    inputs.push_back(in);
+    return static_cast<int>(inputs.size()) - 1;
+  };
   if (has(Input::view_x)) {
-    col_x = static_cast<int>(kern.inputs.size());
-    kern.inputs.push_back(DirectionInput::x);
-    col_y = static_cast<int>(kern.inputs.size());
-    kern.inputs.push_back(DirectionInput::y);
+    k.x = add(DirectionInput::x);
+    k.y = add(DirectionInput::y);
   } else if (has(Input::view_y)) {
-    col_ry = static_cast<int>(kern.inputs.size());
-    kern.inputs.push_back(DirectionInput::reference_y);
-    kern.p.ry_x = static_cast<float>(s);  // v_y = y' c + x' s
-    kern.p.ry_y = static_cast<float>(c);
+    k.ry = add(DirectionInput::reference_y);
+    kp.ry_x = static_cast<float>(k.s);  // v_y = y' c + x' s
+    kp.ry_y = static_cast<float>(k.c);
   }
-  if (has(Input::view_z)) {
-    col_z = static_cast<int>(kern.inputs.size());
-    kern.inputs.push_back(DirectionInput::z);
-  }
-  std::vector<int> column(n0, -1);  // kernel input fed by a non-linear spec input
-  for (int i = 0; i < n0; ++i) {
-    DirectionInput k;
+  if (has(Input::view_z)) k.z = add(DirectionInput::z);
+  k.column.assign(sky.inputs.size(), -1);
+  for (std::size_t i = 0; i < sky.inputs.size(); ++i) {
     switch (sky.inputs[i]) {
       case Input::chord:
-        k = DirectionInput::chord;
+        k.column[i] = add(DirectionInput::chord);
         break;
       case Input::log_chord:
-        k = DirectionInput::log_chord;
+        k.column[i] = add(DirectionInput::log_chord);
         break;
       case Input::sqrt_view_z:
-        k = DirectionInput::sqrt_z;
+        k.column[i] = add(DirectionInput::sqrt_z);
         break;
       case Input::aureole:
-        k = DirectionInput::aureole;
+        k.column[i] = add(DirectionInput::aureole);
         break;
       default:
-        continue;
+        break;
     }
-    column[i] = static_cast<int>(kern.inputs.size());
-    kern.inputs.push_back(k);
   }
-  const int nk = static_cast<int>(kern.inputs.size());
+  return k;
+}
 
-  // Layer 1 folded (double, then rounded): W'(n1 x nk), b'.
-  std::vector<double> W1(static_cast<std::size_t>(n1) * nk, 0.0), b1(n1);
+// Layer 1 folded onto the kernel inputs (double, then rounded): W'(n1 x nk), b'. State inputs do
+// not depend on the view: their weights go into the bias.
+void fold_first_layer(const SkyNetwork& sky, const SkyState& state, const KernelColumns& k, int nk,
+                      std::vector<double>& W1, std::vector<double>& b1) {
+  const MlpLayout& l = sky.net.layout();
+  const auto p = sky.net.parameters();
+  const int n0 = l.inputs(), n1 = l.widths[1];
+  W1.assign(static_cast<std::size_t>(n1) * nk, 0.0);
+  b1.assign(n1, 0.0);
   const double* W = p.data() + l.weight_offset(1);
   const double* b = p.data() + l.bias_offset(1);
-  // State inputs do not depend on the view: evaluate them once with any view.
   std::vector<double> state_value(n0);
   compute_inputs(sky.inputs, state, Vec3{0.0, 0.0, 1.0}, state_value);
   for (int j = 0; j < n1; ++j) {
@@ -278,23 +297,23 @@ SkyNetworkBatch::SkyNetworkBatch(const SkyNetwork& sky, const SkyState& state, b
       const double wi = W[static_cast<std::size_t>(j) * n0 + i];
       switch (sky.inputs[i]) {
         case Input::view_x:  // v_x = x' c - y' s
-          w[col_x] += wi * c;
-          w[col_y] -= wi * s;
+          w[k.x] += wi * k.c;
+          w[k.y] -= wi * k.s;
           break;
         case Input::view_y:  // v_y = y' c + x' s
-          if (col_ry >= 0) {
-            w[col_ry] += wi;
+          if (k.ry >= 0) {
+            w[k.ry] += wi;
           } else {
-            w[col_y] += wi * c;
-            w[col_x] += wi * s;
+            w[k.y] += wi * k.c;
+            w[k.x] += wi * k.s;
           }
           break;
         case Input::view_z:
-          w[col_z] += wi;
+          w[k.z] += wi;
           break;
         default:
-          if (column[i] >= 0) {
-            w[column[i]] += wi;
+          if (k.column[i] >= 0) {
+            w[k.column[i]] += wi;
           } else {
             SKYLIGHT_CHECK(is_state_input(sky.inputs[i]), "SkyNetworkBatch: unhandled input");
             b1[j] += wi * state_value[i];
@@ -302,33 +321,55 @@ SkyNetworkBatch::SkyNetworkBatch(const SkyNetwork& sky, const SkyState& state, b
       }
     }
   }
+}
 
-  // Output mapping. satilmis encoding + satilmis output activation: rgb = (sqrt(scale/2) o)^2;
-  // root4 / root8 with an identity output: rgb = (scale^(1/4) o)^4 / (scale^(1/8) o)^8.
-  const Activation f_out = l.activations.back();
-  const bool fold_square =
-      sky.encoding == OutputEncoding::satilmis && f_out == Activation::satilmis;
-  const bool fold_root4 = sky.encoding == OutputEncoding::root4 && f_out == Activation::identity;
-  const bool fold_root8 = sky.encoding == OutputEncoding::root8 && f_out == Activation::identity;
-  const double out_gain = fold_square  ? std::sqrt(0.5 * sky.target_scale)
-                          : fold_root4 ? std::pow(sky.target_scale, 0.25)
-                          : fold_root8 ? std::pow(sky.target_scale, 0.125)
-                                       : 1.0;
-  if (fold_square) {
-    kern.p.output = detail::SkyBatchOutput::squared;
-  } else if (fold_root4) {
-    kern.p.output = detail::SkyBatchOutput::power4;
-  } else if (fold_root8) {
-    kern.p.output = detail::SkyBatchOutput::power8;
-  } else if (sky.encoding == OutputEncoding::log && f_out == Activation::identity) {
-    kern.p.output = detail::SkyBatchOutput::exp;
-  } else if (sky.encoding == OutputEncoding::satilmis) {
-    kern.p.output = detail::SkyBatchOutput::inverse_ls;
-  } else {
-    throw InvalidArgument("SkyNetworkBatch: the " + std::string(to_string(sky.encoding)) +
-                          " encoding needs an identity output activation");
+// Output mapping; returns the gain folded into the last layer. satilmis encoding + satilmis output
+// activation: rgb = (sqrt(scale/2) o)^2; root4 / root8 with an identity output:
+// rgb = (scale^(1/4) o)^4 / (scale^(1/8) o)^8.
+double output_mapping(const SkyNetwork& sky, detail::SkyBatchParams& kp) {
+  const Activation f_out = sky.net.layout().activations.back();
+  const bool identity = f_out == Activation::identity;
+  kp.scale = static_cast<float>(sky.target_scale);
+  switch (sky.encoding) {
+    case OutputEncoding::satilmis:
+      if (f_out == Activation::satilmis) {
+        kp.output = detail::SkyBatchOutput::squared;
+        return std::sqrt(0.5 * sky.target_scale);
+      }
+      kp.output = detail::SkyBatchOutput::inverse_ls;
+      return 1.0;
+    case OutputEncoding::root4:
+      kp.output = detail::SkyBatchOutput::power4;
+      if (identity) return std::pow(sky.target_scale, 0.25);
+      break;
+    case OutputEncoding::root8:
+      kp.output = detail::SkyBatchOutput::power8;
+      if (identity) return std::pow(sky.target_scale, 0.125);
+      break;
+    case OutputEncoding::log:
+      kp.output = detail::SkyBatchOutput::exp;
+      if (identity) return 1.0;
+      break;
   }
-  kern.p.scale = static_cast<float>(sky.target_scale);
+  throw InvalidArgument("SkyNetworkBatch: the " + std::string(to_string(sky.encoding)) +
+                        " encoding needs an identity output activation");
+}
+
+}  // namespace
+
+SkyNetworkBatch::SkyNetworkBatch(const SkyNetwork& sky, const SkyState& state, bool allow_unrolled)
+    : kernel_(std::make_unique<Kernel>()) {
+  Kernel& kern = *kernel_;
+  const MlpLayout& l = sky.net.layout();
+  SKYLIGHT_CHECK(l.outputs() == 3, "SkyNetworkBatch: the network needs 3 outputs");
+  const auto p = sky.net.parameters();
+  const int L = l.layers();
+  const KernelColumns cols = kernel_inputs(sky, state, kern.inputs, kern.p);
+  const int nk = static_cast<int>(kern.inputs.size());
+  std::vector<double> W1, b1;
+  fold_first_layer(sky, state, cols, nk, W1, b1);
+  const double out_gain = output_mapping(sky, kern.p);
+  const bool fold_square = kern.p.output == detail::SkyBatchOutput::squared;
 
   // Float parameters: layer 1 folded, layers 2..L as trained (the last one scaled).
   std::vector<std::size_t> w_off(L + 1), b_off(L + 1);
