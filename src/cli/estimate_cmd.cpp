@@ -64,43 +64,27 @@ struct EstimateCommand {
   SchemaFlags flags;  // the operation's parameters (operations::find("estimate"))
 };
 
-int run_estimate(const EstimateCommand& c) {
-  const SchemaFlags& f = c.flags;
-  const ParameterValues given = f.values();
-  if (given.has("sun-zenith") != given.has("sun-azimuth"))
-    throw InvalidArgument("--sun-zenith and --sun-azimuth go together");
-  const io::ImageF image = io::read_image(c.image);
-  const ImageSchemaOptions photo = estimate::photo_image_options();
-  const Camera camera =
-      f.bind(image_schema(photo), photo.defaults(), "estimate").camera(image.width, image.height);
-  std::optional<io::ImageF> user_mask;
-  if (!c.mask.empty()) user_mask = estimate::load_mask(c.mask);
-  if (!c.compare.empty() && io::format_from_path(c.compare) != io::ImageFormat::png)
-    throw InvalidArgument(fmt::format("--compare '{}' must be a .png file", excerpt(c.compare)));
-
-  // The sun: given angles, the solar position of --time/--lat/--lon, or found in the image.
-  std::optional<SunPosition> given_sun;
-  std::string sun_source = "image";
+// The sun: given angles, the solar position of --time/--lat/--lon, or (none) found in the image;
+// source: "given", "time" or "image".
+std::optional<SunPosition> sun_from_options(const ParameterValues& given, std::string& source) {
+  source = "image";
   if (given.has("sun-zenith")) {
-    given_sun = sun_from_degrees(*given.number("sun-zenith"), *given.number("sun-azimuth"));
-    sun_source = "given";
-  } else if (const auto spa = solar_position_input(given)) {
-    const sun::SpaResult r = sun::solar_position(*spa);
-    given_sun = sun_from_degrees(rad_to_deg(r.zenith), rad_to_deg(r.azimuth));
-    sun_source = "time";
+    source = "given";
+    return sun_from_degrees(*given.number("sun-zenith"), *given.number("sun-azimuth"));
   }
-  const auto ms = f.bind(estimate::MaskSettings::schema(), {}, "estimate");
-  const auto es = f.bind(fit::EstimateSettings::schema(), {}, "estimate");
-  const std::string model = given.has("model") ? std::get<std::string>(*given.find("model"))
-                                               : fit::default_estimated_model();
-  const EstimationPolicy& policy = fit::estimation_policy(model);
-  const estimate::PhotoSamples ps = estimate::sample_photo(
-      image, camera, given_sun, ms, es.samples, es.seed, user_mask ? &*user_mask : nullptr);
-  const fit::LuminanceFit fit = fit::fit_luminance(model, ps.samples, ps.sun, es);
-  const double zenith_deg = rad_to_deg(ps.sun.zenith), azimuth_deg = rad_to_deg(ps.sun.azimuth);
+  if (const auto spa = solar_position_input(given)) {
+    const sun::SpaResult r = sun::solar_position(*spa);
+    source = "time";
+    return sun_from_degrees(rad_to_deg(r.zenith), rad_to_deg(r.azimuth));
+  }
+  return std::nullopt;
+}
+
+// The fitted values, their fit's quality and (ranking) the ranking, into JSON and text.
+void describe_fit(const std::string& model, const EstimationPolicy& policy,
+                  const fit::LuminanceFit& fit, const fit::EstimateSettings& es,
+                  nlohmann::ordered_json& j, std::string& text) {
   const bool ranking = policy.method == EstimationPolicy::Method::ranking;
-  nlohmann::ordered_json j;
-  std::string text;
   j["model"] = model;
   text += fmt::format("model            {}\n", model);
   for (std::size_t a = 0; a < policy.axes.size(); ++a) {
@@ -133,9 +117,8 @@ int run_estimate(const EstimateCommand& c) {
   text += fmt::format("inliers          {} of {} samples ({:.3f}){}\n", fit.inliers, fit.samples,
                       fit.inlier_fraction, es.ransac || ranking ? "" : ", RANSAC off");
   text += fmt::format("residual         {:.5f} (RMS of ln luminance)\n", fit.residual);
-  if (!c.compare.empty())
-    write_comparison(c.compare, image, ps.mask, fit::fitted_luminance_image(fit, camera));
-  if (ranking) {
+  if (!ranking) return;
+  {
     auto& list = j[policy.ranking_field] = nlohmann::ordered_json::array();
     text += "ranking          ";
     for (const fit::RankedValue& r : fit.ranking) {
@@ -146,6 +129,38 @@ int run_estimate(const EstimateCommand& c) {
           fmt::format("{}{}", static_cast<int>(r.value), &r == &fit.ranking.back() ? "\n" : " ");
     }
   }
+}
+
+int run_estimate(const EstimateCommand& c) {
+  const SchemaFlags& f = c.flags;
+  const ParameterValues given = f.values();
+  if (given.has("sun-zenith") != given.has("sun-azimuth"))
+    throw InvalidArgument("--sun-zenith and --sun-azimuth go together");
+  const io::ImageF image = io::read_image(c.image);
+  const ImageSchemaOptions photo = estimate::photo_image_options();
+  const Camera camera =
+      f.bind(image_schema(photo), photo.defaults(), "estimate").camera(image.width, image.height);
+  std::optional<io::ImageF> user_mask;
+  if (!c.mask.empty()) user_mask = estimate::load_mask(c.mask);
+  if (!c.compare.empty() && io::format_from_path(c.compare) != io::ImageFormat::png)
+    throw InvalidArgument(fmt::format("--compare '{}' must be a .png file", excerpt(c.compare)));
+
+  std::string sun_source;
+  const std::optional<SunPosition> given_sun = sun_from_options(given, sun_source);
+  const auto ms = f.bind(estimate::MaskSettings::schema(), {}, "estimate");
+  const auto es = f.bind(fit::EstimateSettings::schema(), {}, "estimate");
+  const std::string model = given.has("model") ? std::get<std::string>(*given.find("model"))
+                                               : fit::default_estimated_model();
+  const EstimationPolicy& policy = fit::estimation_policy(model);
+  const estimate::PhotoSamples ps = estimate::sample_photo(
+      image, camera, given_sun, ms, es.samples, es.seed, user_mask ? &*user_mask : nullptr);
+  const fit::LuminanceFit fit = fit::fit_luminance(model, ps.samples, ps.sun, es);
+  const double zenith_deg = rad_to_deg(ps.sun.zenith), azimuth_deg = rad_to_deg(ps.sun.azimuth);
+  nlohmann::ordered_json j;
+  std::string text;
+  describe_fit(model, policy, fit, es, j, text);
+  if (!c.compare.empty())
+    write_comparison(c.compare, image, ps.mask, fit::fitted_luminance_image(fit, camera));
   const char* sun_text = ps.sun_detected ? "image" : sun_source.c_str();
   j["sun_zenith_deg"] = zenith_deg;
   j["sun_azimuth_deg"] = azimuth_deg;

@@ -92,19 +92,23 @@ void validate(const SegmentationSettings& s) {
         s.ground_texture, s.texture_radius));
 }
 
-estimate::SkyMask segment_sky(const io::ImageF& photo, const Camera& camera,
-                              const SegmentationSettings& settings) {
-  validate(settings);
-  skylight::validate(camera);
-  if (photo.width != camera.width || photo.height != camera.height)
-    throw InvalidArgument(fmt::format("the sky photo is {}x{} but its camera {}x{}", photo.width,
-                                      photo.height, camera.width, camera.height));
-  const Grid g{photo.width, photo.height};
+namespace {
+
+// A photo's pixels as segment_sky sees them: which are imaged, their elevation [rad], luminance
+// and its logarithm (floored at 1e-6 of the brightest: black pixels and clipped shadows stay
+// finite), and the texture (the box mean of the Sobel relief of log luminance).
+struct PixelFeatures {
+  std::vector<std::uint8_t> imaged;
+  std::vector<float> elevation, lum, log_lum, texture;
+};
+PixelFeatures pixel_features(const io::ImageF& photo, const Camera& camera, const Grid& g,
+                             int texture_radius) {
   const std::size_t n = static_cast<std::size_t>(g.w) * static_cast<std::size_t>(g.h);
-  // Directions, luminance and its logarithm (floored at 1e-6 of the brightest: black pixels and
-  // clipped shadows stay finite).
-  std::vector<std::uint8_t> imaged(n, 0);
-  std::vector<float> elevation(n, 0.0f), lum(n, 0.0f), log_lum(n, 0.0f);
+  PixelFeatures f{std::vector<std::uint8_t>(n, 0),
+                  std::vector<float>(n, 0.0f),
+                  std::vector<float>(n, 0.0f),
+                  std::vector<float>(n, 0.0f),
+                  {}};
   double brightest = 0.0;
   for (int y = 0; y < g.h; ++y)
     for (int x = 0; x < g.w; ++x) {
@@ -113,24 +117,28 @@ estimate::SkyMask segment_sky(const io::ImageF& photo, const Camera& camera,
       const std::size_t c = g.at(x, y);
       const double l = estimate::pixel_luminance(photo, x, y);
       if (!std::isfinite(l)) continue;
-      imaged[c] = 1;
-      elevation[c] = static_cast<float>(kPi / 2 - std::acos(std::clamp(d->z, -1.0, 1.0)));
-      lum[c] = static_cast<float>(std::max(l, 0.0));
+      f.imaged[c] = 1;
+      f.elevation[c] = static_cast<float>(kPi / 2 - std::acos(std::clamp(d->z, -1.0, 1.0)));
+      f.lum[c] = static_cast<float>(std::max(l, 0.0));
       brightest = std::max(brightest, l);
     }
   const double floor = brightest > 0.0 ? 1e-6 * brightest : 1e-30;
   for (std::size_t c = 0; c < n; ++c)
-    if (imaged[c]) log_lum[c] = static_cast<float>(std::log(std::max<double>(lum[c], floor)));
-  const std::vector<float> relief = sobel(log_lum, imaged, g);
-  const std::vector<float> texture = box_mean(relief, imaged, g, settings.texture_radius);
+    if (f.imaged[c]) f.log_lum[c] = static_cast<float>(std::log(std::max<double>(f.lum[c], floor)));
+  f.texture = box_mean(sobel(f.log_lum, f.imaged, g), f.imaged, g, texture_radius);
+  return f;
+}
 
-  // Markers.
+// The markers: outside the image, ground below the horizon, sky where smooth, high and bright;
+// textured pixels darker than the sky seeds' median are ground.
+std::vector<std::uint8_t> markers(const PixelFeatures& f, const SegmentationSettings& settings) {
+  const std::size_t n = f.imaged.size();
   std::vector<std::uint8_t> label(n, kUnlabelled);
   std::vector<double> smooth_top;
   for (std::size_t c = 0; c < n; ++c)
-    if (imaged[c] && elevation[c] > 0.0f && elevation[c] >= settings.sky_seed_elevation &&
-        texture[c] <= settings.sky_seed_texture)
-      smooth_top.push_back(lum[c]);
+    if (f.imaged[c] && f.elevation[c] > 0.0f && f.elevation[c] >= settings.sky_seed_elevation &&
+        f.texture[c] <= settings.sky_seed_texture)
+      smooth_top.push_back(f.lum[c]);
   if (smooth_top.empty())
     throw InvalidArgument(fmt::format(
         "sky segmentation: no smooth pixel {} deg or more above the horizon to seed the sky",
@@ -139,27 +147,30 @@ estimate::SkyMask segment_sky(const io::ImageF& photo, const Camera& camera,
       settings.sky_seed_brightness * kth_smallest(smooth_top, smooth_top.size() / 2);
   std::vector<double> seed_lum;
   for (std::size_t c = 0; c < n; ++c) {
-    if (!imaged[c]) {
+    if (!f.imaged[c]) {
       label[c] = kOutside;
-    } else if (elevation[c] <= 0.0f) {
+    } else if (f.elevation[c] <= 0.0f) {
       label[c] = kGround;
-    } else if (elevation[c] >= settings.sky_seed_elevation &&
-               texture[c] <= settings.sky_seed_texture && lum[c] >= bright) {
+    } else if (f.elevation[c] >= settings.sky_seed_elevation &&
+               f.texture[c] <= settings.sky_seed_texture && f.lum[c] >= bright) {
       label[c] = kSky;
-      seed_lum.push_back(lum[c]);
+      seed_lum.push_back(f.lum[c]);
     }
   }
   // At least the upper half of smooth_top (bright <= its median) is in seed_lum.
   const double sky_median = median(seed_lum);
   for (std::size_t c = 0; c < n; ++c)
-    if (label[c] == kUnlabelled && texture[c] >= settings.ground_texture && lum[c] < sky_median)
+    if (label[c] == kUnlabelled && f.texture[c] >= settings.ground_texture && f.lum[c] < sky_median)
       label[c] = kGround;
+  return label;
+}
 
-  // Meyer's flooding: the unlabelled neighbours of labelled pixels wait in a priority queue by the
-  // log-luminance step of the edge that reached them (ties first in, first out); the lowest is
-  // labelled from that pixel. On the edges rather than on the Sobel relief of the pixels: the
-  // relief is as high on the sky's side of a skyline as on the terrain's, and the marker next to
-  // the ridge (the textured terrain) would win every tie.
+// Meyer's flooding: the unlabelled neighbours of labelled pixels wait in a priority queue by the
+// log-luminance step of the edge that reached them (ties first in, first out); the lowest is
+// labelled from that pixel. On the edges rather than on the Sobel relief of the pixels: the
+// relief is as high on the sky's side of a skyline as on the terrain's, and the marker next to
+// the ridge (the textured terrain) would win every tie.
+void flood(std::vector<std::uint8_t>& label, const std::vector<float>& log_lum, const Grid& g) {
   struct Item {
     float level;
     std::uint64_t order;
@@ -183,7 +194,7 @@ estimate::SkyMask segment_sky(const io::ImageF& photo, const Camera& camera,
         queue.push({std::abs(log_lum[q] - log_lum[c]), order++, q, label[c]});
     }
   };
-  for (std::size_t c = 0; c < n; ++c)
+  for (std::size_t c = 0; c < label.size(); ++c)
     if (label[c] == kSky || label[c] == kGround) push_neighbours(c);
   while (!queue.empty()) {
     const Item it = queue.top();
@@ -192,13 +203,27 @@ estimate::SkyMask segment_sky(const io::ImageF& photo, const Camera& camera,
     label[it.pixel] = it.label;
     push_neighbours(it.pixel);
   }
+}
 
+}  // namespace
+
+estimate::SkyMask segment_sky(const io::ImageF& photo, const Camera& camera,
+                              const SegmentationSettings& settings) {
+  validate(settings);
+  skylight::validate(camera);
+  if (photo.width != camera.width || photo.height != camera.height)
+    throw InvalidArgument(fmt::format("the sky photo is {}x{} but its camera {}x{}", photo.width,
+                                      photo.height, camera.width, camera.height));
+  const Grid g{photo.width, photo.height};
+  const PixelFeatures f = pixel_features(photo, camera, g, settings.texture_radius);
+  std::vector<std::uint8_t> label = markers(f, settings);
+  flood(label, f.log_lum, g);
   estimate::SkyMask mask;
   mask.width = g.w;
   mask.height = g.h;
-  mask.sky.assign(n, 0);
-  for (std::size_t c = 0; c < n; ++c)
-    if (label[c] == kSky && elevation[c] > 0.0f) {
+  mask.sky.assign(label.size(), 0);
+  for (std::size_t c = 0; c < label.size(); ++c)
+    if (label[c] == kSky && f.elevation[c] > 0.0f) {
       mask.sky[c] = 1;
       ++mask.count;
     }

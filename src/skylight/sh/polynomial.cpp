@@ -71,7 +71,11 @@ void check_range(const char* name, double x, double lo, double hi) {
 
 }  // namespace
 
-PolynomialTable fit_polynomial(const PolynomialFitSettings& s, const GridProjection& project) {
+namespace {
+
+// Checks the settings of a fit (InvalidArgument); returns the grid's points per parameter
+// (theta, tau per piece).
+std::array<int, 2> checked_grid(const PolynomialFitSettings& s) {
   check_bands(s.bands);
   if (s.degree_theta < 0 || s.degree_tau < 0 || s.degree_theta > kMaxDegree ||
       s.degree_tau > kMaxDegree) {
@@ -95,38 +99,38 @@ PolynomialTable fit_polynomial(const PolynomialFitSettings& s, const GridProject
   if (gt < s.degree_theta + 1 || gv < s.degree_tau + 1 || (s.tau_pieces > 1 && gv < 2)) {
     throw InvalidArgument("the fitting grid needs at least degree + 1 points per parameter");
   }
-  PolynomialTable table;
-  table.parameter = s.parameter;
-  table.channels = s.channels;
-  table.bands = s.bands;
-  table.degree_theta = s.degree_theta;
-  table.degree_tau = s.degree_tau;
-  table.theta_min = s.theta_min;
-  table.theta_max = s.theta_max;
-  table.tau_min = theta_only ? 0.0 : s.tau_min;
-  table.tau_max = theta_only ? 0.0 : s.tau_max;
-  table.theta_axis = s.theta_axis;
-  table.tau_pieces = s.tau_pieces;
-  const int terms = table.terms();
-  const int stored = stored_count(s.bands);
-  // The grid: uniform in the theta axis' coordinate; in tau, gv points per piece with the ends
-  // shared by neighbouring pieces (one piece: gv points over the range).
-  const int n_tau = gv == 1 ? 1 : s.tau_pieces * (gv - 1) + 1;
+  return {gt, gv};
+}
+
+// The grid: uniform in the theta axis' coordinate; in tau, gv points per piece with the ends
+// shared by neighbouring pieces (one piece: gv points over the range).
+std::vector<double> theta_grid(const PolynomialFitSettings& s, int gt) {
   const double w0 = axis_coordinate(s.theta_axis, s.theta_min);
   const double w1 = axis_coordinate(s.theta_axis, s.theta_max);
-  std::vector<double> thetas(static_cast<std::size_t>(gt)), taus(static_cast<std::size_t>(n_tau));
+  std::vector<double> thetas(static_cast<std::size_t>(gt));
   for (int it = 0; it < gt; ++it) {
     thetas[static_cast<std::size_t>(it)] =
         gt == 1 ? s.theta_min
                 : std::clamp(axis_theta(s.theta_axis, w0 + (w1 - w0) * it / (gt - 1)), s.theta_min,
                              s.theta_max);
   }
+  return thetas;
+}
+std::vector<double> tau_grid(const PolynomialFitSettings& s, int n_tau) {
+  std::vector<double> taus(static_cast<std::size_t>(n_tau));
   for (int q = 0; q < n_tau; ++q) {
     taus[static_cast<std::size_t>(q)] =
         n_tau == 1 ? s.tau_min : s.tau_min + (s.tau_max - s.tau_min) * q / (n_tau - 1);
   }
-  // Projections at every grid point: [point][(l (l + 1) / 2 + m) * 3 + channel].
-  Eigen::MatrixXd proj_all(gt * n_tau, stored * 3);
+  return taus;
+}
+
+// Projections at every grid point: [point][(l (l + 1) / 2 + m) * 3 + channel].
+Eigen::MatrixXd grid_projections(const PolynomialFitSettings& s, const GridProjection& project,
+                                 const std::vector<double>& thetas,
+                                 const std::vector<double>& taus) {
+  const int gt = static_cast<int>(thetas.size()), n_tau = static_cast<int>(taus.size());
+  Eigen::MatrixXd proj_all(gt * n_tau, stored_count(s.bands) * 3);
   for (int p = 0; p < gt * n_tau; ++p) {
     const double theta = thetas[static_cast<std::size_t>(p / n_tau)];
     const double tau = taus[static_cast<std::size_t>(p % n_tau)];
@@ -142,6 +146,31 @@ PolynomialTable fit_polynomial(const PolynomialFitSettings& s, const GridProject
       }
     }
   }
+  return proj_all;
+}
+
+}  // namespace
+
+PolynomialTable fit_polynomial(const PolynomialFitSettings& s, const GridProjection& project) {
+  const auto [gt, gv] = checked_grid(s);
+  const bool theta_only = s.parameter.empty();
+  PolynomialTable table;
+  table.parameter = s.parameter;
+  table.channels = s.channels;
+  table.bands = s.bands;
+  table.degree_theta = s.degree_theta;
+  table.degree_tau = s.degree_tau;
+  table.theta_min = s.theta_min;
+  table.theta_max = s.theta_max;
+  table.tau_min = theta_only ? 0.0 : s.tau_min;
+  table.tau_max = theta_only ? 0.0 : s.tau_max;
+  table.theta_axis = s.theta_axis;
+  table.tau_pieces = s.tau_pieces;
+  const int terms = table.terms();
+  const int stored = stored_count(s.bands);
+  const int n_tau = gv == 1 ? 1 : s.tau_pieces * (gv - 1) + 1;
+  const std::vector<double> thetas = theta_grid(s, gt), taus = tau_grid(s, n_tau);
+  const Eigen::MatrixXd proj_all = grid_projections(s, project, thetas, taus);
   table.coefficients.resize(static_cast<std::size_t>(s.tau_pieces) *
                             static_cast<std::size_t>(stored) * 3 * static_cast<std::size_t>(terms));
   std::vector<double> ti(static_cast<std::size_t>(s.degree_theta + 1));
