@@ -181,8 +181,9 @@ void ReportWriter::mosaic(const std::string& title, const std::string& what,
                           const std::string& row_header, const std::vector<ModelSpec>& rows,
                           const std::vector<std::string>& row_labels,
                           const std::vector<ModelSpec>& relative_rows) {
-  SKYLIGHT_CHECK(!rows.empty() && (relative_rows.empty() || relative_rows.size() == rows.size()),
-                 "rows, and one relative spec per row");
+  SKYLIGHT_CHECK(!rows.empty() && row_labels.size() == rows.size() &&
+                     (relative_rows.empty() || relative_rows.size() == rows.size()),
+                 "rows, one label and (relative maps) one relative spec per row");
   const std::string& key = rows.front().name;  // the files' and plots' names
   RenderSettings rs;
   rs.projection = Projection::fisheye;
@@ -233,20 +234,26 @@ void ReportWriter::mosaic(const std::string& title, const std::string& what,
       }
     }
   }
-  std::vector<std::string> col_labels;
-  for (double d : cfg_.map_sun_zeniths_deg) col_labels.push_back(fmt::format("{:g}", d));
   const std::string rel_png = "relative_" + key + ".png", abs_png = "absolute_" + key + ".png";
   write_png_file(rel_png, rel);
   write_png_file(abs_png, abs);
+  mosaic_figures(title, what, row_header, key, row_labels);
+}
+
+void ReportWriter::mosaic_figures(const std::string& title, const std::string& what,
+                                  const std::string& row_header, const std::string& key,
+                                  const std::vector<std::string>& row_labels) {
+  std::vector<std::string> col_labels;
+  for (double d : cfg_.map_sun_zeniths_deg) col_labels.push_back(fmt::format("{:g}", d));
   for (int which = 0; which < 2; ++which) {
     svg::Mosaic m;
     m.id = (which == 0 ? "rel-" : "abs-") + key;
     m.title = title + (which == 0 ? ": relative luminance" : ": absolute luminance");
-    m.image = which == 0 ? rel_png : abs_png;
-    m.rows = nrows;
-    m.columns = cols;
-    m.tile_px = tile;
-    m.gap_px = gap;
+    m.image = (which == 0 ? "relative_" : "absolute_") + key + ".png";
+    m.rows = static_cast<int>(row_labels.size());
+    m.columns = static_cast<int>(col_labels.size());
+    m.tile_px = cfg_.tile_px;
+    m.gap_px = cfg_.tile_gap;
     m.scale = cfg_.tile_px < 48 ? 2.0 : 0.75;
     m.row_header = row_header;
     m.column_header = "sun zenith angle theta_s [deg]";

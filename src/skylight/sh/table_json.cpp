@@ -70,6 +70,39 @@ std::string table_to_json(const PolynomialTable& t) {
   return j.dump(1);
 }
 
+namespace {
+
+// The optional "fixed" object: the values the table's model was held at.
+ParameterValues read_fixed(const nlohmann::json& j, const std::string& where) {
+  ParameterValues fixed_values;
+  if (j.contains("fixed")) {
+    const auto& fixed = j.at("fixed");
+    if (!fixed.is_object()) bad(where, "fixed", "is not an object");
+    for (const auto& [name, v] : fixed.items()) {
+      if (v.is_number() && std::isfinite(v.get<double>())) {
+        fixed_values.set(name, v.get<double>());
+      } else if (v.is_boolean()) {
+        fixed_values.set(name, v.get<bool>());
+      } else if (v.is_string()) {
+        fixed_values.set(name, ParameterValue(v.get<std::string>()));
+      } else if (v.is_array()) {
+        std::vector<double> list;
+        for (const auto& x : v) {
+          if (!x.is_number() || !std::isfinite(x.get<double>()))
+            bad(where, "fixed", "entry " + excerpt(name) + " holds a value that is not a number");
+          list.push_back(x.get<double>());
+        }
+        fixed_values.set(name, ParameterValue(list));
+      } else {
+        bad(where, "fixed", "entry " + excerpt(name) + " is not a number, flag, text or list");
+      }
+    }
+  }
+  return fixed_values;
+}
+
+}  // namespace
+
 PolynomialTable table_from_json(const std::string& s, const std::string& where) {
   const nlohmann::json j = skylight::detail::json::parse_object(s, where);
   if (text(j, where, "format") != kFormat)
@@ -79,29 +112,7 @@ PolynomialTable table_from_json(const std::string& s, const std::string& where) 
   PolynomialTable t;
   t.model = text(j, where, "model");
   t.parameter = text(j, where, "parameter");
-  if (j.contains("fixed")) {
-    const auto& fixed = j.at("fixed");
-    if (!fixed.is_object()) bad(where, "fixed", "is not an object");
-    for (const auto& [name, v] : fixed.items()) {
-      if (v.is_number() && std::isfinite(v.get<double>())) {
-        t.fixed.set(name, v.get<double>());
-      } else if (v.is_boolean()) {
-        t.fixed.set(name, v.get<bool>());
-      } else if (v.is_string()) {
-        t.fixed.set(name, ParameterValue(v.get<std::string>()));
-      } else if (v.is_array()) {
-        std::vector<double> list;
-        for (const auto& x : v) {
-          if (!x.is_number() || !std::isfinite(x.get<double>()))
-            bad(where, "fixed", "entry " + excerpt(name) + " holds a value that is not a number");
-          list.push_back(x.get<double>());
-        }
-        t.fixed.set(name, ParameterValue(list));
-      } else {
-        bad(where, "fixed", "entry " + excerpt(name) + " is not a number, flag, text or list");
-      }
-    }
-  }
+  t.fixed = read_fixed(j, where);
   const std::string ch = text(j, where, "channels");
   if (ch == "xyz") {
     t.channels = Channels::xyz;

@@ -182,6 +182,10 @@ class ReportWriter {
   void mosaic(const std::string& title, const std::string& what, const std::string& row_header,
               const std::vector<ModelSpec>& rows, const std::vector<std::string>& row_labels,
               const std::vector<ModelSpec>& relative_rows = {});
+  // The relative and absolute SVG mosaics of the PNGs mosaic() wrote.
+  void mosaic_figures(const std::string& title, const std::string& what,
+                      const std::string& row_header, const std::string& key,
+                      const std::vector<std::string>& row_labels);
 
   static constexpr int kSteps = 17;
   const ReportOptions& opt_;
