@@ -4,10 +4,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <numeric>
 
 #include "skylight/core/error.h"
+#include "skylight/core/golden_section.h"
 #include "skylight/core/numbers.h"
 #include "skylight/core/parallel.h"
 #include "skylight/models/cie_sky.h"
@@ -233,27 +235,10 @@ TurbidityFit best_preetham_turbidity_for_cie(int cie_type, double t_min, double 
   const auto best = static_cast<std::size_t>(
       std::min_element(fit.curve_rms.begin(), fit.curve_rms.end()) - fit.curve_rms.begin());
   // Golden-section search in the grid cells on either side of the best grid point.
-  double a = fit.curve_t[best > 0 ? best - 1 : 0];
-  double b = fit.curve_t[std::min(best + 1, fit.curve_t.size() - 1)];
-  const double g = (std::sqrt(5.0) - 1.0) / 2.0;
-  double c = b - g * (b - a), d = a + g * (b - a);
-  double fc = rms(c), fd = rms(d);
-  while (b - a > kTurbidityTolerance) {
-    if (fc < fd) {
-      b = d;
-      d = c;
-      fd = fc;
-      c = b - g * (b - a);
-      fc = rms(c);
-    } else {
-      a = c;
-      c = d;
-      fc = fd;
-      d = a + g * (b - a);
-      fd = rms(d);
-    }
-  }
-  fit.turbidity = 0.5 * (a + b);
+  const auto gs = golden_section(rms, fit.curve_t[best > 0 ? best - 1 : 0],
+                                 fit.curve_t[std::min(best + 1, fit.curve_t.size() - 1)],
+                                 kTurbidityTolerance, std::less<>());
+  fit.turbidity = 0.5 * (gs.a + gs.b);
   fit.rms = rms(fit.turbidity);
   if (fit.curve_rms[best] < fit.rms) {  // the search can only refine the grid's best point
     fit.turbidity = fit.curve_t[best];

@@ -192,50 +192,88 @@ ParameterSchema<ImageOptions> image_schema(const ImageSchemaOptions& o) {
   }
   s.choice(
       &P::projection,
-      {o.projection_flag, "", ParameterKind::text, 0, 0, 1,
-       ParameterValue(std::string(to_string(o.default_projection))),
-       (o.description.empty() ? std::string("the image's layout") : o.description) + ": " + list},
+      {.name = o.projection_flag,
+       .unit = "",
+       .kind = ParameterKind::text,
+       .min = 0,
+       .max = 0,
+       .default_value = ParameterValue(std::string(to_string(o.default_projection))),
+       .description = (o.description.empty() ? std::string("the image's layout") : o.description) +
+                      ": " + list},
       names);
   if (o.size) {
     s.optional_integer(
-        &P::width,
-        {"width", "px", ParameterKind::integer, 1, static_cast<double>(kMaxImageSide), 1,
-         ParameterValue(static_cast<double>(o.width)),
-         takes(Projection::cubemap) ? "image width (cubemap: must be 6 x height, which is its "
-                                      "default)"
-                                    : "image width"});
-    s.integer(&P::height,
-              {"height", "px", ParameterKind::integer, 1, static_cast<double>(kMaxImageSide), 1,
-               ParameterValue(static_cast<double>(o.height)), "image height"});
+        &P::width, {.name = "width",
+                    .unit = "px",
+                    .kind = ParameterKind::integer,
+                    .min = 1,
+                    .max = static_cast<double>(kMaxImageSide),
+                    .default_value = ParameterValue(static_cast<double>(o.width)),
+                    .description = takes(Projection::cubemap)
+                                       ? "image width (cubemap: must be 6 x height, which is its "
+                                         "default)"
+                                       : "image width"});
+    s.integer(&P::height, {.name = "height",
+                           .unit = "px",
+                           .kind = ParameterKind::integer,
+                           .min = 1,
+                           .max = static_cast<double>(kMaxImageSide),
+                           .default_value = ParameterValue(static_cast<double>(o.height)),
+                           .description = "image height"});
   }
   const bool pinhole = takes(Projection::camera);
   if (takes(Projection::fisheye)) {
     s.choice(&P::lens,
-             {"lens", "", ParameterKind::text, 0, 0, 1, ParameterValue(std::string("equidistant")),
-              "fisheye lens"},
+             {.name = "lens",
+              .unit = "",
+              .kind = ParameterKind::text,
+              .min = 0,
+              .max = 0,
+              .default_value = ParameterValue(std::string("equidistant")),
+              .description = "fisheye lens"},
              {{"equidistant", FisheyeLens::equidistant},
               {"equisolid", FisheyeLens::equisolid},
               {"orthographic", FisheyeLens::orthographic},
               {"stereographic", FisheyeLens::stereographic}});
     s.optional_number(
         &P::fov_deg,
-        {"fov", "deg", ParameterKind::number, 1e-6, 360.0, 1,
-         Absent{pinhole ? fmt::format("{} (fisheye), {} (camera)", kFisheyeFovDeg, kPinholeFovDeg)
-                        : fmt::format("{}", kFisheyeFovDeg)},
-         pinhole ? "fisheye: field of view across the image circle: (0, 360], orthographic (0, "
-                   "180], stereographic (0, 360); camera: vertical field of view, (0, 180)"
-                 : "fisheye: field of view across the image circle"});
+        {.name = "fov",
+         .unit = "deg",
+         .kind = ParameterKind::number,
+         .min = 1e-6,
+         .max = 360.0,
+         .default_value = Absent{pinhole ? fmt::format("{} (fisheye), {} (camera)", kFisheyeFovDeg,
+                                                       kPinholeFovDeg)
+                                         : fmt::format("{}", kFisheyeFovDeg)},
+         .description =
+             pinhole ? "fisheye: field of view across the image circle: (0, 360], orthographic (0, "
+                       "180], stereographic (0, 360); camera: vertical field of view, (0, 180)"
+                     : "fisheye: field of view across the image circle"});
     s.number(&P::north_angle_deg,
-             {"north-angle", "deg", ParameterKind::number, -360.0, 360.0, 1, ParameterValue(0.0),
-              "fisheye: north drawn this many deg counter-clockwise from image up"});
+             {.name = "north-angle",
+              .unit = "deg",
+              .kind = ParameterKind::number,
+              .min = -360.0,
+              .max = 360.0,
+              .default_value = ParameterValue(0.0),
+              .description = "fisheye: north drawn this many deg counter-clockwise from image up"});
   }
   if (pinhole) {
-    s.number(&P::look_elevation_deg,
-             {"look-elevation", "deg", ParameterKind::number, -90.0, 90.0, 1, ParameterValue(0.0),
-              "camera: elevation of the view centre"});
+    s.number(&P::look_elevation_deg, {.name = "look-elevation",
+                                      .unit = "deg",
+                                      .kind = ParameterKind::number,
+                                      .min = -90.0,
+                                      .max = 90.0,
+                                      .default_value = ParameterValue(0.0),
+                                      .description = "camera: elevation of the view centre"});
     s.number(&P::look_azimuth_deg,
-             {"look-azimuth", "deg", ParameterKind::number, -360.0, 360.0, 1, ParameterValue(0.0),
-              "camera: azimuth of the view centre from north towards east"});
+             {.name = "look-azimuth",
+              .unit = "deg",
+              .kind = ParameterKind::number,
+              .min = -360.0,
+              .max = 360.0,
+              .default_value = ParameterValue(0.0),
+              .description = "camera: azimuth of the view centre from north towards east"});
   }
   return s;
 }

@@ -25,20 +25,58 @@ struct Example {
   static const ParameterSchema<Example>& schema() {
     static const auto s = [] {
       ParameterSchema<Example> s;
-      s.number(&Example::height_m, {"height", "m", ParameterKind::number, 0.0, 10.0, 1,
-                                    ParameterValue(2.0), "a height"});
-      s.number(
-          &Example::angle,
-          {"angle", "deg", ParameterKind::number, -90.0, 90.0, 1, ParameterValue(0.0), "an angle"},
-          kDegree);
-      s.optional_number(&Example::optional_scale, {"scale", "1", ParameterKind::number, 0.5, 2.0, 1,
-                                                   Absent{"no scaling"}, "a factor"});
-      s.integer(&Example::count,
-                {"count", "1", ParameterKind::integer, 1, 9, 1, ParameterValue(3.0), "a count"});
-      s.optional_numbers(&Example::pair, {"pair", "1", ParameterKind::numbers, -1.0, 1.0, 2,
-                                          Required{}, "two values"});
-      s.text(&Example::path, {"path", "", ParameterKind::text, 0, 0, 1, Absent{"none"}, "a file"});
-      s.flag(&Example::fast, {"fast", "", ParameterKind::flag, 0, 0, 1, {}, "go fast"});
+      s.number(&Example::height_m, {.name = "height",
+                                    .unit = "m",
+                                    .kind = ParameterKind::number,
+                                    .min = 0.0,
+                                    .max = 10.0,
+                                    .default_value = ParameterValue(2.0),
+                                    .description = "a height"});
+      s.number(&Example::angle,
+               {.name = "angle",
+                .unit = "deg",
+                .kind = ParameterKind::number,
+                .min = -90.0,
+                .max = 90.0,
+                .default_value = ParameterValue(0.0),
+                .description = "an angle"},
+               kDegree);
+      s.optional_number(&Example::optional_scale, {.name = "scale",
+                                                   .unit = "1",
+                                                   .kind = ParameterKind::number,
+                                                   .min = 0.5,
+                                                   .max = 2.0,
+                                                   .default_value = Absent{"no scaling"},
+                                                   .description = "a factor"});
+      s.integer(&Example::count, {.name = "count",
+                                  .unit = "1",
+                                  .kind = ParameterKind::integer,
+                                  .min = 1,
+                                  .max = 9,
+                                  .default_value = ParameterValue(3.0),
+                                  .description = "a count"});
+      s.optional_numbers(&Example::pair, {.name = "pair",
+                                          .unit = "1",
+                                          .kind = ParameterKind::numbers,
+                                          .min = -1.0,
+                                          .max = 1.0,
+                                          .count = 2,
+                                          .default_value = Required{},
+                                          .description = "two values"});
+      s.text(&Example::path, {.name = "path",
+                              .unit = "",
+                              .kind = ParameterKind::text,
+                              .min = 0,
+                              .max = 0,
+                              .default_value = Absent{"none"},
+                              .description = "a file"});
+      s.flag(&Example::fast, {.name = "fast",
+                              .unit = "",
+                              .kind = ParameterKind::flag,
+                              .min = 0,
+                              .max = 0,
+                              .default_value = {},
+                              .description = "go fast"});
       return s;
     }();
     return s;

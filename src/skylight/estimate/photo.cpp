@@ -28,15 +28,34 @@ const ParameterSchema<MaskSettings>& MaskSettings::schema() {
   static const ParameterSchema<MaskSettings> s = [] {
     ParameterSchema<MaskSettings> s;
     s.number(&MaskSettings::min_elevation,
-             {"min-elevation", "deg", ParameterKind::number, 0.0, 89.0, 1, ParameterValue(0.0),
-              "mask: sky pixels above this elevation only"},
+             {.name = "min-elevation",
+              .unit = "deg",
+              .kind = ParameterKind::number,
+              .min = 0.0,
+              .max = 89.0,
+              .default_value = ParameterValue(0.0),
+              .description = "mask: sky pixels above this elevation only"},
              kDegree)
-        .number(&MaskSettings::sun_exclusion,
-                {"sun-exclusion", "deg", ParameterKind::number, 0.0, 90.0, 1, ParameterValue(5.0),
+        .number(
+            &MaskSettings::sun_exclusion,
+            {.name = "sun-exclusion",
+             .unit = "deg",
+             .kind = ParameterKind::number,
+             .min = 0.0,
+             .max = 90.0,
+             .default_value = ParameterValue(5.0),
+             .description =
                  "mask: pixels within this angle of the sun are not sky (disc, aureole, flare)"},
-                kDegree)
-        .number(&MaskSettings::saturation_fraction,
-                {"saturation", "1", ParameterKind::number, 1e-6, 1.0, 1, ParameterValue(0.999),
+            kDegree)
+        .number(
+            &MaskSettings::saturation_fraction,
+            {.name = "saturation",
+             .unit = "1",
+             .kind = ParameterKind::number,
+             .min = 1e-6,
+             .max = 1.0,
+             .default_value = ParameterValue(0.999),
+             .description =
                  "mask: pixels with a channel >= this fraction of the image's largest value are "
                  "not sky (a clipped sun)"});
     return s;

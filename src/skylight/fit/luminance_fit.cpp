@@ -9,6 +9,7 @@
 #include <numeric>
 
 #include "skylight/core/error.h"
+#include "skylight/core/golden_section.h"
 #include "skylight/core/least_squares.h"
 #include "skylight/core/numbers.h"
 #include "skylight/core/random.h"
@@ -213,27 +214,10 @@ Bracket scan(const Problem& pr, std::span<const std::size_t> idx, std::vector<do
 
 Point golden(const Problem& pr, std::span<const std::size_t> idx, const Bracket& b,
              std::vector<double>& work) {
-  const double g = 0.5 * (std::sqrt(5.0) - 1.0);
   const auto at = [&](double v) { return pr.profile(std::span<const double>(&v, 1), idx, work); };
-  double a = b.lo, d = b.hi;
-  double x1 = d - g * (d - a), x2 = a + g * (d - a);
-  Point f1 = at(x1), f2 = at(x2);
-  while (d - a > kGoldenTolerance) {
-    if (f1.cost <= f2.cost) {
-      d = x2;
-      x2 = x1;
-      f2 = f1;
-      x1 = d - g * (d - a);
-      f1 = at(x1);
-    } else {
-      a = x1;
-      x1 = x2;
-      f1 = f2;
-      x2 = a + g * (d - a);
-      f2 = at(x2);
-    }
-  }
-  Point best = f1.cost <= f2.cost ? f1 : f2;
+  auto gs = golden_section(at, b.lo, b.hi, kGoldenTolerance,
+                           [](const Point& u, const Point& v) { return u.cost <= v.cost; });
+  Point best = gs.f1.cost <= gs.f2.cost ? std::move(gs.f1) : std::move(gs.f2);
   if (b.best.cost < best.cost) best = b.best;
   return best;
 }
@@ -468,25 +452,53 @@ const ParameterSchema<EstimateSettings>& EstimateSettings::schema() {
     using S = EstimateSettings;
     const S d;
     ParameterSchema<S> s;
-    s.integer(&S::samples, {"samples", "1", ParameterKind::integer, 2, 1000000, 1,
-                            ParameterValue(static_cast<double>(d.samples)),
-                            "random sky pixels per estimate (N of Morales 2017 eq. 8)"})
-        .integer(&S::seed, {"seed", "1", ParameterKind::integer, 0, 2147483647, 1,
-                            ParameterValue(static_cast<double>(d.seed)),
-                            "seed of the sampling, RANSAC and bootstrap"})
+    s.integer(&S::samples,
+              {.name = "samples",
+               .unit = "1",
+               .kind = ParameterKind::integer,
+               .min = 2,
+               .max = 1000000,
+               .default_value = ParameterValue(static_cast<double>(d.samples)),
+               .description = "random sky pixels per estimate (N of Morales 2017 eq. 8)"})
+        .integer(&S::seed, {.name = "seed",
+                            .unit = "1",
+                            .kind = ParameterKind::integer,
+                            .min = 0,
+                            .max = 2147483647,
+                            .default_value = ParameterValue(static_cast<double>(d.seed)),
+                            .description = "seed of the sampling, RANSAC and bootstrap"})
         .integer(&S::ransac_iterations,
-                 {"ransac-iterations", "1", ParameterKind::integer, 1, 100000, 1,
-                  ParameterValue(static_cast<double>(d.ransac_iterations)),
-                  "random minimal sets RANSAC tries"})
-        .number(&S::inlier_threshold, {"inlier-threshold", "1", ParameterKind::number, 1e-6, 10.0,
-                                       1, ParameterValue(d.inlier_threshold),
-                                       "RANSAC: |ln Y - ln model| below this is clear sky"})
-        .integer(&S::bootstrap, {"bootstrap", "1", ParameterKind::integer, 0, 10000, 1,
-                                 ParameterValue(static_cast<double>(d.bootstrap)),
-                                 "bootstrap resamples of the inliers for the sigmas (0: none)"})
+                 {.name = "ransac-iterations",
+                  .unit = "1",
+                  .kind = ParameterKind::integer,
+                  .min = 1,
+                  .max = 100000,
+                  .default_value = ParameterValue(static_cast<double>(d.ransac_iterations)),
+                  .description = "random minimal sets RANSAC tries"})
+        .number(&S::inlier_threshold,
+                {.name = "inlier-threshold",
+                 .unit = "1",
+                 .kind = ParameterKind::number,
+                 .min = 1e-6,
+                 .max = 10.0,
+                 .default_value = ParameterValue(d.inlier_threshold),
+                 .description = "RANSAC: |ln Y - ln model| below this is clear sky"})
+        .integer(&S::bootstrap,
+                 {.name = "bootstrap",
+                  .unit = "1",
+                  .kind = ParameterKind::integer,
+                  .min = 0,
+                  .max = 10000,
+                  .default_value = ParameterValue(static_cast<double>(d.bootstrap)),
+                  .description = "bootstrap resamples of the inliers for the sigmas (0: none)"})
         .custom(
-            {"no-ransac", "", ParameterKind::flag, 0, 0, 1, ParameterValue(false),
-             "fit all samples (no outlier rejection)"},
+            {.name = "no-ransac",
+             .unit = "",
+             .kind = ParameterKind::flag,
+             .min = 0,
+             .max = 0,
+             .default_value = ParameterValue(false),
+             .description = "fit all samples (no outlier rejection)"},
             [](S& p, const ParameterValue& v) { p.ransac = !std::get<bool>(v); },
             [](const S& p) -> std::optional<ParameterValue> { return !p.ransac; });
     return s;
@@ -499,14 +511,13 @@ ParameterSpec estimation_model_spec() {
   for (const std::string& m : estimated_models())
     models +=
         fmt::format("{}{} ({})", models.empty() ? "" : ", ", m, estimation_policy(m).description);
-  ParameterSpec s{"model",
-                  "",
-                  ParameterKind::text,
-                  0,
-                  0,
-                  1,
-                  ParameterValue(default_estimated_model()),
-                  "the model fitted: " + models};
+  ParameterSpec s{.name = "model",
+                  .unit = "",
+                  .kind = ParameterKind::text,
+                  .min = 0,
+                  .max = 0,
+                  .default_value = ParameterValue(default_estimated_model()),
+                  .description = "the model fitted: " + models};
   s.choices = estimated_models();
   return s;
 }

@@ -30,7 +30,13 @@ constexpr const char* kPlanetParameters[] = {
     "mie-g",         "ozone",      "solar-irradiance"};
 
 ParameterSpec count_spec(const char* name, const char* help) {
-  return {name, "1", ParameterKind::integer, 0, 1000, 1, ParameterValue(0.0), help};
+  return {.name = name,
+          .unit = "1",
+          .kind = ParameterKind::integer,
+          .min = 0,
+          .max = 1000,
+          .default_value = ParameterValue(0.0),
+          .description = help};
 }
 
 std::vector<std::pair<std::string, nn::Trainer>> trainer_names() {
@@ -43,26 +49,44 @@ std::vector<std::pair<std::string, nn::Trainer>> trainer_names() {
 
 void add_training_specs(ParameterSchema<Request>& s) {
   const Request d;
-  s.text(&Request::source, {"source", "", ParameterKind::text, 0, 0, 1,
-                            ParameterValue(std::string(PreethamModel::kName)),
-                            "sky model to learn (any of `skylight models`)"})
-      .integer(&Request::seed, {"seed", "1", ParameterKind::integer, 0, 2147483647, 1,
-                                ParameterValue(static_cast<double>(d.seed)),
-                                "seed of the initial weights (training is deterministic for a "
-                                "seed)"})
-      .integer(&Request::hidden,
-               {"hidden", "1", ParameterKind::integer, 1, 256, 1,
-                ParameterValue(static_cast<double>(d.hidden)), "neurons of the hidden layer"})
+  s.text(&Request::source, {.name = "source",
+                            .unit = "",
+                            .kind = ParameterKind::text,
+                            .min = 0,
+                            .max = 0,
+                            .default_value = ParameterValue(std::string(PreethamModel::kName)),
+                            .description = "sky model to learn (any of `skylight models`)"})
+      .integer(&Request::seed,
+               {.name = "seed",
+                .unit = "1",
+                .kind = ParameterKind::integer,
+                .min = 0,
+                .max = 2147483647,
+                .default_value = ParameterValue(static_cast<double>(d.seed)),
+                .description = "seed of the initial weights (training is deterministic for a "
+                               "seed)"})
+      .integer(&Request::hidden, {.name = "hidden",
+                                  .unit = "1",
+                                  .kind = ParameterKind::integer,
+                                  .min = 1,
+                                  .max = 256,
+                                  .default_value = ParameterValue(static_cast<double>(d.hidden)),
+                                  .description = "neurons of the hidden layer"})
       .custom(
-          {"trainer", "", ParameterKind::text, 0, 0, 1,
-           Absent{fmt::format("{}, with --network {}", nn::to_string(kSkyTrainer),
-                              nn::to_string(kPietrasTrainer))},
-           "lm (Levenberg-Marquardt), backprop (the paper's), adam, lbfgs",
-           [] {
-             std::vector<std::string> c;
-             for (const auto& [n, t] : trainer_names()) c.push_back(n);
-             return c;
-           }()},
+          {.name = "trainer",
+           .unit = "",
+           .kind = ParameterKind::text,
+           .min = 0,
+           .max = 0,
+           .default_value = Absent{fmt::format("{}, with --network {}", nn::to_string(kSkyTrainer),
+                                               nn::to_string(kPietrasTrainer))},
+           .description = "lm (Levenberg-Marquardt), backprop (the paper's), adam, lbfgs",
+           .choices =
+               [] {
+                 std::vector<std::string> c;
+                 for (const auto& [n, t] : trainer_names()) c.push_back(n);
+                 return c;
+               }()},
           [](Request& r, const ParameterValue& v) {
             r.trainer = nn::parse_trainer(std::get<std::string>(v));
           },
@@ -71,37 +95,64 @@ void add_training_specs(ParameterSchema<Request>& s) {
             return std::string(nn::to_string(*r.trainer));
           })
       .custom(
-          {"inputs", "", ParameterKind::text, 0, 0, 1,
-           ParameterValue(nn::to_string(nn::satilmis_inputs())),
-           "the network's inputs, comma-separated (the paper's V_NN by default; also "
-           "log_chord, sqrt_view_z, aureole, cos_sun_zenith, sun_elevation_cbrt, turbidity)"},
+          {.name = "inputs",
+           .unit = "",
+           .kind = ParameterKind::text,
+           .min = 0,
+           .max = 0,
+           .default_value = ParameterValue(nn::to_string(nn::satilmis_inputs())),
+           .description =
+               "the network's inputs, comma-separated (the paper's V_NN by default; also "
+               "log_chord, sqrt_view_z, aureole, cos_sun_zenith, sun_elevation_cbrt, turbidity)"},
           [](Request& r, const ParameterValue& v) {
             r.inputs = nn::parse_inputs(std::get<std::string>(v));
           },
           [](const Request& r) -> std::optional<ParameterValue> { return nn::to_string(r.inputs); })
       .choice(
           &Request::encoding,
-          {"encoding", "", ParameterKind::text, 0, 0, 1, ParameterValue(std::string("satilmis")),
-           "output encoding: satilmis (the paper's L_s, eq. 7), log, root4, root8 (the last "
-           "three with an identity output layer)"},
+          {.name = "encoding",
+           .unit = "",
+           .kind = ParameterKind::text,
+           .min = 0,
+           .max = 0,
+           .default_value = ParameterValue(std::string("satilmis")),
+           .description =
+               "output encoding: satilmis (the paper's L_s, eq. 7), log, root4, root8 (the last "
+               "three with an identity output layer)"},
           {{"satilmis", nn::OutputEncoding::satilmis},
            {"log", nn::OutputEncoding::log},
            {"root4", nn::OutputEncoding::root4},
            {"root8", nn::OutputEncoding::root8}})
-      .optional_number(&Request::time_limit_s,
-                       {"time-limit", "s", ParameterKind::number, 0.01, 1e6, 1,
-                        Absent{fmt::format("{} s, with --network {} s per sub-network",
-                                           kSkyTimeLimitS, kPietrasTimeLimitS)},
-                        "stop training after this wall time"})
-      .optional_integer(&Request::iterations,
-                        {"iterations", "1", ParameterKind::integer, 1, 100000000, 1,
-                         Absent{fmt::format("{}, with --network {} per sub-network", kSkyIterations,
-                                            kPietrasIterations)},
-                         "at most this many iterations (LM, L-BFGS) or epochs (backprop, adam)"})
-      .optional_number(&Request::target_scale,
-                       {"target-scale", "1", ParameterKind::number, 1e-30, 1e30, 1,
-                        Absent{"the source's (its registry entry; e.g. hosek 683, preetham 1000)"},
-                        "the network learns the source's rgb() / target-scale"})
+      .optional_number(
+          &Request::time_limit_s,
+          {.name = "time-limit",
+           .unit = "s",
+           .kind = ParameterKind::number,
+           .min = 0.01,
+           .max = 1e6,
+           .default_value = Absent{fmt::format("{} s, with --network {} s per sub-network",
+                                               kSkyTimeLimitS, kPietrasTimeLimitS)},
+           .description = "stop training after this wall time"})
+      .optional_integer(
+          &Request::iterations,
+          {.name = "iterations",
+           .unit = "1",
+           .kind = ParameterKind::integer,
+           .min = 1,
+           .max = 100000000,
+           .default_value = Absent{fmt::format("{}, with --network {} per sub-network",
+                                               kSkyIterations, kPietrasIterations)},
+           .description = "at most this many iterations (LM, L-BFGS) or epochs (backprop, adam)"})
+      .optional_number(
+          &Request::target_scale,
+          {.name = "target-scale",
+           .unit = "1",
+           .kind = ParameterKind::number,
+           .min = 1e-30,
+           .max = 1e30,
+           .default_value =
+               Absent{"the source's (its registry entry; e.g. hosek 683, preetham 1000)"},
+           .description = "the network learns the source's rgb() / target-scale"})
       .integer(&Request::suns, count_spec("suns",
                                           "sun zenith angles per turbidity (0: the protocol's 20 "
                                           "for training, 7 for validation)"))
@@ -113,16 +164,16 @@ void add_training_specs(ParameterSchema<Request>& s) {
 
 void add_pietras_specs(ParameterSchema<Request>& s) {
   s.custom(
-       {"network",
-        "",
-        ParameterKind::text,
-        0,
-        0,
-        1,
-        Absent{"a sky network (Satilmis)"},
-        "pietras (Pietras's 4 x 4-8-4-1 per-vertex network) or log3 (3 x 4-16-16-1, log "
-        "luminance and chromaticity): learn --source nishita (docs/PIETRAS.md)",
-        {"pietras", "log3"}},
+       {.name = "network",
+        .unit = "",
+        .kind = ParameterKind::text,
+        .min = 0,
+        .max = 0,
+        .default_value = Absent{"a sky network (Satilmis)"},
+        .description =
+            "pietras (Pietras's 4 x 4-8-4-1 per-vertex network) or log3 (3 x 4-16-16-1, log "
+            "luminance and chromaticity): learn --source nishita (docs/PIETRAS.md)",
+        .choices = {"pietras", "log3"}},
        [](Request& r, const ParameterValue& v) {
          r.network = nn::parse_pietras_kind(std::get<std::string>(v));
        },
@@ -130,16 +181,28 @@ void add_pietras_specs(ParameterSchema<Request>& s) {
          if (!r.network) return std::nullopt;
          return std::string(nn::to_string(*r.network));
        })
-      .text(&Request::init,
-            {"init", "", ParameterKind::text, 0, 0, 1, Absent{"random initial weights"},
-             "--network: continue training from this weights file (its network kind, planet and "
-             "max value; iterations and seconds add up in the provenance)"})
-      .optional_integer(&Request::samples,
-                        {"samples", "1", ParameterKind::integer, 16, 100000000, 1,
-                         Absent{fmt::format("{} with --network, {} per image with --images",
-                                            kPietrasSamples, kImageSamples)},
-                         "--network: random samples of nishita to train on; --images: sky pixels "
-                         "sampled per image (all when the mask has fewer)"});
+      .text(
+          &Request::init,
+          {.name = "init",
+           .unit = "",
+           .kind = ParameterKind::text,
+           .min = 0,
+           .max = 0,
+           .default_value = Absent{"random initial weights"},
+           .description =
+               "--network: continue training from this weights file (its network kind, planet and "
+               "max value; iterations and seconds add up in the provenance)"})
+      .optional_integer(
+          &Request::samples,
+          {.name = "samples",
+           .unit = "1",
+           .kind = ParameterKind::integer,
+           .min = 16,
+           .max = 100000000,
+           .default_value = Absent{fmt::format("{} with --network, {} per image with --images",
+                                               kPietrasSamples, kImageSamples)},
+           .description = "--network: random samples of nishita to train on; --images: sky pixels "
+                          "sampled per image (all when the mask has fewer)"});
   for (const char* name : kPlanetParameters) {
     ParameterSpec spec = *NishitaParameters::schema().find(name);
     spec.description = "--network: nishita's " + spec.description + " (recorded in the file)";
@@ -282,19 +345,37 @@ const ParameterSchema<ImageTrainingOptions>& ImageTrainingOptions::schema() {
     ParameterSpec lat = sun::spa_parameter_spec("lat"), lon = sun::spa_parameter_spec("lon");
     lat.default_value = Absent{"needed by rows with a time"};
     lon.default_value = Absent{"needed by rows with a time"};
-    s.text(&O::list, {"images", "", ParameterKind::text, 0, 0, 1, Absent{"--source"},
-                      "train on HDR sky images instead of --source: a CSV list with a header of "
-                      "file[,sun_zenith_deg,sun_azimuth_deg][,time][,mask] (docs/NN.md)"})
+    s.text(
+         &O::list,
+         {.name = "images",
+          .unit = "",
+          .kind = ParameterKind::text,
+          .min = 0,
+          .max = 0,
+          .default_value = Absent{"--source"},
+          .description = "train on HDR sky images instead of --source: a CSV list with a header of "
+                         "file[,sun_zenith_deg,sun_azimuth_deg][,time][,mask] (docs/NN.md)"})
         .nested(&O::image, image_schema(sequence_images()))
-        .text(&O::mask, {"mask", "", ParameterKind::text, 0, 0, 1, Absent{"the automatic rules"},
-                         "sky mask for every image without its own (.png, .pfm, .exr, .hdr): "
-                         "nonzero = sky"})
+        .text(&O::mask,
+              {.name = "mask",
+               .unit = "",
+               .kind = ParameterKind::text,
+               .min = 0,
+               .max = 0,
+               .default_value = Absent{"the automatic rules"},
+               .description = "sky mask for every image without its own (.png, .pfm, .exr, .hdr): "
+                              "nonzero = sky"})
         .optional_number(&O::lat_deg, lat)
         .optional_number(&O::lon_deg, lon)
         .integer(&O::kfold,
-                 {"kfold", "1", ParameterKind::integer, 0, 100000, 1, ParameterValue(0.0),
-                  "K-fold cross-validation over the images first (K = the number of "
-                  "images: leave one image out; 0: none)"})
+                 {.name = "kfold",
+                  .unit = "1",
+                  .kind = ParameterKind::integer,
+                  .min = 0,
+                  .max = 100000,
+                  .default_value = ParameterValue(0.0),
+                  .description = "K-fold cross-validation over the images first (K = the number of "
+                                 "images: leave one image out; 0: none)"})
         .nested(&O::mask_settings, estimate::MaskSettings::schema());
     return s;
   }();
@@ -374,10 +455,15 @@ const ParameterSchema<ValidationOptions>& ValidationOptions::schema() {
                  count_spec("view-zeniths", "view zenith strata per sky (0: the protocol's 10)"))
         .integer(&V::view_azimuths,
                  count_spec("view-azimuths", "view azimuth strata per sky (0: the protocol's 20)"))
-        .integer(&V::samples, {"samples", "1", ParameterKind::integer, 1, 100000000, 1,
-                               ParameterValue(static_cast<double>(V{}.samples)),
-                               "Pietras files: random samples per validation set (day, "
-                               "twilight, night)"});
+        .integer(&V::samples,
+                 {.name = "samples",
+                  .unit = "1",
+                  .kind = ParameterKind::integer,
+                  .min = 1,
+                  .max = 100000000,
+                  .default_value = ParameterValue(static_cast<double>(V{}.samples)),
+                  .description = "Pietras files: random samples per validation set (day, "
+                                 "twilight, night)"});
     return s;
   }();
   return s;
@@ -388,24 +474,50 @@ const ParameterSchema<HiddenLayerStudy>& HiddenLayerStudy::schema() {
     using H = HiddenLayerStudy;
     const H d;
     ParameterSchema<H> s;
-    s.text(&H::source, {"source", "", ParameterKind::text, 0, 0, 1,
-                        ParameterValue(std::string(HosekWilkieModel::kName)),
-                        "sky model to learn (the paper's study used Hosek-Wilkie)"})
-        .numbers(&H::hidden,
-                 {"hidden", "1", ParameterKind::numbers, 1.0, 256.0, 0, ParameterValue(d.hidden),
-                  "hidden-layer widths to compare (integers)"})
-        .integer(&H::seed,
-                 {"seed", "1", ParameterKind::integer, 0, 2147483647, 1,
-                  ParameterValue(static_cast<double>(d.seed)), "seed of the initial weights"})
-        .number(&H::time_limit_s,
-                {"time-limit", "s", ParameterKind::number, 0.01, 1e6, 1,
-                 ParameterValue(d.time_limit_s), "training wall time per network"})
-        .integer(&H::iterations, {"iterations", "1", ParameterKind::integer, 1, 100000000, 1,
-                                  ParameterValue(static_cast<double>(d.iterations)),
-                                  "at most this many LM iterations per network"})
-        .integer(&H::repeats, {"repeats", "1", ParameterKind::integer, 1, 1000, 1,
-                               ParameterValue(static_cast<double>(d.repeats)),
-                               "timing repeats (the best counts)"})
+    s.text(&H::source, {.name = "source",
+                        .unit = "",
+                        .kind = ParameterKind::text,
+                        .min = 0,
+                        .max = 0,
+                        .default_value = ParameterValue(std::string(HosekWilkieModel::kName)),
+                        .description = "sky model to learn (the paper's study used Hosek-Wilkie)"})
+        .numbers(&H::hidden, {.name = "hidden",
+                              .unit = "1",
+                              .kind = ParameterKind::numbers,
+                              .min = 1.0,
+                              .max = 256.0,
+                              .count = 0,
+                              .default_value = ParameterValue(d.hidden),
+                              .description = "hidden-layer widths to compare (integers)"})
+        .integer(&H::seed, {.name = "seed",
+                            .unit = "1",
+                            .kind = ParameterKind::integer,
+                            .min = 0,
+                            .max = 2147483647,
+                            .default_value = ParameterValue(static_cast<double>(d.seed)),
+                            .description = "seed of the initial weights"})
+        .number(&H::time_limit_s, {.name = "time-limit",
+                                   .unit = "s",
+                                   .kind = ParameterKind::number,
+                                   .min = 0.01,
+                                   .max = 1e6,
+                                   .default_value = ParameterValue(d.time_limit_s),
+                                   .description = "training wall time per network"})
+        .integer(&H::iterations,
+                 {.name = "iterations",
+                  .unit = "1",
+                  .kind = ParameterKind::integer,
+                  .min = 1,
+                  .max = 100000000,
+                  .default_value = ParameterValue(static_cast<double>(d.iterations)),
+                  .description = "at most this many LM iterations per network"})
+        .integer(&H::repeats, {.name = "repeats",
+                               .unit = "1",
+                               .kind = ParameterKind::integer,
+                               .min = 1,
+                               .max = 1000,
+                               .default_value = ParameterValue(static_cast<double>(d.repeats)),
+                               .description = "timing repeats (the best counts)"})
         .integer(&H::suns,
                  count_spec("suns", "sun zenith angles per turbidity (0: the protocol's)"))
         .integer(&H::view_zeniths,

@@ -127,74 +127,119 @@ const ParameterSchema<ShFitRequest>& ShFitRequest::schema() {
     for (const auto& m : model_registry())
       if (m.sh_fit) models.push_back(m.name);
     ParameterSchema<R> s;
-    ParameterSpec model{"model",
-                        "",
-                        ParameterKind::text,
-                        0,
-                        0,
-                        1,
-                        Required{},
-                        "the model fitted (any of `skylight models` with a fit policy)"};
+    ParameterSpec model{
+        .name = "model",
+        .unit = "",
+        .kind = ParameterKind::text,
+        .min = 0,
+        .max = 0,
+        .default_value = Required{},
+        .description = "the model fitted (any of `skylight models` with a fit policy)"};
     model.choices = models;
     s.text(&R::model, model)
-        .integer(&R::bands, {"bands", "1", ParameterKind::integer, 1, sh::kMaxBands, 1,
-                             ParameterValue(static_cast<double>(d.bands)),
-                             "SH bands N (degrees l = 0..N-1, N^2 coefficients)"})
-        .numbers(&R::degrees, {"degrees", "1", ParameterKind::numbers, 0, 40, 2,
-                               ParameterValue(std::vector<double>{17.0, 12.0}),
-                               "polynomial degrees I,J in the sun zenith and the second parameter "
-                               "(J = 0 for a zenith-only fit); hosek: 17,2 per turbidity piece"})
-        .text(&R::parameter,
-              {"parameter", "", ParameterKind::text, 0, 0, 1,
-               Absent{"the model's fit policy: turbidity for preetham, hosek and nn, else none"},
-               "the varying parameter tau (a number of the model's schema); 'none': the sun "
-               "zenith only"})
-        .numbers(&R::range, {"range", "1", ParameterKind::numbers, -1e9, 1e9, 2,
-                             Absent{"preetham: 2.5,6 (Habel 2008); others: the parameter's whole "
-                                    "range"},
-                             "range LO,HI of tau"})
-        .numbers(&R::theta_range_deg,
-                 {"theta-range", "deg", ParameterKind::numbers, 0, 90, 2,
-                  ParameterValue(d.theta_range_deg), "range LO,HI of the sun zenith"})
-        .numbers(&R::grid,
-                 {"grid", "1", ParameterKind::numbers, 1, 1000, 2,
-                  Absent{"2 (degree + 1) + 1 points each"}, "fitting grid points in theta, tau"})
+        .integer(&R::bands, {.name = "bands",
+                             .unit = "1",
+                             .kind = ParameterKind::integer,
+                             .min = 1,
+                             .max = sh::kMaxBands,
+                             .default_value = ParameterValue(static_cast<double>(d.bands)),
+                             .description = "SH bands N (degrees l = 0..N-1, N^2 coefficients)"})
+        .numbers(
+            &R::degrees,
+            {.name = "degrees",
+             .unit = "1",
+             .kind = ParameterKind::numbers,
+             .min = 0,
+             .max = 40,
+             .count = 2,
+             .default_value = ParameterValue(std::vector<double>{17.0, 12.0}),
+             .description = "polynomial degrees I,J in the sun zenith and the second parameter "
+                            "(J = 0 for a zenith-only fit); hosek: 17,2 per turbidity piece"})
+        .text(
+            &R::parameter,
+            {.name = "parameter",
+             .unit = "",
+             .kind = ParameterKind::text,
+             .min = 0,
+             .max = 0,
+             .default_value =
+                 Absent{"the model's fit policy: turbidity for preetham, hosek and nn, else none"},
+             .description =
+                 "the varying parameter tau (a number of the model's schema); 'none': the sun "
+                 "zenith only"})
+        .numbers(
+            &R::range,
+            {.name = "range",
+             .unit = "1",
+             .kind = ParameterKind::numbers,
+             .min = -1e9,
+             .max = 1e9,
+             .count = 2,
+             .default_value = Absent{"preetham: 2.5,6 (Habel 2008); others: the parameter's whole "
+                                     "range"},
+             .description = "range LO,HI of tau"})
+        .numbers(&R::theta_range_deg, {.name = "theta-range",
+                                       .unit = "deg",
+                                       .kind = ParameterKind::numbers,
+                                       .min = 0,
+                                       .max = 90,
+                                       .count = 2,
+                                       .default_value = ParameterValue(d.theta_range_deg),
+                                       .description = "range LO,HI of the sun zenith"})
+        .numbers(&R::grid, {.name = "grid",
+                            .unit = "1",
+                            .kind = ParameterKind::numbers,
+                            .min = 1,
+                            .max = 1000,
+                            .count = 2,
+                            .default_value = Absent{"2 (degree + 1) + 1 points each"},
+                            .description = "fitting grid points in theta, tau"})
         .custom(
-            {"set",
-             "",
-             ParameterKind::text,
-             0,
-             0,
-             1,
-             Absent{"the model's defaults"},
-             "NAME=VALUE: a model parameter held fixed (e.g. albedo=0.3, cie-type=7); "
-             "repeatable",
-             {},
-             true},
+            {.name = "set",
+             .unit = "",
+             .kind = ParameterKind::text,
+             .min = 0,
+             .max = 0,
+             .default_value = Absent{"the model's defaults"},
+             .description =
+                 "NAME=VALUE: a model parameter held fixed (e.g. albedo=0.3, cie-type=7); "
+                 "repeatable",
+             .choices = {},
+             .repeated = true},
             [](R& r, const ParameterValue& v) { r.set = split_repeated(std::get<std::string>(v)); },
             [](const R& r) -> std::optional<ParameterValue> {
               if (r.set.empty()) return std::nullopt;
               return join_repeated(r.set);
             })
         .choice(&R::channels,
-                {"channels", "", ParameterKind::text, 0, 0, 1, ParameterValue(std::string("xyz")),
-                 "the channels fitted: xyz (Y in cd/m^2) or linear-srgb"},
+                {.name = "channels",
+                 .unit = "",
+                 .kind = ParameterKind::text,
+                 .min = 0,
+                 .max = 0,
+                 .default_value = ParameterValue(std::string("xyz")),
+                 .description = "the channels fitted: xyz (Y in cd/m^2) or linear-srgb"},
                 {{"xyz", sh::Channels::xyz}, {"linear-srgb", sh::Channels::linear_srgb}})
-        .number(&R::tolerance, {"tolerance", "1", ParameterKind::number, 1e-9, 1e-1, 1,
-                                ParameterValue(d.tolerance),
-                                "projection convergence: largest coefficient change relative to "
+        .number(&R::tolerance,
+                {.name = "tolerance",
+                 .unit = "1",
+                 .kind = ParameterKind::number,
+                 .min = 1e-9,
+                 .max = 1e-1,
+                 .default_value = ParameterValue(d.tolerance),
+                 .description = "projection convergence: largest coefficient change relative to "
                                 "c_00"})
         .custom(
-            {"theta-axis",
-             "",
-             ParameterKind::text,
-             0,
-             0,
-             1,
-             Absent{"the model's: theta"},
-             "the sun-zenith coordinate of the fit: theta, or elevation-cbrt ((elevation / "
-             "90 deg)^(1/3), Hosek's)",
-             {"theta", "elevation-cbrt"}},
+            {.name = "theta-axis",
+             .unit = "",
+             .kind = ParameterKind::text,
+             .min = 0,
+             .max = 0,
+             .default_value = Absent{"the model's: theta"},
+             .description =
+                 "the sun-zenith coordinate of the fit: theta, or elevation-cbrt ((elevation / "
+                 "90 deg)^(1/3), Hosek's)",
+             .choices = {"theta", "elevation-cbrt"}},
             [](R& r, const ParameterValue& v) {
               r.theta_axis = std::get<std::string>(v) == "theta" ? sh::ThetaAxis::theta
                                                                  : sh::ThetaAxis::elevation_cbrt;
@@ -204,16 +249,28 @@ const ParameterSchema<ShFitRequest>& ShFitRequest::schema() {
               return std::string(*r.theta_axis == sh::ThetaAxis::theta ? "theta"
                                                                        : "elevation-cbrt");
             })
-        .optional_integer(&R::tau_pieces,
-                          {"tau-pieces", "1", ParameterKind::integer, 1, sh::kMaxTauPieces, 1,
-                           Absent{"hosek: one per unit of turbidity (degrees 17,2, 4 turbidities "
-                                  "each); others: 1"},
-                           "equal pieces of the tau range, each its own polynomial in tau"})
-        .optional_number(&R::ground_albedo,
-                         {"ground-albedo", "1", ParameterKind::number, 0, 1, 1,
-                          Absent{"the lower hemisphere black"},
-                          "the lower hemisphere as a uniform ground of this albedo lit by the sky "
-                          "and the sun (L = albedo E / pi)"});
+        .optional_integer(
+            &R::tau_pieces,
+            {.name = "tau-pieces",
+             .unit = "1",
+             .kind = ParameterKind::integer,
+             .min = 1,
+             .max = sh::kMaxTauPieces,
+             .default_value =
+                 Absent{"hosek: one per unit of turbidity (degrees 17,2, 4 turbidities "
+                        "each); others: 1"},
+             .description = "equal pieces of the tau range, each its own polynomial in tau"})
+        .optional_number(
+            &R::ground_albedo,
+            {.name = "ground-albedo",
+             .unit = "1",
+             .kind = ParameterKind::number,
+             .min = 0,
+             .max = 1,
+             .default_value = Absent{"the lower hemisphere black"},
+             .description =
+                 "the lower hemisphere as a uniform ground of this albedo lit by the sky "
+                 "and the sun (L = albedo E / pi)"});
     return s;
   }();
   return s;
@@ -355,9 +412,15 @@ sh::Projection project_reference(const sh::PolynomialTable& table, double theta,
 const ParameterSchema<ShErrorOptions>& ShErrorOptions::schema() {
   static const ParameterSchema<ShErrorOptions> s = [] {
     ParameterSchema<ShErrorOptions> s;
-    s.numbers(&ShErrorOptions::points, {"points", "1", ParameterKind::numbers, 1, 1000, 2,
-                                        ParameterValue(ShErrorOptions{}.points),
-                                        "test points (cell midpoints) in theta, tau"});
+    s.numbers(&ShErrorOptions::points,
+              {.name = "points",
+               .unit = "1",
+               .kind = ParameterKind::numbers,
+               .min = 1,
+               .max = 1000,
+               .count = 2,
+               .default_value = ParameterValue(ShErrorOptions{}.points),
+               .description = "test points (cell midpoints) in theta, tau"});
     return s;
   }();
   return s;

@@ -300,15 +300,7 @@ render::SkyImage SkyRenderer::image() const {
             rgb = {rgb.r + sun_rgb.r, rgb.g + sun_rgb.g, rgb.b + sun_rgb.b};
           }
         }
-        const Xyz c = linear_srgb_to_xyz(rgb);
-        float* pxyz = img.xyz.data.data() + 3 * i;
-        pxyz[0] = static_cast<float>(c.X);
-        pxyz[1] = static_cast<float>(c.Y);
-        pxyz[2] = static_cast<float>(c.Z);
-        float* prgb = img.rgb.data.data() + 3 * i;
-        prgb[0] = static_cast<float>(rgb.r);
-        prgb[1] = static_cast<float>(rgb.g);
-        prgb[2] = static_cast<float>(rgb.b);
+        img.set(i, linear_srgb_to_xyz(rgb), rgb);
       }
     }
   });

@@ -25,11 +25,24 @@ Mat4 to_mat4(const std::vector<double>& v) {
 }
 
 ParameterSpec matrix_spec(const char* name, const char* help) {
-  return {name, "1", ParameterKind::numbers, -1e30, 1e30, 16, Absent{"no camera"}, help};
+  return {.name = name,
+          .unit = "1",
+          .kind = ParameterKind::numbers,
+          .min = -1e30,
+          .max = 1e30,
+          .count = 16,
+          .default_value = Absent{"no camera"},
+          .description = help};
 }
 
 ParameterSpec angle_spec(const char* name, double lo, double hi, const char* help) {
-  return {name, "deg", ParameterKind::number, lo, hi, 1, ParameterValue(0.0), help};
+  return {.name = name,
+          .unit = "deg",
+          .kind = ParameterKind::number,
+          .min = lo,
+          .max = hi,
+          .default_value = ParameterValue(0.0),
+          .description = help};
 }
 
 }  // namespace
@@ -38,19 +51,35 @@ const ParameterSchema<Atmosphere>& atmosphere_schema() {
   static const ParameterSchema<Atmosphere> s = [] {
     ParameterSchema<Atmosphere> s;
     s.number(&Atmosphere::turbidity,
-             {"turbidity", "1", ParameterKind::number, 1.0, 64.0, 1, Required{},
-              "turbidity T of the air (Morales 2017 eq. 5; 1 = pure air)"})
+             {.name = "turbidity",
+              .unit = "1",
+              .kind = ParameterKind::number,
+              .min = 1.0,
+              .max = 64.0,
+              .default_value = Required{},
+              .description = "turbidity T of the air (Morales 2017 eq. 5; 1 = pure air)"})
         .number(&Atmosphere::altitude_m,
-                {"altitude", "m", ParameterKind::number, -500.0, 20000.0, 1, ParameterValue(0.0),
-                 "observer altitude h0 above sea level (horizontal paths at h0)"})
-        .choice(&Atmosphere::variant,
-                {"variant", "", ParameterKind::text, 0, 0, 1,
-                 ParameterValue(std::string(to_string(ScatteringVariant::improved))),
+                {.name = "altitude",
+                 .unit = "m",
+                 .kind = ParameterKind::number,
+                 .min = -500.0,
+                 .max = 20000.0,
+                 .default_value = ParameterValue(0.0),
+                 .description = "observer altitude h0 above sea level (horizontal paths at h0)"})
+        .choice(
+            &Atmosphere::variant,
+            {.name = "variant",
+             .unit = "",
+             .kind = ParameterKind::text,
+             .min = 0,
+             .max = 0,
+             .default_value = ParameterValue(std::string(to_string(ScatteringVariant::improved))),
+             .description =
                  "scattering coefficients: improved (Morales 2017 eqs. 15, 18), Preetham's or "
                  "Zhao's (eqs. 3, 4)"},
-                {{std::string(to_string(ScatteringVariant::improved)), ScatteringVariant::improved},
-                 {std::string(to_string(ScatteringVariant::preetham)), ScatteringVariant::preetham},
-                 {std::string(to_string(ScatteringVariant::zhao)), ScatteringVariant::zhao}});
+            {{std::string(to_string(ScatteringVariant::improved)), ScatteringVariant::improved},
+             {std::string(to_string(ScatteringVariant::preetham)), ScatteringVariant::preetham},
+             {std::string(to_string(ScatteringVariant::zhao)), ScatteringVariant::zhao}});
     return s;
   }();
   return s;
@@ -60,11 +89,21 @@ const ParameterSchema<SensitivityOptions>& SensitivityOptions::schema() {
   static const ParameterSchema<SensitivityOptions> s = [] {
     ParameterSchema<SensitivityOptions> s;
     s.text(&SensitivityOptions::camera,
-           {"camera", "", ParameterKind::text, 0, 0, 1, Absent{"--camera-csv"},
-            "camera spectral sensitivity by name (skylight haze cameras)"})
+           {.name = "camera",
+            .unit = "",
+            .kind = ParameterKind::text,
+            .min = 0,
+            .max = 0,
+            .default_value = Absent{"--camera-csv"},
+            .description = "camera spectral sensitivity by name (skylight haze cameras)"})
         .text(&SensitivityOptions::camera_csv,
-              {"camera-csv", "", ParameterKind::text, 0, 0, 1, Absent{"--camera"},
-               "camera sensitivities: CSV 'nm,r,g,b'"});
+              {.name = "camera-csv",
+               .unit = "",
+               .kind = ParameterKind::text,
+               .min = 0,
+               .max = 0,
+               .default_value = Absent{"--camera"},
+               .description = "camera sensitivities: CSV 'nm,r,g,b'"});
     return s;
   }();
   return s;
@@ -82,13 +121,25 @@ const ParameterSchema<ImageCameraOptions>& ImageCameraOptions::schema() {
   static const ParameterSchema<ImageCameraOptions> s = [] {
     using C = ImageCameraOptions;
     ParameterSchema<C> s;
-    s.optional_number(&C::vfov_deg,
-                      {"vfov", "deg", ParameterKind::number, 0.01, 179.0, 1, Absent{"no camera"},
-                       "image camera (pinhole): vertical field of view across the image; gives "
-                       "every pixel its own airlight (--sky, --sky-model)"})
-        .optional_number(&C::hfov_deg,
-                         {"hfov", "deg", ParameterKind::number, 0.01, 179.0, 1, Absent{"no camera"},
-                          "image camera (pinhole): horizontal field of view (instead of --vfov)"})
+    s.optional_number(
+         &C::vfov_deg,
+         {.name = "vfov",
+          .unit = "deg",
+          .kind = ParameterKind::number,
+          .min = 0.01,
+          .max = 179.0,
+          .default_value = Absent{"no camera"},
+          .description = "image camera (pinhole): vertical field of view across the image; gives "
+                         "every pixel its own airlight (--sky, --sky-model)"})
+        .optional_number(
+            &C::hfov_deg,
+            {.name = "hfov",
+             .unit = "deg",
+             .kind = ParameterKind::number,
+             .min = 0.01,
+             .max = 179.0,
+             .default_value = Absent{"no camera"},
+             .description = "image camera (pinhole): horizontal field of view (instead of --vfov)"})
         .optional_number(&C::heading_deg,
                          angle_spec("heading", -360.0, 360.0,
                                     "image camera: azimuth of the optical axis (north 0, east 90)"))
@@ -143,8 +194,13 @@ std::optional<ImagePositioning> ImageCameraOptions::positioning(int width, int h
 const ParameterSchema<CoefficientsOptions>& CoefficientsOptions::schema() {
   static const ParameterSchema<CoefficientsOptions> s = [] {
     ParameterSchema<CoefficientsOptions> s;
-    s.number(&CoefficientsOptions::wavelength_nm, {"wavelength", "nm", ParameterKind::number, 300.0,
-                                                   1000.0, 1, ParameterValue(550.0), "wavelength"});
+    s.number(&CoefficientsOptions::wavelength_nm, {.name = "wavelength",
+                                                   .unit = "nm",
+                                                   .kind = ParameterKind::number,
+                                                   .min = 300.0,
+                                                   .max = 1000.0,
+                                                   .default_value = ParameterValue(550.0),
+                                                   .description = "wavelength"});
     return s;
   }();
   return s;
@@ -153,8 +209,13 @@ const ParameterSchema<CoefficientsOptions>& CoefficientsOptions::schema() {
 const ParameterSchema<AttenuationOptions>& AttenuationOptions::schema() {
   static const ParameterSchema<AttenuationOptions> s = [] {
     ParameterSchema<AttenuationOptions> s;
-    s.number(&AttenuationOptions::distance_m,
-             {"distance", "m", ParameterKind::number, 0.0, 1e7, 1, Required{}, "path length s"});
+    s.number(&AttenuationOptions::distance_m, {.name = "distance",
+                                               .unit = "m",
+                                               .kind = ParameterKind::number,
+                                               .min = 0.0,
+                                               .max = 1e7,
+                                               .default_value = Required{},
+                                               .description = "path length s"});
     return s;
   }();
   return s;
@@ -169,40 +230,78 @@ const ParameterSchema<AirlightOptions>& AirlightOptions::schema() {
     using A = AirlightOptions;
     const auto& sun = sun_parameter_specs();
     ParameterSchema<A> s;
-    s.numbers(&A::airlight, {"airlight", "image units", ParameterKind::numbers, 1e-30, 1e30, 3,
-                             Absent{"from --sky-model"},
-                             "constant airlight I^inf R,G,B (Morales 2017 eq. 10), > 0"})
-        .text(&A::sky_model, {"sky-model", "", ParameterKind::text, 0, 0, 1, Absent{"--airlight"},
-                              "airlight from a spectral sky model with a turbidity (`skylight "
+    s.numbers(&A::airlight,
+              {.name = "airlight",
+               .unit = "image units",
+               .kind = ParameterKind::numbers,
+               .min = 1e-30,
+               .max = 1e30,
+               .count = 3,
+               .default_value = Absent{"from --sky-model"},
+               .description = "constant airlight I^inf R,G,B (Morales 2017 eq. 10), > 0"})
+        .text(&A::sky_model,
+              {.name = "sky-model",
+               .unit = "",
+               .kind = ParameterKind::text,
+               .min = 0,
+               .max = 0,
+               .default_value = Absent{"--airlight"},
+               .description = "airlight from a spectral sky model with a turbidity (`skylight "
                               "models`) at the turbidity, seen through the camera (eq. 7)"})
-        .text(&A::sky_photo, {"sky", "", ParameterKind::text, 0, 0, 1, Absent{"--airlight"},
-                              "airlight from a sky photo's horizon region (eqs. 12-13): linear "
+        .text(&A::sky_photo,
+              {.name = "sky",
+               .unit = "",
+               .kind = ParameterKind::text,
+               .min = 0,
+               .max = 0,
+               .default_value = Absent{"--airlight"},
+               .description = "airlight from a sky photo's horizon region (eqs. 12-13): linear "
                               ".exr, .hdr or .pfm"})
         .nested(&A::sky_image,
                 image_schema(estimate::photo_image_options(Projection::fisheye, "sky-projection",
                                                            "--sky: the sky photo's layout")))
         .choice(&A::horizon_region,
-                {"horizon-region", "", ParameterKind::text, 0, 0, 1,
-                 ParameterValue(std::string("watershed")),
-                 "--sky: the horizon region over the watershed sky mask (the band above the "
-                 "skyline) or the fixed band above the horizon (docs/HAZE.md)"},
+                {.name = "horizon-region",
+                 .unit = "",
+                 .kind = ParameterKind::text,
+                 .min = 0,
+                 .max = 0,
+                 .default_value = ParameterValue(std::string("watershed")),
+                 .description =
+                     "--sky: the horizon region over the watershed sky mask (the band above the "
+                     "skyline) or the fixed band above the horizon (docs/HAZE.md)"},
                 {{"watershed", HorizonRegion::watershed}, {"band", HorizonRegion::band}})
         .text(&A::sky_mask,
-              {"sky-mask", "", ParameterKind::text, 0, 0, 1, Absent{"the watershed's"},
-               "--sky: its sky mask (.png, .pfm, .exr; nonzero = sky, e.g. from "
-               "`skylight haze sky-mask`) instead of the watershed"})
+              {.name = "sky-mask",
+               .unit = "",
+               .kind = ParameterKind::text,
+               .min = 0,
+               .max = 0,
+               .default_value = Absent{"the watershed's"},
+               .description = "--sky: its sky mask (.png, .pfm, .exr; nonzero = sky, e.g. from "
+                              "`skylight haze sky-mask`) instead of the watershed"})
         .number(&A::sun_zenith_deg, sun[0])
         .number(&A::sun_azimuth_deg, sun[1])
         .optional_number(
             &A::view_elevation_deg,
-            {"view-elevation", "deg", ParameterKind::number, 0.0, 90.0, 1, ParameterValue(0.0),
-             "--sky-model, --sky without an image camera: elevation of the sky seen "
-             "behind the scene"})
+            {.name = "view-elevation",
+             .unit = "deg",
+             .kind = ParameterKind::number,
+             .min = 0.0,
+             .max = 90.0,
+             .default_value = ParameterValue(0.0),
+             .description = "--sky-model, --sky without an image camera: elevation of the sky seen "
+                            "behind the scene"})
         .optional_number(
             &A::view_azimuth_deg,
-            {"view-azimuth", "deg", ParameterKind::number, -360.0, 360.0, 1, ParameterValue(0.0),
-             "--sky-model without an image camera: azimuth of that direction "
-             "(north 0, east 90)"});
+            {.name = "view-azimuth",
+             .unit = "deg",
+             .kind = ParameterKind::number,
+             .min = -360.0,
+             .max = 360.0,
+             .default_value = ParameterValue(0.0),
+             .description = "--sky-model without an image camera: azimuth of that direction "
+                            "(north 0, east 90)"});
     return s;
   }();
   return s;
@@ -280,19 +379,38 @@ const ParameterSchema<HazeOptions>& HazeOptions::schema() {
   static const ParameterSchema<HazeOptions> s = [] {
     using H = HazeOptions;
     ParameterSchema<H> s;
-    s.optional_number(&H::target_turbidity,
-                      {"target-turbidity", "1", ParameterKind::number, 1.0, 64.0, 1,
-                       Absent{"required by retarget, refused by the other operations"},
-                       "turbidity T_t to re-target to (eq. 26)"})
-        .optional_number(&H::near_m, {"near", "m", ParameterKind::number, 1e-6, 1e9, 1,
-                                      Absent{"the depth map holds metres"},
-                                      "near plane of a normalised depth map"})
-        .optional_number(&H::far_m, {"far", "m", ParameterKind::number, 1e-6, 1e9, 1,
-                                     Absent{"the depth map holds metres"},
-                                     "far plane of a normalised depth map"})
-        .number(&H::min_transmission,
-                {"min-transmission", "1", ParameterKind::number, 1e-6, 1.0, 1,
-                 ParameterValue(kDefaultMinTransmission),
+    s.optional_number(
+         &H::target_turbidity,
+         {.name = "target-turbidity",
+          .unit = "1",
+          .kind = ParameterKind::number,
+          .min = 1.0,
+          .max = 64.0,
+          .default_value = Absent{"required by retarget, refused by the other operations"},
+          .description = "turbidity T_t to re-target to (eq. 26)"})
+        .optional_number(&H::near_m, {.name = "near",
+                                      .unit = "m",
+                                      .kind = ParameterKind::number,
+                                      .min = 1e-6,
+                                      .max = 1e9,
+                                      .default_value = Absent{"the depth map holds metres"},
+                                      .description = "near plane of a normalised depth map"})
+        .optional_number(&H::far_m, {.name = "far",
+                                     .unit = "m",
+                                     .kind = ParameterKind::number,
+                                     .min = 1e-6,
+                                     .max = 1e9,
+                                     .default_value = Absent{"the depth map holds metres"},
+                                     .description = "far plane of a normalised depth map"})
+        .number(
+            &H::min_transmission,
+            {.name = "min-transmission",
+             .unit = "1",
+             .kind = ParameterKind::number,
+             .min = 1e-6,
+             .max = 1.0,
+             .default_value = ParameterValue(kDefaultMinTransmission),
+             .description =
                  "remove/retarget: Gamma_s is taken as at least this (bounds the amplification)"});
     return s;
   }();

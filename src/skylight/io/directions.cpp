@@ -31,20 +31,24 @@ std::vector<std::pair<std::size_t, std::string_view>> lines_of(std::string_view 
 }  // namespace
 
 const ParameterSpec& direction_zenith_spec() {
-  static const ParameterSpec spec{
-      "zenith_deg", "deg", ParameterKind::number, 0.0, 180.0, 1, Required{}, "view zenith angle"};
+  static const ParameterSpec spec{.name = "zenith_deg",
+                                  .unit = "deg",
+                                  .kind = ParameterKind::number,
+                                  .min = 0.0,
+                                  .max = 180.0,
+                                  .default_value = Required{},
+                                  .description = "view zenith angle"};
   return spec;
 }
 
 const ParameterSpec& direction_azimuth_spec() {
-  static const ParameterSpec spec{"azimuth_deg",
-                                  "deg",
-                                  ParameterKind::number,
-                                  -360.0,
-                                  360.0,
-                                  1,
-                                  Required{},
-                                  "view azimuth from north towards east"};
+  static const ParameterSpec spec{.name = "azimuth_deg",
+                                  .unit = "deg",
+                                  .kind = ParameterKind::number,
+                                  .min = -360.0,
+                                  .max = 360.0,
+                                  .default_value = Required{},
+                                  .description = "view azimuth from north towards east"};
   return spec;
 }
 

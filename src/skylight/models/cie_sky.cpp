@@ -166,15 +166,23 @@ ZenithLuminanceBand kittler_darula_zenith_luminance_band(int type, double sun_el
 const ParameterSchema<CieParameters>& CieParameters::schema() {
   static const auto s = [] {
     ParameterSchema<CieParameters> s;
-    s.integer(&CieParameters::type,
-              {"cie-type", "1", ParameterKind::integer, 1, kCieTypeCount, 1,
-               ParameterValue(static_cast<double>(CieParameters{}.type)),
-               "sky type 1-15 (CIE S 011), 16 = traditional overcast (1 + 2 cos Z)/3"});
-    s.optional_number(
-        &CieParameters::zenith_luminance,
-        {"zenith-luminance", "cd/m^2", ParameterKind::number, kMinZenithLuminance,
-         kMaxZenithLuminance, 1, Absent{"Kittler & Darula typical value for the type"},
-         "absolute zenith luminance Lz"});
+    s.integer(
+        &CieParameters::type,
+        {.name = "cie-type",
+         .unit = "1",
+         .kind = ParameterKind::integer,
+         .min = 1,
+         .max = kCieTypeCount,
+         .default_value = ParameterValue(static_cast<double>(CieParameters{}.type)),
+         .description = "sky type 1-15 (CIE S 011), 16 = traditional overcast (1 + 2 cos Z)/3"});
+    s.optional_number(&CieParameters::zenith_luminance,
+                      {.name = "zenith-luminance",
+                       .unit = "cd/m^2",
+                       .kind = ParameterKind::number,
+                       .min = kMinZenithLuminance,
+                       .max = kMaxZenithLuminance,
+                       .default_value = Absent{"Kittler & Darula typical value for the type"},
+                       .description = "absolute zenith luminance Lz"});
     return s;
   }();
   return s;

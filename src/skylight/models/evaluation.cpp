@@ -23,8 +23,13 @@ const ParameterSchema<SolarDisc>& SolarDisc::schema() {
   static const ParameterSchema<SolarDisc> s = [] {
     ParameterSchema<SolarDisc> s;
     s.custom(
-         {"include-sun", "", ParameterKind::flag, 0, 0, 1, ParameterValue(false),
-          "add the solar disc (models with a sun)"},
+         {.name = "include-sun",
+          .unit = "",
+          .kind = ParameterKind::flag,
+          .min = 0,
+          .max = 0,
+          .default_value = ParameterValue(false),
+          .description = "add the solar disc (models with a sun)"},
          [](SolarDisc& m, const ParameterValue& v) {
            if (std::get<bool>(v)) m.mode = SunMode::sky_and_sun;
          },
@@ -32,8 +37,13 @@ const ParameterSchema<SolarDisc>& SolarDisc::schema() {
            return m.mode == SunMode::sky_and_sun;
          })
         .custom(
-            {"sun-only", "", ParameterKind::flag, 0, 0, 1, ParameterValue(false),
-             "the solar disc alone, without the sky"},
+            {.name = "sun-only",
+             .unit = "",
+             .kind = ParameterKind::flag,
+             .min = 0,
+             .max = 0,
+             .default_value = ParameterValue(false),
+             .description = "the solar disc alone, without the sky"},
             [](SolarDisc& m, const ParameterValue& v) {
               if (std::get<bool>(v)) m.mode = SunMode::sun_only;
             },
@@ -58,40 +68,56 @@ ParameterSpec model_spec() {
     names += (names.empty() ? "" : "|") + m.name;
     choices.push_back(m.name);
   }
-  ParameterSpec s{
-      "model", "", ParameterKind::text, 0,
-      0,       1,  Required{},          "sky model: " + names + " (see `skylight models`)"};
+  ParameterSpec s{.name = "model",
+                  .unit = "",
+                  .kind = ParameterKind::text,
+                  .min = 0,
+                  .max = 0,
+                  .default_value = Required{},
+                  .description = "sky model: " + names + " (see `skylight models`)"};
   s.choices = std::move(choices);
   return s;
 }
 
 ParameterSpec sun_elevation_spec() {
   const ParameterSpec& z = sun_parameter_specs()[0];
-  return {"sun-elevation",
-          "deg",
-          ParameterKind::number,
-          90.0 - z.max,
-          90.0 - z.min,
-          1,
-          Absent{"90 - sun zenith"},
-          "solar elevation (alternative to --sun-zenith)"};
+  return {.name = "sun-elevation",
+          .unit = "deg",
+          .kind = ParameterKind::number,
+          .min = 90.0 - z.max,
+          .max = 90.0 - z.min,
+          .default_value = Absent{"90 - sun zenith"},
+          .description = "solar elevation (alternative to --sun-zenith)"};
 }
 
 const ParameterSchema<EvaluationOptions>& EvaluationOptions::schema() {
   static const ParameterSchema<EvaluationOptions> s = [] {
     using E = EvaluationOptions;
     ParameterSchema<E> s;
-    s.choice(&E::quantity,
-             {"quantity", "", ParameterKind::text, 0, 0, 1, ParameterValue(std::string("rgb")),
+    s.choice(
+         &E::quantity,
+         {.name = "quantity",
+          .unit = "",
+          .kind = ParameterKind::text,
+          .min = 0,
+          .max = 0,
+          .default_value = ParameterValue(std::string("rgb")),
+          .description =
               "rgb (linear sRGB), xyz (Y in cd/m^2), luminance (cd/m^2), spectral (W m^-2 sr^-1 "
               "nm^-1)"},
-             {{"rgb", Quantity::rgb},
-              {"xyz", Quantity::xyz},
-              {"luminance", Quantity::luminance},
-              {"spectral", Quantity::spectral}})
+         {{"rgb", Quantity::rgb},
+          {"xyz", Quantity::xyz},
+          {"luminance", Quantity::luminance},
+          {"spectral", Quantity::spectral}})
         .numbers(&E::wavelengths_nm,
-                 {"wavelengths", "nm", ParameterKind::numbers, 1.0, 10000.0, 0, Absent{"none"},
-                  "wavelengths for --quantity spectral, e.g. 450,550,650"});
+                 {.name = "wavelengths",
+                  .unit = "nm",
+                  .kind = ParameterKind::numbers,
+                  .min = 1.0,
+                  .max = 10000.0,
+                  .count = 0,
+                  .default_value = Absent{"none"},
+                  .description = "wavelengths for --quantity spectral, e.g. 450,550,650"});
     return s;
   }();
   return s;

@@ -489,12 +489,21 @@ const ParameterSchema<HosekParameters>& HosekParameters::schema() {
     ParameterSchema<HosekParameters> s;
     const HosekParameters defaults;
     s.number(&HosekParameters::turbidity,
-             {"turbidity", "1", ParameterKind::number, kHwTurbidityMin, kHwTurbidityMax, 1,
-              ParameterValue(defaults.turbidity),
-              "atmospheric turbidity T (dataset knots 1..10, linear in between)"});
+             {.name = "turbidity",
+              .unit = "1",
+              .kind = ParameterKind::number,
+              .min = kHwTurbidityMin,
+              .max = kHwTurbidityMax,
+              .default_value = ParameterValue(defaults.turbidity),
+              .description = "atmospheric turbidity T (dataset knots 1..10, linear in between)"});
     s.number(&HosekParameters::albedo,
-             {"albedo", "1", ParameterKind::number, 0.0, 1.0, 1, ParameterValue(defaults.albedo),
-              "ground albedo (dataset knots 0 and 1, linear)"});
+             {.name = "albedo",
+              .unit = "1",
+              .kind = ParameterKind::number,
+              .min = 0.0,
+              .max = 1.0,
+              .default_value = ParameterValue(defaults.albedo),
+              .description = "ground albedo (dataset knots 0 and 1, linear)"});
     return s;
   }();
   return s;

@@ -18,14 +18,24 @@ const ParameterSchema<NeuralSkyParameters>& NeuralSkyParameters::schema() {
     ParameterSchema<NeuralSkyParameters> s;
     const NeuralSkyParameters defaults;
     s.text(&NeuralSkyParameters::weights,
-           {"weights", "", ParameterKind::text, 0, 0, 1,
-            Absent{"the embedded 6-12-3 network trained on preetham (data/nn/)"},
-            "weights file of a trained neural sky (skylight nn train; docs/NN.md)"});
-    s.number(&NeuralSkyParameters::turbidity,
-             {"turbidity", "1", ParameterKind::number, kNeuralTurbidityMin, kNeuralTurbidityMax, 1,
-              ParameterValue(defaults.turbidity),
-              "atmospheric turbidity T, the network's sqrt(T) input (trained range: the weights "
-              "file's provenance)"});
+           {.name = "weights",
+            .unit = "",
+            .kind = ParameterKind::text,
+            .min = 0,
+            .max = 0,
+            .default_value = Absent{"the embedded 6-12-3 network trained on preetham (data/nn/)"},
+            .description = "weights file of a trained neural sky (skylight nn train; docs/NN.md)"});
+    s.number(
+        &NeuralSkyParameters::turbidity,
+        {.name = "turbidity",
+         .unit = "1",
+         .kind = ParameterKind::number,
+         .min = kNeuralTurbidityMin,
+         .max = kNeuralTurbidityMax,
+         .default_value = ParameterValue(defaults.turbidity),
+         .description =
+             "atmospheric turbidity T, the network's sqrt(T) input (trained range: the weights "
+             "file's provenance)"});
     return s;
   }();
   return s;

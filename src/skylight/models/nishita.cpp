@@ -31,38 +31,81 @@ const ParameterSchema<NishitaParameters>& NishitaParameters::schema() {
     using P = NishitaParameters;
     const P d;
     ParameterSchema<P> s;
-    s.number(&P::observer_altitude_m,
-             {"observer-altitude", "m", ParameterKind::number, 0.0, kNishitaMaxAltitude, 1,
-              ParameterValue(d.observer_altitude_m), "observer above the ground"});
-    s.optional_number(&P::solar_irradiance,
-                      {"solar-irradiance", "W m^-2 nm^-1", ParameterKind::number, 1e-30, 1e30, 1,
-                       Absent{"the ASTM G-173 extraterrestrial spectrum"},
-                       "flat extraterrestrial solar spectral irradiance (1 = radiance per unit "
-                       "irradiance)"});
-    s.optional_number(&P::albedo, {"albedo", "1", ParameterKind::number, 0.0, 1.0, 1,
-                                   Absent{"no ground reflection"},
-                                   "Lambertian ground albedo (direct sunlight reflected by the "
-                                   "ground)"});
-    s.number(&P::ground_radius_m, {"ground-radius", "m", ParameterKind::number, 1.0, 1e9, 1,
-                                   ParameterValue(d.ground_radius_m), "planet radius R0"});
+    s.number(&P::observer_altitude_m, {.name = "observer-altitude",
+                                       .unit = "m",
+                                       .kind = ParameterKind::number,
+                                       .min = 0.0,
+                                       .max = kNishitaMaxAltitude,
+                                       .default_value = ParameterValue(d.observer_altitude_m),
+                                       .description = "observer above the ground"});
+    s.optional_number(
+        &P::solar_irradiance,
+        {.name = "solar-irradiance",
+         .unit = "W m^-2 nm^-1",
+         .kind = ParameterKind::number,
+         .min = 1e-30,
+         .max = 1e30,
+         .default_value = Absent{"the ASTM G-173 extraterrestrial spectrum"},
+         .description = "flat extraterrestrial solar spectral irradiance (1 = radiance per unit "
+                        "irradiance)"});
+    s.optional_number(&P::albedo,
+                      {.name = "albedo",
+                       .unit = "1",
+                       .kind = ParameterKind::number,
+                       .min = 0.0,
+                       .max = 1.0,
+                       .default_value = Absent{"no ground reflection"},
+                       .description = "Lambertian ground albedo (direct sunlight reflected by the "
+                                      "ground)"});
+    s.number(&P::ground_radius_m, {.name = "ground-radius",
+                                   .unit = "m",
+                                   .kind = ParameterKind::number,
+                                   .min = 1.0,
+                                   .max = 1e9,
+                                   .default_value = ParameterValue(d.ground_radius_m),
+                                   .description = "planet radius R0"});
     s.custom(
-        {"top-radius", "m", ParameterKind::number, 1.0, 1e9, 1, Absent{"ground radius + 60 km"},
-         "top of the atmosphere (> ground radius)"},
+        {.name = "top-radius",
+         .unit = "m",
+         .kind = ParameterKind::number,
+         .min = 1.0,
+         .max = 1e9,
+         .default_value = Absent{"ground radius + 60 km"},
+         .description = "top of the atmosphere (> ground radius)"},
         [](P& p, const ParameterValue& v) { p.top_radius_m = std::get<double>(v); },
         [](const P& p) -> std::optional<ParameterValue> { return p.top_radius(); });
     s.number(&P::rayleigh_scale_height_m,
-             {"rayleigh-scale-height", "m", ParameterKind::number, 1.0, 1e7, 1,
-              ParameterValue(d.rayleigh_scale_height_m), "Rayleigh scale height H_R"});
-    s.number(&P::mie_scale_height_m,
-             {"mie-scale-height", "m", ParameterKind::number, 1.0, 1e7, 1,
-              ParameterValue(d.mie_scale_height_m), "Mie scale height H_M"});
-    s.number(&P::mie_g, {"mie-g", "1", ParameterKind::number, -0.999, 0.999, 1,
-                         ParameterValue(d.mie_g), "Cornette-Shanks asymmetry g"});
+             {.name = "rayleigh-scale-height",
+              .unit = "m",
+              .kind = ParameterKind::number,
+              .min = 1.0,
+              .max = 1e7,
+              .default_value = ParameterValue(d.rayleigh_scale_height_m),
+              .description = "Rayleigh scale height H_R"});
+    s.number(&P::mie_scale_height_m, {.name = "mie-scale-height",
+                                      .unit = "m",
+                                      .kind = ParameterKind::number,
+                                      .min = 1.0,
+                                      .max = 1e7,
+                                      .default_value = ParameterValue(d.mie_scale_height_m),
+                                      .description = "Mie scale height H_M"});
+    s.number(&P::mie_g, {.name = "mie-g",
+                         .unit = "1",
+                         .kind = ParameterKind::number,
+                         .min = -0.999,
+                         .max = 0.999,
+                         .default_value = ParameterValue(d.mie_g),
+                         .description = "Cornette-Shanks asymmetry g"});
     s.optional_number(
         &P::ozone_du,
-        {"ozone", "DU", ParameterKind::number, 0.0, 1000.0, 1, Absent{"no ozone layer"},
-         "ozone column of an absorbing layer at 10-40 km (Bruneton 2017 profile; "
-         "Earth ~300 DU)"});
+        {.name = "ozone",
+         .unit = "DU",
+         .kind = ParameterKind::number,
+         .min = 0.0,
+         .max = 1000.0,
+         .default_value = Absent{"no ozone layer"},
+         .description = "ozone column of an absorbing layer at 10-40 km (Bruneton 2017 profile; "
+                        "Earth ~300 DU)"});
     return s;
   }();
   return s;

@@ -13,14 +13,25 @@ namespace skylight {
 const ParameterSchema<PerezParameters>& PerezParameters::schema() {
   static const auto s = [] {
     ParameterSchema<PerezParameters> s;
-    s.optional_numbers(&PerezParameters::coefficients,
-                       {"perez", "1", ParameterKind::numbers, -kPerezCoefficientLimit,
-                        kPerezCoefficientLimit, 5, Required{},
-                        "coefficients A,B,C,D,E of F = (1 + A e^{B/cos theta})(1 + C e^{D gamma} "
+    s.optional_numbers(
+        &PerezParameters::coefficients,
+        {.name = "perez",
+         .unit = "1",
+         .kind = ParameterKind::numbers,
+         .min = -kPerezCoefficientLimit,
+         .max = kPerezCoefficientLimit,
+         .count = 5,
+         .default_value = Required{},
+         .description = "coefficients A,B,C,D,E of F = (1 + A e^{B/cos theta})(1 + C e^{D gamma} "
                         "+ E cos^2 gamma)"});
     s.optional_number(&PerezParameters::zenith_luminance,
-                      {"zenith-luminance", "cd/m^2", ParameterKind::number, kMinZenithLuminance,
-                       kMaxZenithLuminance, 1, Required{}, "absolute zenith luminance Lz"});
+                      {.name = "zenith-luminance",
+                       .unit = "cd/m^2",
+                       .kind = ParameterKind::number,
+                       .min = kMinZenithLuminance,
+                       .max = kMaxZenithLuminance,
+                       .default_value = Required{},
+                       .description = "absolute zenith luminance Lz"});
     return s;
   }();
   return s;

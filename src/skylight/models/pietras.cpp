@@ -22,14 +22,26 @@ const ParameterSchema<PietrasParameters>& PietrasParameters::schema() {
   static const auto s = [] {
     ParameterSchema<PietrasParameters> s;
     const PietrasParameters defaults;
-    s.text(&PietrasParameters::weights,
-           {"weights", "", ParameterKind::text, 0, 0, 1,
-            Absent{"the embedded log3 network trained on Earth's nishita (data/nn/log3.json)"},
-            "Pietras weights file (skylight nn train --network pietras|log3; docs/PIETRAS.md)"});
-    s.number(&PietrasParameters::observer_altitude_m,
-             {"observer-altitude", "m", ParameterKind::number, 0.0, kNishitaMaxAltitude, 1,
-              ParameterValue(defaults.observer_altitude_m),
-              "observer above the ground: the network's density input exp(-h / H0)"});
+    s.text(
+        &PietrasParameters::weights,
+        {.name = "weights",
+         .unit = "",
+         .kind = ParameterKind::text,
+         .min = 0,
+         .max = 0,
+         .default_value =
+             Absent{"the embedded log3 network trained on Earth's nishita (data/nn/log3.json)"},
+         .description =
+             "Pietras weights file (skylight nn train --network pietras|log3; docs/PIETRAS.md)"});
+    s.number(
+        &PietrasParameters::observer_altitude_m,
+        {.name = "observer-altitude",
+         .unit = "m",
+         .kind = ParameterKind::number,
+         .min = 0.0,
+         .max = kNishitaMaxAltitude,
+         .default_value = ParameterValue(defaults.observer_altitude_m),
+         .description = "observer above the ground: the network's density input exp(-h / H0)"});
     return s;
   }();
   return s;
@@ -204,32 +216,71 @@ const ParameterSchema<PlanetViewOptions>& PlanetViewOptions::schema() {
     azimuth.default_value = ParameterValue(d.sun_azimuth_deg);
     azimuth.description = "solar azimuth from north towards east (the ground view looks north)";
     s.choice(&V::orbit,
-             {"view", "", ParameterKind::text, 0, 0, 1, ParameterValue(std::string("orbit")),
-              "from orbit or from the ground"},
+             {.name = "view",
+              .unit = "",
+              .kind = ParameterKind::text,
+              .min = 0,
+              .max = 0,
+              .default_value = ParameterValue(std::string("orbit")),
+              .description = "from orbit or from the ground"},
              {{"orbit", true}, {"ground", false}})
         .number(&V::sun_zenith_deg, zenith)
         .number(&V::sun_azimuth_deg, azimuth)
         .optional_number(&V::altitude_m,
-                         {"altitude", "m", ParameterKind::number, 0.0, 1e10, 1,
-                          Absent{"orbit: 2 planet radii; ground: 2 m"}, "camera above the ground"})
-        .number(&V::look_elevation_deg, {"look-elevation", "deg", ParameterKind::number, -90.0,
-                                         90.0, 1, ParameterValue(d.look_elevation_deg),
-                                         "ground view: the view's elevation above the horizon"})
-        .optional_number(&V::fov_deg,
-                         {"fov", "deg", ParameterKind::number, 1.0, 170.0, 1,
-                          Absent{"orbit: the atmosphere's disc fills 85 %; ground: 60"},
-                          "vertical field of view"})
-        .number(&V::albedo,
-                {"albedo", "1", ParameterKind::number, 0.0, 1.0, 1, ParameterValue(d.albedo),
-                 "grey Lambertian albedo of the ground (Pietras §IV)"})
+                         {.name = "altitude",
+                          .unit = "m",
+                          .kind = ParameterKind::number,
+                          .min = 0.0,
+                          .max = 1e10,
+                          .default_value = Absent{"orbit: 2 planet radii; ground: 2 m"},
+                          .description = "camera above the ground"})
+        .number(&V::look_elevation_deg,
+                {.name = "look-elevation",
+                 .unit = "deg",
+                 .kind = ParameterKind::number,
+                 .min = -90.0,
+                 .max = 90.0,
+                 .default_value = ParameterValue(d.look_elevation_deg),
+                 .description = "ground view: the view's elevation above the horizon"})
+        .optional_number(
+            &V::fov_deg,
+            {.name = "fov",
+             .unit = "deg",
+             .kind = ParameterKind::number,
+             .min = 1.0,
+             .max = 170.0,
+             .default_value = Absent{"orbit: the atmosphere's disc fills 85 %; ground: 60"},
+             .description = "vertical field of view"})
+        .number(&V::albedo, {.name = "albedo",
+                             .unit = "1",
+                             .kind = ParameterKind::number,
+                             .min = 0.0,
+                             .max = 1.0,
+                             .default_value = ParameterValue(d.albedo),
+                             .description = "grey Lambertian albedo of the ground (Pietras §IV)"})
         .integer(&V::subdivisions,
-                 {"subdivisions", "1", ParameterKind::integer, 0, kMaxIcosphereSubdivisions, 1,
-                  ParameterValue(static_cast<double>(d.subdivisions)),
-                  "icosphere level of the ground and the shell (10 * 4^n + 2 vertices each)"})
-        .integer(&V::width, {"width", "px", ParameterKind::integer, 1, kMaxImageSide, 1,
-                             ParameterValue(static_cast<double>(d.width)), "image width"})
-        .integer(&V::height, {"height", "px", ParameterKind::integer, 1, kMaxImageSide, 1,
-                              ParameterValue(static_cast<double>(d.height)), "image height"});
+                 {.name = "subdivisions",
+                  .unit = "1",
+                  .kind = ParameterKind::integer,
+                  .min = 0,
+                  .max = kMaxIcosphereSubdivisions,
+                  .default_value = ParameterValue(static_cast<double>(d.subdivisions)),
+                  .description =
+                      "icosphere level of the ground and the shell (10 * 4^n + 2 vertices each)"})
+        .integer(&V::width, {.name = "width",
+                             .unit = "px",
+                             .kind = ParameterKind::integer,
+                             .min = 1,
+                             .max = kMaxImageSide,
+                             .default_value = ParameterValue(static_cast<double>(d.width)),
+                             .description = "image width"})
+        .integer(&V::height, {.name = "height",
+                              .unit = "px",
+                              .kind = ParameterKind::integer,
+                              .min = 1,
+                              .max = kMaxImageSide,
+                              .default_value = ParameterValue(static_cast<double>(d.height)),
+                              .description = "image height"});
     return s;
   }();
   return s;

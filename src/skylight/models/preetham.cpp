@@ -170,9 +170,13 @@ const ParameterSchema<PreethamParameters>& PreethamParameters::schema() {
   static const auto s = [] {
     ParameterSchema<PreethamParameters> s;
     s.number(&PreethamParameters::turbidity,
-             {"turbidity", "1", ParameterKind::number, kPreethamTurbidityMin, kPreethamTurbidityMax,
-              1, ParameterValue(PreethamParameters{}.turbidity),
-              "atmospheric turbidity T (fitted for 2-6)"});
+             {.name = "turbidity",
+              .unit = "1",
+              .kind = ParameterKind::number,
+              .min = kPreethamTurbidityMin,
+              .max = kPreethamTurbidityMax,
+              .default_value = ParameterValue(PreethamParameters{}.turbidity),
+              .description = "atmospheric turbidity T (fitted for 2-6)"});
     return s;
   }();
   return s;

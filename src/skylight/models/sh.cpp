@@ -40,20 +40,40 @@ const ParameterSchema<ShParameters>& ShParameters::schema() {
   static const auto s = [] {
     ParameterSchema<ShParameters> s;
     s.text(&ShParameters::table,
-           {"table", "", ParameterKind::text, 0, 0, 1,
-            Absent{std::string("the embedded Preetham table data/") + kDefaultShTable},
-            "SH polynomial table file (JSON from `skylight sh fit`)"});
+           {.name = "table",
+            .unit = "",
+            .kind = ParameterKind::text,
+            .min = 0,
+            .max = 0,
+            .default_value =
+                Absent{std::string("the embedded Preetham table data/") + kDefaultShTable},
+            .description = "SH polynomial table file (JSON from `skylight sh fit`)"});
     s.integer(&ShParameters::bands,
-              {"bands", "1", ParameterKind::integer, 0, sh::kMaxBands, 1, ParameterValue(0.0),
-               "SH bands N reconstructed (degrees 0..N-1); 0: all of the table's"});
+              {.name = "bands",
+               .unit = "1",
+               .kind = ParameterKind::integer,
+               .min = 0,
+               .max = sh::kMaxBands,
+               .default_value = ParameterValue(0.0),
+               .description = "SH bands N reconstructed (degrees 0..N-1); 0: all of the table's"});
     s.flag(&ShParameters::no_ringing_filter,
-           {"no-ringing-filter", "", ParameterKind::flag, 0, 0, 1, ParameterValue(false),
-            "reconstruct without the ringing filter (Habel 2008 eq. 5)"});
-    s.optional_number(&ShParameters::turbidity,
-                      {"turbidity", "1", ParameterKind::number, 0.0, 1000.0, 1,
-                       Absent{"the middle of the table's range"},
-                       "the table's second parameter (turbidity for preetham and hosek tables), "
-                       "within the table's fitted range"});
+           {.name = "no-ringing-filter",
+            .unit = "",
+            .kind = ParameterKind::flag,
+            .min = 0,
+            .max = 0,
+            .default_value = ParameterValue(false),
+            .description = "reconstruct without the ringing filter (Habel 2008 eq. 5)"});
+    s.optional_number(
+        &ShParameters::turbidity,
+        {.name = "turbidity",
+         .unit = "1",
+         .kind = ParameterKind::number,
+         .min = 0.0,
+         .max = 1000.0,
+         .default_value = Absent{"the middle of the table's range"},
+         .description = "the table's second parameter (turbidity for preetham and hosek tables), "
+                        "within the table's fitted range"});
     return s;
   }();
   return s;
@@ -107,14 +127,13 @@ const ParameterSchema<ShEvalOptions>& ShEvalOptions::schema() {
   static const ParameterSchema<ShEvalOptions> s = [] {
     ParameterSchema<ShEvalOptions> s;
     s.flag(&ShEvalOptions::irradiance,
-           {"irradiance",
-            "",
-            ParameterKind::flag,
-            0,
-            0,
-            1,
-            {},
-            "the irradiance coefficients A_l c_lm (clamped-cosine convolution)"});
+           {.name = "irradiance",
+            .unit = "",
+            .kind = ParameterKind::flag,
+            .min = 0,
+            .max = 0,
+            .default_value = {},
+            .description = "the irradiance coefficients A_l c_lm (clamped-cosine convolution)"});
     return s;
   }();
   return s;
@@ -124,9 +143,13 @@ const ParameterSchema<ShRenderOptions>& ShRenderOptions::schema() {
   static const ParameterSchema<ShRenderOptions> s = [] {
     ParameterSchema<ShRenderOptions> s;
     s.integer(&ShRenderOptions::width,
-              {"width", "px", ParameterKind::integer, 2, kMaxImageSide, 1,
-               ParameterValue(static_cast<double>(ShRenderOptions{}.width)),
-               "env map width (height = width/2)"});
+              {.name = "width",
+               .unit = "px",
+               .kind = ParameterKind::integer,
+               .min = 2,
+               .max = kMaxImageSide,
+               .default_value = ParameterValue(static_cast<double>(ShRenderOptions{}.width)),
+               .description = "env map width (height = width/2)"});
     return s;
   }();
   return s;

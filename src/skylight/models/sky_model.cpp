@@ -40,12 +40,21 @@ Validity Domain::worst_spectral() const {
 
 const std::vector<ParameterSpec>& sun_parameter_specs() {
   static const std::vector<ParameterSpec> specs = {
-      {"sun-zenith", "deg", ParameterKind::number, 0.0, 180.0, 1,
-       ParameterValue(kDefaultSunZenithDeg),
-       "solar zenith angle (or --sun-elevation = 90 - zenith); > 90 = below the horizon"},
-      {"sun-azimuth", "deg", ParameterKind::number, -360.0, 360.0, 1,
-       ParameterValue(kDefaultSunAzimuthDeg),
-       "solar azimuth from north towards east (180 = south)"},
+      {.name = "sun-zenith",
+       .unit = "deg",
+       .kind = ParameterKind::number,
+       .min = 0.0,
+       .max = 180.0,
+       .default_value = ParameterValue(kDefaultSunZenithDeg),
+       .description =
+           "solar zenith angle (or --sun-elevation = 90 - zenith); > 90 = below the horizon"},
+      {.name = "sun-azimuth",
+       .unit = "deg",
+       .kind = ParameterKind::number,
+       .min = -360.0,
+       .max = 360.0,
+       .default_value = ParameterValue(kDefaultSunAzimuthDeg),
+       .description = "solar azimuth from north towards east (180 = south)"},
   };
   return specs;
 }

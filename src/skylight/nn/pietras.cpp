@@ -135,14 +135,8 @@ Rgb PietrasNetwork::rgb_at(double altitude_m, double cos_view_zenith, double cos
 
 namespace {
 
-using skylight::detail::json::array;
-using skylight::detail::json::bad;
-using skylight::detail::json::field;
-using skylight::detail::json::integer;
-using skylight::detail::json::number;
-using skylight::detail::json::numbers;
-using skylight::detail::json::positive;
-using skylight::detail::json::text;
+// The strict reader of core/json_reader.h.
+using namespace skylight::detail::json;  // NOLINT(google-build-using-namespace)
 
 // Bounds of the weights file's integers (a corrupt file stops at the loader).
 constexpr long long kMaxVersion = 1000000, kMaxSamples = 1LL << 53, kMaxIterations = 1LL << 31;

@@ -30,13 +30,8 @@ Rgb SkyNetwork::rgb(const SkyState& state, Vec3 view) const {
 
 namespace {
 
-using skylight::detail::json::array;
-using skylight::detail::json::bad;
-using skylight::detail::json::field;
-using skylight::detail::json::integer;
-using skylight::detail::json::number;
-using skylight::detail::json::numbers;
-using skylight::detail::json::text;
+// The strict reader of core/json_reader.h.
+using namespace skylight::detail::json;  // NOLINT(google-build-using-namespace)
 
 // The widest layer a weights file may describe: what the batch kernels accept (this also guards
 // the allocation of a corrupt file).

@@ -104,7 +104,13 @@ std::vector<ParameterSpec> without_model_specs(const OperationInfo& op) {
 }
 
 ParameterSpec gpu_spec(const std::string& what) {
-  return {"gpu", "", ParameterKind::flag, 0, 0, 1, ParameterValue(false), what};
+  return {.name = "gpu",
+          .unit = "",
+          .kind = ParameterKind::flag,
+          .min = 0,
+          .max = 0,
+          .default_value = ParameterValue(false),
+          .description = what};
 }
 
 // The sh model's table, bands, filter and tau, and the sun, as `sh eval` and `sh render` take

@@ -184,17 +184,37 @@ const ParameterSchema<BenchSettings>& BenchSettings::schema() {
     std::string defaults;
     for (const auto& m : default_bench_models()) defaults += (defaults.empty() ? "" : ",") + m;
     ParameterSchema<B> s;
-    s.integer(&B::width, {"width", "px", ParameterKind::integer, 1, kMaxImageSide, 1,
-                          ParameterValue(static_cast<double>(d.width)), "grid width"})
-        .integer(&B::height, {"height", "px", ParameterKind::integer, 1, kMaxImageSide, 1,
-                              ParameterValue(static_cast<double>(d.height)), "grid height"})
-        .integer(&B::repeats, {"repeats", "1", ParameterKind::integer, 1, 1000, 1,
-                               ParameterValue(static_cast<double>(d.repeats)),
-                               "runs per measurement (the median is reported)"})
+    s.integer(&B::width, {.name = "width",
+                          .unit = "px",
+                          .kind = ParameterKind::integer,
+                          .min = 1,
+                          .max = kMaxImageSide,
+                          .default_value = ParameterValue(static_cast<double>(d.width)),
+                          .description = "grid width"})
+        .integer(&B::height, {.name = "height",
+                              .unit = "px",
+                              .kind = ParameterKind::integer,
+                              .min = 1,
+                              .max = kMaxImageSide,
+                              .default_value = ParameterValue(static_cast<double>(d.height)),
+                              .description = "grid height"})
+        .integer(&B::repeats, {.name = "repeats",
+                               .unit = "1",
+                               .kind = ParameterKind::integer,
+                               .min = 1,
+                               .max = 1000,
+                               .default_value = ParameterValue(static_cast<double>(d.repeats)),
+                               .description = "runs per measurement (the median is reported)"})
         .custom(
-            {"models", "", ParameterKind::text, 0, 0, 1, Absent{defaults},
-             "models to time, comma-separated (each with its comparison and workload: sh its "
-             "table's evaluation, pietras each network kind); gpu: the GL frames"},
+            {.name = "models",
+             .unit = "",
+             .kind = ParameterKind::text,
+             .min = 0,
+             .max = 0,
+             .default_value = Absent{defaults},
+             .description =
+                 "models to time, comma-separated (each with its comparison and workload: sh its "
+                 "table's evaluation, pietras each network kind); gpu: the GL frames"},
             [](B& b, const ParameterValue& v) {
               b.models.clear();
               const std::string& t = std::get<std::string>(v);
@@ -210,28 +230,33 @@ const ParameterSchema<BenchSettings>& BenchSettings::schema() {
               for (const auto& m : b.models) t += (t.empty() ? "" : ",") + m;
               return t;
             })
-        .flag(&B::estimate, {"estimate",
-                             "",
-                             ParameterKind::flag,
-                             0,
-                             0,
-                             1,
-                             {},
-                             "also time one turbidity estimate on a 1-megapixel fisheye "
-                             "(skylight estimate)"})
-        .flag(&B::haze, {"haze",
-                         "",
-                         ParameterKind::flag,
-                         0,
-                         0,
-                         1,
-                         {},
-                         "also time haze retarget on a 1920x1080 frame + depth against the exact "
-                         "per-pixel spectral integral (skylight haze), and its GL frame when "
-                         "built with the GPU module"})
-        .text(&B::sh_table,
-              {"sh-table", "", ParameterKind::text, 0, 0, 1, Absent{"the embedded one"},
-               "with sh in --models: the SH table timed"});
+        .flag(&B::estimate,
+              {.name = "estimate",
+               .unit = "",
+               .kind = ParameterKind::flag,
+               .min = 0,
+               .max = 0,
+               .default_value = {},
+               .description = "also time one turbidity estimate on a 1-megapixel fisheye "
+                              "(skylight estimate)"})
+        .flag(&B::haze,
+              {.name = "haze",
+               .unit = "",
+               .kind = ParameterKind::flag,
+               .min = 0,
+               .max = 0,
+               .default_value = {},
+               .description =
+                   "also time haze retarget on a 1920x1080 frame + depth against the exact "
+                   "per-pixel spectral integral (skylight haze), and its GL frame when "
+                   "built with the GPU module"})
+        .text(&B::sh_table, {.name = "sh-table",
+                             .unit = "",
+                             .kind = ParameterKind::text,
+                             .min = 0,
+                             .max = 0,
+                             .default_value = Absent{"the embedded one"},
+                             .description = "with sh in --models: the SH table timed"});
     return s;
   }();
   return s;

@@ -27,19 +27,47 @@ const ParameterSchema<AnimationOptions>& AnimationOptions::schema() {
     ParameterSpec lat = sun::spa_parameter_spec("lat"), lon = sun::spa_parameter_spec("lon");
     lat.default_value = Absent{"needed with --from-time"};
     lon.default_value = Absent{"needed with --from-time"};
-    s.numbers(&A::from, {"from", "deg", ParameterKind::numbers, -360.0, 360.0, 2,
-                         Absent{"--from-time"}, "the first frame's sun: zenith,azimuth"})
-        .numbers(&A::to, {"to", "deg", ParameterKind::numbers, -360.0, 360.0, 2,
-                          Absent{"--to-time"}, "the last frame's sun: zenith,azimuth"})
-        .text(&A::from_time, {"from-time", "", ParameterKind::text, 0, 0, 1, Absent{"--from"},
-                              "the first frame's time, ISO 8601 with UTC offset (the sun by the "
+    s.numbers(&A::from, {.name = "from",
+                         .unit = "deg",
+                         .kind = ParameterKind::numbers,
+                         .min = -360.0,
+                         .max = 360.0,
+                         .count = 2,
+                         .default_value = Absent{"--from-time"},
+                         .description = "the first frame's sun: zenith,azimuth"})
+        .numbers(&A::to, {.name = "to",
+                          .unit = "deg",
+                          .kind = ParameterKind::numbers,
+                          .min = -360.0,
+                          .max = 360.0,
+                          .count = 2,
+                          .default_value = Absent{"--to-time"},
+                          .description = "the last frame's sun: zenith,azimuth"})
+        .text(&A::from_time,
+              {.name = "from-time",
+               .unit = "",
+               .kind = ParameterKind::text,
+               .min = 0,
+               .max = 0,
+               .default_value = Absent{"--from"},
+               .description = "the first frame's time, ISO 8601 with UTC offset (the sun by the "
                               "SPA)"})
-        .text(&A::to_time, {"to-time", "", ParameterKind::text, 0, 0, 1, Absent{"--to"},
-                            "the last frame's time (times interpolated linearly)"})
+        .text(&A::to_time, {.name = "to-time",
+                            .unit = "",
+                            .kind = ParameterKind::text,
+                            .min = 0,
+                            .max = 0,
+                            .default_value = Absent{"--to"},
+                            .description = "the last frame's time (times interpolated linearly)"})
         .optional_number(&A::lat_deg, lat)
         .optional_number(&A::lon_deg, lon)
-        .integer(&A::frames, {"frames", "1", ParameterKind::integer, 1, 100000, 1,
-                              ParameterValue(static_cast<double>(A{}.frames)), "number of frames"})
+        .integer(&A::frames, {.name = "frames",
+                              .unit = "1",
+                              .kind = ParameterKind::integer,
+                              .min = 1,
+                              .max = 100000,
+                              .default_value = ParameterValue(static_cast<double>(A{}.frames)),
+                              .description = "number of frames"})
         .nested(&A::image, image_schema(image_options()));
     return s;
   }();

@@ -25,9 +25,14 @@ const ParameterSchema<FalseColourOptions>& FalseColourOptions::schema() {
     const F d;
     ParameterSchema<F> s;
     s.custom(
-        {"false-colour-range", "log10 cd/m^2", ParameterKind::numbers, -20.0, 20.0, 2,
-         ParameterValue(std::vector<double>{d.log10_min, d.log10_max}),
-         "log10 luminance range LO,HI of the false-colour scale"},
+        {.name = "false-colour-range",
+         .unit = "log10 cd/m^2",
+         .kind = ParameterKind::numbers,
+         .min = -20.0,
+         .max = 20.0,
+         .count = 2,
+         .default_value = ParameterValue(std::vector<double>{d.log10_min, d.log10_max}),
+         .description = "log10 luminance range LO,HI of the false-colour scale"},
         [](F& f, const ParameterValue& v) {
           const auto& r = std::get<std::vector<double>>(v);
           if (!(r[0] < r[1]))

@@ -104,15 +104,7 @@ SkyImage render_sky(const SkyModel& model, const RenderSettings& s) {
           const Xyz sun = average_sun_over_pixel(model, s, col, static_cast<int>(row));
           c = {c.X + sun.X, c.Y + sun.Y, c.Z + sun.Z};
         }
-        const Rgb rgb = xyz_to_linear_srgb(c);
-        float* px = img.xyz.data.data() + 3 * i;
-        px[0] = static_cast<float>(c.X);
-        px[1] = static_cast<float>(c.Y);
-        px[2] = static_cast<float>(c.Z);
-        float* pr = img.rgb.data.data() + 3 * i;
-        pr[0] = static_cast<float>(rgb.r);
-        pr[1] = static_cast<float>(rgb.g);
-        pr[2] = static_cast<float>(rgb.b);
+        img.set(i, c, xyz_to_linear_srgb(c));
       }
     }
   });

@@ -28,6 +28,18 @@ struct SkyImage {
   ImageF xyz;                      // CIE XYZ, Y in the model's luminance unit (cd/m^2)
   ImageF rgb;                      // linear sRGB, same scale
   std::vector<std::uint8_t> mask;  // 1 where the pixel sees no direction (outside a fisheye circle)
+
+  // Pixel i (row-major) in both colour spaces, rounded to float.
+  void set(std::size_t i, const Xyz& c, const Rgb& rgb) {
+    float* px = xyz.data.data() + 3 * i;
+    px[0] = static_cast<float>(c.X);
+    px[1] = static_cast<float>(c.Y);
+    px[2] = static_cast<float>(c.Z);
+    float* pr = this->rgb.data.data() + 3 * i;
+    pr[0] = static_cast<float>(rgb.r);
+    pr[1] = static_cast<float>(rgb.g);
+    pr[2] = static_cast<float>(rgb.b);
+  }
 };
 
 // Direction of each pixel centre (unit vectors, ENU) as structure of arrays; `valid[i]` = 0 where

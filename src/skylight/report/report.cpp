@@ -18,17 +18,26 @@ const ParameterSchema<ReportOptions>& ReportOptions::schema() {
     using O = ReportOptions;
     ParameterSchema<O> s;
     s.custom(
-         {"measurements", "", ParameterKind::text, 0, 0, 1, Absent{"the shipped synthetic example"},
-          "sky-luminance scan CSV (azimuth_deg,elevation_deg,luminance_cd_m2)"},
+         {.name = "measurements",
+          .unit = "",
+          .kind = ParameterKind::text,
+          .min = 0,
+          .max = 0,
+          .default_value = Absent{"the shipped synthetic example"},
+          .description = "sky-luminance scan CSV (azimuth_deg,elevation_deg,luminance_cd_m2)"},
          [](O& o, const ParameterValue& v) { o.measurements = std::get<std::string>(v); },
          [](const O& o) -> std::optional<ParameterValue> {
            if (!o.measurements) return std::nullopt;
            return o.measurements->string();
          })
         .custom(
-            {"sun-azimuth", "deg", ParameterKind::number, -360.0, 360.0, 1,
-             Absent{"the file's '# sun_azimuth_deg'"},
-             "sun azimuth of the scan from north towards east"},
+            {.name = "sun-azimuth",
+             .unit = "deg",
+             .kind = ParameterKind::number,
+             .min = -360.0,
+             .max = 360.0,
+             .default_value = Absent{"the file's '# sun_azimuth_deg'"},
+             .description = "sun azimuth of the scan from north towards east"},
             [](O& o, const ParameterValue& v) {
               o.measurement_sun_azimuth = wrap_azimuth(deg_to_rad(std::get<double>(v)));
             },
@@ -37,8 +46,13 @@ const ParameterSchema<ReportOptions>& ReportOptions::schema() {
               return rad_to_deg(*o.measurement_sun_azimuth);
             })
         .custom(
-            {"sun-elevation", "deg", ParameterKind::number, 0.0, 90.0, 1,
-             Absent{"the file's '# sun_elevation_deg'"}, "sun elevation of the scan"},
+            {.name = "sun-elevation",
+             .unit = "deg",
+             .kind = ParameterKind::number,
+             .min = 0.0,
+             .max = 90.0,
+             .default_value = Absent{"the file's '# sun_elevation_deg'"},
+             .description = "sun elevation of the scan"},
             [](O& o, const ParameterValue& v) {
               o.measurement_sun_elevation = deg_to_rad(std::get<double>(v));
             },
@@ -46,14 +60,14 @@ const ParameterSchema<ReportOptions>& ReportOptions::schema() {
               if (!o.measurement_sun_elevation) return std::nullopt;
               return rad_to_deg(*o.measurement_sun_elevation);
             })
-        .flag(&O::quick, {"quick",
-                          "",
-                          ParameterKind::flag,
-                          0,
-                          0,
-                          1,
-                          {},
-                          "reduced resolution and fewer sun positions (seconds; for tests)"});
+        .flag(&O::quick,
+              {.name = "quick",
+               .unit = "",
+               .kind = ParameterKind::flag,
+               .min = 0,
+               .max = 0,
+               .default_value = {},
+               .description = "reduced resolution and fewer sun positions (seconds; for tests)"});
     return s;
   }();
   return s;

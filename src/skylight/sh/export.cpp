@@ -158,19 +158,30 @@ const ParameterSchema<ExportOptions>& ExportOptions::schema() {
   static const ParameterSchema<ExportOptions> s = [] {
     const ExportOptions d;
     ParameterSchema<ExportOptions> s;
-    s.flag(&ExportOptions::c_header,
-           {"c-header", "", ParameterKind::flag, 0, 0, 1, {}, "a C header (default: JSON)"})
-        .flag(&ExportOptions::monomial,
-              {"monomial",
-               "",
-               ParameterKind::flag,
-               0,
-               0,
-               1,
-               {},
-               "with --c-header: also the published monomial form p_ij theta^i tau^j in double"})
-        .text(&ExportOptions::name, {"name", "", ParameterKind::text, 0, 0, 1,
-                                     ParameterValue(d.name), "C identifier of the arrays"});
+    s.flag(&ExportOptions::c_header, {.name = "c-header",
+                                      .unit = "",
+                                      .kind = ParameterKind::flag,
+                                      .min = 0,
+                                      .max = 0,
+                                      .default_value = {},
+                                      .description = "a C header (default: JSON)"})
+        .flag(
+            &ExportOptions::monomial,
+            {.name = "monomial",
+             .unit = "",
+             .kind = ParameterKind::flag,
+             .min = 0,
+             .max = 0,
+             .default_value = {},
+             .description =
+                 "with --c-header: also the published monomial form p_ij theta^i tau^j in double"})
+        .text(&ExportOptions::name, {.name = "name",
+                                     .unit = "",
+                                     .kind = ParameterKind::text,
+                                     .min = 0,
+                                     .max = 0,
+                                     .default_value = ParameterValue(d.name),
+                                     .description = "C identifier of the arrays"});
     return s;
   }();
   return s;

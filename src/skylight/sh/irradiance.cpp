@@ -37,11 +37,20 @@ const ParameterSchema<SphereOptions>& SphereOptions::schema() {
   static const ParameterSchema<SphereOptions> s = [] {
     const SphereOptions d;
     ParameterSchema<SphereOptions> s;
-    s.integer(&SphereOptions::size,
-              {"sphere-size", "px", ParameterKind::integer, 2, 8192, 1,
-               ParameterValue(static_cast<double>(d.size)), "sphere image side"})
-        .number(&SphereOptions::albedo, {"sphere-albedo", "1", ParameterKind::number, 0, 1, 1,
-                                         ParameterValue(d.albedo), "diffuse albedo of the sphere"});
+    s.integer(&SphereOptions::size, {.name = "sphere-size",
+                                     .unit = "px",
+                                     .kind = ParameterKind::integer,
+                                     .min = 2,
+                                     .max = 8192,
+                                     .default_value = ParameterValue(static_cast<double>(d.size)),
+                                     .description = "sphere image side"})
+        .number(&SphereOptions::albedo, {.name = "sphere-albedo",
+                                         .unit = "1",
+                                         .kind = ParameterKind::number,
+                                         .min = 0,
+                                         .max = 1,
+                                         .default_value = ParameterValue(d.albedo),
+                                         .description = "diffuse albedo of the sphere"});
     return s;
   }();
   return s;

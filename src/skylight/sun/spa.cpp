@@ -254,13 +254,14 @@ double equation_of_time(double M, double alpha, double delta_psi, double epsilon
 // ---------------------------------------------------------------------------------------------
 
 ParameterSpec time_spec(std::string absent) {
-  return {"time",
-          "",
-          ParameterKind::text,
-          0,
-          0,
-          1,
-          Absent{std::move(absent)},
+  return {
+      .name = "time",
+      .unit = "",
+      .kind = ParameterKind::text,
+      .min = 0,
+      .max = 0,
+      .default_value = Absent{std::move(absent)},
+      .description =
           "date and time, ISO 8601 with seconds and UTC offset, e.g. 2003-10-17T12:30:30-07:00 or "
           "2003-10-17T19:30:30Z"};
 }
@@ -272,38 +273,86 @@ const ParameterSchema<SpaInput>& spa_input_schema() {
   static const ParameterSchema<SpaInput> schema = [] {
     ParameterSchema<SpaInput> s;
     s.number(&SpaInput::latitude,
-             {"lat", "deg", ParameterKind::number, -90.0, 90.0, 1, Required{},
-              "geodetic latitude of the observer, north positive"},
+             {.name = "lat",
+              .unit = "deg",
+              .kind = ParameterKind::number,
+              .min = -90.0,
+              .max = 90.0,
+              .default_value = Required{},
+              .description = "geodetic latitude of the observer, north positive"},
              kDegree)
         .number(&SpaInput::longitude,
-                {"lon", "deg", ParameterKind::number, -180.0, 180.0, 1, Required{},
-                 "geographic longitude of the observer, east positive"},
+                {.name = "lon",
+                 .unit = "deg",
+                 .kind = ParameterKind::number,
+                 .min = -180.0,
+                 .max = 180.0,
+                 .default_value = Required{},
+                 .description = "geographic longitude of the observer, east positive"},
                 kDegree)
-        .number(&SpaInput::elevation,
-                {"elevation", "m", ParameterKind::number, -12000.0, 100000.0, 1,
-                 ParameterValue(0.0), "observer elevation above sea level"})
+        .number(&SpaInput::elevation, {.name = "elevation",
+                                       .unit = "m",
+                                       .kind = ParameterKind::number,
+                                       .min = -12000.0,
+                                       .max = 100000.0,
+                                       .default_value = ParameterValue(0.0),
+                                       .description = "observer elevation above sea level"})
         .number(&SpaInput::pressure,
-                {"pressure", "mbar", ParameterKind::number, 0.0, 2000.0, 1, ParameterValue(1013.25),
-                 "annual average local air pressure (for refraction)"})
+                {.name = "pressure",
+                 .unit = "mbar",
+                 .kind = ParameterKind::number,
+                 .min = 0.0,
+                 .max = 2000.0,
+                 .default_value = ParameterValue(1013.25),
+                 .description = "annual average local air pressure (for refraction)"})
         .number(&SpaInput::temperature,
-                {"temperature", "degC", ParameterKind::number, -100.0, 100.0, 1,
-                 ParameterValue(12.0), "annual average local air temperature (for refraction)"})
-        .number(&SpaInput::delta_t,
-                {"delta-t", "s", ParameterKind::number, -8000.0, 8000.0, 1, ParameterValue(69.0),
-                 "Delta T = TT - UT (about 69 s in 2015-2025)"})
-        .number(&SpaInput::delta_ut1, {"delta-ut1", "s", ParameterKind::number, -1.0, 1.0, 1,
-                                       ParameterValue(0.0), "Delta UT1 = UT1 - UTC"})
+                {.name = "temperature",
+                 .unit = "degC",
+                 .kind = ParameterKind::number,
+                 .min = -100.0,
+                 .max = 100.0,
+                 .default_value = ParameterValue(12.0),
+                 .description = "annual average local air temperature (for refraction)"})
+        .number(&SpaInput::delta_t, {.name = "delta-t",
+                                     .unit = "s",
+                                     .kind = ParameterKind::number,
+                                     .min = -8000.0,
+                                     .max = 8000.0,
+                                     .default_value = ParameterValue(69.0),
+                                     .description = "Delta T = TT - UT (about 69 s in 2015-2025)"})
+        .number(&SpaInput::delta_ut1, {.name = "delta-ut1",
+                                       .unit = "s",
+                                       .kind = ParameterKind::number,
+                                       .min = -1.0,
+                                       .max = 1.0,
+                                       .default_value = ParameterValue(0.0),
+                                       .description = "Delta UT1 = UT1 - UTC"})
         .number(&SpaInput::atmos_refract,
-                {"atmos-refract", "deg", ParameterKind::number, 0.0, 3.0, 1, ParameterValue(0.5667),
-                 "atmospheric refraction at sunrise and sunset"},
+                {.name = "atmos-refract",
+                 .unit = "deg",
+                 .kind = ParameterKind::number,
+                 .min = 0.0,
+                 .max = 3.0,
+                 .default_value = ParameterValue(0.5667),
+                 .description = "atmospheric refraction at sunrise and sunset"},
                 kDegree)
         .number(&SpaInput::slope,
-                {"slope", "deg", ParameterKind::number, 0.0, 180.0, 1, ParameterValue(0.0),
-                 "surface slope from horizontal (for the incidence angle)"},
+                {.name = "slope",
+                 .unit = "deg",
+                 .kind = ParameterKind::number,
+                 .min = 0.0,
+                 .max = 180.0,
+                 .default_value = ParameterValue(0.0),
+                 .description = "surface slope from horizontal (for the incidence angle)"},
                 kDegree)
         .number(&SpaInput::azimuth_rotation,
-                {"azimuth-rotation", "deg", ParameterKind::number, -360.0, 360.0, 1,
-                 ParameterValue(0.0), "surface azimuth from south, positive towards west"},
+                {.name = "azimuth-rotation",
+                 .unit = "deg",
+                 .kind = ParameterKind::number,
+                 .min = -360.0,
+                 .max = 360.0,
+                 .default_value = ParameterValue(0.0),
+                 .description = "surface azimuth from south, positive towards west"},
                 kDegree);
     return s;
   }();
