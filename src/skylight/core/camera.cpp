@@ -193,10 +193,7 @@ ParameterSchema<ImageOptions> image_schema(const ImageSchemaOptions& o) {
   s.choice(
       &P::projection,
       {.name = o.projection_flag,
-       .unit = "",
        .kind = ParameterKind::text,
-       .min = 0,
-       .max = 0,
        .default_value = ParameterValue(std::string(to_string(o.default_projection))),
        .description = (o.description.empty() ? std::string("the image's layout") : o.description) +
                       ": " + list},
@@ -225,10 +222,7 @@ ParameterSchema<ImageOptions> image_schema(const ImageSchemaOptions& o) {
   if (takes(Projection::fisheye)) {
     s.choice(&P::lens,
              {.name = "lens",
-              .unit = "",
               .kind = ParameterKind::text,
-              .min = 0,
-              .max = 0,
               .default_value = ParameterValue(std::string("equidistant")),
               .description = "fisheye lens"},
              {{"equidistant", FisheyeLens::equidistant},
@@ -239,7 +233,6 @@ ParameterSchema<ImageOptions> image_schema(const ImageSchemaOptions& o) {
         &P::fov_deg,
         {.name = "fov",
          .unit = "deg",
-         .kind = ParameterKind::number,
          .min = 1e-6,
          .max = 360.0,
          .default_value = Absent{pinhole ? fmt::format("{} (fisheye), {} (camera)", kFisheyeFovDeg,
@@ -252,7 +245,6 @@ ParameterSchema<ImageOptions> image_schema(const ImageSchemaOptions& o) {
     s.number(&P::north_angle_deg,
              {.name = "north-angle",
               .unit = "deg",
-              .kind = ParameterKind::number,
               .min = -360.0,
               .max = 360.0,
               .default_value = ParameterValue(0.0),
@@ -261,7 +253,6 @@ ParameterSchema<ImageOptions> image_schema(const ImageSchemaOptions& o) {
   if (pinhole) {
     s.number(&P::look_elevation_deg, {.name = "look-elevation",
                                       .unit = "deg",
-                                      .kind = ParameterKind::number,
                                       .min = -90.0,
                                       .max = 90.0,
                                       .default_value = ParameterValue(0.0),
@@ -269,7 +260,6 @@ ParameterSchema<ImageOptions> image_schema(const ImageSchemaOptions& o) {
     s.number(&P::look_azimuth_deg,
              {.name = "look-azimuth",
               .unit = "deg",
-              .kind = ParameterKind::number,
               .min = -360.0,
               .max = 360.0,
               .default_value = ParameterValue(0.0),

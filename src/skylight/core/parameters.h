@@ -48,13 +48,13 @@ struct Absent {
 using ParameterDefault = std::variant<Required, Absent, ParameterValue>;
 
 struct ParameterSpec {
-  std::string name;  // flag name without dashes, e.g. "turbidity", "sun-zenith"
-  std::string unit;  // "1" (dimensionless), "deg", "m", "cd/m^2", "W m^-2 nm^-1", "DU", "" (text)
+  std::string name{};  // flag name without dashes, e.g. "turbidity", "sun-zenith"
+  std::string unit{};  // "1" (dimensionless), "deg", "m", "cd/m^2", "W m^-2 nm^-1", "DU", "" (text)
   ParameterKind kind = ParameterKind::number;
   double min = 0.0, max = 0.0;  // inclusive range of each number
   std::size_t count = 1;        // values of a `numbers` parameter
   ParameterDefault default_value = Required{};
-  std::string description;
+  std::string description{};
   // A text parameter that takes one of these names (an enumeration); empty: any text.
   std::vector<std::string> choices{};
   // A text parameter that may be given more than once: its values joined by '\n'

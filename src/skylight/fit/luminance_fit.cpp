@@ -478,7 +478,6 @@ const ParameterSchema<EstimateSettings>& EstimateSettings::schema() {
         .number(&S::inlier_threshold,
                 {.name = "inlier-threshold",
                  .unit = "1",
-                 .kind = ParameterKind::number,
                  .min = 1e-6,
                  .max = 10.0,
                  .default_value = ParameterValue(d.inlier_threshold),
@@ -493,10 +492,7 @@ const ParameterSchema<EstimateSettings>& EstimateSettings::schema() {
                   .description = "bootstrap resamples of the inliers for the sigmas (0: none)"})
         .custom(
             {.name = "no-ransac",
-             .unit = "",
              .kind = ParameterKind::flag,
-             .min = 0,
-             .max = 0,
              .default_value = ParameterValue(false),
              .description = "fit all samples (no outlier rejection)"},
             [](S& p, const ParameterValue& v) { p.ransac = !std::get<bool>(v); },
@@ -512,10 +508,7 @@ ParameterSpec estimation_model_spec() {
     models +=
         fmt::format("{}{} ({})", models.empty() ? "" : ", ", m, estimation_policy(m).description);
   ParameterSpec s{.name = "model",
-                  .unit = "",
                   .kind = ParameterKind::text,
-                  .min = 0,
-                  .max = 0,
                   .default_value = ParameterValue(default_estimated_model()),
                   .description = "the model fitted: " + models};
   s.choices = estimated_models();

@@ -50,10 +50,7 @@ std::vector<std::pair<std::string, nn::Trainer>> trainer_names() {
 void add_training_specs(ParameterSchema<Request>& s) {
   const Request d;
   s.text(&Request::source, {.name = "source",
-                            .unit = "",
                             .kind = ParameterKind::text,
-                            .min = 0,
-                            .max = 0,
                             .default_value = ParameterValue(std::string(PreethamModel::kName)),
                             .description = "sky model to learn (any of `skylight models`)"})
       .integer(&Request::seed,
@@ -74,10 +71,7 @@ void add_training_specs(ParameterSchema<Request>& s) {
                                   .description = "neurons of the hidden layer"})
       .custom(
           {.name = "trainer",
-           .unit = "",
            .kind = ParameterKind::text,
-           .min = 0,
-           .max = 0,
            .default_value = Absent{fmt::format("{}, with --network {}", nn::to_string(kSkyTrainer),
                                                nn::to_string(kPietrasTrainer))},
            .description = "lm (Levenberg-Marquardt), backprop (the paper's), adam, lbfgs",
@@ -96,10 +90,7 @@ void add_training_specs(ParameterSchema<Request>& s) {
           })
       .custom(
           {.name = "inputs",
-           .unit = "",
            .kind = ParameterKind::text,
-           .min = 0,
-           .max = 0,
            .default_value = ParameterValue(nn::to_string(nn::satilmis_inputs())),
            .description =
                "the network's inputs, comma-separated (the paper's V_NN by default; also "
@@ -111,10 +102,7 @@ void add_training_specs(ParameterSchema<Request>& s) {
       .choice(
           &Request::encoding,
           {.name = "encoding",
-           .unit = "",
            .kind = ParameterKind::text,
-           .min = 0,
-           .max = 0,
            .default_value = ParameterValue(std::string("satilmis")),
            .description =
                "output encoding: satilmis (the paper's L_s, eq. 7), log, root4, root8 (the last "
@@ -127,7 +115,6 @@ void add_training_specs(ParameterSchema<Request>& s) {
           &Request::time_limit_s,
           {.name = "time-limit",
            .unit = "s",
-           .kind = ParameterKind::number,
            .min = 0.01,
            .max = 1e6,
            .default_value = Absent{fmt::format("{} s, with --network {} s per sub-network",
@@ -147,7 +134,6 @@ void add_training_specs(ParameterSchema<Request>& s) {
           &Request::target_scale,
           {.name = "target-scale",
            .unit = "1",
-           .kind = ParameterKind::number,
            .min = 1e-30,
            .max = 1e30,
            .default_value =
@@ -165,10 +151,7 @@ void add_training_specs(ParameterSchema<Request>& s) {
 void add_pietras_specs(ParameterSchema<Request>& s) {
   s.custom(
        {.name = "network",
-        .unit = "",
         .kind = ParameterKind::text,
-        .min = 0,
-        .max = 0,
         .default_value = Absent{"a sky network (Satilmis)"},
         .description =
             "pietras (Pietras's 4 x 4-8-4-1 per-vertex network) or log3 (3 x 4-16-16-1, log "
@@ -184,10 +167,7 @@ void add_pietras_specs(ParameterSchema<Request>& s) {
       .text(
           &Request::init,
           {.name = "init",
-           .unit = "",
            .kind = ParameterKind::text,
-           .min = 0,
-           .max = 0,
            .default_value = Absent{"random initial weights"},
            .description =
                "--network: continue training from this weights file (its network kind, planet and "
@@ -348,20 +328,14 @@ const ParameterSchema<ImageTrainingOptions>& ImageTrainingOptions::schema() {
     s.text(
          &O::list,
          {.name = "images",
-          .unit = "",
           .kind = ParameterKind::text,
-          .min = 0,
-          .max = 0,
           .default_value = Absent{"--source"},
           .description = "train on HDR sky images instead of --source: a CSV list with a header of "
                          "file[,sun_zenith_deg,sun_azimuth_deg][,time][,mask] (docs/NN.md)"})
         .nested(&O::image, image_schema(sequence_images()))
         .text(&O::mask,
               {.name = "mask",
-               .unit = "",
                .kind = ParameterKind::text,
-               .min = 0,
-               .max = 0,
                .default_value = Absent{"the automatic rules"},
                .description = "sky mask for every image without its own (.png, .pfm, .exr, .hdr): "
                               "nonzero = sky"})
@@ -475,10 +449,7 @@ const ParameterSchema<HiddenLayerStudy>& HiddenLayerStudy::schema() {
     const H d;
     ParameterSchema<H> s;
     s.text(&H::source, {.name = "source",
-                        .unit = "",
                         .kind = ParameterKind::text,
-                        .min = 0,
-                        .max = 0,
                         .default_value = ParameterValue(std::string(HosekWilkieModel::kName)),
                         .description = "sky model to learn (the paper's study used Hosek-Wilkie)"})
         .numbers(&H::hidden, {.name = "hidden",
@@ -498,7 +469,6 @@ const ParameterSchema<HiddenLayerStudy>& HiddenLayerStudy::schema() {
                             .description = "seed of the initial weights"})
         .number(&H::time_limit_s, {.name = "time-limit",
                                    .unit = "s",
-                                   .kind = ParameterKind::number,
                                    .min = 0.01,
                                    .max = 1e6,
                                    .default_value = ParameterValue(d.time_limit_s),

@@ -129,10 +129,7 @@ const ParameterSchema<ShFitRequest>& ShFitRequest::schema() {
     ParameterSchema<R> s;
     ParameterSpec model{
         .name = "model",
-        .unit = "",
         .kind = ParameterKind::text,
-        .min = 0,
-        .max = 0,
         .default_value = Required{},
         .description = "the model fitted (any of `skylight models` with a fit policy)"};
     model.choices = models;
@@ -158,10 +155,7 @@ const ParameterSchema<ShFitRequest>& ShFitRequest::schema() {
         .text(
             &R::parameter,
             {.name = "parameter",
-             .unit = "",
              .kind = ParameterKind::text,
-             .min = 0,
-             .max = 0,
              .default_value =
                  Absent{"the model's fit policy: turbidity for preetham, hosek and nn, else none"},
              .description =
@@ -196,10 +190,7 @@ const ParameterSchema<ShFitRequest>& ShFitRequest::schema() {
                             .description = "fitting grid points in theta, tau"})
         .custom(
             {.name = "set",
-             .unit = "",
              .kind = ParameterKind::text,
-             .min = 0,
-             .max = 0,
              .default_value = Absent{"the model's defaults"},
              .description =
                  "NAME=VALUE: a model parameter held fixed (e.g. albedo=0.3, cie-type=7); "
@@ -213,17 +204,13 @@ const ParameterSchema<ShFitRequest>& ShFitRequest::schema() {
             })
         .choice(&R::channels,
                 {.name = "channels",
-                 .unit = "",
                  .kind = ParameterKind::text,
-                 .min = 0,
-                 .max = 0,
                  .default_value = ParameterValue(std::string("xyz")),
                  .description = "the channels fitted: xyz (Y in cd/m^2) or linear-srgb"},
                 {{"xyz", sh::Channels::xyz}, {"linear-srgb", sh::Channels::linear_srgb}})
         .number(&R::tolerance,
                 {.name = "tolerance",
                  .unit = "1",
-                 .kind = ParameterKind::number,
                  .min = 1e-9,
                  .max = 1e-1,
                  .default_value = ParameterValue(d.tolerance),
@@ -231,10 +218,7 @@ const ParameterSchema<ShFitRequest>& ShFitRequest::schema() {
                                 "c_00"})
         .custom(
             {.name = "theta-axis",
-             .unit = "",
              .kind = ParameterKind::text,
-             .min = 0,
-             .max = 0,
              .default_value = Absent{"the model's: theta"},
              .description =
                  "the sun-zenith coordinate of the fit: theta, or elevation-cbrt ((elevation / "
@@ -264,7 +248,6 @@ const ParameterSchema<ShFitRequest>& ShFitRequest::schema() {
             &R::ground_albedo,
             {.name = "ground-albedo",
              .unit = "1",
-             .kind = ParameterKind::number,
              .min = 0,
              .max = 1,
              .default_value = Absent{"the lower hemisphere black"},

@@ -38,7 +38,6 @@ ParameterSpec matrix_spec(const char* name, const char* help) {
 ParameterSpec angle_spec(const char* name, double lo, double hi, const char* help) {
   return {.name = name,
           .unit = "deg",
-          .kind = ParameterKind::number,
           .min = lo,
           .max = hi,
           .default_value = ParameterValue(0.0),
@@ -53,7 +52,6 @@ const ParameterSchema<Atmosphere>& atmosphere_schema() {
     s.number(&Atmosphere::turbidity,
              {.name = "turbidity",
               .unit = "1",
-              .kind = ParameterKind::number,
               .min = 1.0,
               .max = 64.0,
               .default_value = Required{},
@@ -61,7 +59,6 @@ const ParameterSchema<Atmosphere>& atmosphere_schema() {
         .number(&Atmosphere::altitude_m,
                 {.name = "altitude",
                  .unit = "m",
-                 .kind = ParameterKind::number,
                  .min = -500.0,
                  .max = 20000.0,
                  .default_value = ParameterValue(0.0),
@@ -69,10 +66,7 @@ const ParameterSchema<Atmosphere>& atmosphere_schema() {
         .choice(
             &Atmosphere::variant,
             {.name = "variant",
-             .unit = "",
              .kind = ParameterKind::text,
-             .min = 0,
-             .max = 0,
              .default_value = ParameterValue(std::string(to_string(ScatteringVariant::improved))),
              .description =
                  "scattering coefficients: improved (Morales 2017 eqs. 15, 18), Preetham's or "
@@ -90,18 +84,12 @@ const ParameterSchema<SensitivityOptions>& SensitivityOptions::schema() {
     ParameterSchema<SensitivityOptions> s;
     s.text(&SensitivityOptions::camera,
            {.name = "camera",
-            .unit = "",
             .kind = ParameterKind::text,
-            .min = 0,
-            .max = 0,
             .default_value = Absent{"--camera-csv"},
             .description = "camera spectral sensitivity by name (skylight haze cameras)"})
         .text(&SensitivityOptions::camera_csv,
               {.name = "camera-csv",
-               .unit = "",
                .kind = ParameterKind::text,
-               .min = 0,
-               .max = 0,
                .default_value = Absent{"--camera"},
                .description = "camera sensitivities: CSV 'nm,r,g,b'"});
     return s;
@@ -125,7 +113,6 @@ const ParameterSchema<ImageCameraOptions>& ImageCameraOptions::schema() {
          &C::vfov_deg,
          {.name = "vfov",
           .unit = "deg",
-          .kind = ParameterKind::number,
           .min = 0.01,
           .max = 179.0,
           .default_value = Absent{"no camera"},
@@ -135,7 +122,6 @@ const ParameterSchema<ImageCameraOptions>& ImageCameraOptions::schema() {
             &C::hfov_deg,
             {.name = "hfov",
              .unit = "deg",
-             .kind = ParameterKind::number,
              .min = 0.01,
              .max = 179.0,
              .default_value = Absent{"no camera"},
@@ -196,7 +182,6 @@ const ParameterSchema<CoefficientsOptions>& CoefficientsOptions::schema() {
     ParameterSchema<CoefficientsOptions> s;
     s.number(&CoefficientsOptions::wavelength_nm, {.name = "wavelength",
                                                    .unit = "nm",
-                                                   .kind = ParameterKind::number,
                                                    .min = 300.0,
                                                    .max = 1000.0,
                                                    .default_value = ParameterValue(550.0),
@@ -211,7 +196,6 @@ const ParameterSchema<AttenuationOptions>& AttenuationOptions::schema() {
     ParameterSchema<AttenuationOptions> s;
     s.number(&AttenuationOptions::distance_m, {.name = "distance",
                                                .unit = "m",
-                                               .kind = ParameterKind::number,
                                                .min = 0.0,
                                                .max = 1e7,
                                                .default_value = Required{},
@@ -241,19 +225,13 @@ const ParameterSchema<AirlightOptions>& AirlightOptions::schema() {
                .description = "constant airlight I^inf R,G,B (Morales 2017 eq. 10), > 0"})
         .text(&A::sky_model,
               {.name = "sky-model",
-               .unit = "",
                .kind = ParameterKind::text,
-               .min = 0,
-               .max = 0,
                .default_value = Absent{"--airlight"},
                .description = "airlight from a spectral sky model with a turbidity (`skylight "
                               "models`) at the turbidity, seen through the camera (eq. 7)"})
         .text(&A::sky_photo,
               {.name = "sky",
-               .unit = "",
                .kind = ParameterKind::text,
-               .min = 0,
-               .max = 0,
                .default_value = Absent{"--airlight"},
                .description = "airlight from a sky photo's horizon region (eqs. 12-13): linear "
                               ".exr, .hdr or .pfm"})
@@ -262,10 +240,7 @@ const ParameterSchema<AirlightOptions>& AirlightOptions::schema() {
                                                            "--sky: the sky photo's layout")))
         .choice(&A::horizon_region,
                 {.name = "horizon-region",
-                 .unit = "",
                  .kind = ParameterKind::text,
-                 .min = 0,
-                 .max = 0,
                  .default_value = ParameterValue(std::string("watershed")),
                  .description =
                      "--sky: the horizon region over the watershed sky mask (the band above the "
@@ -273,10 +248,7 @@ const ParameterSchema<AirlightOptions>& AirlightOptions::schema() {
                 {{"watershed", HorizonRegion::watershed}, {"band", HorizonRegion::band}})
         .text(&A::sky_mask,
               {.name = "sky-mask",
-               .unit = "",
                .kind = ParameterKind::text,
-               .min = 0,
-               .max = 0,
                .default_value = Absent{"the watershed's"},
                .description = "--sky: its sky mask (.png, .pfm, .exr; nonzero = sky, e.g. from "
                               "`skylight haze sky-mask`) instead of the watershed"})
@@ -286,7 +258,6 @@ const ParameterSchema<AirlightOptions>& AirlightOptions::schema() {
             &A::view_elevation_deg,
             {.name = "view-elevation",
              .unit = "deg",
-             .kind = ParameterKind::number,
              .min = 0.0,
              .max = 90.0,
              .default_value = ParameterValue(0.0),
@@ -296,7 +267,6 @@ const ParameterSchema<AirlightOptions>& AirlightOptions::schema() {
             &A::view_azimuth_deg,
             {.name = "view-azimuth",
              .unit = "deg",
-             .kind = ParameterKind::number,
              .min = -360.0,
              .max = 360.0,
              .default_value = ParameterValue(0.0),
@@ -383,21 +353,18 @@ const ParameterSchema<HazeOptions>& HazeOptions::schema() {
          &H::target_turbidity,
          {.name = "target-turbidity",
           .unit = "1",
-          .kind = ParameterKind::number,
           .min = 1.0,
           .max = 64.0,
           .default_value = Absent{"required by retarget, refused by the other operations"},
           .description = "turbidity T_t to re-target to (eq. 26)"})
         .optional_number(&H::near_m, {.name = "near",
                                       .unit = "m",
-                                      .kind = ParameterKind::number,
                                       .min = 1e-6,
                                       .max = 1e9,
                                       .default_value = Absent{"the depth map holds metres"},
                                       .description = "near plane of a normalised depth map"})
         .optional_number(&H::far_m, {.name = "far",
                                      .unit = "m",
-                                     .kind = ParameterKind::number,
                                      .min = 1e-6,
                                      .max = 1e9,
                                      .default_value = Absent{"the depth map holds metres"},
@@ -406,7 +373,6 @@ const ParameterSchema<HazeOptions>& HazeOptions::schema() {
             &H::min_transmission,
             {.name = "min-transmission",
              .unit = "1",
-             .kind = ParameterKind::number,
              .min = 1e-6,
              .max = 1.0,
              .default_value = ParameterValue(kDefaultMinTransmission),

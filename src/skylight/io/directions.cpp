@@ -33,7 +33,6 @@ std::vector<std::pair<std::size_t, std::string_view>> lines_of(std::string_view 
 const ParameterSpec& direction_zenith_spec() {
   static const ParameterSpec spec{.name = "zenith_deg",
                                   .unit = "deg",
-                                  .kind = ParameterKind::number,
                                   .min = 0.0,
                                   .max = 180.0,
                                   .default_value = Required{},
@@ -44,7 +43,6 @@ const ParameterSpec& direction_zenith_spec() {
 const ParameterSpec& direction_azimuth_spec() {
   static const ParameterSpec spec{.name = "azimuth_deg",
                                   .unit = "deg",
-                                  .kind = ParameterKind::number,
                                   .min = -360.0,
                                   .max = 360.0,
                                   .default_value = Required{},

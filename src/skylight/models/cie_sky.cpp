@@ -178,7 +178,6 @@ const ParameterSchema<CieParameters>& CieParameters::schema() {
     s.optional_number(&CieParameters::zenith_luminance,
                       {.name = "zenith-luminance",
                        .unit = "cd/m^2",
-                       .kind = ParameterKind::number,
                        .min = kMinZenithLuminance,
                        .max = kMaxZenithLuminance,
                        .default_value = Absent{"Kittler & Darula typical value for the type"},

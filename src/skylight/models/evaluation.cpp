@@ -24,10 +24,7 @@ const ParameterSchema<SolarDisc>& SolarDisc::schema() {
     ParameterSchema<SolarDisc> s;
     s.custom(
          {.name = "include-sun",
-          .unit = "",
           .kind = ParameterKind::flag,
-          .min = 0,
-          .max = 0,
           .default_value = ParameterValue(false),
           .description = "add the solar disc (models with a sun)"},
          [](SolarDisc& m, const ParameterValue& v) {
@@ -38,10 +35,7 @@ const ParameterSchema<SolarDisc>& SolarDisc::schema() {
          })
         .custom(
             {.name = "sun-only",
-             .unit = "",
              .kind = ParameterKind::flag,
-             .min = 0,
-             .max = 0,
              .default_value = ParameterValue(false),
              .description = "the solar disc alone, without the sky"},
             [](SolarDisc& m, const ParameterValue& v) {
@@ -69,10 +63,7 @@ ParameterSpec model_spec() {
     choices.push_back(m.name);
   }
   ParameterSpec s{.name = "model",
-                  .unit = "",
                   .kind = ParameterKind::text,
-                  .min = 0,
-                  .max = 0,
                   .default_value = Required{},
                   .description = "sky model: " + names + " (see `skylight models`)"};
   s.choices = std::move(choices);
@@ -83,7 +74,6 @@ ParameterSpec sun_elevation_spec() {
   const ParameterSpec& z = sun_parameter_specs()[0];
   return {.name = "sun-elevation",
           .unit = "deg",
-          .kind = ParameterKind::number,
           .min = 90.0 - z.max,
           .max = 90.0 - z.min,
           .default_value = Absent{"90 - sun zenith"},
@@ -97,10 +87,7 @@ const ParameterSchema<EvaluationOptions>& EvaluationOptions::schema() {
     s.choice(
          &E::quantity,
          {.name = "quantity",
-          .unit = "",
           .kind = ParameterKind::text,
-          .min = 0,
-          .max = 0,
           .default_value = ParameterValue(std::string("rgb")),
           .description =
               "rgb (linear sRGB), xyz (Y in cd/m^2), luminance (cd/m^2), spectral (W m^-2 sr^-1 "

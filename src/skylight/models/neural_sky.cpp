@@ -19,17 +19,13 @@ const ParameterSchema<NeuralSkyParameters>& NeuralSkyParameters::schema() {
     const NeuralSkyParameters defaults;
     s.text(&NeuralSkyParameters::weights,
            {.name = "weights",
-            .unit = "",
             .kind = ParameterKind::text,
-            .min = 0,
-            .max = 0,
             .default_value = Absent{"the embedded 6-12-3 network trained on preetham (data/nn/)"},
             .description = "weights file of a trained neural sky (skylight nn train; docs/NN.md)"});
     s.number(
         &NeuralSkyParameters::turbidity,
         {.name = "turbidity",
          .unit = "1",
-         .kind = ParameterKind::number,
          .min = kNeuralTurbidityMin,
          .max = kNeuralTurbidityMax,
          .default_value = ParameterValue(defaults.turbidity),

@@ -27,7 +27,6 @@ const ParameterSchema<PerezParameters>& PerezParameters::schema() {
     s.optional_number(&PerezParameters::zenith_luminance,
                       {.name = "zenith-luminance",
                        .unit = "cd/m^2",
-                       .kind = ParameterKind::number,
                        .min = kMinZenithLuminance,
                        .max = kMaxZenithLuminance,
                        .default_value = Required{},

@@ -25,10 +25,7 @@ const ParameterSchema<PietrasParameters>& PietrasParameters::schema() {
     s.text(
         &PietrasParameters::weights,
         {.name = "weights",
-         .unit = "",
          .kind = ParameterKind::text,
-         .min = 0,
-         .max = 0,
          .default_value =
              Absent{"the embedded log3 network trained on Earth's nishita (data/nn/log3.json)"},
          .description =
@@ -37,7 +34,6 @@ const ParameterSchema<PietrasParameters>& PietrasParameters::schema() {
         &PietrasParameters::observer_altitude_m,
         {.name = "observer-altitude",
          .unit = "m",
-         .kind = ParameterKind::number,
          .min = 0.0,
          .max = kNishitaMaxAltitude,
          .default_value = ParameterValue(defaults.observer_altitude_m),
@@ -217,10 +213,7 @@ const ParameterSchema<PlanetViewOptions>& PlanetViewOptions::schema() {
     azimuth.description = "solar azimuth from north towards east (the ground view looks north)";
     s.choice(&V::orbit,
              {.name = "view",
-              .unit = "",
               .kind = ParameterKind::text,
-              .min = 0,
-              .max = 0,
               .default_value = ParameterValue(std::string("orbit")),
               .description = "from orbit or from the ground"},
              {{"orbit", true}, {"ground", false}})
@@ -229,7 +222,6 @@ const ParameterSchema<PlanetViewOptions>& PlanetViewOptions::schema() {
         .optional_number(&V::altitude_m,
                          {.name = "altitude",
                           .unit = "m",
-                          .kind = ParameterKind::number,
                           .min = 0.0,
                           .max = 1e10,
                           .default_value = Absent{"orbit: 2 planet radii; ground: 2 m"},
@@ -237,7 +229,6 @@ const ParameterSchema<PlanetViewOptions>& PlanetViewOptions::schema() {
         .number(&V::look_elevation_deg,
                 {.name = "look-elevation",
                  .unit = "deg",
-                 .kind = ParameterKind::number,
                  .min = -90.0,
                  .max = 90.0,
                  .default_value = ParameterValue(d.look_elevation_deg),
@@ -246,14 +237,12 @@ const ParameterSchema<PlanetViewOptions>& PlanetViewOptions::schema() {
             &V::fov_deg,
             {.name = "fov",
              .unit = "deg",
-             .kind = ParameterKind::number,
              .min = 1.0,
              .max = 170.0,
              .default_value = Absent{"orbit: the atmosphere's disc fills 85 %; ground: 60"},
              .description = "vertical field of view"})
         .number(&V::albedo, {.name = "albedo",
                              .unit = "1",
-                             .kind = ParameterKind::number,
                              .min = 0.0,
                              .max = 1.0,
                              .default_value = ParameterValue(d.albedo),

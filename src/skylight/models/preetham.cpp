@@ -172,7 +172,6 @@ const ParameterSchema<PreethamParameters>& PreethamParameters::schema() {
     s.number(&PreethamParameters::turbidity,
              {.name = "turbidity",
               .unit = "1",
-              .kind = ParameterKind::number,
               .min = kPreethamTurbidityMin,
               .max = kPreethamTurbidityMax,
               .default_value = ParameterValue(PreethamParameters{}.turbidity),

@@ -41,10 +41,7 @@ const ParameterSchema<ShParameters>& ShParameters::schema() {
     ParameterSchema<ShParameters> s;
     s.text(&ShParameters::table,
            {.name = "table",
-            .unit = "",
             .kind = ParameterKind::text,
-            .min = 0,
-            .max = 0,
             .default_value =
                 Absent{std::string("the embedded Preetham table data/") + kDefaultShTable},
             .description = "SH polynomial table file (JSON from `skylight sh fit`)"});
@@ -58,17 +55,13 @@ const ParameterSchema<ShParameters>& ShParameters::schema() {
                .description = "SH bands N reconstructed (degrees 0..N-1); 0: all of the table's"});
     s.flag(&ShParameters::no_ringing_filter,
            {.name = "no-ringing-filter",
-            .unit = "",
             .kind = ParameterKind::flag,
-            .min = 0,
-            .max = 0,
             .default_value = ParameterValue(false),
             .description = "reconstruct without the ringing filter (Habel 2008 eq. 5)"});
     s.optional_number(
         &ShParameters::turbidity,
         {.name = "turbidity",
          .unit = "1",
-         .kind = ParameterKind::number,
          .min = 0.0,
          .max = 1000.0,
          .default_value = Absent{"the middle of the table's range"},
@@ -128,11 +121,7 @@ const ParameterSchema<ShEvalOptions>& ShEvalOptions::schema() {
     ParameterSchema<ShEvalOptions> s;
     s.flag(&ShEvalOptions::irradiance,
            {.name = "irradiance",
-            .unit = "",
             .kind = ParameterKind::flag,
-            .min = 0,
-            .max = 0,
-            .default_value = {},
             .description = "the irradiance coefficients A_l c_lm (clamped-cosine convolution)"});
     return s;
   }();

@@ -42,7 +42,6 @@ const std::vector<ParameterSpec>& sun_parameter_specs() {
   static const std::vector<ParameterSpec> specs = {
       {.name = "sun-zenith",
        .unit = "deg",
-       .kind = ParameterKind::number,
        .min = 0.0,
        .max = 180.0,
        .default_value = ParameterValue(kDefaultSunZenithDeg),
@@ -50,7 +49,6 @@ const std::vector<ParameterSpec>& sun_parameter_specs() {
            "solar zenith angle (or --sun-elevation = 90 - zenith); > 90 = below the horizon"},
       {.name = "sun-azimuth",
        .unit = "deg",
-       .kind = ParameterKind::number,
        .min = -360.0,
        .max = 360.0,
        .default_value = ParameterValue(kDefaultSunAzimuthDeg),

@@ -105,10 +105,7 @@ std::vector<ParameterSpec> without_model_specs(const OperationInfo& op) {
 
 ParameterSpec gpu_spec(const std::string& what) {
   return {.name = "gpu",
-          .unit = "",
           .kind = ParameterKind::flag,
-          .min = 0,
-          .max = 0,
           .default_value = ParameterValue(false),
           .description = what};
 }

@@ -207,10 +207,7 @@ const ParameterSchema<BenchSettings>& BenchSettings::schema() {
                                .description = "runs per measurement (the median is reported)"})
         .custom(
             {.name = "models",
-             .unit = "",
              .kind = ParameterKind::text,
-             .min = 0,
-             .max = 0,
              .default_value = Absent{defaults},
              .description =
                  "models to time, comma-separated (each with its comparison and workload: sh its "
@@ -232,29 +229,18 @@ const ParameterSchema<BenchSettings>& BenchSettings::schema() {
             })
         .flag(&B::estimate,
               {.name = "estimate",
-               .unit = "",
                .kind = ParameterKind::flag,
-               .min = 0,
-               .max = 0,
-               .default_value = {},
                .description = "also time one turbidity estimate on a 1-megapixel fisheye "
                               "(skylight estimate)"})
         .flag(&B::haze,
               {.name = "haze",
-               .unit = "",
                .kind = ParameterKind::flag,
-               .min = 0,
-               .max = 0,
-               .default_value = {},
                .description =
                    "also time haze retarget on a 1920x1080 frame + depth against the exact "
                    "per-pixel spectral integral (skylight haze), and its GL frame when "
                    "built with the GPU module"})
         .text(&B::sh_table, {.name = "sh-table",
-                             .unit = "",
                              .kind = ParameterKind::text,
-                             .min = 0,
-                             .max = 0,
                              .default_value = Absent{"the embedded one"},
                              .description = "with sh in --models: the SH table timed"});
     return s;

@@ -45,18 +45,12 @@ const ParameterSchema<AnimationOptions>& AnimationOptions::schema() {
                           .description = "the last frame's sun: zenith,azimuth"})
         .text(&A::from_time,
               {.name = "from-time",
-               .unit = "",
                .kind = ParameterKind::text,
-               .min = 0,
-               .max = 0,
                .default_value = Absent{"--from"},
                .description = "the first frame's time, ISO 8601 with UTC offset (the sun by the "
                               "SPA)"})
         .text(&A::to_time, {.name = "to-time",
-                            .unit = "",
                             .kind = ParameterKind::text,
-                            .min = 0,
-                            .max = 0,
                             .default_value = Absent{"--to"},
                             .description = "the last frame's time (times interpolated linearly)"})
         .optional_number(&A::lat_deg, lat)

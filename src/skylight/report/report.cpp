@@ -19,10 +19,7 @@ const ParameterSchema<ReportOptions>& ReportOptions::schema() {
     ParameterSchema<O> s;
     s.custom(
          {.name = "measurements",
-          .unit = "",
           .kind = ParameterKind::text,
-          .min = 0,
-          .max = 0,
           .default_value = Absent{"the shipped synthetic example"},
           .description = "sky-luminance scan CSV (azimuth_deg,elevation_deg,luminance_cd_m2)"},
          [](O& o, const ParameterValue& v) { o.measurements = std::get<std::string>(v); },
@@ -33,7 +30,6 @@ const ParameterSchema<ReportOptions>& ReportOptions::schema() {
         .custom(
             {.name = "sun-azimuth",
              .unit = "deg",
-             .kind = ParameterKind::number,
              .min = -360.0,
              .max = 360.0,
              .default_value = Absent{"the file's '# sun_azimuth_deg'"},
@@ -48,7 +44,6 @@ const ParameterSchema<ReportOptions>& ReportOptions::schema() {
         .custom(
             {.name = "sun-elevation",
              .unit = "deg",
-             .kind = ParameterKind::number,
              .min = 0.0,
              .max = 90.0,
              .default_value = Absent{"the file's '# sun_elevation_deg'"},
@@ -62,11 +57,7 @@ const ParameterSchema<ReportOptions>& ReportOptions::schema() {
             })
         .flag(&O::quick,
               {.name = "quick",
-               .unit = "",
                .kind = ParameterKind::flag,
-               .min = 0,
-               .max = 0,
-               .default_value = {},
                .description = "reduced resolution and fewer sun positions (seconds; for tests)"});
     return s;
   }();

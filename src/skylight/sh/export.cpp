@@ -159,27 +159,16 @@ const ParameterSchema<ExportOptions>& ExportOptions::schema() {
     const ExportOptions d;
     ParameterSchema<ExportOptions> s;
     s.flag(&ExportOptions::c_header, {.name = "c-header",
-                                      .unit = "",
                                       .kind = ParameterKind::flag,
-                                      .min = 0,
-                                      .max = 0,
-                                      .default_value = {},
                                       .description = "a C header (default: JSON)"})
         .flag(
             &ExportOptions::monomial,
             {.name = "monomial",
-             .unit = "",
              .kind = ParameterKind::flag,
-             .min = 0,
-             .max = 0,
-             .default_value = {},
              .description =
                  "with --c-header: also the published monomial form p_ij theta^i tau^j in double"})
         .text(&ExportOptions::name, {.name = "name",
-                                     .unit = "",
                                      .kind = ParameterKind::text,
-                                     .min = 0,
-                                     .max = 0,
                                      .default_value = ParameterValue(d.name),
                                      .description = "C identifier of the arrays"});
     return s;

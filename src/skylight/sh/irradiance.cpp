@@ -46,7 +46,6 @@ const ParameterSchema<SphereOptions>& SphereOptions::schema() {
                                      .description = "sphere image side"})
         .number(&SphereOptions::albedo, {.name = "sphere-albedo",
                                          .unit = "1",
-                                         .kind = ParameterKind::number,
                                          .min = 0,
                                          .max = 1,
                                          .default_value = ParameterValue(d.albedo),
