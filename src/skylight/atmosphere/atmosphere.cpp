@@ -443,6 +443,27 @@ double Atmosphere::optical_length(std::size_t i, double r, double mu) const {
 // the low, dense end), by composite 4-point Gauss-Legendre (view_steps / 4 panels). The samples
 // of a piece go through the SIMD kernel together (scatter_kernel.h).
 
+namespace {
+
+// The n = 4 panels samples of one lit piece: s = anchor +- L u^2 at the nodes of composite
+// 4-point Gauss-Legendre in u (panel k / 4 of n / 4, node k % 4), with their weights; then
+// kSamplePadding padding lanes of weight 0.
+void gauss_legendre_samples(const RayPiece& piece, std::size_t n, double* s_k, double* w_k) {
+  const double h = 4.0 / static_cast<double>(n);
+  const double len = piece.b - piece.a;
+  for (std::size_t k = 0; k < n; ++k) {
+    const double u = h * (static_cast<double>(k / 4) + 0.5 * (1.0 + kGaussNodes[k % 4]));
+    s_k[k] = piece.anchor_at_a ? piece.a + len * u * u : piece.b - len * u * u;
+    w_k[k] = 2.0 * len * u * 0.5 * h * kGaussWeights[k % 4];
+  }
+  for (std::size_t k = n; k < n + detail::kSamplePadding; ++k) {
+    s_k[k] = s_k[n - 1];
+    w_k[k] = 0.0;
+  }
+}
+
+}  // namespace
+
 void Atmosphere::single_scattering(Vec3 p, Vec3 view, Vec3 sun, const Spectral& spec,
                                    std::span<double> out, double max_distance) const {
   const std::size_t nl = spec.nm.size(), nc = params_.components.size();
@@ -491,21 +512,10 @@ void Atmosphere::single_scattering(Vec3 p, Vec3 view, Vec3 sun, const Spectral& 
   ps.vs = dot(view, sun);
   ps.ground_radius = R0;
   ps.hits_ground = ray.hits_ground;
-  const double h = 1.0 / panels;
   for (int pi = 0; pi < ray.count; ++pi) {
     const RayPiece& piece = ray.pieces[pi];
     if (!piece.lit) continue;
-    const double len = piece.b - piece.a;
-    for (std::size_t k = 0; k < n; ++k) {
-      // Composite 4-point Gauss-Legendre in u: panel k / 4 of n / 4, node k % 4.
-      const double u = h * (static_cast<double>(k / 4) + 0.5 * (1.0 + kGaussNodes[k % 4]));
-      s_k[k] = piece.anchor_at_a ? piece.a + len * u * u : piece.b - len * u * u;
-      w_k[k] = 2.0 * len * u * 0.5 * h * kGaussWeights[k % 4];
-    }
-    for (std::size_t k = n; k < n + detail::kSamplePadding; ++k) {  // padding lanes: weight 0
-      s_k[k] = s_k[n - 1];
-      w_k[k] = 0.0;
-    }
+    gauss_legendre_samples(piece, n, s_k, w_k);
     detail::scatter_piece(kernel_tables_.get(), nc, t0, ps, spec.extinction_padded.data(), np, acc);
   }
   const double mu = dot(view, sun);

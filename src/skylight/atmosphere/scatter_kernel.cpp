@@ -143,26 +143,21 @@ HWY_INLINE V OpticalLength(DF df, const detail::KernelTable& t, V ix, V ax, cons
   return hn::IfThenElse(mu.below, reflected, l);
 }
 
-void ScatterPieceImpl(const detail::KernelTable* HWY_RESTRICT tables, size_t nc,
-                      const float* HWY_RESTRICT t0, const detail::PieceSamples& ps,
-                      const float* HWY_RESTRICT extinction, size_t nl, float* HWY_RESTRICT acc) {
+// Pass 1, double precision: per sample the altitude h = |p + s v| - R0, the view and sun cosines,
+// the tangent altitudes for the reflection rule, the weight (0 in the planet's shadow); stored as
+// float up to n_full samples. Returns whether any sample is lit.
+struct SampleGeometry {
+  static constexpr size_t kArray = detail::kMaxPieceSamples + detail::kSamplePadding;
+  alignas(64) float h[kArray], mv[kArray], ms[kArray], hv[kArray], hs[kArray], wf[kArray];
+};
+bool SampleGeometryPass(const detail::PieceSamples& ps, size_t n_full, SampleGeometry& g) {
   using DD = hn::ScalableTag<double>;
   using DH = hn::Rebind<float, DD>;  // as many floats as doubles
-  using DF = hn::ScalableTag<float>;
   const DD dd;
   const DH dh;
-  const DF df;
   const double R0 = ps.ground_radius;
   const auto zero = hn::Zero(dd);
-  constexpr size_t kArray = detail::kMaxPieceSamples + detail::kSamplePadding;
-  // Pass 1, double precision: per sample the altitude h = |p + s v| - R0, the view and sun
-  // cosines, the tangent altitudes for the reflection rule, the weight (0 in the planet's
-  // shadow); stored as float.
-  alignas(64) float h[kArray], mv[kArray], ms[kArray], hv[kArray], hs[kArray], wf[kArray];
   bool any_lit = false;
-  // Up to whole float vectors of pass 2 (the padding samples have w = 0), so that pass 2 reads
-  // only written values.
-  const size_t n_full = (ps.n + hn::Lanes(df) - 1) / hn::Lanes(df) * hn::Lanes(df);
   for (size_t k0 = 0; k0 < n_full; k0 += hn::Lanes(dd)) {
     const auto s = hn::LoadU(dd, ps.s + k0);
     auto w = hn::LoadU(dd, ps.w + k0);
@@ -180,14 +175,27 @@ void ScatterPieceImpl(const detail::KernelTable* HWY_RESTRICT tables, size_t nc,
       return hn::Max(
           hn::Sub(hn::Sqrt(hn::Max(hn::NegMulAdd(q_dot, q_dot, r2), zero)), hn::Set(dd, R0)), zero);
     };
-    hn::StoreU(hn::DemoteTo(dh, hn::Sub(r, hn::Set(dd, R0))), dh, h + k0);
-    hn::StoreU(hn::DemoteTo(dh, hn::Mul(ps.hits_ground ? hn::Neg(qv) : qv, inv_r)), dh, mv + k0);
-    hn::StoreU(hn::DemoteTo(dh, hn::Mul(qs, inv_r)), dh, ms + k0);
-    hn::StoreU(hn::DemoteTo(dh, tangent(qv)), dh, hv + k0);
-    hn::StoreU(hn::DemoteTo(dh, tangent(qs)), dh, hs + k0);
-    hn::StoreU(hn::DemoteTo(dh, w), dh, wf + k0);
+    hn::StoreU(hn::DemoteTo(dh, hn::Sub(r, hn::Set(dd, R0))), dh, g.h + k0);
+    hn::StoreU(hn::DemoteTo(dh, hn::Mul(ps.hits_ground ? hn::Neg(qv) : qv, inv_r)), dh, g.mv + k0);
+    hn::StoreU(hn::DemoteTo(dh, hn::Mul(qs, inv_r)), dh, g.ms + k0);
+    hn::StoreU(hn::DemoteTo(dh, tangent(qv)), dh, g.hv + k0);
+    hn::StoreU(hn::DemoteTo(dh, tangent(qs)), dh, g.hs + k0);
+    hn::StoreU(hn::DemoteTo(dh, w), dh, g.wf + k0);
   }
-  if (!any_lit) return;
+  return any_lit;
+}
+
+void ScatterPieceImpl(const detail::KernelTable* HWY_RESTRICT tables, size_t nc,
+                      const float* HWY_RESTRICT t0, const detail::PieceSamples& ps,
+                      const float* HWY_RESTRICT extinction, size_t nl, float* HWY_RESTRICT acc) {
+  using DF = hn::ScalableTag<float>;
+  const DF df;
+  // Up to whole float vectors of pass 2 (the padding samples have w = 0), so that pass 2 reads
+  // only written values.
+  const size_t n_full = (ps.n + hn::Lanes(df) - 1) / hn::Lanes(df) * hn::Lanes(df);
+  SampleGeometry g;
+  if (!SampleGeometryPass(ps, n_full, g)) return;
+  const float *h = g.h, *mv = g.mv, *ms = g.ms, *hv = g.hv, *hs = g.hs, *wf = g.wf;
 
   // Pass 2, single precision, full vectors: densities and table lookups per component, then
   // each lit sample's transmittance over all wavelengths.
