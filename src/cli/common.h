@@ -2,8 +2,8 @@
 // the parameter schema (core/parameters.h), the model flags of `render` and `eval`, output
 // metadata, checked writes to standard output and progress lines. Each subcommand family lives in
 // its own file (models_cmd.cpp, render_cmd.cpp, eval_cmd.cpp, bench_cmd.cpp, report_cmd.cpp,
-// sun_cmd.cpp, nn_cmd.cpp, estimate_cmd.cpp, sh_cmd.cpp) and only parses, validates through the
-// schema, calls the library and writes outputs.
+// sun_cmd.cpp, estimate_cmd.cpp, sh_cmd.cpp, haze_cmd.cpp; the nn family in nn/) and only parses,
+// validates through the operation's schema, calls the library and writes outputs.
 #pragma once
 
 #include <CLI/CLI.hpp>

@@ -1,7 +1,7 @@
 // `skylight estimate`: the turbidity of a clear sky from an HDR photograph (fisheye or equirect),
-// by fitting the Preetham model (estimate/turbidity.h) or the Hosek-Wilkie model
-// (estimate/hosek_fit.h) to luminance samples, or the best CIE standard sky type
-// (estimate/sky_type.h); docs/ESTIMATE.md.
+// by fitting a model whose registry entry declares an EstimationPolicy (Preetham, Hosek-Wilkie, the
+// CIE standard sky types) to luminance samples of the photo (estimate/photo.h, fit/luminance_fit.h);
+// docs/ESTIMATE.md.
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 

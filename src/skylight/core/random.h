@@ -1,6 +1,6 @@
 // SplitMix64 (Steele, Lea & Flood 2014): the project's one small seeded generator. Its sequence is
 // fixed by the seed on every platform (std::*_distribution is not), so a seed fixes every sampled
-// result: estimation's view samples, RANSAC and bootstrap (estimate/), the synthetic scans
+// result: estimation's view samples, RANSAC and bootstrap (core/robust.h), the synthetic scans
 // (analysis/scan_models.cpp), and the seeding of the network trainers' xoshiro256** (nn/random.h).
 #pragma once
 

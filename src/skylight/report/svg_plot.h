@@ -1,4 +1,4 @@
-// A small direct-SVG plotting layer for the validation report (render/report.h): axes with ticks
+// A small direct-SVG plotting layer for the validation report (report/report.h): axes with ticks
 // and labels (linear or log10), line and marker series, categorical and colour-bar legends, and
 // raster maps embedded as <image href="file.png"> (the PNG is written next to the SVG).
 //
