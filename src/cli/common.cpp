@@ -47,33 +47,6 @@ CLI::Validator number_in(const ParameterSpec& spec) {
           : fmt::format("{} in [{}, {}]", spec.unit, spec.min, spec.max));
 }
 
-namespace {
-
-template <class T, class Convert>
-CLI::Option* add_parsed(CLI::App& app, const ParameterSpec& spec, T& target, Convert convert) {
-  return app
-      .add_option_function<std::string>(
-          spec.flag(), [&target, spec, convert](const std::string& s) { convert(target, spec, s); },
-          spec.help())
-      ->check(number_in(spec));
-}
-
-}  // namespace
-
-CLI::Option* add_number(CLI::App& app, const ParameterSpec& spec, double& target) {
-  return add_parsed(app, spec, target,
-                    [](double& t, const ParameterSpec& sp, const std::string& s) {
-                      t = std::get<double>(sp.parse(s));
-                    });
-}
-
-CLI::Option* add_number(CLI::App& app, const ParameterSpec& spec, std::optional<double>& target) {
-  return add_parsed(app, spec, target,
-                    [](std::optional<double>& t, const ParameterSpec& sp, const std::string& s) {
-                      t = std::get<double>(sp.parse(s));
-                    });
-}
-
 void SchemaFlags::add(CLI::App& app, const std::vector<ParameterSpec>& specs) {
   for (const ParameterSpec& spec : specs) {
     specs_.push_back(spec);
@@ -114,41 +87,6 @@ ParameterValues SchemaFlags::values() const {
   for (const ParameterSpec& spec : specs_)
     if (const auto& raw = raw_.at(spec.name)) v.set(spec.name, spec.parse(*raw));
   return v;
-}
-
-CLI::Option* add_integer(CLI::App& app, const ParameterSpec& spec, int& target) {
-  ParameterSpec s = spec;
-  s.kind = ParameterKind::integer;
-  return add_parsed(app, s, target, [](int& t, const ParameterSpec& sp, const std::string& text) {
-    t = static_cast<int>(std::get<double>(sp.parse(text)));
-  });
-}
-
-CLI::Option* add_numbers(CLI::App& app, const ParameterSpec& spec, std::vector<double>& target) {
-  ParameterSpec s = spec;
-  s.kind = ParameterKind::numbers;
-  auto* opt = app.add_option_function<std::string>(
-      s.flag(),
-      [&target, s](const std::string& text) {
-        target = std::get<std::vector<double>>(s.parse(text));
-      },
-      s.help());
-  if (s.count > 0) return opt->check(number_in(s));
-  // Any length: check each element only.
-  return opt->check(CLI::Validator(
-      [s](std::string& text) -> std::string {
-        try {
-          for (double v : parse_number_list(text, s.flag())) {
-            ParameterSpec one = s;
-            one.kind = ParameterKind::number;
-            one.check(v);
-          }
-        } catch (const InvalidArgument& e) {
-          return without_flag(e.what(), s.flag());
-        }
-        return {};
-      },
-      fmt::format("{} in [{}, {}], comma-separated", s.unit, s.min, s.max)));
 }
 
 std::optional<sun::SpaInput> solar_position_input(const ParameterValues& given) {

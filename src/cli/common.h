@@ -58,12 +58,6 @@ std::string flag_spelling(std::string_view name);
 // A CLI11 check that the text is a number (strict parser) in the spec's range; the help text shows
 // the unit and range.
 CLI::Validator number_in(const ParameterSpec& spec);
-// Adds --<spec.name> with the spec's help; the value is parsed and range-checked.
-CLI::Option* add_number(CLI::App& app, const ParameterSpec& spec, double& target);
-CLI::Option* add_number(CLI::App& app, const ParameterSpec& spec, std::optional<double>& target);
-CLI::Option* add_integer(CLI::App& app, const ParameterSpec& spec, int& target);
-// A comma-separated list of `spec.count` numbers (spec.count 0: any length >= 1).
-CLI::Option* add_numbers(CLI::App& app, const ParameterSpec& spec, std::vector<double>& target);
 
 // The flags of a library schema (an operation's settings, core/parameters.h): one per spec, the
 // values kept as given until the command runs, then parsed and checked by the specs and bound
