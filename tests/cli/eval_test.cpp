@@ -166,9 +166,8 @@ TEST_F(Cli, HosekEvalAllQuantitiesAndRender) {
   r = run("render " + model + " --width 64 --height 32 -o '" + exr.string() + "'");
   ASSERT_EQ(r.status, 0) << r.err;
   const io::ImageF img = io::read_image(exr);
-  const double zen = 180.0 * 9.5 / 32.0, az = 360.0 * 20.5 / 64.0;
   r = run("eval " + model + " --quantity xyz",
-          "zenith_deg,azimuth_deg\n" + std::to_string(zen) + "," + std::to_string(az) + "\n");
+          testing_support::equirect_pixel_input(20, 9, 64, 32));
   ASSERT_EQ(r.status, 0) << r.err;
   const auto px_xyz = parse_csv_numbers(r.out, &header);
   const Rgb want = xyz_to_linear_srgb({px_xyz[0][2], px_xyz[0][3], px_xyz[0][4]});

@@ -19,7 +19,6 @@ namespace skylight {
 namespace {
 
 using Cli = testing_support::CliTest;
-using testing_support::parse_csv_numbers;
 
 TEST_F(Cli, EverySubcommandHelpListsTheGlobalThreadsOption) {
   for (const char* sub : {"models", "render", "eval", "bench", "report", "sun"}) {

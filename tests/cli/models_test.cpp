@@ -11,14 +11,12 @@
 #include "skylight/core/frame.h"
 #include "skylight/io/image.h"
 #include "support/cli_run.h"
-
-namespace fs = std::filesystem;
+#include "support/exr_metadata.h"
 
 namespace skylight {
 namespace {
 
 using Cli = testing_support::CliTest;
-using testing_support::parse_csv_numbers;
 
 TEST_F(Cli, ModelsJsonAndHelp) {
   testing_support::CliResult r = run("models --json");
@@ -94,27 +92,19 @@ TEST_F(Cli, MetadataRecordsOnlyWhatTheModelReads) {
       run("render --model preetham --turbidity 4 --width 8 --height 4 -o '" + out.string() + "'")
           .status,
       0);
+  using testing_support::kMissingMetadata;
+  using testing_support::metadata_value;
   const auto md = io::read_exr_metadata(out);
-  auto has_key = [&](const std::string& k) {
-    for (const auto& [key, value] : md)
-      if (key == k) return true;
-    return false;
-  };
-  EXPECT_TRUE(has_key("skylight:turbidity"));
-  EXPECT_FALSE(has_key("skylight:cie_type"));
-  EXPECT_FALSE(has_key("skylight:albedo"));
+  EXPECT_NE(metadata_value(md, "skylight:turbidity"), kMissingMetadata);
+  EXPECT_EQ(metadata_value(md, "skylight:cie_type"), kMissingMetadata);
+  EXPECT_EQ(metadata_value(md, "skylight:albedo"), kMissingMetadata);
   const auto n = dir_ / "n.exr";
   ASSERT_EQ(
       run("render --model nishita --ozone 300 --width 8 --height 4 -o '" + n.string() + "'").status,
       0);
   const auto nmd = io::read_exr_metadata(n);
-  bool ozone = false, top = false;
-  for (const auto& [key, value] : nmd) {
-    if (key == "skylight:ozone_DU") ozone = value == "300";
-    if (key == "skylight:top_radius_m") top = value == "6420000";
-  }
-  EXPECT_TRUE(ozone);
-  EXPECT_TRUE(top);
+  EXPECT_EQ(metadata_value(nmd, "skylight:ozone_DU"), "300");
+  EXPECT_EQ(metadata_value(nmd, "skylight:top_radius_m"), "6420000");
 }
 
 }  // namespace

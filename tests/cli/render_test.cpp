@@ -5,13 +5,14 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <string>
 
 #include "skylight/core/colorimetry.h"
 #include "skylight/core/frame.h"
 #include "skylight/io/image.h"
 #include "support/cli_run.h"
+#include "support/exr_metadata.h"
+#include "support/scratch_dir.h"
 
 namespace fs = std::filesystem;
 
@@ -35,10 +36,8 @@ TEST_F(Cli, RenderedExrPixelMatchesEval) {
   ASSERT_EQ(img.height, 32);
   ASSERT_EQ(img.channels, 3);
   // Pixel (col 20, row 9) of a 64x32 equirect: theta = 180 * 9.5/32, phi = 360 * 20.5/64.
-  const double zen = 180.0 * 9.5 / 32.0, az = 360.0 * 20.5 / 64.0;
-  const testing_support::CliResult e =
-      run("eval " + model + " --quantity rgb",
-          "zenith_deg,azimuth_deg\n" + std::to_string(zen) + "," + std::to_string(az) + "\n");
+  const testing_support::CliResult e = run("eval " + model + " --quantity rgb",
+                                           testing_support::equirect_pixel_input(20, 9, 64, 32));
   ASSERT_EQ(e.status, 0) << e.err;
   std::string header;
   const auto rows = parse_csv_numbers(e.out, &header);
@@ -52,15 +51,11 @@ TEST_F(Cli, RenderedExrPixelMatchesEval) {
   EXPECT_EQ(img.pixel(20, 25)[1], 0.0f);
   // Every parameter and the version are recorded.
   const auto md = io::read_exr_metadata(exr);
-  auto find = [&](const std::string& k) {
-    for (const auto& [key, value] : md)
-      if (key == k) return value;
-    return std::string("<missing>");
-  };
-  EXPECT_EQ(find("skylight:model"), "preetham");
-  EXPECT_EQ(find("skylight:turbidity"), "3.5");
-  EXPECT_EQ(find("skylight:sun_zenith_deg"), "50");
-  EXPECT_NE(find("skylight:version"), "<missing>");
+  using testing_support::metadata_value;
+  EXPECT_EQ(metadata_value(md, "skylight:model"), "preetham");
+  EXPECT_EQ(metadata_value(md, "skylight:turbidity"), "3.5");
+  EXPECT_EQ(metadata_value(md, "skylight:sun_zenith_deg"), "50");
+  EXPECT_NE(metadata_value(md, "skylight:version"), testing_support::kMissingMetadata);
 }
 
 TEST_F(Cli, RenderAllFormatsAndProjections) {
@@ -160,15 +155,17 @@ TEST_F(Cli, AFlagTheModelDoesNotReadIsNotRecorded) {
     return all;
   };
   const fs::path exr = dir_ / "p.exr";
+  // The run warned `warning` and did not record the turbidity.
+  const auto expect_turbidity_ignored = [&](const testing_support::CliResult& r,
+                                            const std::string& warning) {
+    EXPECT_NE(r.err.find("skylight: warning: " + warning), std::string::npos) << r.err;
+    EXPECT_EQ(keys(exr).find("skylight:turbidity"), std::string::npos) << keys(exr);
+  };
   testing_support::CliResult r =
       run("render --model pietras --turbidity 5 --observer-altitude 800 --width 8 --height 4 -o '" +
           exr.string() + "'");
   ASSERT_EQ(r.status, 0) << r.err;
-  EXPECT_NE(r.err.find("skylight: warning: --turbidity is not a parameter of model 'pietras'; "
-                       "ignored"),
-            std::string::npos)
-      << r.err;
-  EXPECT_EQ(keys(exr).find("skylight:turbidity"), std::string::npos) << keys(exr);
+  expect_turbidity_ignored(r, "--turbidity is not a parameter of model 'pietras'; ignored");
   EXPECT_NE(keys(exr).find("skylight:observer_altitude_m=800\n"), std::string::npos) << keys(exr);
   r = run("render --model nn --width 8 --height 4 -o '" + exr.string() + "'");
   ASSERT_EQ(r.status, 0) << r.err;
@@ -184,11 +181,8 @@ TEST_F(Cli, AFlagTheModelDoesNotReadIsNotRecorded) {
   r = run("render --model nn --weights '" + w.string() +
           "' --turbidity 4 --width 8 --height 4 -o '" + exr.string() + "'");
   ASSERT_EQ(r.status, 0) << r.err;
-  EXPECT_NE(r.err.find("skylight: warning: --turbidity is not read by model 'nn' with these "
-                       "parameters; ignored"),
-            std::string::npos)
-      << r.err;
-  EXPECT_EQ(keys(exr).find("skylight:turbidity"), std::string::npos) << keys(exr);
+  expect_turbidity_ignored(r,
+                           "--turbidity is not read by model 'nn' with these parameters; ignored");
 }
 
 TEST_F(Cli, PixelUnitSaysWhatEachOutputHolds) {
@@ -200,19 +194,13 @@ TEST_F(Cli, PixelUnitSaysWhatEachOutputHolds) {
   ASSERT_EQ(r.status, 0) << r.err;
   r = run("render --model cie --width 8 --height 4 -o '" + png.string() + "'");
   ASSERT_EQ(r.status, 0) << r.err;
-  std::string unit;
-  for (const auto& [key, value] : io::read_exr_metadata(exr))
-    if (key == "skylight:pixel_unit") unit = value;
-  EXPECT_EQ(unit, "linear sRGB (D65), Y = luminance [cd/m^2]");
-  const auto bytes = [](const fs::path& p) {
-    std::ifstream in(p, std::ios::binary);
-    return std::string(std::istreambuf_iterator<char>(in), {});
-  };
+  EXPECT_EQ(testing_support::metadata_value(io::read_exr_metadata(exr), "skylight:pixel_unit"),
+            "linear sRGB (D65), Y = luminance [cd/m^2]");
   const std::string tone = std::string("tEXtskylight:pixel_unit\0tone-mapped display values", 50);
-  EXPECT_NE(bytes(preview).find(tone), std::string::npos);
-  EXPECT_NE(bytes(png).find(tone), std::string::npos);
-  EXPECT_EQ(bytes(preview).find("Y = luminance"), std::string::npos);
-  EXPECT_NE(bytes(fc).find(std::string("skylight:pixel_unit\0false colour of log10 luminance, 1 "
+  EXPECT_NE(slurp(preview).find(tone), std::string::npos);
+  EXPECT_NE(slurp(png).find(tone), std::string::npos);
+  EXPECT_EQ(slurp(preview).find("Y = luminance"), std::string::npos);
+  EXPECT_NE(slurp(fc).find(std::string("skylight:pixel_unit\0false colour of log10 luminance, 1 "
                                        "to 5 log10 cd/m^2",
                                        72)),
             std::string::npos);
@@ -221,8 +209,7 @@ TEST_F(Cli, PixelUnitSaysWhatEachOutputHolds) {
 TEST_F(Cli, EveryMetadataKeyIsDocumentedInTheReadme) {
   // Renders that write every kind of key (each model's parameters, fisheye, camera, --time): each
   // key must appear in README.md in backticks, with or without its `skylight:` prefix.
-  std::ifstream in(fs::path(SKYLIGHT_SOURCE_DIR) / "README.md");
-  const std::string readme(std::istreambuf_iterator<char>(in), {});
+  const std::string readme = testing_support::source_file("README.md");
   const std::string renders[] = {
       "--model nishita --albedo 0.3 --ozone 300 --solar-irradiance 1 --projection camera",
       "--model preetham --projection fisheye --time 2003-10-17T12:30:30-07:00 --lat 39 --lon -105",
@@ -294,8 +281,7 @@ TEST_F(Cli, RenderGpuMatchesTheCpuRender) {
       std::string::npos)
       << r.err;
 #else
-  EXPECT_EQ(r.status, 1);
-  EXPECT_NE(r.err.find("built without the GPU module"), std::string::npos) << r.err;
+  testing_support::expect_built_without_gpu(r);
 #endif
 }
 

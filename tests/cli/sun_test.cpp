@@ -9,6 +9,7 @@
 
 #include "skylight/io/image.h"
 #include "support/cli_run.h"
+#include "support/exr_metadata.h"
 
 namespace fs = std::filesystem;
 
@@ -34,6 +35,12 @@ constexpr double kDeclinationTolDeg = 0.5e-5;
 // Table A5.1's E = 14.641503 min is 8e-6 min from eq. A1 with the table's own inputs
 // (data/test_vectors/PROVENANCE_reda_andreas_2008_tables.md).
 constexpr double kEquationOfTimeTolMin = 1e-5;
+
+// `sun --json`'s angles as the flags that give them to render and eval.
+std::string sun_angle_flags(const nlohmann::json& sun) {
+  return "--sun-zenith " + sun.at("zenith_deg").dump() + " --sun-azimuth " +
+         sun.at("azimuth_deg").dump();
+}
 
 TEST_F(Cli, SunWorkedExampleAsJson) {
   const testing_support::CliResult r = run("sun " + kExampleFlags + " --json");
@@ -121,8 +128,7 @@ TEST_F(Cli, RenderWithTimeEqualsRenderWithTheSameAngles) {
   const testing_support::CliResult s = run("sun " + kExampleFlags + " --json");
   ASSERT_EQ(s.status, 0) << s.err;
   const auto j = nlohmann::json::parse(s.out);
-  const std::string angles =
-      "--sun-zenith " + j.at("zenith_deg").dump() + " --sun-azimuth " + j.at("azimuth_deg").dump();
+  const std::string angles = sun_angle_flags(j);
   const fs::path a = dir_ / "time.exr", b = dir_ / "angles.exr";
   const std::string common = "render --model preetham --turbidity 3 --width 48 --height 24 ";
   const testing_support::CliResult ra = run(common + kExampleFlags + " -o '" + a.string() + "'");
@@ -139,23 +145,18 @@ TEST_F(Cli, RenderWithTimeEqualsRenderWithTheSameAngles) {
   EXPECT_LE(max_rel, kTimeVsAnglesRelTol);
   // The time and place are recorded.
   const auto md = io::read_exr_metadata(a);
-  auto find = [&](const std::string& k) {
-    for (const auto& [key, value] : md)
-      if (key == k) return value;
-    return std::string("<missing>");
-  };
-  EXPECT_EQ(find("skylight:time"), "2003-10-17T12:30:30.000-07:00");
-  EXPECT_EQ(find("skylight:latitude_deg"), "39.742476");
-  EXPECT_EQ(find("skylight:longitude_deg"), "-105.1786");
-  EXPECT_EQ(find("skylight:sun_zenith_deg"), j.at("zenith_deg").dump());
+  using testing_support::metadata_value;
+  EXPECT_EQ(metadata_value(md, "skylight:time"), "2003-10-17T12:30:30.000-07:00");
+  EXPECT_EQ(metadata_value(md, "skylight:latitude_deg"), "39.742476");
+  EXPECT_EQ(metadata_value(md, "skylight:longitude_deg"), "-105.1786");
+  EXPECT_EQ(metadata_value(md, "skylight:sun_zenith_deg"), j.at("zenith_deg").dump());
 }
 
 TEST_F(Cli, EvalWithTimeEqualsEvalWithTheSameAngles) {
   const testing_support::CliResult s = run("sun " + kExampleFlags + " --json");
   ASSERT_EQ(s.status, 0) << s.err;
   const auto j = nlohmann::json::parse(s.out);
-  const std::string angles =
-      "--sun-zenith " + j.at("zenith_deg").dump() + " --sun-azimuth " + j.at("azimuth_deg").dump();
+  const std::string angles = sun_angle_flags(j);
   const std::string input = "zenith_deg,azimuth_deg\n0,0\n30,200\n60,90\n85,300\n";
   const std::string common = "eval --model hosek --turbidity 4 --quantity xyz ";
   const testing_support::CliResult ea = run(common + kExampleFlags, input);

@@ -57,6 +57,19 @@ class CliTest : public ::testing::Test {
   std::filesystem::path dir_;
 };
 
+// A `--gpu` run of a build without the GPU module: exit status 1 and the reason.
+inline void expect_built_without_gpu(const CliResult& r) {
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.err.find("built without the GPU module"), std::string::npos) << r.err;
+}
+
+// `eval` input for the direction at the centre of pixel (col, row) of a width x height equirect
+// render: theta = 180 (row + 0.5) / height, phi = 360 (col + 0.5) / width [deg].
+inline std::string equirect_pixel_input(int col, int row, int width, int height) {
+  const double zen = 180.0 * (row + 0.5) / height, az = 360.0 * (col + 0.5) / width;
+  return "zenith_deg,azimuth_deg\n" + std::to_string(zen) + "," + std::to_string(az) + "\n";
+}
+
 // CSV text -> header and rows of numbers.
 inline std::vector<std::vector<double>> parse_csv_numbers(const std::string& text,
                                                           std::string* header) {

@@ -1,4 +1,5 @@
-// Test helper: a scratch directory per test (removed afterwards) and whole-file reading.
+// Test helper: a scratch directory per test (removed afterwards) and whole-file reading, of any
+// file or of one of the source tree.
 #pragma once
 
 #include <fmt/format.h>
@@ -47,6 +48,12 @@ class ScratchDir {
 inline std::string slurp(const fs::path& path) {
   std::ifstream in(path, std::ios::binary);
   return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+// A file of the source tree that a test holds the code to, by its path from the root
+// ("docs/MODELS.md"); empty when it cannot be read.
+inline std::string source_file(const std::string& relative) {
+  return slurp(fs::path(SKYLIGHT_SOURCE_DIR) / relative);
 }
 
 }  // namespace skylight::testing_support

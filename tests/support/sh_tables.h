@@ -1,10 +1,12 @@
-// Test helper: a synthetic SH polynomial table (deterministic pseudo-random coefficients,
-// SplitMix64) for tests of evaluation, reconstruction and export that need no fit.
+// Test helpers: SH polynomial tables. A synthetic one (deterministic pseudo-random coefficients,
+// SplitMix64) for tests of evaluation, reconstruction and export that need no fit, and a reduced
+// fit of Preetham for those that need a real one.
 #pragma once
 
 #include <cstdint>
 
 #include "skylight/core/math.h"
+#include "skylight/fit/sh_fit.h"
 #include "skylight/sh/polynomial.h"
 
 namespace skylight::testing_support {
@@ -39,6 +41,27 @@ inline sh::PolynomialTable synthetic_sh_table(int bands, int degree_theta, int d
       t.coefficients.push_back(static_cast<float>(v));
     }
   }
+  return t;
+}
+
+// A reduced fit (3 bands, degrees (8, 6) on a 13 x 10 grid, Preetham over theta in [0, 60 deg],
+// T in [2.5, 6], projections to 1e-5) that the test suite can afford; docs/SH.md has the full
+// study.
+inline fit::ShFitSettings small_sh_fit_settings() {
+  fit::ShFitSettings s;
+  s.polynomial.bands = 3;
+  s.polynomial.degree_theta = 8;
+  s.polynomial.degree_tau = 6;
+  s.polynomial.grid_theta = 13;
+  s.polynomial.grid_tau = 10;
+  s.polynomial.theta_max = deg_to_rad(60.0);
+  s.projection.tolerance = 1e-5;
+  return s;
+}
+
+// The table of small_sh_fit_settings(), fitted once per process.
+inline const sh::PolynomialTable& small_sh_fit_table() {
+  static const sh::PolynomialTable t = fit::fit_sh_table(small_sh_fit_settings());
   return t;
 }
 

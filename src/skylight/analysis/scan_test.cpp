@@ -13,6 +13,7 @@
 
 #include "skylight/core/data.h"
 #include "skylight/models/sky_model.h"
+#include "support/error_message.h"
 
 namespace skylight::analysis {
 namespace {
@@ -23,12 +24,7 @@ constexpr double kSelfRmsTol = 1e-12;
 const double kNoiseLog10Bound = std::log10(1.0 / 0.95);
 
 std::string error_of(std::string_view text) {
-  try {
-    parse_sky_scan(text, "scan.csv");
-  } catch (const InvalidArgument& e) {
-    return e.what();
-  }
-  return "no error";
+  return testing_support::error_message([&] { parse_sky_scan(text, "scan.csv"); });
 }
 
 TEST(Scan, ParsesSunCommentsAndRows) {

@@ -6,17 +6,13 @@
 #include <vector>
 
 #include "skylight/core/error.h"
+#include "support/error_message.h"
 
 namespace skylight {
 namespace {
 
 std::string error_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const IoError& e) {
-    return e.what();
-  }
-  return "";
+  return testing_support::error_message<IoError>(f, "");
 }
 
 TEST(Data, EveryTableIsEmbedded) {

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "skylight/core/error.h"
+#include "support/error_message.h"
 
 namespace skylight {
 namespace {
@@ -45,18 +46,11 @@ TEST(Numbers, IntegersAreWholeDecimalNumbers) {
 }
 
 TEST(Numbers, ErrorsNameTheFieldAndQuoteAnExcerpt) {
-  try {
-    parse_number("12abc", "--turbidity");
-    FAIL();
-  } catch (const InvalidArgument& e) {
-    EXPECT_STREQ(e.what(), "--turbidity: '12abc' is not a number");
-  }
-  try {
-    parse_integer("4.5", "--cie-type");
-    FAIL();
-  } catch (const InvalidArgument& e) {
-    EXPECT_STREQ(e.what(), "--cie-type: '4.5' is not an integer");
-  }
+  using testing_support::error_message;
+  EXPECT_EQ(error_message([] { parse_number("12abc", "--turbidity"); }),
+            "--turbidity: '12abc' is not a number");
+  EXPECT_EQ(error_message([] { parse_integer("4.5", "--cie-type"); }),
+            "--cie-type: '4.5' is not an integer");
 }
 
 TEST(Numbers, ListsRejectEmptyElements) {
@@ -64,12 +58,8 @@ TEST(Numbers, ListsRejectEmptyElements) {
   EXPECT_EQ(parse_number_list("7", "--x"), (std::vector<double>{7.0}));
   for (const char* bad : {"", "1,,2", "1,2,", ",1", "1, 2", "1,x"})
     EXPECT_THROW(parse_number_list(bad, "--x"), InvalidArgument) << "'" << bad << "'";
-  try {
-    parse_number_list("550,,650", "--wavelengths");
-    FAIL();
-  } catch (const InvalidArgument& e) {
-    EXPECT_STREQ(e.what(), "--wavelengths: element 2 of '550,,650' is empty");
-  }
+  EXPECT_EQ(testing_support::error_message([] { parse_number_list("550,,650", "--wavelengths"); }),
+            "--wavelengths: element 2 of '550,,650' is empty");
 }
 
 TEST(Numbers, ExcerptIsBoundedAndPrintable) {

@@ -27,7 +27,6 @@ struct Example {
       ParameterSchema<Example> s;
       s.number(&Example::height_m, {.name = "height",
                                     .unit = "m",
-                                    .kind = ParameterKind::number,
                                     .min = 0.0,
                                     .max = 10.0,
                                     .default_value = ParameterValue(2.0),
@@ -35,7 +34,6 @@ struct Example {
       s.number(&Example::angle,
                {.name = "angle",
                 .unit = "deg",
-                .kind = ParameterKind::number,
                 .min = -90.0,
                 .max = 90.0,
                 .default_value = ParameterValue(0.0),
@@ -43,7 +41,6 @@ struct Example {
                kDegree);
       s.optional_number(&Example::optional_scale, {.name = "scale",
                                                    .unit = "1",
-                                                   .kind = ParameterKind::number,
                                                    .min = 0.5,
                                                    .max = 2.0,
                                                    .default_value = Absent{"no scaling"},
@@ -64,19 +61,11 @@ struct Example {
                                           .default_value = Required{},
                                           .description = "two values"});
       s.text(&Example::path, {.name = "path",
-                              .unit = "",
                               .kind = ParameterKind::text,
-                              .min = 0,
-                              .max = 0,
                               .default_value = Absent{"none"},
                               .description = "a file"});
-      s.flag(&Example::fast, {.name = "fast",
-                              .unit = "",
-                              .kind = ParameterKind::flag,
-                              .min = 0,
-                              .max = 0,
-                              .default_value = {},
-                              .description = "go fast"});
+      s.flag(&Example::fast,
+             {.name = "fast", .kind = ParameterKind::flag, .description = "go fast"});
       return s;
     }();
     return s;

@@ -8,6 +8,7 @@
 #include "skylight/io/image.h"
 #include "skylight/models/hosek_wilkie.h"
 #include "skylight/nn/image_dataset.h"
+#include "support/error_message.h"
 #include "support/sky_sequence.h"
 
 namespace skylight::estimate {
@@ -52,12 +53,7 @@ TEST(SkySequence, ListColumnsInAnyOrderRelativePathsAndComments) {
 
 TEST(SkySequence, ListErrorsNameTheFileAndLine) {
   auto message = [](std::string_view text) {
-    try {
-      parse_sequence_list(text, "seq.csv", "");
-    } catch (const InvalidArgument& e) {
-      return std::string(e.what());
-    }
-    return std::string("no error");
+    return testing_support::error_message([&] { parse_sequence_list(text, "seq.csv", ""); });
   };
   EXPECT_EQ(message("file,zenith\n"),
             "seq.csv:1: unknown column 'zenith' (file, sun_zenith_deg, "

@@ -11,6 +11,7 @@
 #include "skylight/models/preetham.h"
 #include "skylight/sh/approximation_error.h"
 #include "skylight/sh/basis.h"
+#include "support/sh_tables.h"
 
 namespace skylight::fit {
 namespace {
@@ -136,28 +137,14 @@ TEST(ShFitError, MinimumOverTheSkyIsPositiveAndBelowEveryGridValue) {
   }
 }
 
-// A reduced fit (3 bands, degrees (8, 6) on a 13 x 10 grid, Preetham over theta in [0, 60 deg],
-// T in [2.5, 6], projections to 1e-5) that the test suite can afford; docs/SH.md has the full
-// study.
-ShFitSettings small_settings() {
-  ShFitSettings s;
-  s.polynomial.bands = 3;
-  s.polynomial.degree_theta = 8;
-  s.polynomial.degree_tau = 6;
-  s.polynomial.grid_theta = 13;
-  s.polynomial.grid_tau = 10;
-  s.polynomial.theta_max = deg_to_rad(60.0);
-  s.projection.tolerance = 1e-5;
-  return s;
-}
-
 // Eq. 3 of the reduced fit: measured worst 2.7e-3 over 10 x 7 off-grid points (its turbidity
 // degree 6 limits it); the bound leaves a factor ~2 and still catches any fitting or indexing
 // error (errors of order 1).
 constexpr double kSmallFitMeanError = 6e-3;
 
 TEST(ShFit, ReducedPreethamFitReproducesProjectionsOffTheGrid) {
-  static const PolynomialTable t = fit_sh_table(small_settings());
+  // The reduced fit of tests/support/sh_tables.h.
+  const PolynomialTable& t = testing_support::small_sh_fit_table();
   EXPECT_EQ(t.coefficients.size(), 6u * 3u * 63u);  // m >= 0 only: 6 (l, m) pairs
   double worst = 0.0;
   for (double theta_deg : {7.0, 33.0, 58.0}) {
@@ -183,16 +170,14 @@ TEST(ShFit, ReducedPreethamFitReproducesProjectionsOffTheGrid) {
 constexpr double kThetaOnlyFitRelTol = 5e-4;
 
 TEST(ShFit, ThetaOnlyFitWithFixedParametersRoundTrips) {
-  ShFitSettings s;
+  // The reduced fit's bands, theta grid and range and projections (tests/support/sh_tables.h),
+  // theta only (its tau grid is then unused) and of degree 6.
+  ShFitSettings s = testing_support::small_sh_fit_settings();
   s.model = "cie";
   s.polynomial.parameter = "";
   s.fixed.set("cie-type", 7).set("zenith-luminance", 10000.0);
-  s.polynomial.bands = 3;
   s.polynomial.degree_theta = 6;
   s.polynomial.degree_tau = 0;
-  s.polynomial.grid_theta = 13;
-  s.polynomial.theta_max = deg_to_rad(60.0);
-  s.projection.tolerance = 1e-5;
   int calls = 0;
   s.polynomial.progress = [&](int done, int total) {
     ++calls;

@@ -63,6 +63,24 @@ haze::HazeSettings settings(haze::HazeOperation op, double t,
   return s;
 }
 
+// A w x h pinhole camera (heading, pitch, roll [rad], vertical field of view `vfov_deg`) for the
+// per-pixel airlights.
+haze::ImagePositioning pinhole(int w, int h, double heading, double pitch, double roll,
+                               double vfov_deg) {
+  return haze::ImagePositioning(
+      haze::view_matrix(heading, pitch, roll),
+      haze::perspective_matrix(vfov_deg * kDegree, static_cast<double>(w) / h, 1.0, 1e4), w, h);
+}
+
+// A sky photo's horizon region: its brightest pixels' mean colour (0.7, 0.8, 0.95) at a mean
+// zenith angle of `theta_prime_deg`.
+haze::PhotoAirlight horizon_airlight(double theta_prime_deg) {
+  haze::PhotoAirlight horizon;
+  horizon.horizon = {0.7, 0.8, 0.95};
+  horizon.theta_prime = theta_prime_deg * kDegree;
+  return horizon;
+}
+
 // The largest |gpu - cpu| / (1 + |cpu|) over every pixel and channel.
 double worst_difference(const io::ImageF& gpu, const io::ImageF& cpu) {
   EXPECT_EQ(gpu.width, cpu.width);
@@ -174,12 +192,8 @@ TEST_F(GpuTest, HazeChecksItsInputsAsTheCpuPathDoes) {
 // against the CPU kernel's maps.
 TEST_F(GpuTest, HazePerPixelAirlightMatchesTheCpuKernel) {
   const int w = 48, h = 32;
-  const haze::ImagePositioning camera(
-      haze::view_matrix(0.8, 0.05, 0.1),
-      haze::perspective_matrix(40.0 * kDegree, static_cast<double>(w) / h, 1.0, 1e4), w, h);
-  haze::PhotoAirlight horizon;
-  horizon.horizon = {0.7, 0.8, 0.95};
-  horizon.theta_prime = 80.0 * kDegree;
+  const haze::ImagePositioning camera = pinhole(w, h, 0.8, 0.05, 0.1, 40.0);
+  const haze::PhotoAirlight horizon = horizon_airlight(80.0);
   const io::ImageF image = pattern(w, h), depth = ramp(w, h, 50.0f, 25000.0f);
   for (const haze::HazeOperation op :
        {haze::HazeOperation::add, haze::HazeOperation::retarget, haze::HazeOperation::remove}) {
@@ -223,12 +237,8 @@ TEST_F(GpuTest, CompositeMatchesTheCpuComposite) {
     for (int c = 0; c < 3; ++c) EXPECT_EQ(on_gl.pixel(2, 5)[c], background.pixel(2, 5)[c]);
   }
   // Per-pixel airlight (eqs. 12-13 through a pinhole, haze/airlight_field.h) as a texture.
-  const haze::ImagePositioning camera(
-      haze::view_matrix(2.0, 0.02, 0.0),
-      haze::perspective_matrix(50.0 * kDegree, static_cast<double>(w) / h, 1.0, 1e4), w, h);
-  haze::PhotoAirlight horizon;
-  horizon.horizon = {0.7, 0.8, 0.95};
-  horizon.theta_prime = 82.0 * kDegree;
+  const haze::ImagePositioning camera = pinhole(w, h, 2.0, 0.02, 0.0, 50.0);
+  haze::PhotoAirlight horizon = horizon_airlight(82.0);
   horizon.sectors = {haze::HorizonSector{1.5, {0.5, 0.7, 0.9}, 84.0 * kDegree, 1},
                      haze::HorizonSector{2.5, {0.9, 0.8, 0.6}, 86.0 * kDegree, 1}};
   haze::HazeSettings per_pixel = settings(haze::HazeOperation::add, 4.0);

@@ -5,6 +5,7 @@
 #include <algorithm>
 
 #include "skylight/core/error.h"
+#include "support/error_message.h"
 
 namespace skylight::haze {
 namespace {
@@ -45,12 +46,7 @@ TEST(HazeCamera, UserCsvParsesStrictly) {
   EXPECT_DOUBLE_EQ(c.channel[0](475.0), 0.25);
   EXPECT_DOUBLE_EQ(c.channel[1](580.0), 1.0);
   const auto message = [](const std::string& text) {
-    try {
-      parse_camera_csv(text, "cam.csv");
-    } catch (const InvalidArgument& e) {
-      return std::string(e.what());
-    }
-    return std::string("no error");
+    return testing_support::error_message([&] { parse_camera_csv(text, "cam.csv"); });
   };
   EXPECT_EQ(message("nm,red,g,b\n380,1,1,1\n780,1,1,1\n"),
             "cam.csv line 1: the header must be 'nm,r,g,b', not 'nm,red,g,b'");

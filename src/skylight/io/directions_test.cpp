@@ -7,6 +7,7 @@
 
 #include "skylight/core/error.h"
 #include "skylight/core/math.h"
+#include "support/error_message.h"
 
 namespace skylight::io {
 namespace {
@@ -15,12 +16,7 @@ namespace {
 constexpr double kAngleTol = 1e-15;
 
 std::string error_of(std::string_view text) {
-  try {
-    parse_directions_csv(text, "dirs.csv");
-  } catch (const InvalidArgument& e) {
-    return e.what();
-  }
-  return "no error";
+  return testing_support::error_message([&] { parse_directions_csv(text, "dirs.csv"); });
 }
 
 TEST(Directions, ParsesRowsWithLineNumbersAndWrapsTheAzimuth) {

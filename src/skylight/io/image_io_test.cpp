@@ -17,9 +17,10 @@
 #include <cmath>
 #include <cstring>
 #include <fstream>
-#include <iterator>
+#include <initializer_list>
 #include <limits>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "skylight/core/error.h"
@@ -114,22 +115,29 @@ TEST(ImageIo, ExrLuminanceRoundTripIsBitIdentical) {
   EXPECT_TRUE(read_exr_metadata(dir / "y.EXR").empty());
 }
 
+// An EXR as another program writes it, through OpenEXR itself: one channel of pixel type `type`
+// per (name, values), each holding the data window's pixels in row order.
+void write_foreign_exr(const fs::path& path, const Imath::Box2i& window, Imf::PixelType type,
+                       std::initializer_list<std::pair<const char*, const void*>> channels) {
+  Imf::Header header(window, window);
+  Imf::FrameBuffer frame;
+  for (const auto& [name, values] : channels) {
+    header.channels().insert(name, Imf::Channel(type));
+    frame.insert(name, Imf::Slice::Make(type, values, window));
+  }
+  Imf::OutputFile out(path.c_str(), header);
+  out.setFrameBuffer(frame);
+  out.writePixels(window.max.y - window.min.y + 1);
+}
+
 TEST(ImageIo, ExrHalfChannelsAndOffsetDataWindowAreRead) {
   ScratchDir dir;
   const fs::path path = dir / "half.exr";
   // A file from elsewhere: HALF luminance, data window starting at (5, 7).
   const Imath::Box2i window({5, 7}, {7, 8});  // 3 x 2 pixels
-  Imf::Header header(window, window);
-  header.channels().insert("Y", Imf::Channel(Imf::HALF));
   const std::vector<half> values = {half(0.5f),  half(2.0f), half(1024.0f),
                                     half(-3.0f), half(0.0f), half(0.25f)};
-  Imf::FrameBuffer frame;
-  frame.insert("Y", Imf::Slice::Make(Imf::HALF, values.data(), window));
-  {
-    Imf::OutputFile out(path.c_str(), header);
-    out.setFrameBuffer(frame);
-    out.writePixels(2);
-  }
+  write_foreign_exr(path, window, Imf::HALF, {{"Y", values.data()}});
   const ImageF image = read_image(path);
   ASSERT_EQ(image.width, 3);
   ASSERT_EQ(image.height, 2);
@@ -190,19 +198,9 @@ TEST(ImageIo, ScalarImagesFromExrZPfmAndSixteenBitPng) {
   ScratchDir dir;
   // EXR: Z is preferred over Y and R.
   const fs::path exr = dir / "depth.exr";
-  const Imath::Box2i window({0, 0}, {2, 1});
-  Imf::Header header(window, window);
-  for (const char* name : {"R", "Y", "Z"}) header.channels().insert(name, Imf::Channel(Imf::FLOAT));
-  std::vector<float> r(6, 1.0f), y(6, 2.0f), z = {10.0f, 20.0f, 30.0f, 40.0f, 50.0f, 60.0f};
-  Imf::FrameBuffer frame;
-  frame.insert("R", Imf::Slice::Make(Imf::FLOAT, r.data(), window));
-  frame.insert("Y", Imf::Slice::Make(Imf::FLOAT, y.data(), window));
-  frame.insert("Z", Imf::Slice::Make(Imf::FLOAT, z.data(), window));
-  {
-    Imf::OutputFile out(exr.c_str(), header);
-    out.setFrameBuffer(frame);
-    out.writePixels(2);
-  }
+  const std::vector<float> r(6, 1.0f), y(6, 2.0f), z = {10.0f, 20.0f, 30.0f, 40.0f, 50.0f, 60.0f};
+  write_foreign_exr(exr, Imath::Box2i({0, 0}, {2, 1}), Imf::FLOAT,
+                    {{"R", r.data()}, {"Y", y.data()}, {"Z", z.data()}});
   const ImageF from_exr = read_scalar_image(exr);
   ASSERT_EQ(from_exr.channels, 1);
   EXPECT_EQ(from_exr.data, z);
@@ -329,6 +327,14 @@ TEST(ImageIo, HdrWritesGreyAsRgbAndZeroesNonFinite) {
 
 // ---- PNG ---------------------------------------------------------------------------------------
 
+// An RGB image of bytes (i * step) mod 256 in memory order.
+Image8 byte_pattern(int w, int h, std::size_t step) {
+  Image8 img(w, h);
+  for (std::size_t i = 0; i < img.data.size(); ++i)
+    img.data[i] = static_cast<std::uint8_t>(i * step % 256);
+  return img;
+}
+
 TEST(ImageIo, PngIsWrittenWithTextChunks) {
   ScratchDir dir;
   Image8 img(6, 5);
@@ -349,9 +355,7 @@ TEST(ImageIo, PngIsWrittenWithTextChunks) {
 
 TEST(ImageIo, PngRoundTripIsExactAndMissingPngIsAnIoError) {
   ScratchDir dir;
-  Image8 img(7, 3);
-  for (std::size_t i = 0; i < img.data.size(); ++i)
-    img.data[i] = static_cast<std::uint8_t>(i * 37 % 256);
+  const Image8 img = byte_pattern(7, 3, 37);
   write_png(dir / "m.png", img);
   const Image8 back = read_png(dir / "m.png");
   EXPECT_EQ(back.width, 7);
@@ -393,12 +397,9 @@ TEST(ImageIo, PngOverThePixelLimitIsRefusedFromItsHeader) {
 // image_png fuzz target): read_png drops empty IDATs, and the pixels are those of the plain file.
 TEST(ImageIo, PngWithAnEmptyIdatChunkReadsTheSamePixels) {
   ScratchDir dir;
-  Image8 img(3, 2);
-  for (std::size_t i = 0; i < img.data.size(); ++i)
-    img.data[i] = static_cast<std::uint8_t>(i * 41 % 256);
+  const Image8 img = byte_pattern(3, 2, 41);
   write_png(dir / "plain.png", img);
-  std::ifstream in(dir / "plain.png", std::ios::binary);
-  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  std::string bytes = slurp(dir / "plain.png");
   const std::size_t idat = bytes.find("IDAT");
   ASSERT_NE(idat, std::string::npos);
   bytes.insert(idat - 4, std::string("\0\0\0\0IDAT\0\0\0\0", 12));

@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <random>
+#include <string>
 #include <vector>
 
 #include "skylight/core/error.h"
@@ -37,30 +38,31 @@ void expect_batch_matches_scalar(const SkyModel& m, const std::vector<Vec3>& dir
                                                kPerezBatchAbsoluteFloor);
 }
 
+// Registry model `model` with its parameter `name` = `value` and the sun at (zenith, azimuth)
+// [deg]: batch against scalar over `dirs`.
+void expect_batch_matches_scalar(const std::string& model, const std::string& name, double value,
+                                 double sun_zenith_deg, double sun_azimuth_deg,
+                                 const std::vector<Vec3>& dirs) {
+  SkyParameters p;
+  p.values.set(name, value);
+  p.sun = {deg_to_rad(sun_zenith_deg), deg_to_rad(sun_azimuth_deg)};
+  const auto m = make_sky_model(model, p);
+  SCOPED_TRACE(testing::Message() << name << " " << value << " zs " << sun_zenith_deg);
+  expect_batch_matches_scalar(*m, dirs);
+}
+
 TEST(Batch, PreethamMatchesScalar) {
   const auto dirs = random_directions(5000, 1, true);
   for (double T : {1.7, 2.0, 3.0, 6.0, 10.0})
-    for (double zs : {0.0, 30.0, 60.0, 85.0}) {
-      SkyParameters p;
-      p.values.set("turbidity", T);
-      p.sun = {deg_to_rad(zs), deg_to_rad(130.0)};
-      const auto m = make_sky_model("preetham", p);
-      SCOPED_TRACE(testing::Message() << "T " << T << " zs " << zs);
-      expect_batch_matches_scalar(*m, dirs);
-    }
+    for (double zs : {0.0, 30.0, 60.0, 85.0})
+      expect_batch_matches_scalar("preetham", "turbidity", T, zs, 130.0, dirs);
 }
 
 TEST(Batch, CieMatchesScalarForAllTypes) {
   const auto dirs = random_directions(3000, 2, true);
   for (int type = 1; type <= 16; ++type)
-    for (double zs : {10.0, 50.0, 80.0}) {
-      SkyParameters p;
-      p.values.set("cie-type", type);
-      p.sun = {deg_to_rad(zs), deg_to_rad(250.0)};
-      const auto m = make_sky_model("cie", p);
-      SCOPED_TRACE(testing::Message() << "type " << type << " zs " << zs);
-      expect_batch_matches_scalar(*m, dirs);
-    }
+    for (double zs : {10.0, 50.0, 80.0})
+      expect_batch_matches_scalar("cie", "cie-type", type, zs, 250.0, dirs);
 }
 
 TEST(Batch, PerezMatchesScalarAndSunNeighbourhood) {

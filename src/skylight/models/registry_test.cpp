@@ -2,14 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 #include <memory>
-#include <sstream>
 #include <string>
 #include <vector>
 
 #include "skylight/core/error.h"
 #include "skylight/models/sky_model.h"
+#include "support/scratch_dir.h"
 
 namespace skylight {
 namespace {
@@ -136,11 +135,8 @@ TEST(Registry, EdgeSweepsGiveFiniteNonNegativeOutput) {
 // docs/MODELS.md shows each model's parameter table as generated from the schema; a change of
 // either without the other fails here (regenerate with `skylight models --markdown`).
 TEST(Registry, DocsParameterTablesMatchTheSchema) {
-  std::ifstream in(std::string(SKYLIGHT_SOURCE_DIR) + "/docs/MODELS.md");
-  ASSERT_TRUE(in) << "docs/MODELS.md not found";
-  std::stringstream ss;
-  ss << in.rdbuf();
-  const std::string doc = ss.str();
+  const std::string doc = testing_support::source_file("docs/MODELS.md");
+  ASSERT_FALSE(doc.empty()) << "docs/MODELS.md not found";
   for (const auto& info : model_registry()) {
     const std::string block = parameter_docs_block(info);
     EXPECT_NE(doc.find(block), std::string::npos)

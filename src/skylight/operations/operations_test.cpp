@@ -2,20 +2,17 @@
 
 #include <gtest/gtest.h>
 
-#include <fstream>
 #include <set>
-#include <sstream>
 #include <string>
+
+#include "support/scratch_dir.h"
 
 namespace skylight {
 namespace {
 
 TEST(Operations, DocsTablesMatchTheSchemas) {
-  std::ifstream in(std::string(SKYLIGHT_SOURCE_DIR) + "/docs/OPERATIONS.md");
-  ASSERT_TRUE(in) << "docs/OPERATIONS.md not found";
-  std::stringstream ss;
-  ss << in.rdbuf();
-  const std::string doc = ss.str();
+  const std::string doc = testing_support::source_file("docs/OPERATIONS.md");
+  ASSERT_FALSE(doc.empty()) << "docs/OPERATIONS.md not found";
   for (const auto& op : operations::registry()) {
     const std::string block = operations::markdown(op);
     EXPECT_NE(doc.find(block), std::string::npos)

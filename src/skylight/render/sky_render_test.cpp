@@ -107,19 +107,32 @@ TEST(SkyRender, RejectsBadSettings) {
 namespace skylight::render {
 namespace {
 
-TEST(SkyRender, CameraLooksWhereAsked) {
-  constexpr double kDirTol = 1e-12;  // a few vector operations in double
+constexpr double kDirTol = 1e-12;  // a few vector operations in double
+
+// A `width` x `height` camera image looking at (zenith, azimuth) with a vertical field of view
+// `fov_deg`, all in degrees.
+RenderSettings camera_settings(int width, int height, double look_zenith_deg,
+                               double look_azimuth_deg, double fov_deg) {
   RenderSettings s;
   s.projection = Projection::camera;
-  s.width = 200;
-  s.height = 100;
-  s.pinhole = {deg_to_rad(120), deg_to_rad(30), deg_to_rad(60)};
+  s.width = width;
+  s.height = height;
+  s.pinhole = {deg_to_rad(look_zenith_deg), deg_to_rad(look_azimuth_deg), deg_to_rad(fov_deg)};
+  return s;
+}
+
+void expect_same_direction(const Vec3& got, const Vec3& want) {
+  EXPECT_NEAR(got.x, want.x, kDirTol);
+  EXPECT_NEAR(got.y, want.y, kDirTol);
+  EXPECT_NEAR(got.z, want.z, kDirTol);
+}
+
+TEST(SkyRender, CameraLooksWhereAsked) {
+  RenderSettings s = camera_settings(200, 100, 120, 30, 60);
   // The image centre is the look direction; the top edge centre is 30 deg above it (fov / 2).
   const Vec3 f = direction_from_angles(deg_to_rad(120), deg_to_rad(30));
   const Vec3 c = *s.direction(100, 50);
-  EXPECT_NEAR(c.x, f.x, kDirTol);
-  EXPECT_NEAR(c.y, f.y, kDirTol);
-  EXPECT_NEAR(c.z, f.z, kDirTol);
+  expect_same_direction(c, f);
   const Vec3 top = *s.direction(100, 0);
   EXPECT_NEAR(angle_between(top, f), deg_to_rad(30), kDirTol);
   EXPECT_GT(top.z, c.z);  // image up is towards the zenith
@@ -136,12 +149,7 @@ TEST(SkyRender, CameraLooksWhereAsked) {
 TEST(SkyRender, CameraLayoutIsTheOneInConventions) {
   // docs/CONVENTIONS.md, "Camera": d = normalize(f + x r + y u) at pixel centres, r = f x z
   // (f x north when f is vertical), u = r x f.
-  constexpr double kDirTol = 1e-12;  // a few vector operations in double
-  RenderSettings s;
-  s.projection = Projection::camera;
-  s.width = 12;
-  s.height = 8;
-  s.pinhole = {deg_to_rad(65), deg_to_rad(60), deg_to_rad(50)};
+  RenderSettings s = camera_settings(12, 8, 65, 60, 50);
   const Vec3 f = direction_from_angles(s.pinhole.look_zenith, s.pinhole.look_azimuth);
   const Vec3 r = normalize(cross(f, Vec3{0, 0, 1}));
   const Vec3 u = cross(r, f);
@@ -152,10 +160,7 @@ TEST(SkyRender, CameraLayoutIsTheOneInConventions) {
       const double x = (2.0 * (col + 0.5) / s.height - 1.0 * s.width / s.height) * t;
       const double y = (1.0 - 2.0 * (row + 0.5) / s.height) * t;
       const Vec3 want = normalize(f + x * r + y * u);
-      const Vec3 got = *s.direction(col + 0.5, row + 0.5);
-      EXPECT_NEAR(got.x, want.x, kDirTol);
-      EXPECT_NEAR(got.y, want.y, kDirTol);
-      EXPECT_NEAR(got.z, want.z, kDirTol);
+      expect_same_direction(*s.direction(col + 0.5, row + 0.5), want);
       EXPECT_TRUE(dirs.valid[static_cast<std::size_t>(row * s.width + col)]);  // no mask
     }
   // Looking north at the horizon, east is on the right.

@@ -14,28 +14,14 @@
 #include "skylight/models/sh.h"
 #include "skylight/sh/basis.h"
 #include "skylight/sh/rotation.h"
+#include "support/sh_tables.h"
 
 namespace skylight::sh {
 namespace {
 
-// A reduced fit (3 bands, degrees (8, 6) on a 13 x 10 grid, Preetham over theta in [0, 60 deg],
-// T in [2.5, 6], projections to 1e-5) that the test suite can afford; docs/SH.md has the full
-// study.
-fit::ShFitSettings small_settings() {
-  fit::ShFitSettings s;
-  s.polynomial.bands = 3;
-  s.polynomial.degree_theta = 8;
-  s.polynomial.degree_tau = 6;
-  s.polynomial.grid_theta = 13;
-  s.polynomial.grid_tau = 10;
-  s.polynomial.theta_max = deg_to_rad(60.0);
-  s.projection.tolerance = 1e-5;
-  return s;
-}
-
+// The suite's reduced Preetham fit (tests/support/sh_tables.h).
 const PolynomialTable& small_table() {
-  static const PolynomialTable t = fit::fit_sh_table(small_settings());
-  return t;
+  return testing_support::small_sh_fit_table();
 }
 
 // The embedded default table (7 bands, degrees (17, 12)).

@@ -5,16 +5,16 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <functional>
 #include <map>
 #include <random>
-#include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "skylight/core/error.h"
 #include "skylight/core/numbers.h"
+#include "support/test_vectors.h"
 
 namespace skylight::sun {
 namespace {
@@ -64,27 +64,8 @@ int integer(const std::string& s) {
   return static_cast<int>(parse_integer(s, "test vector field"));
 }
 
-std::string data_path(const std::string& name) {
-  return std::string(SKYLIGHT_TEST_DATA_DIR) + "/test_vectors/" + name;
-}
-
-// Rows of a CSV file with a header line, as name -> cells; comma-separated, no quoting.
-std::vector<std::vector<std::string>> read_csv(const std::string& name) {
-  std::ifstream f(data_path(name));
-  EXPECT_TRUE(f.good()) << "cannot open " << data_path(name);
-  std::vector<std::vector<std::string>> rows;
-  std::string line;
-  std::getline(f, line);  // header
-  while (std::getline(f, line)) {
-    if (line.empty()) continue;
-    std::vector<std::string> cells;
-    std::stringstream ss(line);
-    std::string cell;
-    while (std::getline(ss, cell, ',')) cells.push_back(cell);
-    rows.push_back(cells);
-  }
-  return rows;
-}
+// Rows of a test-vector CSV file (tests/support/test_vectors.h).
+using testing_support::read_test_vector_csv;
 
 // One unit of the last printed digit of a decimal number ("1.666568e-03" -> 1e-9).
 double last_digit_unit(const std::string& s) {
@@ -104,7 +85,7 @@ double clock_seconds(const std::string& s) {
 // The worked example (Reda & Andreas 2004, A.5) from the inputs CSV.
 SpaInput example_input() {
   std::map<std::string, double> v;
-  for (const auto& row : read_csv("nrel_spa_reda_andreas_example_inputs.csv")) {
+  for (const auto& row : read_test_vector_csv("nrel_spa_reda_andreas_example_inputs.csv")) {
     v[row.at(0)] = num(row.at(1));
   }
   SpaInput in;
@@ -209,7 +190,7 @@ TEST(Spa, WorkedExampleEveryPublishedValue) {
   int checked = 0;
   std::printf("%-42s %22s %22s %10s %9s\n", "published value", "published", "computed", "diff",
               "tol");
-  for (const auto& row : read_csv("nrel_spa_reda_andreas_example_outputs.csv")) {
+  for (const auto& row : read_test_vector_csv("nrel_spa_reda_andreas_example_outputs.csv")) {
     const std::string& name = row.at(0);
     if (name == "sunrise" || name == "sunset") continue;  // RiseSetTransit tests below
     const auto g = getters.find(name);
@@ -235,7 +216,7 @@ TEST(Spa, WorkedExampleJulianCenturiesFromThePublishedJd) {
   // The source computed JC, JCE and JME from its printed JD (its printed JDE, however, from the
   // exact JD): eqs. 5-8 from the printed JD reproduce them to the last printed digit.
   std::map<std::string, std::string> pub;
-  for (const auto& row : read_csv("nrel_spa_reda_andreas_example_outputs.csv")) {
+  for (const auto& row : read_test_vector_csv("nrel_spa_reda_andreas_example_outputs.csv")) {
     pub[row.at(0)] = row.at(1);
   }
   const double JD = num(pub.at("JD"));
@@ -287,7 +268,7 @@ TEST(Spa, PaperTableA51) {
                                                      {"sunrise", kPaperTimeTolSec},
                                                      {"sunset", kPaperTimeTolSec}};
   int checked = 0;
-  for (const auto& row : read_csv("reda_andreas_2008_table_a5_1.csv")) {
+  for (const auto& row : read_test_vector_csv("reda_andreas_2008_table_a5_1.csv")) {
     const std::string& name = row.at(0);
     ASSERT_TRUE(computed.count(name)) << "no check for Table A5.1's " << name;
     const bool is_time = row.at(2) == "UT";
@@ -310,7 +291,7 @@ TEST(Spa, PublishedSunriseSunsetLocalTimes) {
   const SpaInput in = example_input();
   const auto rts = rise_transit_set_ut_day(in.time.year, in.time.month, in.time.day, in);
   ASSERT_EQ(rts.kind, DayKind::normal);
-  for (const auto& row : read_csv("nrel_spa_reda_andreas_example_outputs.csv")) {
+  for (const auto& row : read_test_vector_csv("nrel_spa_reda_andreas_example_outputs.csv")) {
     if (row.at(0) != "sunrise" && row.at(0) != "sunset") continue;
     const double computed = local_clock_seconds(row.at(0) == "sunrise" ? *rts.sunrise : *rts.sunset,
                                                 in.time.utc_offset_minutes);
@@ -339,7 +320,7 @@ TEST(Spa, LocalDayEventsAsIso8601) {
 TEST(Spa, PaperTableA21SunriseSunset) {
   // Delta T (IERS) for the three years; not stated in the report.
   const std::map<int, double> delta_t = {{1994, 59.98}, {1996, 61.63}, {2004, 64.57}};
-  for (const auto& row : read_csv("reda_andreas_2008_table_a2_1_sunrise_sunset.csv")) {
+  for (const auto& row : read_test_vector_csv("reda_andreas_2008_table_a2_1_sunrise_sunset.csv")) {
     SpaInput in;
     const int year = integer(row.at(0));
     in.delta_t = delta_t.at(year);
@@ -550,49 +531,32 @@ TEST(Spa, InvalidInputsNameTheField) {
   const SpaInput ok = example_input();
   EXPECT_NO_THROW(solar_position(ok));
   const double nan = std::nan("");
-  SpaInput in = ok;
-  in.latitude = nan;
-  expect_error(in, "lat = nan is outside [-90, 90] (SpaInput)");
-  in = ok;
-  in.latitude = deg_to_rad(91.0);
-  expect_error(in, "lat = 91");
-  in = ok;
-  in.longitude = -4.0;
-  expect_error(in, "lon = -229.18");
-  in = ok;
-  in.pressure = -1.0;
-  expect_error(in, "pressure = -1 is outside [0, 2000]");
-  in = ok;
-  in.temperature = nan;
-  expect_error(in, "temperature = nan");
-  in = ok;
-  in.delta_ut1 = 1.5;
-  expect_error(in, "delta-ut1 = 1.5");
-  in = ok;
-  in.delta_t = 1e5;
-  expect_error(in, "delta-t = 100000");
-  in = ok;
-  in.elevation = nan;
-  expect_error(in, "elevation = nan");
-  in = ok;
-  in.atmos_refract = deg_to_rad(4.0);
-  expect_error(in, "atmos-refract = 4");
-  in = ok;
-  in.slope = -0.1;
-  expect_error(in, "slope = -5.72");
-  in = ok;
-  in.azimuth_rotation = 7.0;
-  expect_error(in, "azimuth-rotation = 401.07");
-  in = ok;
-  in.time.year = 6001;
-  expect_error(in, "time.year = 6001");
-  in = ok;
-  in.time.month = 11;
-  in.time.day = 31;
-  expect_error(in, "time.day = 31");
-  in = ok;
-  in.time.second = nan;
-  expect_error(in, "time.second = nan");
+  // Each case changes `ok` in one field (the day: for its month).
+  const std::pair<std::function<void(SpaInput&)>, std::string> cases[] = {
+      {[&](SpaInput& in) { in.latitude = nan; }, "lat = nan is outside [-90, 90] (SpaInput)"},
+      {[](SpaInput& in) { in.latitude = deg_to_rad(91.0); }, "lat = 91"},
+      {[](SpaInput& in) { in.longitude = -4.0; }, "lon = -229.18"},
+      {[](SpaInput& in) { in.pressure = -1.0; }, "pressure = -1 is outside [0, 2000]"},
+      {[&](SpaInput& in) { in.temperature = nan; }, "temperature = nan"},
+      {[](SpaInput& in) { in.delta_ut1 = 1.5; }, "delta-ut1 = 1.5"},
+      {[](SpaInput& in) { in.delta_t = 1e5; }, "delta-t = 100000"},
+      {[&](SpaInput& in) { in.elevation = nan; }, "elevation = nan"},
+      {[](SpaInput& in) { in.atmos_refract = deg_to_rad(4.0); }, "atmos-refract = 4"},
+      {[](SpaInput& in) { in.slope = -0.1; }, "slope = -5.72"},
+      {[](SpaInput& in) { in.azimuth_rotation = 7.0; }, "azimuth-rotation = 401.07"},
+      {[](SpaInput& in) { in.time.year = 6001; }, "time.year = 6001"},
+      {[](SpaInput& in) {
+         in.time.month = 11;
+         in.time.day = 31;
+       },
+       "time.day = 31"},
+      {[&](SpaInput& in) { in.time.second = nan; }, "time.second = nan"},
+  };
+  for (const auto& [change, field] : cases) {
+    SpaInput in = ok;
+    change(in);
+    expect_error(in, field);
+  }
   EXPECT_THROW(rise_transit_set_ut_day(2003, 2, 29, ok), InvalidArgument);
   EXPECT_THROW(solar_position_at(nan, ok), InvalidArgument);
 }

@@ -3,14 +3,13 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <fstream>
 #include <random>
-#include <sstream>
 #include <string>
 #include <vector>
 
 #include "skylight/core/error.h"
 #include "skylight/core/numbers.h"
+#include "support/test_vectors.h"
 
 namespace skylight::sun {
 namespace {
@@ -136,25 +135,9 @@ TEST(Iso8601, FormatsRoundTripAndCarries) {
   EXPECT_THROW(format_iso8601(DateTime{}, 10), InvalidArgument);
 }
 
-std::vector<std::vector<std::string>> read_table_a41() {
-  std::ifstream f(std::string(SKYLIGHT_TEST_DATA_DIR) +
-                  "/test_vectors/reda_andreas_2008_table_a4_1_julian_day.csv");
-  EXPECT_TRUE(f.good());
-  std::vector<std::vector<std::string>> rows;
-  std::string line;
-  std::getline(f, line);
-  while (std::getline(f, line)) {
-    std::vector<std::string> cells;
-    std::stringstream ss(line);
-    std::string c;
-    while (std::getline(ss, c, ',')) cells.push_back(c);
-    rows.push_back(cells);
-  }
-  return rows;
-}
-
 TEST(JulianDay, PaperTableA41) {
-  const auto rows = read_table_a41();
+  const auto rows =
+      testing_support::read_test_vector_csv("reda_andreas_2008_table_a4_1_julian_day.csv");
   ASSERT_EQ(rows.size(), 16u);
   for (const auto& r : rows) {
     const int year = integer(r.at(0)), month = integer(r.at(1)), day = integer(r.at(2));

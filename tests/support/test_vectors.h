@@ -1,0 +1,37 @@
+// Test helper: the published test vectors of data/test_vectors/ (CSV with a header line) as rows of
+// text cells, for tests that parse each cell as they need.
+#pragma once
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace skylight::testing_support {
+
+inline std::string test_vector_path(const std::string& name) {
+  return std::string(SKYLIGHT_TEST_DATA_DIR) + "/test_vectors/" + name;
+}
+
+// The rows after the header of data/test_vectors/`name`: comma-separated cells, no quoting; blank
+// lines are skipped.
+inline std::vector<std::vector<std::string>> read_test_vector_csv(const std::string& name) {
+  std::ifstream f(test_vector_path(name));
+  EXPECT_TRUE(f.good()) << "cannot open " << test_vector_path(name);
+  std::vector<std::vector<std::string>> rows;
+  std::string line;
+  std::getline(f, line);  // header
+  while (std::getline(f, line)) {
+    if (line.empty()) continue;
+    std::vector<std::string> cells;
+    std::stringstream ss(line);
+    std::string cell;
+    while (std::getline(ss, cell, ',')) cells.push_back(cell);
+    rows.push_back(cells);
+  }
+  return rows;
+}
+
+}  // namespace skylight::testing_support
