@@ -63,8 +63,7 @@ int run_fit(const ShCommand& c) {
 int run_eval(const ShCommand& c) {
   const auto model = c.model("sh eval");
   const bool irradiance = c.flags.bind(ShEvalOptions::schema(), {}, "sh eval").irradiance;
-  const sh::Coefficients co =
-      irradiance ? sh::irradiance_coefficients(model->coefficients()) : model->coefficients();
+  const sh::Coefficients co = irradiance ? model->irradiance_coefficients() : model->coefficients();
   const std::string names = channel_names(model->table().channels);
   if (c.json) {
     const ParameterValues given = c.flags.values();
@@ -74,7 +73,8 @@ int run_eval(const ShCommand& c) {
     j["channels"] = model->table().channels == sh::Channels::xyz ? "xyz" : "linear_srgb";
     j["quantity"] = irradiance ? "irradiance" : "radiance";
     j["bands"] = co.bands;
-    j["ringing_filter"] = !model->parameters().no_ringing_filter;
+    // The irradiance convolves the unfiltered radiance (ShSkyModel::irradiance_coefficients).
+    j["ringing_filter"] = !irradiance && !model->parameters().no_ringing_filter;
     j["sun_zenith_deg"] = given.number("sun-zenith").value_or(kDefaultSunZenithDeg);
     j["sun_azimuth_deg"] = given.number("sun-azimuth").value_or(kDefaultSunAzimuthDeg);
     if (model->parameters().turbidity) j["turbidity"] = *model->parameters().turbidity;
@@ -127,8 +127,8 @@ int run_render(const ShCommand& c) {
     smd.emplace_back("skylight:sphere_albedo", fmt::format("{}", sphere.albedo));
     render::write_image_or_preview(
         c.sphere,
-        for_format(c.sphere,
-                   sh::diffuse_sphere(model->coefficients(), model->table().channels, sphere)),
+        for_format(c.sphere, sh::diffuse_sphere(model->irradiance_coefficients(),
+                                                model->table().channels, sphere)),
         smd);
   }
   return kExitOk;

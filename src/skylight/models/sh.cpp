@@ -92,8 +92,13 @@ ShSkyModel::ShSkyModel(const ShParameters& p, std::shared_ptr<const sh::Polynomi
   } else if (!params_.turbidity) {
     params_.turbidity = 0.5 * (t.tau_min + t.tau_max);
   }
-  coefficients_ = sh::evaluate_table(t, p.sun.zenith, params_.turbidity.value_or(0.0),
-                                     p.sun.azimuth, params_.bands, !params_.no_ringing_filter);
+  const double tau = params_.turbidity.value_or(0.0);
+  coefficients_ = sh::evaluate_table(t, p.sun.zenith, tau, p.sun.azimuth, params_.bands,
+                                     !params_.no_ringing_filter);
+  irradiance_ = sh::irradiance_coefficients(
+      params_.no_ringing_filter
+          ? coefficients_
+          : sh::evaluate_table(t, p.sun.zenith, tau, p.sun.azimuth, params_.bands, false));
 }
 
 ParameterValues ShSkyModel::parameter_values() const {

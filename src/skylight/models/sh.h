@@ -8,6 +8,7 @@
 #include <string>
 
 #include "skylight/models/sky_model.h"
+#include "skylight/sh/irradiance.h"
 #include "skylight/sh/polynomial.h"
 
 namespace skylight {
@@ -67,13 +68,19 @@ class ShSkyModel final : public SkyModel {
   Domain domain() const override;
 
   const sh::PolynomialTable& table() const { return *table_; }
-  // The SH coefficients of the sky (rotated and, unless switched off, filtered).
+  // The SH coefficients of the sky (rotated and, unless switched off, filtered): what the model
+  // reconstructs (radiance for display).
   const sh::Coefficients& coefficients() const { return coefficients_; }
+  // The coefficients of the sky's irradiance, E_lm = A_l c_lm (sh/irradiance.h), from the
+  // UNFILTERED radiance: the ringing filter (eq. 5) is for display of radiance; it scales the l = 1
+  // and l = 2 terms by sinc(pi l / N) and would bias the cosine convolution (upward irradiance
+  // 10 % low at 3 bands). Used by `sh eval --irradiance` and `sh render --sphere`.
+  const sh::Coefficients& irradiance_coefficients() const { return irradiance_; }
 
  private:
   ShParameters params_;
   std::shared_ptr<const sh::PolynomialTable> table_;
-  sh::Coefficients coefficients_;
+  sh::Coefficients coefficients_, irradiance_;
 };
 
 }  // namespace skylight

@@ -55,9 +55,9 @@ const ParameterSchema<SphereOptions>& SphereOptions::schema() {
   return s;
 }
 
-io::ImageF diffuse_sphere(const Coefficients& radiance, Channels channels,
+io::ImageF diffuse_sphere(const Coefficients& irradiance, Channels channels,
                           const SphereOptions& options) {
-  const Coefficients e = irradiance_coefficients(radiance);
+  const Coefficients& e = irradiance;
   const int size = options.size;
   io::ImageF img(size, size, 3);
   for (int y = 0; y < size; ++y) {

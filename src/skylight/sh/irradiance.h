@@ -21,8 +21,9 @@ Coefficients irradiance_coefficients(const Coefficients& radiance);
 // coefficients are given: sum_lm A_l L_lm Y_lm(n). Per channel; not clamped.
 Triple irradiance(const Coefficients& radiance, Vec3 normal);
 
-// A diffuse sphere of albedo rho lit by the radiance (in `channels`) seen from the south (the view
-// looks north, east to the right), its disc filling a size x size image: L = rho / pi * E(n)
+// A diffuse sphere of albedo rho under the irradiance whose SH coefficients are given
+// (irradiance_coefficients of the unfiltered radiance, in `channels`), seen from the south (the
+// view looks north, east to the right), its disc filling a size x size image: L = rho / pi * E(n)
 // per pixel as linear sRGB (Ramamoorthi & Hanrahan 2001), 0 outside the disc.
 struct SphereOptions {
   int size = 256;       // [px]
@@ -30,7 +31,7 @@ struct SphereOptions {
   // --sphere-size, --sphere-albedo.
   static const ParameterSchema<SphereOptions>& schema();
 };
-io::ImageF diffuse_sphere(const Coefficients& radiance, Channels channels,
+io::ImageF diffuse_sphere(const Coefficients& irradiance, Channels channels,
                           const SphereOptions& options);
 
 }  // namespace skylight::sh
