@@ -33,15 +33,31 @@ constexpr double kEvalExact = 0.0;
 const std::string kQuickPietrasTraining =
     "nn train --source nishita --network pietras --samples 2000 --iterations 5";
 
+// A network outside its held-out bound: exit 1, one line saying what was measured, nothing
+// written (neither the weights nor the log).
+TEST_F(Cli, NnTrainFailsOutsideItsHeldOutBound) {
+  const std::string w = (dir_ / "w.json").string(), log = (dir_ / "log.csv").string();
+  const testing_support::CliResult r =
+      run("nn train --source preetham --hidden 4 --iterations 15 --suns 4 --view-zeniths 4 "
+          "--view-azimuths 6 --starts 2 --start-iterations 5 --max-error 0.5 -o '" +
+          w + "' --log '" + log + "'");
+  EXPECT_EQ(r.status, 1) << r.out;
+  EXPECT_NE(r.err.find("fails its held-out check"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("(bound 0.5 %)"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(w));
+  EXPECT_FALSE(fs::exists(log));
+}
+
 TEST_F(Cli, NnTrainValidateEval) {
   const std::string w = (dir_ / "w.json").string();
   const std::string log = (dir_ / "log.csv").string();
   testing_support::CliResult r =
       run("nn train --source preetham --hidden 4 --iterations 15 --suns 4 --view-zeniths 4 "
-          "--view-azimuths 6 --seed 2 -o '" +
+          "--view-azimuths 6 --seed 2 --max-error 1e6 -o '" +
           w + "' --log '" + log + "'");
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_NE(r.out.find("validation: RMSE"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("held-out check: relative error median"), std::string::npos) << r.out;
   ASSERT_TRUE(fs::exists(w));
   std::ifstream ls(log);
   std::string header;

@@ -175,7 +175,7 @@ TEST_F(Cli, AFlagTheModelDoesNotReadIsNotRecorded) {
   const fs::path w = dir_ / "cie.json";
   r =
       run("nn train --source cie --hidden 3 --suns 2 --view-zeniths 2 --view-azimuths 3 "
-          "--iterations 2 -o '" +
+          "--iterations 2 --max-error 1e6 -o '" +
           w.string() + "'");
   ASSERT_EQ(r.status, 0) << r.err;
   r = run("render --model nn --weights '" + w.string() +

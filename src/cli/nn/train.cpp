@@ -164,6 +164,7 @@ int run_sky(const TrainCommand& c, const fit::NetworkTrainingRequest& req) {
     out += fmt::format("validation: RMSE {:.5f}, relative error median {}, p95 {}\n", e.rmse,
                        percent(e.relative_median), percent(e.relative_p95));
   }
+  if (r.check) out += r.check->summary() + "\n";
   out += fmt::format("wrote {}\n", c.output);
   write_stdout(out);
   return kExitOk;

@@ -23,6 +23,14 @@ class IoError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// A fit or training whose result, measured on held-out data, is outside its stated bound: the
+// result is not returned (the CLI exits with status 1 and writes nothing). The message says what
+// was measured, against which bound, and how to change it.
+class FitFailed : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
 [[noreturn]] void check_failed(const char* expr, const char* file, int line,
                                const std::string& msg);
 

@@ -1,6 +1,7 @@
 #include "skylight/core/system.h"
 
 #include <fmt/format.h>
+#include <time.h>
 
 #include <fstream>
 #include <sstream>
@@ -28,6 +29,22 @@ void require_memory(std::size_t bytes, std::string_view what) {
   throw IoError(fmt::format("{} needs about {:.1f} GiB of memory; {:.1f} GiB is available", what,
                             static_cast<double>(bytes) / kGiB,
                             static_cast<double>(*available) / kGiB));
+}
+
+namespace {
+double clock_s(clockid_t clock) {
+  timespec ts{};
+  clock_gettime(clock, &ts);
+  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+}
+}  // namespace
+
+double thread_cpu_s() {
+  return clock_s(CLOCK_THREAD_CPUTIME_ID);
+}
+
+double process_cpu_s() {
+  return clock_s(CLOCK_PROCESS_CPUTIME_ID);
 }
 
 }  // namespace skylight

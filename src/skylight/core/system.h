@@ -15,4 +15,9 @@ std::optional<std::size_t> available_memory_bytes();
 // available memory (nothing is checked where it is unknown).
 void require_memory(std::size_t bytes, std::string_view what);
 
+// CPU time [s] used so far by the calling thread, and by all threads of the process: the clocks of
+// limits that must not depend on the machine's load (training budgets) and of benchmarks.
+double thread_cpu_s();
+double process_cpu_s();
+
 }  // namespace skylight

@@ -119,7 +119,8 @@ void add_training_specs(ParameterSchema<Request>& s) {
            .max = 1e6,
            .default_value = Absent{fmt::format("{} s, with --network {} s per sub-network",
                                                kSkyTimeLimitS, kPietrasTimeLimitS)},
-           .description = "stop training after this wall time"})
+           .description = "stop training after this much CPU time (all threads; not wall time, "
+                          "so a result does not depend on the machine's load)"})
       .optional_integer(
           &Request::iterations,
           {.name = "iterations",
@@ -130,6 +131,34 @@ void add_training_specs(ParameterSchema<Request>& s) {
            .default_value = Absent{fmt::format("{}, with --network {} per sub-network",
                                                kSkyIterations, kPietrasIterations)},
            .description = "at most this many iterations (LM, L-BFGS) or epochs (backprop, adam)"})
+      .integer(&Request::starts,
+               {.name = "starts",
+                .unit = "1",
+                .kind = ParameterKind::integer,
+                .min = 1,
+                .max = 1000,
+                .default_value = ParameterValue(static_cast<double>(d.starts)),
+                .description = "independent starts, each trained --start-iterations and judged "
+                               "on held-out skies; the best is trained on (sky networks)"})
+      .integer(&Request::start_iterations,
+               {.name = "start-iterations",
+                .unit = "1",
+                .kind = ParameterKind::integer,
+                .min = 1,
+                .max = 100000,
+                .default_value = ParameterValue(static_cast<double>(d.start_iterations)),
+                .description = "iterations of each start before they are compared"})
+      .optional_number(
+          &Request::max_error_percent,
+          {.name = "max-error",
+           .unit = "%",
+           .min = 0.01,
+           .max = 1e6,
+           .default_value =
+               Absent{"the source's (its registry entry; e.g. preetham 12 %, hosek 30 %)"},
+           .description = "bound on the 95th percentile of the relative radiance error on the "
+                          "held-out check skies (T every 0.1); beyond it training fails and "
+                          "nothing is written (sky networks)"})
       .optional_number(
           &Request::target_scale,
           {.name = "target-scale",
@@ -231,6 +260,9 @@ NeuralTraining Request::sky_training() const {
   t.options.seed = static_cast<std::uint64_t>(seed);
   t.options.time_limit_s = time_limit_s.value_or(kSkyTimeLimitS);
   t.options.max_iterations = iterations.value_or(kSkyIterations);
+  t.starts = starts;
+  t.start_iterations = start_iterations;
+  if (max_error_percent) t.max_relative_p95 = *max_error_percent / 100.0;
   return t;
 }
 
@@ -543,6 +575,7 @@ std::vector<StudyRow> study_hidden_layers(const HiddenLayerStudy& f,
     t.options.seed = static_cast<std::uint64_t>(f.seed);
     t.options.time_limit_s = f.time_limit_s;
     t.options.max_iterations = f.iterations;
+    t.check = false;  // the study reports every width's errors, small ones included
     const NeuralTrainingResult r = train_neural_sky(t);
     const nn::ErrorStats& e = r.validation->errors;
     StudyRow row;

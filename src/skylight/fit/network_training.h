@@ -23,6 +23,10 @@ namespace skylight::fit {
 inline constexpr nn::Trainer kSkyTrainer = nn::Trainer::levenberg_marquardt;
 inline constexpr int kSkyIterations = 500;
 inline constexpr double kSkyTimeLimitS = 60.0;
+// Starts of a sky network, each start_iterations long, judged on held-out data
+// (fit/neural_training.h; docs/NN.md, "Every seed").
+inline constexpr int kSkyStarts = 4;
+inline constexpr int kSkyStartIterations = 60;
 // Sky pixels sampled per image of an image sequence (docs/NN.md: 2000 per image keep a 12-image
 // sequence at 24 000 examples), and Pietras's 800 000 samples of nishita (§VI).
 inline constexpr int kImageSamples = 2000;
@@ -37,7 +41,9 @@ struct NetworkTrainingRequest {
   nn::OutputEncoding encoding = nn::OutputEncoding::satilmis;
   std::optional<double> time_limit_s;  // absent: kSkyTimeLimitS, with --network per sub-network
   std::optional<int> iterations;       // absent: kSkyIterations, with --network per sub-network
-  std::optional<double> target_scale;  // absent: the source's NeuralPolicy
+  int starts = kSkyStarts, start_iterations = kSkyStartIterations;
+  std::optional<double> max_error_percent;            // absent: the source's NeuralPolicy bound
+  std::optional<double> target_scale;                 // absent: the source's NeuralPolicy
   int suns = 0, view_zeniths = 0, view_azimuths = 0;  // 0: the protocol's
   std::optional<nn::PietrasKind> network;             // a Pietras network instead
   std::optional<int> samples;  // absent: kPietrasSamples (--network), kImageSamples (images)

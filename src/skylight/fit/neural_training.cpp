@@ -1,5 +1,7 @@
 #include "skylight/fit/neural_training.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <memory>
 
@@ -53,6 +55,32 @@ nn::SamplingSpec neural_validation_spec(std::string_view source) {
   return nn::paper_validation_spec(source, p.validation_turbidities, p.target_scale);
 }
 
+nn::SamplingSpec neural_selection_spec(std::string_view source) {
+  const NeuralPolicy& p = source_info(source).neural;
+  nn::SamplingSpec s = nn::paper_validation_spec(source, p.held_out_turbidities, p.target_scale);
+  s.sun_count = 5;
+  s.view_zeniths = 6;
+  s.view_azimuths = 12;
+  s.seed = 3;
+  return s;
+}
+
+nn::SamplingSpec neural_check_spec(std::string_view source) {
+  const NeuralPolicy& p = source_info(source).neural;
+  nn::SamplingSpec s = nn::paper_validation_spec(source, p.held_out_turbidities, p.target_scale);
+  s.seed = 4;
+  return s;
+}
+
+std::string HeldOutCheck::summary() const {
+  const std::string over =
+      turbidities > 1 ? fmt::format("over T {:g}-{:g} ({} values)", t_min, t_max, turbidities)
+                      : std::string("over the source's skies (no turbidity)");
+  return fmt::format(
+      "held-out check: relative error median {:.2f} %, p95 {:.2f} % (bound {:.3g} %) {}",
+      100.0 * errors.relative_median, 100.0 * errors.relative_p95, 100.0 * max_relative_p95, over);
+}
+
 NeuralTrainingResult train_neural_sky(const NeuralTraining& t) {
   nn::SamplingSpec spec = neural_training_spec(t.source);
   if (t.target_scale) spec.target_scale = *t.target_scale;
@@ -69,8 +97,24 @@ NeuralTrainingResult train_neural_sky(const NeuralTraining& t) {
                                    : nn::Activation::identity;
   const nn::MlpLayout layout = nn::MlpLayout::make(data.n_inputs(), t.hidden, 3, hidden_f, out_f);
 
+  // The starts are judged on a held-out selection set (never trained on).
+  nn::TrainOptions options = t.options;
+  nn::Dataset selection;
+  std::vector<double> selection_targets;
+  nn::Examples selection_ex;
+  if (t.starts > 1) {
+    nn::SamplingSpec ss = neural_selection_spec(t.source);
+    ss.target_scale = spec.target_scale;
+    ss.ground_albedo = spec.ground_albedo;
+    selection = nn::build_dataset(ss, t.inputs, source);
+    selection_targets = selection.targets(t.encoding);
+    selection_ex = {selection.inputs, selection_targets, selection.size()};
+    options.validation = &selection_ex;
+    options.restarts = t.starts;
+    options.restart_iterations = t.start_iterations;
+  }
   NeuralTrainingResult r;
-  r.train = nn::train(layout, ex, t.options);
+  r.train = nn::train(layout, ex, options);
   nn::SkyNetwork& sky = r.network;
   sky.net = r.train.net;
   sky.inputs = t.inputs;
@@ -95,7 +139,30 @@ NeuralTrainingResult train_neural_sky(const NeuralTraining& t) {
     pv.validation_relative_median = r.validation->errors.relative_median;
     pv.validation_relative_p95 = r.validation->errors.relative_p95;
   }
+  if (t.check) {
+    r.check = check_neural_sky(sky, t.max_relative_p95);
+    if (!r.check->passed())
+      throw FitFailed(fmt::format(
+          "nn train: the network fails its {} (seed {}); train with more --starts, another "
+          "--seed, or accept it with --max-error",
+          r.check->summary(), t.options.seed));
+  }
   return r;
+}
+
+HeldOutCheck check_neural_sky(const nn::SkyNetwork& sky, std::optional<double> max_relative_p95) {
+  nn::SamplingSpec spec = neural_check_spec(sky.provenance.source);
+  spec.target_scale = sky.target_scale;
+  spec.ground_albedo = sky.provenance.ground_albedo;
+  HeldOutCheck c;
+  c.errors = nn::evaluate_errors(
+      sky, nn::build_dataset(spec, sky.inputs, sky_model_source(sky.provenance.source)));
+  c.max_relative_p95 =
+      max_relative_p95.value_or(source_info(sky.provenance.source).neural.max_relative_p95);
+  c.t_min = *std::min_element(spec.turbidities.begin(), spec.turbidities.end());
+  c.t_max = *std::max_element(spec.turbidities.begin(), spec.turbidities.end());
+  c.turbidities = spec.turbidities.size();
+  return c;
 }
 
 NeuralValidation validate_neural_sky(const nn::SkyNetwork& sky, int sun_count, int view_zeniths,

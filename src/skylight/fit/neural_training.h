@@ -33,6 +33,12 @@ nn::SkySource sky_model_source(std::string_view model);
 // azimuths; 10 x 20 stratified views; albedo 0.5.
 nn::SamplingSpec neural_training_spec(std::string_view source);
 nn::SamplingSpec neural_validation_spec(std::string_view source);
+// Held-out sets on the policy's dense turbidity grid (NeuralPolicy::held_out_turbidities), at
+// random sun azimuths, disjoint in their random draws from the training and validation sets:
+// the selection set that picks among the starts (5 suns, 6 x 12 views, seed 3) and the check set
+// every trained network must pass (7 suns, 10 x 20 views, seed 4).
+nn::SamplingSpec neural_selection_spec(std::string_view source);
+nn::SamplingSpec neural_check_spec(std::string_view source);
 
 struct NeuralTraining {
   std::string source = std::string(PreethamModel::kName);
@@ -46,6 +52,14 @@ struct NeuralTraining {
   int view_azimuths = 0;
   nn::TrainOptions options;  // trainer, seed, stops, progress callback
   bool validate = true;      // measure the paper's validation set afterwards
+  // Starts: independent initialisations trained for start_iterations each, judged on the held-out
+  // selection set; the best continues (nn::TrainOptions::restarts).
+  int starts = 1;
+  int start_iterations = 60;
+  // The held-out check (neural_check_spec): its p95 bound; absent: the source's
+  // NeuralPolicy::max_relative_p95. check = false skips it (tests of the trainer alone).
+  std::optional<double> max_relative_p95;
+  bool check = true;
 };
 
 struct NeuralValidation {
@@ -54,15 +68,35 @@ struct NeuralValidation {
   nn::IrradianceStats irradiance;  // eq. 11 per sky state, normalised units (x target_scale: rgb)
 };
 
+// The held-out check of a trained network: its errors on neural_check_spec's set and the bound.
+struct HeldOutCheck {
+  nn::ErrorStats errors;
+  double max_relative_p95 = 0.0;
+  double t_min = 0.0, t_max = 0.0;  // the grid's turbidities
+  std::size_t turbidities = 0;
+  bool passed() const { return errors.relative_p95 <= max_relative_p95; }
+  // "held-out check: relative error median 2.10 %, p95 8.30 % (bound 12 %) over T 2-6 (41
+  // values)"
+  std::string summary() const;
+};
+
 struct NeuralTrainingResult {
   nn::SkyNetwork network;  // provenance filled in (date and software left to the caller)
   nn::TrainResult train;
   std::optional<NeuralValidation> validation;
+  std::optional<HeldOutCheck> check;
 };
 
-// Builds the training set, trains, and (with `validate`) measures the validation set; the metrics
-// go into the network's provenance.
+// Builds the training set, trains (the starts judged on the held-out selection set), and (with
+// `validate`) measures the paper's validation set, the metrics going into the network's
+// provenance; then (with `check`) the held-out check: a FitFailed error, with the check's summary,
+// when its p95 exceeds the bound. A network that fails is never returned.
 NeuralTrainingResult train_neural_sky(const NeuralTraining& t);
+
+// The held-out check of a network of a registered source (neural_check_spec); the bound: the
+// source's NeuralPolicy::max_relative_p95 unless given.
+HeldOutCheck check_neural_sky(const nn::SkyNetwork& sky,
+                              std::optional<double> max_relative_p95 = std::nullopt);
 
 // The metrics of a network on the paper's validation set of its provenance source (its source
 // model must be registered). sun_count / view counts: overrides of the protocol's (0 = its own).

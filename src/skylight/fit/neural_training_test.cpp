@@ -31,6 +31,7 @@ NeuralTraining tiny_preetham() {
   t.options.max_iterations = 60;
   t.options.time_limit_s = 1e6;  // iterations stop it: deterministic
   t.options.seed = 3;
+  t.check = false;  // far from the product's bound: the tests below check the trainer
   return t;
 }
 
@@ -93,6 +94,55 @@ TEST(NeuralTraining, SourceWithoutTurbidityGetsInputZero) {
   EXPECT_TRUE(m.domain().valid());
   const Vec3 v = direction_from_angles(0.4, 1.0);
   EXPECT_EQ(m.rgb(v).g, r.network.rgb(m.state(), v).g);
+}
+
+// The held-out check fails a network outside its bound (FitFailed, saying what was measured) and
+// returns nothing; within it the result carries the check.
+TEST(NeuralTraining, HeldOutCheckFailsANetworkOutsideItsBound) {
+  NeuralTraining t = tiny_preetham();
+  t.check = true;
+  t.max_relative_p95 = 1e-4;  // no 8-neuron network of 60 iterations gets there
+  try {
+    (void)train_neural_sky(t);
+    ADD_FAILURE() << "a network outside its bound was returned";
+  } catch (const FitFailed& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("held-out check"), std::string::npos) << what;
+    EXPECT_NE(what.find("(bound 0.01 %) over T 2-6 (41 values)"), std::string::npos) << what;
+    EXPECT_NE(what.find("--max-error"), std::string::npos) << what;
+  }
+  t.max_relative_p95 = 1e6;
+  const NeuralTrainingResult r = train_neural_sky(t);
+  ASSERT_TRUE(r.check.has_value());
+  EXPECT_TRUE(r.check->passed());
+  EXPECT_EQ(r.check->turbidities, 41u);  // T 2-6 every 0.1: between the training T included
+  EXPECT_GT(r.check->errors.relative_p95, r.check->errors.relative_median);
+}
+
+// The starts are judged on held-out skies: with four starts the kept network is at least as good
+// on the selection set (the encoded outputs' mean squared error, what the starts are compared
+// by) as the first start (seed s, stream 0) trained alone for as long.
+TEST(NeuralTraining, StartsKeepTheBestOnHeldOutSkies) {
+  NeuralTraining one = tiny_preetham();
+  one.options.max_iterations = 30;
+  NeuralTraining four = one;
+  four.starts = 4;
+  four.start_iterations = 30;  // the kept start is returned as it is
+  const NeuralTrainingResult a = train_neural_sky(one), b = train_neural_sky(four);
+  const nn::Dataset sel = nn::build_dataset(neural_selection_spec("preetham"), one.inputs,
+                                            sky_model_source("preetham"));
+  const std::vector<double> targets = sel.targets(one.encoding);
+  const nn::Examples ex{sel.inputs, targets, sel.size()};
+  EXPECT_LE(nn::mean_squared_error(b.network.net, ex), nn::mean_squared_error(a.network.net, ex));
+  EXPECT_EQ(b.train.iterations, 30);
+}
+
+// The committed network passes the held-out check of its source (docs/NN.md, "Every seed").
+TEST(NeuralTraining, EmbeddedNetworkPassesTheHeldOutCheck) {
+  const HeldOutCheck c = check_neural_sky(embedded_sky_network());
+  EXPECT_DOUBLE_EQ(c.max_relative_p95, 0.12);  // Preetham's NeuralPolicy
+  EXPECT_TRUE(c.passed()) << c.summary();
+  EXPECT_LT(c.errors.relative_median, kEmbeddedPreethamRelMedianBound) << c.summary();
 }
 
 TEST(NeuralTraining, EmbeddedNetworkMeetsHalfOfTable1) {

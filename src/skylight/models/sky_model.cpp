@@ -118,6 +118,10 @@ NeuralPolicy NeuralPolicy::over_turbidity(double first, double last, double targ
   for (double t = first; t <= last + 1e-9; t += 1.0) p.training_turbidities.push_back(t);
   for (double t = first + 0.5; t <= last - 0.5 + 1e-9; t += 1.0)
     p.validation_turbidities.push_back(t);
+  p.held_out_turbidities.clear();
+  const int steps = static_cast<int>(std::lround((last - first) / 0.1));
+  for (int k = 0; k <= steps; ++k)
+    p.held_out_turbidities.push_back(first + (last - first) * k / steps);
   return p;
 }
 

@@ -170,9 +170,20 @@ struct NeuralPolicy {
   // {0}: the model has no turbidity (one sky state per sun; the network's turbidity input unused).
   std::vector<double> training_turbidities{0.0};
   std::vector<double> validation_turbidities{0.0};
+  // The held-out check every trained network passes (fit/neural_training.h): turbidities on a
+  // dense grid, between the training ones included, and the bound on the p95 of the relative
+  // radiance error there beyond which training fails (`nn train --max-error`).
+  std::vector<double> held_out_turbidities{0.0};
+  double max_relative_p95 = 0.30;
   // Training T = first, first + 1, ..., last; validation the midpoints between them (the paper's
-  // Preetham 2..6 / 2.5..5.5 and Hosek 1..10 / 1.5..9.5).
+  // Preetham 2..6 / 2.5..5.5 and Hosek 1..10 / 1.5..9.5); the held-out check every 0.1.
   static NeuralPolicy over_turbidity(double first, double last, double target_scale = 1000.0);
+  // This policy with the held-out bound max_relative_p95 = p95.
+  NeuralPolicy bounded(double p95) const {
+    NeuralPolicy p = *this;
+    p.max_relative_p95 = p95;
+    return p;
+  }
 };
 
 // How a photo's luminance samples are fitted with the model (`skylight estimate`,

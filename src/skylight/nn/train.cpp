@@ -12,6 +12,7 @@
 #include "skylight/core/error.h"
 #include "skylight/core/math.h"
 #include "skylight/core/parallel.h"
+#include "skylight/core/system.h"
 #include "skylight/nn/detail/train_gradient.h"
 #include "skylight/nn/detail/train_kernel.h"
 #include "skylight/nn/random.h"
@@ -50,7 +51,10 @@ struct Context {
   std::string stop;
 
   Context(const MlpLayout& l, const TrainOptions& o) : layout(l), opt(o) {}
+  double cpu_start = 0.0;  // process_cpu_s() at the start
   double seconds() const { return std::chrono::duration<double>(Clock::now() - start).count(); }
+  // CPU time of the process since the start (all threads): the clock of time_limit_s.
+  double cpu_seconds() const { return process_cpu_s() - cpu_start; }
   std::span<const double> input(std::size_t i) const {
     return std::span<const double>(x).subspan(i * layout.inputs(), layout.inputs());
   }
@@ -79,7 +83,7 @@ bool log_iteration(Context& ctx, const Mlp& net, double train_sse, double step,
     ctx.stop = "callback";
     return false;
   }
-  if (e.seconds >= ctx.opt.time_limit_s) {
+  if (ctx.cpu_seconds() >= ctx.opt.time_limit_s) {
     ctx.stop = "time_limit";
     return false;
   }
@@ -642,8 +646,9 @@ Mlp initial_for_targets(const MlpLayout& layout, const Examples& ex, const Train
   return net;
 }
 
-// TrainOptions::restarts short runs from different starts; the one of lowest training error,
-// its log entries counted in ctx.iteration. Every run's log goes to result.log.
+// TrainOptions::restarts short runs from different starts; the one of lowest held-out error (the
+// training error without held-out examples), its log entries counted in ctx.iteration. Every run's
+// log goes to result.log.
 Mlp best_of_restarts(Context& ctx, const Examples& ex, int last, TrainResult& result) {
   const TrainOptions& opt = ctx.opt;
   Mlp net;
@@ -657,7 +662,10 @@ Mlp best_of_restarts(Context& ctx, const Examples& ex, int last, TrainResult& re
     std::vector<TrainLogEntry> log;
     ctx.log = &log;
     run_trainer(ctx, candidate, std::min(opt.restart_iterations, last), rng);
-    const double e = sse(candidate, ctx.x, ctx.t, ctx.n);
+    // Judged on the held-out examples when there are any: the training error cannot tell a start
+    // that fits the examples but rings between them.
+    const double e =
+        ctx.vn > 0 ? sse(candidate, ctx.vx, ctx.vt, ctx.vn) : sse(candidate, ctx.x, ctx.t, ctx.n);
     result.log.insert(result.log.end(), log.begin(), log.end());
     if (e < best) {
       best = e;
@@ -684,6 +692,7 @@ TrainResult train(const MlpLayout& layout, const Examples& ex, const TrainOption
   TrainResult result;
   Context ctx(layout, opt);
   ctx.start = Clock::now();
+  ctx.cpu_start = process_cpu_s();
   ctx.log = &result.log;
   ctx.n = ex.count;
   ctx.t = ex.targets;

@@ -71,6 +71,8 @@ struct TrainOptions {
   // the paper's 6-12-3 networks with LM: Preetham converges in ~300 iterations (~12 s on two
   // shared cores), Hosek in ~500 (~35 s).
   int max_iterations = 500;
+  // CPU time of the process (all its threads) [s], not wall time: a result does not depend on the
+  // machine's load (only on where, in iterations, the budget ends).
   double time_limit_s = 60.0;
   // Stop when the training MSE has not improved by a factor (1 - min_improvement) over the last
   // `patience` iterations; 0 = never, -1 = the trainer's default: 50 for LM (a plateau of LM is
@@ -83,7 +85,8 @@ struct TrainOptions {
   // layout must equal the layout trained) instead of random weights; restarts, init_gain and
   // init_output_from_targets are then unused.
   const Mlp* initial = nullptr;
-  // Independent initialisations, each trained for restart_iterations; the best continues.
+  // Independent initialisations, each trained for restart_iterations; the best continues: the
+  // lowest error on the validation examples when they are given, else on the training examples.
   int restarts = 1;
   int restart_iterations = 20;
   // Scale of the initial weights: U(-a, a), a = init_gain sqrt(3 / fan_in); biases U(-a, a).

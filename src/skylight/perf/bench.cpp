@@ -9,6 +9,7 @@
 #include "skylight/core/parallel.h"
 #include "skylight/core/parameters.h"
 #include "skylight/core/statistics.h"
+#include "skylight/core/system.h"
 #include "skylight/models/sh.h"
 #include "skylight/perf/workloads.h"
 

@@ -123,20 +123,4 @@ double median_seconds(int repeats, const std::function<void()>& f) {
   return median(std::move(t));
 }
 
-namespace {
-double clock_s(clockid_t clock) {
-  timespec ts{};
-  clock_gettime(clock, &ts);
-  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
-}
-}  // namespace
-
-double thread_cpu_s() {
-  return clock_s(CLOCK_THREAD_CPUTIME_ID);
-}
-
-double process_cpu_s() {
-  return clock_s(CLOCK_PROCESS_CPUTIME_ID);
-}
-
 }  // namespace skylight::perf

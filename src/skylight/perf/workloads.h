@@ -78,7 +78,5 @@ std::unique_ptr<SkyModel> pietras_bench_model(nn::PietrasKind kind);
 // Timing: the median wall time of `repeats` runs of f [s]; this thread's and this process's CPU
 // time [s].
 double median_seconds(int repeats, const std::function<void()>& f);
-double thread_cpu_s();
-double process_cpu_s();
 
 }  // namespace skylight::perf
