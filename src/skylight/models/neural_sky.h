@@ -45,7 +45,7 @@ const nn::SkyNetwork& embedded_sky_network();
 class NeuralSkyModel final : public SkyModel {
  public:
   explicit NeuralSkyModel(const NeuralSkyParameters& p);
-  // A network given in code (weights = its description only).
+  // A sky network given in code, e.g. one just trained (p.weights only describes it).
   NeuralSkyModel(const NeuralSkyParameters& p, nn::SkyNetwork network);
 
   static constexpr std::string_view kName = "nn";

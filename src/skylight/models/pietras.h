@@ -86,7 +86,7 @@ NishitaParameters nishita_parameters_of(const nn::PietrasNetwork& net);
 class PietrasSkyModel final : public SkyModel {
  public:
   explicit PietrasSkyModel(const PietrasParameters& p);
-  // A network given in code (weights = its description only).
+  // A Pietras network given in code, e.g. one just trained or read (p.weights only names it).
   PietrasSkyModel(const PietrasParameters& p, nn::PietrasNetwork network);
   static constexpr std::string_view kName = "pietras";
   // The registry entry: documentation, schema, factory and policy (models/sky_model.h).
