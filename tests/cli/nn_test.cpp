@@ -48,6 +48,21 @@ TEST_F(Cli, NnTrainFailsOutsideItsHeldOutBound) {
   EXPECT_FALSE(fs::exists(log));
 }
 
+// A flag this kind of training does not read warns and changes nothing.
+TEST_F(Cli, NnTrainWarnsOfFlagsItsKindDoesNotRead) {
+  const std::string w = (dir_ / "p.json").string();
+  const testing_support::CliResult r =
+      run("nn train --source nishita --network log3 --samples 2000 --iterations 1 --starts 3 "
+          "--max-error 5 -o '" +
+          w + "'");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.err.find("warning: --starts is not read by this training (--network); ignored"),
+            std::string::npos)
+      << r.err;
+  EXPECT_NE(r.err.find("warning: --max-error is not read"), std::string::npos) << r.err;
+  EXPECT_TRUE(fs::exists(w));
+}
+
 TEST_F(Cli, NnTrainValidateEval) {
   const std::string w = (dir_ / "w.json").string();
   const std::string log = (dir_ / "log.csv").string();

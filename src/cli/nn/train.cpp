@@ -171,10 +171,19 @@ int run_sky(const TrainCommand& c, const fit::NetworkTrainingRequest& req) {
 }
 
 int run_train(const TrainCommand& c) {
+  using Kind = fit::NetworkTrainingRequest::Kind;
   const auto req = c.flags.bind(fit::NetworkTrainingRequest::schema(),
                                 fit::NetworkTrainingRequest{}, "nn train");
-  if (req.network) return run_pietras(c, req);
-  if (c.flags.given("images")) return run_images(c, req);
+  const Kind kind = req.network               ? Kind::pietras
+                    : c.flags.given("images") ? Kind::images
+                                              : Kind::sky;
+  for (const std::string& name : fit::NetworkTrainingRequest::unread(c.flags.values(), kind))
+    warn(fmt::format("{} is not read by this training ({}); ignored", flag_spelling(name),
+                     kind == Kind::sky      ? "a sky network on a model"
+                     : kind == Kind::images ? "--images"
+                                            : "--network"));
+  if (kind == Kind::pietras) return run_pietras(c, req);
+  if (kind == Kind::images) return run_images(c, req);
   return run_sky(c, req);
 }
 

@@ -240,6 +240,17 @@ std::string Request::source_model() const {
   return source.empty() ? std::string(PreethamModel::kName) : source;
 }
 
+std::vector<std::string> Request::unread(const ParameterValues& given, Kind kind) {
+  std::vector<std::string> out;
+  const auto check = [&](const char* name, bool read) {
+    if (!read && given.has(name)) out.emplace_back(name);
+  };
+  for (const char* name : {"starts", "start-iterations", "max-error"})
+    check(name, kind == Kind::sky);
+  check("samples", kind != Kind::sky);
+  return out;
+}
+
 NeuralTraining Request::sky_training() const {
   if (!planet.empty())
     throw InvalidArgument(fmt::format("the planet flags ({}, ...) need {} pietras|log3",

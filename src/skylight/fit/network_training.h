@@ -51,6 +51,11 @@ struct NetworkTrainingRequest {
   ParameterValues planet;      // --network: nishita's planet and atmosphere as given
 
   static const ParameterSchema<NetworkTrainingRequest>& schema();
+  // What is trained: a sky network on a model, on images, or a Pietras network.
+  enum class Kind { sky, images, pietras };
+  // The parameters among `given` that this kind of training does not read (front ends warn):
+  // the starts and the held-out bound are the sky network's on a model, --samples the others'.
+  static std::vector<std::string> unread(const ParameterValues& given, Kind kind);
   // The model trained on (source, or the default).
   std::string source_model() const;
   // A sky network's training (InvalidArgument for the Pietras-only options).
