@@ -120,6 +120,7 @@ NeuralTrainingResult train_neural_sky(const NeuralTraining& t) {
   sky.inputs = t.inputs;
   sky.encoding = t.encoding;
   sky.target_scale = spec.target_scale;
+  if (const double m = data.max_radiance(); m > 0.0) sky.max_radiance = nn::kMaxRadianceMargin * m;
   nn::SkyNetworkProvenance& pv = sky.provenance;
   pv.source = t.source;
   pv.turbidities = spec.turbidities;

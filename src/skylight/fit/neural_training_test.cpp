@@ -72,6 +72,15 @@ TEST(NeuralTraining, TinyNetworkLearnsPreethamDeterministically) {
   EXPECT_LT(a.validation->errors.rmse, kTinyPreethamRmseBound);
   EXPECT_EQ(a.network.provenance.validation_rmse, a.validation->errors.rmse);
   EXPECT_EQ(a.network.target_scale, 1000.0);
+  // The decoding's bound: twice the brightest training radiance.
+  nn::SamplingSpec spec = neural_training_spec("preetham");
+  spec.sun_count = 6;
+  spec.view_zeniths = 5;
+  spec.view_azimuths = 8;
+  const nn::Dataset data =
+      nn::build_dataset(spec, tiny_preetham().inputs, sky_model_source("preetham"));
+  ASSERT_TRUE(a.network.max_radiance.has_value());
+  EXPECT_EQ(*a.network.max_radiance, nn::kMaxRadianceMargin * data.max_radiance());
   const NeuralTrainingResult b = train_neural_sky(tiny_preetham());
   ASSERT_EQ(a.network.net.parameters().size(), b.network.net.parameters().size());
   for (std::size_t i = 0; i < a.network.net.parameters().size(); ++i)

@@ -218,6 +218,13 @@ SamplingSpec paper_validation_spec(std::string_view source, std::vector<double> 
   return s;
 }
 
+double Dataset::max_radiance() const {
+  double m = 0.0;
+  for (double L : radiance)
+    if (L > m) m = L;
+  return m;
+}
+
 std::vector<double> Dataset::targets(OutputEncoding e) const {
   std::vector<double> t(radiance.size());
   std::transform(radiance.begin(), radiance.end(), t.begin(),

@@ -144,6 +144,8 @@ struct Dataset {
   int n_inputs() const { return static_cast<int>(input_spec.size()); }
   // Targets y = encode_radiance(L), size() x 3.
   std::vector<double> targets(OutputEncoding e) const;
+  // The largest normalised radiance of any example and channel (0 for none).
+  double max_radiance() const;
 };
 
 // Evaluates the source on every example (parallel over states).

@@ -288,9 +288,14 @@ std::string glsl_sky_network(const SkyNetwork& sky) {
     s += fmt::format("  x[{}] = {};  // {}\n", k, input_expression(sky.inputs[k]),
                      to_string(sky.inputs[k]));
   s += "  float y[3];\n  skylight_sky_network(x, y);\n";
-  s += fmt::format("  return {} * vec3({}, {}, {});\n", literal(sky.target_scale),
-                   decode_expression(sky.encoding, "y[0]"), decode_expression(sky.encoding, "y[1]"),
-                   decode_expression(sky.encoding, "y[2]"));
+  const std::string decoded =
+      fmt::format("vec3({}, {}, {})", decode_expression(sky.encoding, "y[0]"),
+                  decode_expression(sky.encoding, "y[1]"), decode_expression(sky.encoding, "y[2]"));
+  if (sky.max_radiance)  // SkyNetwork::max_radiance: the decoded radiance's bound
+    s += fmt::format("  return {} * min({}, vec3({}));\n", literal(sky.target_scale), decoded,
+                     literal(*sky.max_radiance));
+  else
+    s += fmt::format("  return {} * {};\n", literal(sky.target_scale), decoded);
   s += "}\n\n";
   s += "// The same with the sun as a unit vector (ENU).\n";
   s += "vec3 skylight_sky(vec3 view, vec3 sun, float turbidity) {\n";

@@ -70,6 +70,17 @@ TEST(Glsl, SatilmisSkyNetworkFileIsValidGlsl) {
                dir, "satilmis");
 }
 
+// A network with a radiance bound clamps the decoded radiance in GLSL as on the CPU.
+TEST(Glsl, MaxRadianceIsClampedInGlsl) {
+  ScratchDir dir;
+  SkyNetwork sky = random_sky(satilmis_inputs(), OutputEncoding::satilmis, Activation::satilmis,
+                              Activation::satilmis, 1);
+  EXPECT_EQ(glsl_sky_network(sky).find("min(vec3("), std::string::npos);
+  sky.max_radiance = 0.25;
+  EXPECT_NE(glsl_sky_network(sky).find("min(vec3("), std::string::npos);
+  expect_valid(sky, dir, "bounded");
+}
+
 TEST(Glsl, EveryActivationInputAndEncodingIsValidGlsl) {
   ScratchDir dir;
   const InputSpec all = {Input::sqrt_turbidity,

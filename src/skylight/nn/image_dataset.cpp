@@ -98,6 +98,7 @@ TrainedSkyNetwork train_sky_network(const Dataset& ds, const NetworkSetup& setup
   sky.inputs = ds.input_spec;
   sky.encoding = setup.encoding;
   sky.target_scale = ds.spec.target_scale;
+  if (const double m = ds.max_radiance(); m > 0.0) sky.max_radiance = kMaxRadianceMargin * m;
   SkyNetworkProvenance& pv = sky.provenance;
   pv.source = ds.spec.source;
   for (const SkyState& s : ds.states)

@@ -219,7 +219,7 @@ HWY_INLINE V SkyOutput(D d, const detail::SkyBatchParams& p, M above, V o) {
       L = hn::Mul(hn::Set(d, p.scale), hn::Exp(d, o));
       break;
   }
-  return hn::IfThenElseZero(above, L);
+  return hn::IfThenElseZero(above, hn::Min(L, hn::Set(d, p.max_value)));
 }
 
 // Calls block(x, y, z, out) for every block of kVectors * N directions (out[c] points to kVectors

@@ -64,6 +64,7 @@ std::string to_json(const SkyNetwork& sky) {
   j["input_transform"] = kInputTransform;
   j["output_encoding"] = to_string(sky.encoding);
   j["target_scale"] = sky.target_scale;
+  if (sky.max_radiance) j["max_radiance"] = *sky.max_radiance;
   const auto p = sky.net.parameters();
   j["parameters"] = std::vector<double>(p.begin(), p.end());
   const SkyNetworkProvenance& pv = sky.provenance;
@@ -190,6 +191,10 @@ SkyNetwork sky_network_from_json(std::string_view s, const std::string& where) {
   sky.encoding = *encoding;
   sky.target_scale = number(field(j, where, "target_scale"), where, "target_scale");
   if (!(sky.target_scale > 0.0)) bad(where, "target_scale", "is not positive");
+  if (j.contains("max_radiance")) {
+    sky.max_radiance = number(j.at("max_radiance"), where, "max_radiance");
+    if (!(*sky.max_radiance > 0.0)) bad(where, "max_radiance", "is not positive");
+  }
   std::vector<double> params = numbers(field(j, where, "parameters"), where, "parameters");
   if (params.size() != layout.parameter_count())
     bad(where, "parameters",
@@ -325,6 +330,8 @@ double output_mapping(const SkyNetwork& sky, detail::SkyBatchParams& kp) {
   const Activation f_out = sky.net.layout().activations.back();
   const bool identity = f_out == Activation::identity;
   kp.scale = static_cast<float>(sky.target_scale);
+  if (sky.max_radiance)
+    kp.max_value = static_cast<float>(std::min(sky.target_scale * *sky.max_radiance, 3e38));
   switch (sky.encoding) {
     case OutputEncoding::satilmis:
       if (f_out == Activation::satilmis) {

@@ -5,6 +5,7 @@
 // SIMD for one sky state over many directions.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <memory>
 #include <optional>
@@ -43,6 +44,11 @@ struct SkyNetwork {
   InputSpec inputs = satilmis_inputs();
   OutputEncoding encoding = OutputEncoding::satilmis;
   double target_scale = 1.0;  // rgb = target_scale * normalised radiance
+  // The bound of the decoded normalised radiance (every path clamps each channel to it): training
+  // sets kMaxRadianceMargin x the largest radiance it was trained on, so no view between the
+  // training skies can decode to a sky far brighter than any it learnt (a network near the pole of
+  // 1/y decodes to any value). Absent (files without "max_radiance"): unbounded.
+  std::optional<double> max_radiance;
   SkyNetworkProvenance provenance;
 
   // Linear sRGB on the source model's scale for a view (unit vector, world frame); 0 below the
@@ -50,13 +56,21 @@ struct SkyNetwork {
   Rgb rgb(const SkyState& state, Vec3 view) const;
   // The network output Psi for a view (no horizon test), n_L values.
   std::vector<double> output(const SkyState& state, Vec3 view) const;
-  // Normalised radiance of output y: decode_radiance per channel.
-  double radiance(double y) const { return decode_radiance(encoding, y); }
+  // Normalised radiance of output y: decode_radiance per channel, within max_radiance.
+  double radiance(double y) const {
+    const double L = decode_radiance(encoding, y);
+    return max_radiance ? std::min(L, *max_radiance) : L;
+  }
 };
+// The training's bound: this many times the largest training radiance (the brightest training
+// sky is already the brightest view of the brightest state; twice it leaves room for the states
+// between the training ones, e.g. T between two training turbidities).
+inline constexpr double kMaxRadianceMargin = 2.0;
 
 // The weights file (docs/NN.md): a JSON object {"format": "skylight-nn-sky", "version": 1,
 // "architecture": {widths, activations, parameter_order}, "inputs", "input_transform",
-// "output_encoding", "target_scale", "parameters", "provenance"}; numbers in shortest round-trip
+// "output_encoding", "target_scale", optional "max_radiance", "parameters", "provenance"}; numbers
+// in shortest round-trip
 // form, so a network survives save and load bit for bit.
 inline constexpr std::string_view kSkyNetworkFormat = "skylight-nn-sky";
 inline constexpr int kSkyNetworkVersion = 1;

@@ -117,6 +117,39 @@ TEST(SkyNetworkBatch, OtherLayoutsMatchScalar) {
   expect_batch_matches(s, true);
 }
 
+// max_radiance bounds every path's decoding: set at the median of a random network's radiance, it
+// clamps about half of the views, and the batch still equals the scalar path; the file keeps it.
+TEST(SkyNetwork, MaxRadianceBoundsTheDecodedRadiance) {
+  for (const auto& [enc, act] : {std::pair{OutputEncoding::satilmis, Activation::satilmis},
+                                 {OutputEncoding::satilmis, Activation::sigmoid},
+                                 {OutputEncoding::log, Activation::satilmis},
+                                 {OutputEncoding::root4, Activation::satilmis}}) {
+    SkyNetwork sky = random_sky(satilmis_inputs(), {12}, enc, act, 5);
+    SkyState st;
+    st.turbidity = 3.0;
+    st.sun_zenith = 0.7;
+    const Directions dirs = directions(200, 6);
+    std::vector<double> g;
+    for (std::size_t i = 0; i < dirs.x.size(); ++i)
+      if (dirs.z[i] >= 0.0f) g.push_back(sky.rgb(st, {dirs.x[i], dirs.y[i], dirs.z[i]}).g);
+    std::nth_element(g.begin(), g.begin() + g.size() / 2, g.end());
+    const double bound = g[g.size() / 2];
+    sky.max_radiance = bound / sky.target_scale;
+    int clamped = 0;
+    for (std::size_t i = 0; i < dirs.x.size(); ++i) {
+      const Rgb c = sky.rgb(st, {dirs.x[i], dirs.y[i], dirs.z[i]});
+      EXPECT_LE(std::max({c.r, c.g, c.b}), bound * (1 + 1e-12)) << i;
+      if (c.g == bound) ++clamped;
+    }
+    EXPECT_GT(clamped, 50);
+    expect_batch_matches(sky, true);
+    expect_batch_matches(sky, false);
+    const SkyNetwork back = sky_network_from_json(to_json(sky), "test");
+    ASSERT_TRUE(back.max_radiance.has_value());
+    EXPECT_EQ(*back.max_radiance, *sky.max_radiance);
+  }
+}
+
 TEST(SkyNetwork, RotationInvariance) {
   const SkyNetwork sky =
       random_sky(satilmis_inputs(), {12}, OutputEncoding::satilmis, Activation::satilmis, 5);

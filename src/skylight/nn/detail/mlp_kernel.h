@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstddef>
+#include <limits>
 
 #include "skylight/nn/mlp.h"
 
@@ -64,6 +65,8 @@ struct SkyBatchParams {
   float ry_x = 0.0f, ry_y = 1.0f;         // reference_y = ry_x v_x + ry_y v_y
   SkyBatchOutput output = SkyBatchOutput::squared;
   float scale = 1.0f;
+  // Each channel's radiance is clamped to this (SkyNetwork::max_radiance x target_scale).
+  float max_value = std::numeric_limits<float>::infinity();
   // Use the unrolled kernel for one satilmis hidden layer of 4, 8, 12, 16, 24, 32 or 48 neurons
   // and 3..5 direction inputs where it applies; false forces the generic kernel. Each width x
   // input count is one fully unrolled instantiation per SIMD target (21 x ~5 make ~30 s of
