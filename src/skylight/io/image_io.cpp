@@ -607,11 +607,16 @@ void write_png(const std::filesystem::path& path, const Image8& image, const Met
 
 namespace {
 
-// The PNG's bytes without empty IDAT chunks. stb copies each IDAT's data into a buffer that is
-// still null before the first non-empty one, and memcpy(nullptr, src, 0) is undefined behaviour
-// (found by the image_png fuzz target, docs/TESTING.md). An empty IDAT carries no image data, so
-// dropping it changes nothing; everything else is copied as it is (stb reports what is corrupt).
-std::vector<char> without_empty_idat_chunks(const std::vector<char>& png) {
+// The PNG's chunks as stb may read them, up to IEND (what follows is not part of the image).
+//  * A chunk that claims more bytes than the file has left is refused here: stb grows its IDAT
+//    buffer to the claimed length before reading, so a few corrupt bytes would cost gigabytes
+//    (found by the image_png fuzz target, docs/TESTING.md).
+//  * Empty IDAT chunks are dropped: stb copies each IDAT's data into a buffer that is still null
+//    before the first non-empty one, and memcpy(nullptr, src, 0) is undefined behaviour (found by
+//    the same target). An empty IDAT carries no image data, so dropping it changes nothing.
+// Everything else is copied as it is (stb reports what is corrupt).
+std::vector<char> checked_png_chunks(const std::filesystem::path& path,
+                                     const std::vector<char>& png) {
   constexpr std::size_t kSignature = 8, kChunkOverhead = 12;  // length, type, CRC
   std::vector<char> out;
   out.reserve(png.size());
@@ -621,12 +626,16 @@ std::vector<char> without_empty_idat_chunks(const std::vector<char>& png) {
     const auto* p = reinterpret_cast<const unsigned char*>(png.data() + pos);
     const std::uint32_t length = (std::uint32_t{p[0]} << 24) | (std::uint32_t{p[1]} << 16) |
                                  (std::uint32_t{p[2]} << 8) | std::uint32_t{p[3]};
-    if (length > png.size() - pos - kChunkOverhead) break;  // truncated: stb says so
+    if (length > png.size() - pos - kChunkOverhead)
+      throw_read_error(path, fmt::format("truncated or corrupt PNG: the chunk at byte {} claims "
+                                         "{} bytes, {} are left",
+                                         pos, length, png.size() - pos - kChunkOverhead));
     const std::size_t end = pos + kChunkOverhead + length;
     if (length != 0 || std::memcmp(p + 4, "IDAT", 4) != 0)
       out.insert(out.end(), png.begin() + static_cast<std::ptrdiff_t>(pos),
                  png.begin() + static_cast<std::ptrdiff_t>(end));
     pos = end;
+    if (std::memcmp(p + 4, "IEND", 4) == 0) return out;
   }
   out.insert(out.end(), png.begin() + static_cast<std::ptrdiff_t>(pos), png.end());
   return out;
@@ -642,13 +651,14 @@ struct PngFile {
 
 PngFile open_png(const std::filesystem::path& path, const ReadImageOptions& options) {
   PngFile png;
-  png.bytes = without_empty_idat_chunks(read_file(path));
+  const std::vector<char> bytes = read_file(path);
   // Only PNG: stb would try its other decoders (PNM, TGA, ...) on anything else, and those have
   // their own undefined behaviour on corrupt input (found by the image_png fuzz target).
   constexpr std::string_view kPngSignature{"\x89PNG\r\n\x1a\n", 8};
-  if (png.bytes.size() < kPngSignature.size() ||
-      std::string_view(png.bytes.data(), kPngSignature.size()) != kPngSignature)
+  if (bytes.size() < kPngSignature.size() ||
+      std::string_view(bytes.data(), kPngSignature.size()) != kPngSignature)
     throw_read_error(path, "not a PNG file (no PNG signature)");
+  png.bytes = checked_png_chunks(path, bytes);
   if (png.bytes.size() > static_cast<std::size_t>(std::numeric_limits<int>::max()))
     throw_read_error(path, "larger than 2 GB");
   stbi_set_flip_vertically_on_load_thread(0);  // row 0 at the top, whatever others set globally
