@@ -173,31 +173,43 @@ NetworkFile read_network_file(const std::filesystem::path& path) {
   return f;
 }
 
+namespace {
+
+// The model of a network file built with the sun, the file's path and the given parameters.
+template <class Model, class Params, class Network>
+std::unique_ptr<SkyModel> file_model(const SunPosition& sun, const std::string& path,
+                                     const Network& network, const auto& set) {
+  Params p;
+  p.sun = sun;
+  p.weights = path;
+  set(p);
+  return std::make_unique<Model>(p, network);
+}
+
+}  // namespace
+
 std::unique_ptr<SkyModel> network_model(const NetworkFile& file, const std::string& path,
                                         const SunPosition& sun, std::optional<double> turbidity,
                                         std::optional<double> observer_altitude_m) {
+  // What the file's kind of network has no input for.
+  const auto refuse = [&](const char* parameter, const char* why) {
+    throw InvalidArgument(fmt::format("{}: '{}' is {}", spelled(parameter), excerpt(path), why));
+  };
   if (file.pietras) {
     if (turbidity)
-      throw InvalidArgument(
-          fmt::format("{}: '{}' is a Pietras network, which has no turbidity input (its atmosphere "
-                      "is the training planet's)",
-                      spelled("turbidity"), excerpt(path)));
-    PietrasParameters p;
-    p.sun = sun;
-    p.weights = path;
-    if (observer_altitude_m) p.observer_altitude_m = *observer_altitude_m;
-    return std::make_unique<PietrasSkyModel>(p, *file.pietras);
+      refuse("turbidity",
+             "a Pietras network, which has no turbidity input (its atmosphere is the training "
+             "planet's)");
+    return file_model<PietrasSkyModel, PietrasParameters>(sun, path, *file.pietras, [&](auto& p) {
+      if (observer_altitude_m) p.observer_altitude_m = *observer_altitude_m;
+    });
   }
   if (observer_altitude_m)
-    throw InvalidArgument(
-        fmt::format("{}: '{}' is a sky network, which has no altitude input "
-                    "(only Pietras networks take it)",
-                    spelled("observer-altitude"), excerpt(path)));
-  NeuralSkyParameters p;
-  p.sun = sun;
-  p.weights = path;
-  if (turbidity) p.turbidity = *turbidity;
-  return std::make_unique<NeuralSkyModel>(p, file.sky);
+    refuse("observer-altitude",
+           "a sky network, which has no altitude input (only Pietras networks take it)");
+  return file_model<NeuralSkyModel, NeuralSkyParameters>(sun, path, file.sky, [&](auto& p) {
+    if (turbidity) p.turbidity = *turbidity;
+  });
 }
 
 const ParameterSchema<PlanetViewOptions>& PlanetViewOptions::schema() {
