@@ -515,7 +515,7 @@ const ParameterSchema<HiddenLayerStudy>& HiddenLayerStudy::schema() {
                                    .min = 0.01,
                                    .max = 1e6,
                                    .default_value = ParameterValue(d.time_limit_s),
-                                   .description = "training wall time per network"})
+                                   .description = "training CPU time per network (all threads)"})
         .integer(&H::iterations,
                  {.name = "iterations",
                   .unit = "1",

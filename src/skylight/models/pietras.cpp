@@ -173,21 +173,6 @@ NetworkFile read_network_file(const std::filesystem::path& path) {
   return f;
 }
 
-namespace {
-
-// The model of a network file built with the sun, the file's path and the given parameters.
-template <class Model, class Params, class Network>
-std::unique_ptr<SkyModel> file_model(const SunPosition& sun, const std::string& path,
-                                     const Network& network, const auto& set) {
-  Params p;
-  p.sun = sun;
-  p.weights = path;
-  set(p);
-  return std::make_unique<Model>(p, network);
-}
-
-}  // namespace
-
 std::unique_ptr<SkyModel> network_model(const NetworkFile& file, const std::string& path,
                                         const SunPosition& sun, std::optional<double> turbidity,
                                         std::optional<double> observer_altitude_m) {
@@ -200,16 +185,20 @@ std::unique_ptr<SkyModel> network_model(const NetworkFile& file, const std::stri
       refuse("turbidity",
              "a Pietras network, which has no turbidity input (its atmosphere is the training "
              "planet's)");
-    return file_model<PietrasSkyModel, PietrasParameters>(sun, path, *file.pietras, [&](auto& p) {
-      if (observer_altitude_m) p.observer_altitude_m = *observer_altitude_m;
-    });
+    PietrasParameters p;
+    p.sun = sun;
+    p.weights = path;
+    if (observer_altitude_m) p.observer_altitude_m = *observer_altitude_m;
+    return std::make_unique<PietrasSkyModel>(p, *file.pietras);
   }
   if (observer_altitude_m)
     refuse("observer-altitude",
            "a sky network, which has no altitude input (only Pietras networks take it)");
-  return file_model<NeuralSkyModel, NeuralSkyParameters>(sun, path, file.sky, [&](auto& p) {
-    if (turbidity) p.turbidity = *turbidity;
-  });
+  NeuralSkyParameters p;
+  p.sun = sun;
+  p.weights = path;
+  if (turbidity) p.turbidity = *turbidity;
+  return std::make_unique<NeuralSkyModel>(p, file.sky);
 }
 
 const ParameterSchema<PlanetViewOptions>& PlanetViewOptions::schema() {

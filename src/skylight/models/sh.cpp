@@ -92,13 +92,14 @@ ShSkyModel::ShSkyModel(const ShParameters& p, std::shared_ptr<const sh::Polynomi
   } else if (!params_.turbidity) {
     params_.turbidity = 0.5 * (t.tau_min + t.tau_max);
   }
-  const double tau = params_.turbidity.value_or(0.0);
-  coefficients_ = sh::evaluate_table(t, p.sun.zenith, tau, p.sun.azimuth, params_.bands,
-                                     !params_.no_ringing_filter);
-  irradiance_ = sh::irradiance_coefficients(
-      params_.no_ringing_filter
-          ? coefficients_
-          : sh::evaluate_table(t, p.sun.zenith, tau, p.sun.azimuth, params_.bands, false));
+  coefficients_ = sh::evaluate_table(t, p.sun.zenith, params_.turbidity.value_or(0.0),
+                                     p.sun.azimuth, params_.bands, !params_.no_ringing_filter);
+}
+
+sh::Coefficients ShSkyModel::irradiance_coefficients() const {
+  if (params_.no_ringing_filter) return sh::irradiance_coefficients(coefficients_);
+  return sh::irradiance_coefficients(sh::evaluate_table(
+      *table_, sun().zenith, params_.turbidity.value_or(0.0), sun().azimuth, params_.bands, false));
 }
 
 ParameterValues ShSkyModel::parameter_values() const {

@@ -75,12 +75,13 @@ class ShSkyModel final : public SkyModel {
   // UNFILTERED radiance: the ringing filter (eq. 5) is for display of radiance; it scales the l = 1
   // and l = 2 terms by sinc(pi l / N) and would bias the cosine convolution (upward irradiance
   // 10 % low at 3 bands). Used by `sh eval --irradiance` and `sh render --sphere`.
-  const sh::Coefficients& irradiance_coefficients() const { return irradiance_; }
+  // Evaluated when asked (the table once more, unfiltered), not with every model.
+  sh::Coefficients irradiance_coefficients() const;
 
  private:
   ShParameters params_;
   std::shared_ptr<const sh::PolynomialTable> table_;
-  sh::Coefficients coefficients_, irradiance_;
+  sh::Coefficients coefficients_;
 };
 
 }  // namespace skylight

@@ -164,6 +164,18 @@ double snapped_log10(double v) {
 
 // The y axis of a validity map with a single row (the model has no second parameter): no ticks
 // (the one requested lies outside the range).
+std::string degrees_list(const std::vector<double>& deg) {
+  std::string s;
+  for (double v : deg) s += (s.empty() ? "" : ", ") + fmt::format("{:g}", v);
+  return s;
+}
+
+std::vector<double> sun_zeniths_deg(const ComparisonSettings& c) {
+  std::vector<double> d;
+  for (double z : c.sun_zeniths) d.push_back(rad_to_deg(z));
+  return d;
+}
+
 HtmlTable::HtmlTable(const std::vector<std::string>& headers, std::vector<bool> left)
     : text_("<table><tr>"), left_(std::move(left)) {
   for (const auto& h : headers) text_ += "<th>" + h + "</th>";

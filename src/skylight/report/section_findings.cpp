@@ -55,12 +55,6 @@ struct Range {
   double hi() const { return std::isfinite(max) ? max : kNaN; }
 };
 
-std::string degrees_list(const std::vector<double>& d) {
-  std::string s;
-  for (double v : d) s += (s.empty() ? "" : ", ") + fmt::format("{:g}", v);
-  return s;
-}
-
 // Our numbers as text, exactly as the summary prints them.
 std::string v3(double v) {
   return format_finding_value(v);
@@ -80,13 +74,6 @@ std::string esc(const std::string& s) {
       o += c;
   }
   return o;
-}
-
-// The sun zeniths of the comparison settings [deg].
-std::vector<double> comparison_zeniths_deg(const ComparisonSettings& c) {
-  std::vector<double> d;
-  for (double z : c.sun_zeniths) d.push_back(rad_to_deg(z));
-  return d;
 }
 
 // One finding's record as report.json's `zotti_findings` holds it.
@@ -198,7 +185,7 @@ void ReportWriter::finding_best_turbidity() {
     per_sun.push_back(t);
     spread.add(t, t, d);
   }
-  const std::string pooled = degrees_list(comparison_zeniths_deg(cfg_.comparison));
+  const std::string pooled = degrees_list(sun_zeniths_deg(cfg_.comparison));
   Finding f{
       .id = "best_turbidity_cie12",
       .title = "Preetham turbidity that best matches CIE 12",
@@ -302,18 +289,9 @@ void ReportWriter::finding_antisolar(const HemisphereGrid& zone_grid) {
 
 // 6. Zotti's T <-> CIE type pairs against the Kittler-Darula band, 15 < theta_s < 70.
 void ReportWriter::finding_pairs() {
-  struct Pair {
-    double t;
-    int type;
-    const char* paper;
-    double threshold;  // Zotti's bound; for "≈ 1" the centre
-    bool about;
-  };
-  const Pair pairs[] = {
-      {10.0, 6, "> 2", 2.0, false}, {5.0, 7, "≈ 1", 1.0, true}, {2.9, 10, "> 1.25", 1.25, false}};
   const std::string zs = degrees_list(cfg_.pair_sun_zeniths_deg);
   Json band_rows = Json::array();
-  for (const Pair& p : pairs) {
+  for (const ZottiPair& p : kZottiPairs) {
     const RatioBand r = pair_bands_.at(p.t);  // section_matching
     auto holds = [&](double v) {
       return p.about ? (v >= p.threshold / kAboutOneFactor && v <= p.threshold * kAboutOneFactor)
@@ -329,8 +307,8 @@ void ReportWriter::finding_pairs() {
          .paper_statement = fmt::format(
              "Preetham T = {:g} resembles CIE type {} \"but with different absolute luminances "
              "(with values from [KD06])\": Y_Pr / Y_CIE {} for 15 < theta_s < 70 (§6 table).",
-             p.t, p.type, p.paper),
-         .paper_value_text = fmt::format("Y_Pr/Y_CIE {}", p.paper),
+             p.t, p.type, p.ratio),
+         .paper_value_text = fmt::format("Y_Pr/Y_CIE {}", p.ratio),
          .our_values = {{fmt::format("Y_Pr/Y_CIE, Kittler-Darula typical Lz, theta_s {} deg", zs),
                          r.typical},
                         {"the same with the CIE Lz at the band's low end", r.against_cie_low},
@@ -349,14 +327,14 @@ void ReportWriter::finding_pairs() {
                        "{}: the likely cause is the CIE absolute level he used (the min/max values "
                        "of his Fig. 5, not the typical value).",
                        v3(r.typical), v3(r.against_cie_high), v3(r.against_cie_low),
-                       band_reaches ? "reaches" : "does not reach either", p.paper)});
+                       band_reaches ? "reaches" : "does not reach either", p.ratio)});
     band_rows.push_back({{"turbidity", p.t},
                          {"cie_type", p.type},
                          {"ratio_typical", num(r.typical)},
                          {"ratio_cie_low", num(r.against_cie_low)},
                          {"ratio_cie_high", num(r.against_cie_high)},
                          {"sun_zeniths_deg", cfg_.pair_sun_zeniths_deg},
-                         {"zotti_2007", p.paper}});
+                         {"zotti_2007", p.ratio}});
   }
   json_["zotti_pairs_band"] = band_rows;
 }

@@ -190,8 +190,7 @@ std::vector<ScanEntry> scan_entries(const Config& cfg, const SkyScan& scan) {
     }
     return best;
   };
-  auto add = [&](std::string label, const ModelSpec& spec) {
-    auto m = make_model(spec, ts, az);
+  auto add = [&](std::string label, const ModelSpec& spec, std::unique_ptr<SkyModel> m) {
     entries.push_back({std::move(label), comparison_colour(spec.name),
                        compare_to_scan(*m, scan, excl), std::move(m)});
   };
@@ -202,11 +201,13 @@ std::vector<ScanEntry> scan_entries(const Config& cfg, const SkyScan& scan) {
     if (smp.elevation > top->elevation) top = &smp;
   for (int t = 1; t <= kCieTypeCount; ++t) {
     ModelSpec spec = comparison_spec(CieSkyModel::kName, t);
-    if (!(make_model(spec, ts, az)->tristimulus({0.0, 0.0, 1.0}).Y > 0.0)) {
+    auto m = make_model(spec, ts, az);
+    if (!(m->tristimulus({0.0, 0.0, 1.0}).Y > 0.0)) {
       spec.params.values.set("zenith-luminance", top->luminance);
       spec.label += " (Lz from the scan: Kittler-Darula gives 0)";
+      m = make_model(spec, ts, az);
     }
-    add(spec.label, spec);
+    add(spec.label, spec, std::move(m));
   }
   // Preetham over the report's fit range; Hosek-Wilkie over the turbidities it accepts.
   const ParameterSpec& hosek_t = *find_model(HosekWilkieModel::kName)->find_parameter("turbidity");
@@ -214,11 +215,12 @@ std::vector<ScanEntry> scan_entries(const Config& cfg, const SkyScan& scan) {
        {std::pair{PreethamModel::kName, std::array{cfg.fit_t_min, cfg.fit_t_max}},
         std::pair{HosekWilkieModel::kName, std::array{hosek_t.min, hosek_t.max}}}) {
     const double T = best_t(name, range[0], range[1]);
-    add(fmt::format("{} T = {:.2f} (best)", find_model(name)->report.title, T),
-        comparison_spec(name, T));
+    const ModelSpec spec = comparison_spec(name, T);
+    add(fmt::format("{} T = {:.2f} (best)", find_model(name)->report.title, T), spec,
+        make_model(spec, ts, az));
   }
   const ModelSpec nishita = comparison_spec(NishitaModel::kName);
-  add(nishita.label, nishita);
+  add(nishita.label, nishita, make_model(nishita, ts, az));
   return entries;
 }
 

@@ -16,22 +16,6 @@ namespace skylight::report::detail {
 
 namespace {
 
-// Zotti's pairs (T 10 / 5 / 2.9 <-> CIE 6 / 7 / 10) and his Y_Pr / Y_CIE for each.
-const std::map<double, int> kZottiPairs = {{10.0, 6}, {5.0, 7}, {2.9, 10}};
-const std::map<int, std::string> kZottiPairRatio = {{6, "&gt; 2"}, {7, "≈ 1"}, {10, "&gt; 1.25"}};
-
-std::string joined_degrees(const std::vector<double>& deg) {
-  std::string z;
-  for (double d : deg) z += (z.empty() ? "" : ", ") + fmt::format("{:g}", d);
-  return z;
-}
-
-std::vector<double> zeniths_deg(const ComparisonSettings& cs) {
-  std::vector<double> d;
-  for (double z : cs.sun_zeniths) d.push_back(rad_to_deg(z));
-  return d;
-}
-
 // The RMS(T) curve of the best Preetham turbidity for CIE 12.
 svg::Plot cie12_fit_plot(const TurbidityFit& fit) {
   svg::Plot p;
@@ -69,7 +53,8 @@ void ReportWriter::section_matching() {
   ps.sun_zeniths.clear();
   for (double d : cfg_.pair_sun_zeniths_deg) ps.sun_zeniths.push_back(d * kDegree);
   pair_bands_.clear();
-  for (const auto& [T, type] : kZottiPairs) pair_bands_[T] = preetham_cie_ratio_band(T, type, ps);
+  for (const ZottiPair& p : kZottiPairs)
+    pair_bands_[p.t] = preetham_cie_ratio_band(p.t, p.type, ps);
   // In this order: each part adds to report.json and the list of files.
   html_match_ = matching_tables();
   html_match_ += cie12_fit_html();
@@ -84,16 +69,18 @@ std::string ReportWriter::matching_tables() {
                 "Y_Pr / Y_CIE mean [min, max]",
                 fmt::format("Y_Pr / Y_CIE at theta_s {} deg: Kittler-Darula typical [CIE at the "
                             "band's high, low end]",
-                            joined_degrees(cfg_.pair_sun_zeniths_deg)),
+                            degrees_list(cfg_.pair_sun_zeniths_deg)),
                 "Zotti: Y_Pr/Y_CIE for 15 &lt; theta_s &lt; 70"});
   Json matches = Json::array(), pairs = Json::array();
   const HemisphereGrid grid = hemisphere_grid(cs.n_theta, cs.n_phi);
   for (const auto& m : summary_.cie_matches) {
     std::string z;
-    const auto it = kZottiPairs.find(m.turbidity);
+    const auto it = std::find_if(kZottiPairs.begin(), kZottiPairs.end(),
+                                 [&](const ZottiPair& p) { return p.t == m.turbidity; });
     if (it != kZottiPairs.end()) {
-      const int type = it->second;
-      z = fmt::format("CIE {}, Y_Pr/Y_CIE {}", type, kZottiPairRatio.at(type));
+      const int type = it->type;
+      const std::string ratio = svg::escape(it->ratio);
+      z = fmt::format("CIE {}, Y_Pr/Y_CIE {}", type, ratio);
       // Our numbers for Zotti's pairing.
       const auto pr =
           relative_samples(comparison_spec(PreethamModel::kName, m.turbidity), cs, grid);
@@ -108,7 +95,7 @@ std::string ReportWriter::matching_tables() {
               fmt::format("{} [{}, {}]", g3(r.mean), g3(r.min), g3(r.max)),
               fmt::format("{} [{}, {}]", g3(band.typical), g3(band.against_cie_high),
                           g3(band.against_cie_low)),
-              kZottiPairRatio.at(type)});
+              ratio});
       pairs.push_back({{"turbidity", m.turbidity},
                        {"cie_type", type},
                        {"rms_log10", num(m.rms_by_type[type - 1])},
@@ -141,7 +128,7 @@ std::string ReportWriter::matching_tables() {
       "hemisphere (zenith-angle rings x azimuth sectors), directions within {:g} deg of the sun "
       "left out, at sun zenith angles {} deg (sun azimuth 180 deg); RMS of log10(L_Preetham / "
       "L_CIE) weighted by solid angle and pooled over the sun positions.",
-      cs.n_theta, cs.n_phi, rad_to_deg(cs.sun_exclusion), joined_degrees(zeniths_deg(cs)));
+      cs.n_theta, cs.n_phi, rad_to_deg(cs.sun_exclusion), degrees_list(sun_zeniths_deg(cs)));
   return "<p>" + method + "</p>\n<h3>Best-matching CIE type for each Preetham turbidity</h3>\n" +
          t.html() +
          "<p>Y_Pr / Y_CIE: ratio of absolute luminances, Preetham over the CIE type with "
@@ -164,7 +151,7 @@ std::string ReportWriter::cie12_fit_html() {
       {"search_range", {cfg_.fit_t_min, cfg_.fit_t_max}},
       {"grid_step", cfg_.fit_t_step},
       {"normalisation", "luminance relative to the zenith (Zotti 2007)"},
-      {"sun_zeniths_deg", zeniths_deg(cs)},
+      {"sun_zeniths_deg", sun_zeniths_deg(cs)},
       {"sun_exclusion_deg", rad_to_deg(cs.sun_exclusion)},
       {"grid", fmt::format("{} zenith rings x {} azimuth sectors", cs.n_theta, cs.n_phi)},
       {"zotti_2007", {2.3, 2.5}}};

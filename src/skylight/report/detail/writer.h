@@ -94,6 +94,23 @@ double snapped_log10(double v);
 // The y axis of a validity map with a single row (the model has no second parameter).
 svg::Axis one_row_axis();
 std::string validity_name(Validity v);
+// Degrees as the page lists them: "15, 45, 75" ({:g}, comma-separated).
+std::string degrees_list(const std::vector<double>& deg);
+// The sun zenith angles of comparison settings [deg].
+std::vector<double> sun_zeniths_deg(const ComparisonSettings& c);
+
+// Zotti's Preetham T <-> CIE type pairs (§6 table) and his Y_Pr / Y_CIE for 15 < theta_s < 70:
+// the bound `threshold`, or with `about` the centre of "≈ 1" (section_matching's tables and the
+// pairs' findings).
+struct ZottiPair {
+  double t;
+  int type;
+  const char* ratio;  // as the paper writes it, e.g. "> 2"
+  double threshold;
+  bool about;
+};
+inline constexpr std::array<ZottiPair, 3> kZottiPairs = {
+    {{10.0, 6, "> 2", 2.0, false}, {5.0, 7, "≈ 1", 1.0, true}, {2.9, 10, "> 1.25", 1.25, false}}};
 
 // One table of index.html: a header row, then rows of cells already formatted as text or HTML.
 class HtmlTable {
