@@ -3,12 +3,15 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
 
 #include "skylight/io/image.h"
+#include "skylight/models/hosek_wilkie.h"
 #include "skylight/models/neural_sky.h"
 #include "skylight/models/pietras.h"
 #include "skylight/models/sky_model.h"
@@ -199,10 +202,17 @@ TEST_F(Cli, NnTrainImagesKfoldAndAnimate) {
   const std::string w = (dir_ / "w.json").string();
   auto r =
       run("nn train --images '" + (dir_ / "seq.csv").string() +
-          "' --lat 48 --lon 11 --kfold 4 --hidden 8 --iterations 40 --samples 300 -o '" + w + "'");
+          "' --lat 48 --lon 11 --kfold 4 --hidden 8 --iterations 40 --samples 300 --max-error 1000 "
+          "-o '" +
+          w + "'");
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_NE(r.out.find("4 images, 1200 examples"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("4-fold cross-validation"), std::string::npos) << r.out;
+  // 40 iterations are not enough for the held-out capture (line 3): measured and printed, the
+  // bound lifted (NnTrainImagesChecksTheCapturesBetween tests it).
+  EXPECT_NE(r.out.find("held-out captures (lines 3; the network trained on the other 3)"),
+            std::string::npos)
+      << r.out;
   EXPECT_NE(r.out.find("mean  RMSE"), std::string::npos) << r.out;
   // The time row's sun is the SPA's; the last row's is found in the image.
   std::istringstream lines(r.out);
@@ -251,6 +261,62 @@ TEST_F(Cli, NnTrainImagesKfoldAndAnimate) {
   EXPECT_NE(r.err.find("' is a sky network, which has no altitude input"), std::string::npos)
       << r.err;
   EXPECT_FALSE(fs::exists(dir_ / "a_0.exr"));
+}
+
+// The sparse sequence of docs/NN.md ("Sparse sequences"): 7 captures of Hosek-Wilkie T 3 with the
+// solar disc, suns 10 deg apart, found in the images. nn train --images holds out lines 3 5 7,
+// prints their error, and the final network reproduces the skies half-way between the captures
+// (never seen) within the bounds below. With --max-error under the measured check: exit 1, "too
+// sparse", nothing written. Measured (96 x 48, 600 samples per image, seed 1): between the
+// captures median 0.89 %, p95 3.4 % (seeds 1-10 with 2000 samples: scripts/nn_images_sparse.sh).
+constexpr double kBetweenCapturesMedian = 0.05;  // docs/NN.md's target for such a sequence
+constexpr double kBetweenCapturesP95 = 0.20;     // the default bound, kImageMaxRelativeP95
+TEST_F(Cli, NnTrainImagesChecksTheCapturesBetween) {
+  std::string list = "file\n";
+  for (int k = 0; k < 7; ++k) {
+    const auto r = run(fmt::format(
+        "render --model hosek --turbidity 3 --include-sun --sun-zenith {} --sun-azimuth {} "
+        "--width 96 --height 48 -o '{}/c{}.exr'",
+        15 + 10 * k, 120 + 15 * k, dir_.string(), k));
+    ASSERT_EQ(r.status, 0) << r.err;
+    list += fmt::format("c{}.exr\n", k);
+  }
+  std::ofstream(dir_ / "seq.csv") << list;
+  const std::string train = "nn train --images '" + (dir_ / "seq.csv").string() + "' --samples 600";
+  const std::string w = (dir_ / "w.json").string();
+  auto r = run(train + " -o '" + w + "'");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("held-out captures (lines 3 5 7; the network trained on the other 4): "
+                       "relative error median "),
+            std::string::npos)
+      << r.out;
+  const nn::SkyNetwork network = load_sky_network_file(w);
+  std::vector<double> errors;
+  for (int k = 0; k < 6; ++k) {
+    const SunPosition sun{(20.0 + 10 * k) * kDegree, (127.5 + 15 * k) * kDegree};
+    const NeuralSkyModel between(NeuralSkyParameters{.sun = sun, .weights = w, .turbidity = 3.0},
+                                 network);
+    const HosekWilkieModel truth(HosekParameters{sun, 3.0, 0.3});  // render's default albedo
+    for (int i = 0; i < 22; ++i)
+      for (int j = 0; j < 45; ++j) {
+        const Vec3 v = direction_from_angles((2.0 + 4 * i) * kDegree, (4.0 + 8 * j) * kDegree);
+        if (angle_between(v, sun.direction()) <= 5 * kDegree) continue;  // the sun exclusion
+        const Rgb a = between.rgb(v), b = truth.rgb(v);
+        errors.push_back(std::abs((a.r + a.g + a.b) / (b.r + b.g + b.b) - 1.0));
+      }
+  }
+  std::sort(errors.begin(), errors.end());
+
+  EXPECT_LT(errors[errors.size() / 2], kBetweenCapturesMedian);
+  EXPECT_LT(errors[errors.size() * 95 / 100], kBetweenCapturesP95);
+
+  const std::string w2 = (dir_ / "w2.json").string();
+  r = run(train + " --max-error 0.5 -o '" + w2 + "'");
+  EXPECT_EQ(r.status, 1) << r.err;
+  EXPECT_NE(r.err.find("the captures are too sparse: held-out captures (lines 3 5 7"),
+            std::string::npos)
+      << r.err;
+  EXPECT_FALSE(fs::exists(w2));
 }
 
 // A Pietras network animates through sunset into the night from an altitude: every frame is the

@@ -123,6 +123,9 @@ int run_images(const TrainCommand& c, const fit::NetworkTrainingRequest& req) {
   }
   if (r.cross_validation)
     out += cross_validation_text(*r.cross_validation, options.kfold, r.images);
+  out += r.check ? r.check->summary(r.images) + "\n"
+                 : "held-out captures: none (fewer than 3 images); the error between captures is "
+                   "not measured\n";
   const nn::SkyNetworkProvenance& pv = network.provenance;
   out += fmt::format(
       "final: {} {}, trainer {}, seed {}: {} iterations ({}), {:.1f} s, RMSE on the training "

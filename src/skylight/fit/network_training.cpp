@@ -139,7 +139,8 @@ void add_training_specs(ParameterSchema<Request>& s) {
                 .max = 1000,
                 .default_value = ParameterValue(static_cast<double>(d.starts)),
                 .description = "independent starts, each trained --start-iterations and judged "
-                               "on held-out skies; the best is trained on (sky networks)"})
+                               "on held-out skies (--images: held-out captures); the best is "
+                               "trained on (sky networks)"})
       .integer(&Request::start_iterations,
                {.name = "start-iterations",
                 .unit = "1",
@@ -155,10 +156,12 @@ void add_training_specs(ParameterSchema<Request>& s) {
            .min = 0.01,
            .max = 1e6,
            .default_value =
-               Absent{"the source's (its registry entry; e.g. preetham 12 %, hosek 30 %)"},
+               Absent{fmt::format("the source's (its registry entry; e.g. preetham 12 %, hosek "
+                                  "30 %); --images {:g} %",
+                                  100.0 * kImageMaxRelativeP95)},
            .description = "bound on the 95th percentile of the relative radiance error on the "
-                          "held-out check skies (T every 0.1); beyond it training fails and "
-                          "nothing is written (sky networks)"})
+                          "held-out check skies (T every 0.1; --images: the held-out captures); "
+                          "beyond it training fails and nothing is written (sky networks)"})
       .optional_number(
           &Request::target_scale,
           {.name = "target-scale",
@@ -246,7 +249,7 @@ std::vector<std::string> Request::unread(const ParameterValues& given, Kind kind
     if (!read && given.has(name)) out.emplace_back(name);
   };
   for (const char* name : {"starts", "start-iterations", "max-error"})
-    check(name, kind == Kind::sky);
+    check(name, kind != Kind::pietras);
   check("samples", kind != Kind::sky);
   return out;
 }
@@ -399,6 +402,55 @@ const ParameterSchema<ImageTrainingOptions>& ImageTrainingOptions::schema() {
   return s;
 }
 
+namespace {
+
+// The check network of CaptureCheck: trained without the held-out captures, the starts judged on
+// their even examples, measured on their odd ones; FitFailed beyond the bound.
+nn::TrainedSkyNetwork train_check_network(const nn::Dataset& ds, nn::NetworkSetup setup,
+                                          const NeuralTraining& t, ImageTrainingResult& r) {
+  CaptureCheck c;
+  c.max_relative_p95 = t.max_relative_p95.value_or(kImageMaxRelativeP95);
+  std::vector<bool> held(r.images.size(), false);
+  for (std::size_t k = 1; k + 1 < r.images.size(); k += 2) {
+    held[k] = true;
+    c.held_out.push_back(k);
+  }
+  c.training_captures = r.images.size() - c.held_out.size();
+  std::vector<bool> kept(held.size());
+  for (std::size_t k = 0; k < held.size(); ++k) kept[k] = !held[k];
+  const nn::Dataset held_out = nn::subset_by_state(ds, held);
+  const nn::Dataset selection = nn::every_nth_example(held_out, 2, 0);
+  const nn::Dataset measured = nn::every_nth_example(held_out, 2, 1);
+  const std::vector<double> selection_targets = selection.targets(setup.encoding);
+  const nn::Examples selection_ex{selection.inputs, selection_targets, selection.size()};
+  setup.options.validation = &selection_ex;
+  setup.options.keep_best_validation = true;
+  setup.options.restarts = t.starts;
+  setup.options.restart_iterations = t.start_iterations;
+  nn::TrainedSkyNetwork net = nn::train_sky_network(nn::subset_by_state(ds, kept), setup);
+  c.errors = nn::evaluate_errors(net.network, measured);
+  r.check = c;
+  if (!c.passed())
+    throw FitFailed(fmt::format(
+        "nn train --images: the captures are too sparse: {}; add captures between them, or "
+        "accept the network with --max-error",
+        c.summary(r.images)));
+  return net;
+}
+
+}  // namespace
+
+std::string CaptureCheck::summary(const std::vector<LoadedImage>& images) const {
+  std::string lines;
+  for (std::size_t k : held_out)
+    lines += fmt::format("{}{}", lines.empty() ? "" : " ", images[k].entry.line);
+  return fmt::format(
+      "held-out captures (lines {}; the network trained on the other {}): relative error median "
+      "{:.2f} %, p95 {:.2f} % (bound {:.3g} %)",
+      lines, training_captures, 100.0 * errors.relative_median, 100.0 * errors.relative_p95,
+      100.0 * max_relative_p95);
+}
+
 ImageTrainingResult train_on_images(
     const ImageTrainingOptions& o, const NeuralTraining& t, int samples_per_image,
     const std::function<void(int, int, const std::string&)>& progress) {
@@ -447,12 +499,23 @@ ImageTrainingResult train_on_images(
   setup.encoding = t.encoding;
   setup.options = t.options;
   setup.options.progress = nullptr;
+  const int steps = o.kfold + 2;
   if (o.kfold > 0) {
     r.cross_validation = nn::cross_validate(ds, o.kfold, setup, [&](int k, int n) {
-      report(k, n + 1, fmt::format("fold {} of {}", k + 1, n));
+      report(k, steps, fmt::format("fold {} of {}", k + 1, n));
     });
   }
-  report(o.kfold, o.kfold + 1, "final network on all images");
+  nn::TrainedSkyNetwork check_network;
+  if (t.check && r.images.size() >= 3) {
+    report(o.kfold, steps, "check network without the held-out captures");
+    check_network = train_check_network(ds, setup, t, r);
+    setup.options.initial = &check_network.train.net;
+  } else {
+    // Nothing between two captures to hold out: the starts are judged on the training error.
+    setup.options.restarts = t.starts;
+    setup.options.restart_iterations = t.start_iterations;
+  }
+  report(o.kfold + 1, steps, "final network on all images");
   r.trained = nn::train_sky_network(ds, setup);
   r.errors = nn::evaluate_errors(r.trained.network, ds);
   return r;

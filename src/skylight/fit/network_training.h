@@ -30,6 +30,9 @@ inline constexpr int kSkyStartIterations = 60;
 // Sky pixels sampled per image of an image sequence (docs/NN.md: 2000 per image keep a 12-image
 // sequence at 24 000 examples), and Pietras's 800 000 samples of nishita (§VI).
 inline constexpr int kImageSamples = 2000;
+// The bound on the held-out captures' relative error p95 of a sequence (docs/NN.md, "Sparse
+// sequences"): beyond it the captures are too far apart for the network to interpolate them.
+inline constexpr double kImageMaxRelativeP95 = 0.20;
 inline constexpr int kPietrasSamples = 800000;
 
 struct NetworkTrainingRequest {
@@ -84,15 +87,37 @@ struct LoadedImage {
   estimate::SampledImage sampled;
   std::string sun_source;  // "list", "time", "image"
 };
+// The held-out captures of a sequence: every other capture between the first and the last (list
+// order) is left out of a check network, trained on the others; the starts are judged on half of
+// the held-out captures' sampled pixels and the network is measured on the other half. With the
+// held-out captures gone the others are twice as far apart as in the final network's training:
+// the check is an upper estimate of the error between the captures of the final network.
+struct CaptureCheck {
+  std::vector<std::size_t> held_out;  // indices into ImageTrainingResult::images
+  std::size_t training_captures = 0;
+  nn::ErrorStats errors;
+  double max_relative_p95 = 0.0;
+  bool passed() const { return errors.relative_p95 <= max_relative_p95; }
+  // "held-out captures (lines 3 5 7, the network trained on the other 4): relative error median
+  // 1.10 %, p95 3.50 % (bound 20 %)"
+  std::string summary(const std::vector<LoadedImage>& images) const;
+};
+
 struct ImageTrainingResult {
   std::vector<LoadedImage> images;
   double target_scale = 0.0;
   std::size_t examples = 0;
   std::optional<nn::CrossValidation> cross_validation;  // with kfold > 0
+  std::optional<CaptureCheck> check;                    // with 3 or more images and training.check
   nn::TrainedSkyNetwork trained;
   nn::ErrorStats errors;  // of the final network on all images
 };
-// progress(done, total, step) while images are read and folds trained (may be empty).
+// progress(done, total, step) while images are read and folds trained (may be empty). With three
+// or more images (and training.check) the check network is trained first, with training.starts
+// judged on the held-out captures; a FitFailed error ("too sparse") when its p95 exceeds
+// training.max_relative_p95 (default kImageMaxRelativeP95), else the final network continues from
+// it on all images. With two images there is nothing between them to hold out: the starts are
+// judged on the training error and nothing is checked.
 ImageTrainingResult train_on_images(
     const ImageTrainingOptions& options, const NeuralTraining& training, int samples_per_image,
     const std::function<void(int, int, const std::string&)>& progress = {});

@@ -57,21 +57,24 @@ Dataset image_dataset(const std::vector<ImageSamples>& images, const InputSpec& 
   return ds;
 }
 
-Dataset subset_by_state(const Dataset& ds, const std::vector<bool>& keep) {
-  SKYLIGHT_CHECK(keep.size() == ds.states.size(), "subset_by_state: one flag per state");
+namespace {
+
+// The examples i with keep_state[state] && keep_example(i); kept states renumbered in order.
+template <class KeepExample>
+Dataset subset(const Dataset& ds, const std::vector<bool>& keep_state, KeepExample keep_example) {
   Dataset out;
   out.spec = ds.spec;
   out.input_spec = ds.input_spec;
   std::vector<int> index(ds.states.size(), -1);
   for (std::size_t s = 0; s < ds.states.size(); ++s)
-    if (keep[s]) {
+    if (keep_state[s]) {
       index[s] = static_cast<int>(out.states.size());
       out.states.push_back(ds.states[s]);
     }
   const std::size_t n_in = ds.input_spec.size();
   for (std::size_t i = 0; i < ds.size(); ++i) {
     const int s = index[static_cast<std::size_t>(ds.state_index[i])];
-    if (s < 0) continue;
+    if (s < 0 || !keep_example(i)) continue;
     out.state_index.push_back(s);
     out.views.push_back(ds.views[i]);
     out.inputs.insert(out.inputs.end(), ds.inputs.begin() + static_cast<std::ptrdiff_t>(i * n_in),
@@ -81,6 +84,19 @@ Dataset subset_by_state(const Dataset& ds, const std::vector<bool>& keep) {
                         ds.radiance.begin() + static_cast<std::ptrdiff_t>(3 * i + 3));
   }
   return out;
+}
+
+}  // namespace
+
+Dataset subset_by_state(const Dataset& ds, const std::vector<bool>& keep) {
+  SKYLIGHT_CHECK(keep.size() == ds.states.size(), "subset_by_state: one flag per state");
+  return subset(ds, keep, [](std::size_t) { return true; });
+}
+
+Dataset every_nth_example(const Dataset& ds, std::size_t every, std::size_t first) {
+  SKYLIGHT_CHECK(every > 0 && first < every, "every_nth_example: 0 <= first < every");
+  return subset(ds, std::vector<bool>(ds.states.size(), true),
+                [&](std::size_t i) { return i % every == first; });
 }
 
 TrainedSkyNetwork train_sky_network(const Dataset& ds, const NetworkSetup& setup) {

@@ -39,6 +39,8 @@ Dataset image_dataset(const std::vector<ImageSamples>& images, const InputSpec& 
 
 // The examples whose state is kept (keep.size() == ds.states.size()); states renumbered in order.
 Dataset subset_by_state(const Dataset& ds, const std::vector<bool>& keep);
+// Every `every`-th example from example `first` on (states unchanged): disjoint parts of a set.
+Dataset every_nth_example(const Dataset& ds, std::size_t every, std::size_t first);
 
 // A network and how to train it.
 struct NetworkSetup {

@@ -4,9 +4,11 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <memory>
 #include <mutex>
 #include <numeric>
+#include <optional>
 #include <ostream>
 
 #include "skylight/core/error.h"
@@ -49,6 +51,11 @@ struct Context {
   int iteration = 0;  // global count, across restarts
   int restart = 0;
   std::string stop;
+  // TrainOptions::keep_best_validation: the best iterate so far (standardised inputs).
+  bool track_best = false;
+  std::optional<Mlp> best;
+  double best_validation = std::numeric_limits<double>::infinity();
+  int best_iteration = 0;
 
   Context(const MlpLayout& l, const TrainOptions& o) : layout(l), opt(o) {}
   double cpu_start = 0.0;  // process_cpu_s() at the start
@@ -77,6 +84,11 @@ bool log_iteration(Context& ctx, const Mlp& net, double train_sse, double step,
                      ctx.iteration == last_iteration)) {
     e.validation_mse =
         sse(net, ctx.vx, ctx.vt, ctx.vn) / (static_cast<double>(ctx.vn) * ctx.layout.outputs());
+    if (ctx.track_best && e.validation_mse < ctx.best_validation) {
+      ctx.best_validation = e.validation_mse;
+      ctx.best = net;
+      ctx.best_iteration = ctx.iteration;
+    }
   }
   ctx.log->push_back(e);
   if (ctx.opt.progress && !ctx.opt.progress(e)) {
@@ -718,10 +730,22 @@ TrainResult train(const MlpLayout& layout, const Examples& ex, const TrainOption
     Rng rng = Rng::stream(opt.seed, 0);
     net = initial_for_targets(layout, ex, opt, rng);
   }
+  ctx.track_best = opt.keep_best_validation && ctx.vn > 0;
   if (ctx.stop != "time_limit" && ctx.stop != "callback" && ctx.iteration < last) {
     ctx.stop.clear();
     Rng rng = Rng::stream(opt.seed, 1000);
     run_trainer(ctx, net, last, rng);
+  }
+  if (ctx.track_best) {
+    // The last iterate competes too (it is not measured when training stopped between
+    // validations).
+    const double e =
+        sse(net, ctx.vx, ctx.vt, ctx.vn) / (static_cast<double>(ctx.vn) * layout.outputs());
+    result.kept_iteration = ctx.iteration;
+    if (ctx.best && ctx.best_validation < e) {
+      net = *ctx.best;
+      result.kept_iteration = ctx.best_iteration;
+    }
   }
   standard.fold(net);
   result.net = std::move(net);

@@ -115,6 +115,10 @@ struct TrainOptions {
   // Optional held-out examples: validation_mse is logged every validation_every iterations.
   const Examples* validation = nullptr;
   int validation_every = 10;
+  // Early stopping: with validation examples, the network returned is the iterate of the lowest
+  // validation error among those measured (every validation_every iterations and the last) after
+  // the restarts, not the last (TrainResult::kept_iteration).
+  bool keep_best_validation = false;
   // Called after every iteration; return false to stop.
   std::function<bool(const TrainLogEntry&)> progress;
 };
@@ -126,6 +130,9 @@ struct TrainResult {
   double mse = 0.0;  // final training MSE
   int iterations = 0;
   std::string stop;  // "iterations", "time_limit", "converged", "lambda_max", "callback"
+  // With keep_best_validation: the iteration whose network is returned (== iterations when the
+  // last was the best); 0 otherwise.
+  int kept_iteration = 0;
 };
 
 // Initial parameters: layer k weights and biases U(-a, a), a = gain sqrt(3 / n_(k-1)).

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <sstream>
 #include <utility>
 #include <vector>
@@ -162,6 +163,40 @@ TEST(Train, ProgressCallbackStopsAndLogIsCsv) {
   write_log_csv(os, r.log);
   EXPECT_EQ(os.str().substr(0, os.str().find('\n')),
             "restart,iteration,seconds,mse,validation_mse,step");
+}
+
+// Early stopping: the network returned is the measured iterate of the lowest validation error
+// (a few training examples, so that training past it raises the validation error), and
+// kept_iteration names it. The returned network is folded back to raw inputs: its validation MSE
+// equals the logged one up to rounding.
+constexpr double kFoldedMseTolerance = 1e-9;
+
+TEST(Train, KeepBestValidationReturnsTheLowestMeasuredIterate) {
+  const Toy t = toy(12, 3);
+  const Toy v = toy(200, 4);
+  const Examples vex = v.examples();
+  TrainOptions o;
+  o.max_iterations = 120;
+  o.patience = 0;
+  o.validation = &vex;
+  o.validation_every = 5;
+  o.keep_best_validation = true;
+  const auto r = train(kToyLayout, t.examples(), o);
+  double best = std::numeric_limits<double>::infinity();
+  int best_iteration = 0;
+  for (const auto& e : r.log)
+    if (!std::isnan(e.validation_mse) && e.validation_mse < best) {
+      best = e.validation_mse;
+      best_iteration = e.iteration;
+    }
+  ASSERT_GT(best_iteration, 0);
+  EXPECT_LT(best_iteration, r.iterations);  // training went past the best
+  EXPECT_EQ(r.kept_iteration, best_iteration);
+  EXPECT_NEAR(mean_squared_error(r.net, vex), best, kFoldedMseTolerance * best);
+  o.keep_best_validation = false;
+  const auto last = train(kToyLayout, t.examples(), o);
+  EXPECT_EQ(last.kept_iteration, 0);
+  EXPECT_GE(mean_squared_error(last.net, vex), mean_squared_error(r.net, vex));
 }
 
 // The block-sparse, SIMD J^T J of the LM trainer equals the dense product of the Jacobians.
