@@ -8,6 +8,7 @@ error and the mean reported sigma. Usage:
 
   scripts/estimate_spread.py [--cli build/skylight] [--reps 20] [--samples N ...] [--noise 0.05]
                              [--cloud 0.1] [--turbidities 2,5,8] [--zeniths 15,45,75]
+                             [--estimate-args '--bootstrap 200']
 
 Needs ./build/skylight and Debian's python3-numpy (apt-get install python3-numpy); not run by the
 tests (about a minute per sample count over the 12 skies).
@@ -65,6 +66,9 @@ def main():
     ap.add_argument("--turbidities", default="2,5,8")
     ap.add_argument("--zeniths", default="15,45,75")
     ap.add_argument("--size", type=int, default=300)
+    ap.add_argument("--verbose", action="store_true", help="print every estimate and sigma")
+    ap.add_argument("--estimate-args", default="",
+                    help="more `skylight estimate` flags, e.g. '--bootstrap 200'")
     a = ap.parse_args()
     tmp = tempfile.mkdtemp()
     print("T    zenith  samples  spread   mean_error  mean_sigma  sigma/spread")
@@ -85,7 +89,8 @@ def main():
                 est, sig = [], []
                 for seed, p in photos:
                     r = subprocess.run([a.cli, "estimate", "--image", p, "--projection", "fisheye",
-                                        *sun, "--samples", str(n), "--seed", str(seed), "--json"],
+                                        *sun, "--samples", str(n), "--seed", str(seed), "--json",
+                                        *a.estimate_args.split()],
                                        capture_output=True, text=True)
                     if r.returncode != 0:
                         print(f"  seed {seed}: {r.stderr.strip()}", file=sys.stderr)
@@ -93,6 +98,9 @@ def main():
                     j = json.loads(r.stdout)
                     est.append(j["turbidity"])
                     sig.append(j["turbidity_sigma"])
+                    if a.verbose:
+                        print(f"  seed {seed}: T {j['turbidity']:.4f} sigma "
+                              f"{j['turbidity_sigma']:.4f} inliers {j.get('inliers', '')}")
                 est, sig = np.array(est), np.array(sig)
                 spread = est.std(ddof=1)
                 print(f"{t:<4g} {z:<7g} {n:<8d} {spread:<8.3f} {abs(est.mean() - t):<11.3f} "

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <string>
 
+#include "skylight/estimate/photo.h"
 #include "skylight/io/image.h"
 #include "support/cli_run.h"
 
@@ -43,8 +44,19 @@ TEST_F(Cli, EstimateReadsBackARenderedFisheye) {
     EXPECT_DOUBLE_EQ(j["sun_zenith_deg"].get<double>(), 58.4);
     EXPECT_NEAR(j["sun_azimuth_deg"].get<double>(), 180.6, 1e-9);
     EXPECT_EQ(j["sun_source"], "given");
-    EXPECT_EQ(j["samples"], 100);
+    EXPECT_EQ(j["samples"], estimate::kPhotoSamples);  // of 31 000 sky pixels
   }
+  // A small photo has fewer sky pixels than the default samples: each is used once.
+  const fs::path small = dir_ / "small.exr";
+  auto r = run("render --model preetham --turbidity 4 " + kSun +
+               " --projection fisheye --width 60 --height 60 -o '" + small.string() + "'");
+  ASSERT_EQ(r.status, 0) << r.err;
+  r = run("estimate --image '" + small.string() + "' " + kSun + " --json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_LT(j["sky_pixels"].get<int>(), estimate::kPhotoSamples);
+  EXPECT_EQ(j["samples"], j["sky_pixels"]);
+  EXPECT_NEAR(j["turbidity"].get<double>(), 4.0, kRoundTripTurbidityTol);
 }
 
 TEST_F(Cli, EstimateFindsTheSunOrTakesItFromTheTime) {

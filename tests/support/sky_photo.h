@@ -2,6 +2,7 @@
 // scalar reference path per pixel centre, linear sRGB), and synthetic clouds painted over it.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <vector>
@@ -26,6 +27,22 @@ inline io::ImageF render_photo(const SkyModel& model, const Camera& camera) {
       p[2] = static_cast<float>(c.b);
     }
   return img;
+}
+
+// img with multiplicative Gaussian noise of relative standard deviation `sigma`, independent per
+// pixel and channel (Box-Muller on a fixed LCG: the same noise on every platform), clamped at 0.
+inline io::ImageF with_noise(const io::ImageF& img, double sigma, std::uint32_t seed) {
+  io::ImageF out = img;
+  std::uint32_t state = seed;
+  auto uniform = [&] {
+    state = state * 1664525u + 1013904223u;
+    return (static_cast<double>(state >> 8) + 0.5) / static_cast<double>(1u << 24);
+  };
+  for (float& v : out.data) {
+    const double g = std::sqrt(-2.0 * std::log(uniform())) * std::cos(2.0 * kPi * uniform());
+    v = static_cast<float>(std::max(0.0, v * (1.0 + sigma * g)));
+  }
+  return out;
 }
 
 // Round cloud patches at pseudo-random places (a fixed LCG), alternately brighter (x bright) and

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <limits>
+#include <map>
 
 #include "skylight/core/error.h"
 #include "skylight/core/statistics.h"
@@ -39,14 +40,15 @@ std::vector<std::size_t> ransac(
   return best;
 }
 
-std::vector<double> bootstrap_sigma(
-    std::span<const std::size_t> indices, int resamples, SplitMix64& rng,
+namespace {
+
+std::vector<double> sigma_over_draws(
+    int resamples, const std::function<void(std::vector<std::size_t>&)>& draw,
     const std::function<std::vector<double>(std::span<const std::size_t>)>& fit) {
-  SKYLIGHT_CHECK(resamples >= 2 && !indices.empty(), "bootstrap_sigma: two draws of some indices");
   std::vector<std::vector<double>> values;
-  std::vector<std::size_t> resample(indices.size());
+  std::vector<std::size_t> resample;
   for (int b = 0; b < resamples; ++b) {
-    for (auto& i : resample) i = indices[rng.below(indices.size())];
+    draw(resample);
     const std::vector<double> p = fit(resample);
     if (values.empty()) values.resize(p.size());
     SKYLIGHT_CHECK(p.size() == values.size(), "bootstrap_sigma: parameter counts differ");
@@ -55,6 +57,44 @@ std::vector<double> bootstrap_sigma(
   std::vector<double> sigma;
   for (const auto& v : values) sigma.push_back(sample_standard_deviation(v));
   return sigma;
+}
+
+}  // namespace
+
+std::vector<double> bootstrap_sigma(
+    std::span<const std::size_t> indices, int resamples, SplitMix64& rng,
+    const std::function<std::vector<double>(std::span<const std::size_t>)>& fit) {
+  SKYLIGHT_CHECK(resamples >= 2 && !indices.empty(), "bootstrap_sigma: two draws of some indices");
+  return sigma_over_draws(
+      resamples,
+      [&](std::vector<std::size_t>& r) {
+        r.resize(indices.size());
+        for (auto& i : r) i = indices[rng.below(indices.size())];
+      },
+      fit);
+}
+
+std::vector<double> block_bootstrap_sigma(
+    std::span<const std::size_t> indices, std::span<const int> block_of, int resamples,
+    SplitMix64& rng, const std::function<std::vector<double>(std::span<const std::size_t>)>& fit) {
+  SKYLIGHT_CHECK(resamples >= 2 && !indices.empty(), "bootstrap_sigma: two draws of some indices");
+  std::map<int, std::vector<std::size_t>> by_block;
+  for (std::size_t i : indices) {
+    SKYLIGHT_CHECK(i < block_of.size(), "block_bootstrap_sigma: a block per index");
+    by_block[block_of[i]].push_back(i);
+  }
+  std::vector<const std::vector<std::size_t>*> blocks;
+  for (const auto& [id, members] : by_block) blocks.push_back(&members);
+  return sigma_over_draws(
+      resamples,
+      [&](std::vector<std::size_t>& r) {
+        r.clear();
+        for (std::size_t b = 0; b < blocks.size(); ++b) {
+          const auto& members = *blocks[rng.below(blocks.size())];
+          r.insert(r.end(), members.begin(), members.end());
+        }
+      },
+      fit);
 }
 
 }  // namespace skylight

@@ -41,4 +41,11 @@ std::vector<double> bootstrap_sigma(
     std::span<const std::size_t> indices, int resamples, SplitMix64& rng,
     const std::function<std::vector<double>(std::span<const std::size_t>)>& fit);
 
+// The block bootstrap (Kuensch 1989): the indices grouped by block_of[index] (errors correlated
+// within a block, independent between blocks); each draw takes as many blocks as there are, with
+// replacement, and all their indices. With one index per block it is bootstrap_sigma.
+std::vector<double> block_bootstrap_sigma(
+    std::span<const std::size_t> indices, std::span<const int> block_of, int resamples,
+    SplitMix64& rng, const std::function<std::vector<double>(std::span<const std::size_t>)>& fit);
+
 }  // namespace skylight

@@ -346,9 +346,28 @@ std::vector<LuminanceSample> sample_sky(const io::ImageF& image, const Camera& c
   return out;
 }
 
+std::vector<LuminanceSample> every_sky_pixel(const io::ImageF& image, const Camera& camera,
+                                             const SkyMask& mask) {
+  SKYLIGHT_CHECK(mask.width == image.width && mask.height == image.height,
+                 "mask and image sizes differ");
+  std::vector<LuminanceSample> out;
+  out.reserve(mask.count);
+  for (int row = 0; row < mask.height; ++row)
+    for (int col = 0; col < mask.width; ++col) {
+      if (!mask.sky[static_cast<std::size_t>(row) * static_cast<std::size_t>(mask.width) +
+                    static_cast<std::size_t>(col)])
+        continue;
+      const auto d = camera.pixel_direction(col, row);
+      SKYLIGHT_CHECK(d && d->z > 0.0, "sky-mask pixels see a direction above the horizon");
+      out.push_back({*d, pixel_luminance(image, col, row)});
+    }
+  return out;
+}
+
 PhotoSamples sample_photo(const io::ImageF& image, const Camera& camera,
                           const std::optional<SunPosition>& sun, const MaskSettings& mask_settings,
-                          int samples, std::uint64_t seed, const io::ImageF* user_mask) {
+                          std::optional<int> samples, std::uint64_t seed,
+                          const io::ImageF* user_mask) {
   PhotoSamples out;
   out.sun_detected = !sun;
   out.sun = sun ? *sun : detect_sun(image, camera).sun;
@@ -358,7 +377,10 @@ PhotoSamples sample_photo(const io::ImageF& image, const Camera& camera,
                     rad_to_deg(out.sun.zenith)));
   out.mask = sky_mask(image, camera, mask_settings, out.sun, user_mask);
   out.sky_pixels = out.mask.count;
-  out.samples = sample_sky(image, camera, out.mask, samples, seed);
+  if (!samples && out.mask.count <= static_cast<std::size_t>(kPhotoSamples))
+    out.samples = every_sky_pixel(image, camera, out.mask);
+  else
+    out.samples = sample_sky(image, camera, out.mask, samples.value_or(kPhotoSamples), seed);
   return out;
 }
 

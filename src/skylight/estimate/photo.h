@@ -90,9 +90,19 @@ struct LuminanceSample {
 std::vector<LuminanceSample> sample_sky(const io::ImageF& image, const Camera& camera,
                                         const SkyMask& mask, int samples, std::uint64_t seed);
 
+// Every sky pixel of the mask once, in image order, and its luminance.
+std::vector<LuminanceSample> every_sky_pixel(const io::ImageF& image, const Camera& camera,
+                                             const SkyMask& mask);
+
+// Sky pixels an estimate samples by default: 5 % noise and 10 % cloud, T 2-8, sun zenith 15-75
+// deg, spread the turbidity over 20 noise realisations by at most 0.084 (T 8, sun zenith 15 deg;
+// docs/ESTIMATE.md, "Uncertainty"), where Morales et al. 2017's N = 100 spread it by 0.83.
+inline constexpr int kPhotoSamples = 6000;
+
 // A photo's samples as `skylight estimate` draws them: the sun (given, or found by detect_sun;
 // InvalidArgument when it is not above the horizon), the sky mask (the automatic rules with the
-// sun exclusion, and the user's mask when given) and `samples` random sky pixels.
+// sun exclusion, and the user's mask when given) and `samples` random sky pixels (absent:
+// kPhotoSamples, or every sky pixel when the mask has no more).
 struct PhotoSamples {
   std::vector<LuminanceSample> samples;
   SunPosition sun;
@@ -102,7 +112,8 @@ struct PhotoSamples {
 };
 PhotoSamples sample_photo(const io::ImageF& image, const Camera& camera,
                           const std::optional<SunPosition>& sun, const MaskSettings& mask_settings,
-                          int samples, std::uint64_t seed, const io::ImageF* user_mask = nullptr);
+                          std::optional<int> samples, std::uint64_t seed,
+                          const io::ImageF* user_mask = nullptr);
 
 // The photo's luminance per pixel (pixel_luminance; one channel).
 io::ImageF photo_luminance_image(const io::ImageF& image);

@@ -27,7 +27,9 @@ namespace skylight::fit {
 using estimate::LuminanceSample;
 
 struct EstimateSettings {
-  int samples = 100;              // N random sky pixels (Morales 2017 §7.1: N = 100)
+  // N random sky pixels (Morales 2017 §7.1: N = 100); absent: estimate::kPhotoSamples, or every
+  // sky pixel when the mask has no more.
+  std::optional<int> samples;
   std::uint64_t seed = 1;         // of the sampling, RANSAC and bootstrap (SplitMix64)
   bool ransac = true;             // reject cloud pixels (§3.4); --no-ransac
   int ransac_iterations = 64;     // random minimal sets tried
