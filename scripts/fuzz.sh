@@ -12,7 +12,8 @@ set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 seconds="${1:-10}"
 [ $# -gt 0 ] && shift
-all=(directions_csv sky_scan image_pfm image_exr image_hdr image_png sh_table_json nn_weights_json)
+all=(directions_csv sky_scan image_pfm image_exr image_hdr image_png sh_table_json nn_weights_json
+  exif camera_calibration)
 targets=("${@:-${all[@]}}")
 build="${SKYLIGHT_FUZZ_BUILD:-$root/build-fuzz}"
 

@@ -6,7 +6,7 @@ set -euo pipefail
 # clang + libclang-rt-14-dev: the libFuzzer targets (scripts/fuzz.sh, docs/TESTING.md).
 # EGL/GL + Mesa (llvmpipe) + glslang-tools: the headless GL module gpu/ and its tests (docs/GPU.md).
 PACKAGES=(build-essential cmake ninja-build pkg-config git
-  libeigen3-dev libopenexr-dev libimath-dev libstb-dev libcli11-dev libfmt-dev
+  libeigen3-dev libopenexr-dev libimath-dev libstb-dev libcli11-dev libfmt-dev libexif-dev
   nlohmann-json3-dev libhwy-dev libgtest-dev libgmock-dev libbenchmark-dev
   chromium clang libclang-rt-14-dev
   libegl-dev libgles-dev libgl-dev libopengl-dev libegl-mesa0 libgl1-mesa-dri glslang-tools)

@@ -99,9 +99,11 @@ std::optional<sun::SpaInput> solar_position_input(const ParameterValues& given) 
   return in;
 }
 
-void wire_solar_position(const SchemaFlags& flags, const std::vector<std::string>& angles) {
+void wire_solar_position(const SchemaFlags& flags, const std::vector<std::string>& angles,
+                         bool spa_needs_time) {
   CLI::Option* time = flags.option("time");
   for (const std::string& a : angles) time->excludes(flags.option(a));
+  if (!spa_needs_time) return;
   for (const auto& spec : sun::spa_parameter_specs())
     if (flags.has(spec.name)) flags.option(spec.name)->needs(time);
 }

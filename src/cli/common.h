@@ -90,7 +90,10 @@ class SchemaFlags {
 // them; a missing --lat/--lon throws), nullopt without --time.
 std::optional<sun::SpaInput> solar_position_input(const ParameterValues& given);
 // --time excludes the given angle flags; each SPA flag needs --time.
-void wire_solar_position(const SchemaFlags& flags, const std::vector<std::string>& angles);
+// spa_needs_time = false: the SPA options may also go with another source of the time (estimate's
+// --exif), which the command checks itself.
+void wire_solar_position(const SchemaFlags& flags, const std::vector<std::string>& angles,
+                         bool spa_needs_time = true);
 
 // ---- model flags (render, eval) -----------------------------------------------------------------
 

@@ -1,7 +1,7 @@
 // `skylight estimate`: the turbidity of a clear sky from an HDR photograph (fisheye or equirect),
 // by fitting a model whose registry entry declares an EstimationPolicy (Preetham, Hosek-Wilkie, the
-// CIE standard sky types) to luminance samples of the photo (estimate/photo.h, fit/luminance_fit.h);
-// docs/ESTIMATE.md.
+// CIE standard sky types) to luminance samples of the photo (estimate/photo.h,
+// fit/luminance_fit.h); docs/ESTIMATE.md.
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
@@ -13,8 +13,10 @@
 #include "skylight/core/camera.h"
 #include "skylight/core/error.h"
 #include "skylight/core/numbers.h"
+#include "skylight/estimate/capture.h"
 #include "skylight/estimate/photo.h"
 #include "skylight/fit/luminance_fit.h"
+#include "skylight/io/camera_calibration.h"
 #include "skylight/io/image.h"
 #include "skylight/operations/operations.h"
 #include "skylight/render/false_colour.h"
@@ -64,20 +66,32 @@ struct EstimateCommand {
   SchemaFlags flags;  // the operation's parameters (operations::find("estimate"))
 };
 
-// The sun: given angles, the solar position of --time/--lat/--lon, or (none) found in the image;
-// source: "given", "time" or "image".
-std::optional<SunPosition> sun_from_options(const ParameterValues& given, std::string& source) {
+// The sun: given angles, the solar position of --time/--lat/--lon or of the EXIF time (--exif),
+// or (none) found in the image; source: "given", "time", "exif" or "image".
+std::optional<SunPosition> sun_from_options(const ParameterValues& given,
+                                            const std::optional<estimate::Capture>& capture,
+                                            const estimate::CaptureOptions& co,
+                                            std::string& source) {
   source = "image";
   if (given.has("sun-zenith")) {
     source = "given";
     return sun_from_degrees(*given.number("sun-zenith"), *given.number("sun-azimuth"));
   }
-  if (const auto spa = solar_position_input(given)) {
-    const sun::SpaResult r = sun::solar_position(*spa);
+  std::optional<sun::SpaInput> spa = solar_position_input(given);
+  if (spa) {
     source = "time";
-    return sun_from_degrees(rad_to_deg(r.zenith), rad_to_deg(r.azimuth));
+  } else if (capture && capture->exif.date_time) {
+    spa = estimate::capture_solar_input(*capture, co, given);
+    source = "exif";
+  } else {
+    for (const auto& spec : sun::spa_parameter_specs())
+      if (given.has(spec.name))
+        throw InvalidArgument(
+            fmt::format("{} needs --time, or --exif with an EXIF time", spec.flag()));
+    return std::nullopt;
   }
-  return std::nullopt;
+  const sun::SpaResult r = sun::solar_position(*spa);
+  return sun_from_degrees(rad_to_deg(r.zenith), rad_to_deg(r.azimuth));
 }
 
 // The fitted values, their fit's quality and (ranking) the ranking, into JSON and text.
@@ -138,15 +152,26 @@ int run_estimate(const EstimateCommand& c) {
     throw InvalidArgument("--sun-zenith and --sun-azimuth go together");
   const io::ImageF image = io::read_image(c.image);
   const ImageSchemaOptions photo = estimate::photo_image_options();
-  const Camera camera =
-      f.bind(image_schema(photo), photo.defaults(), "estimate").camera(image.width, image.height);
+  const ImageOptions layout = f.bind(image_schema(photo), photo.defaults(), "estimate");
+  for (const std::string& name : layout.unread(given))
+    warn(fmt::format("{} is not read ({}); ignored", flag_spelling(name),
+                     layout.calibration.empty() ? "not a parameter of this projection"
+                                                : "--calibration gives the layout"));
+  const auto co = f.bind(estimate::CaptureOptions::schema(), {}, "estimate");
+  std::optional<estimate::Capture> capture;
+  if (!co.exif.empty())
+    capture = estimate::read_capture(co, image.width);
+  else if (!co.utc_offset.empty())
+    warn("--utc-offset is not read without --exif; ignored");
+  const Camera camera = io::photo_camera(layout, image.width, image.height,
+                                         capture ? capture->focal_length_px : std::nullopt);
   std::optional<io::ImageF> user_mask;
   if (!c.mask.empty()) user_mask = estimate::load_mask(c.mask);
   if (!c.compare.empty() && io::format_from_path(c.compare) != io::ImageFormat::png)
     throw InvalidArgument(fmt::format("--compare '{}' must be a .png file", excerpt(c.compare)));
 
   std::string sun_source;
-  const std::optional<SunPosition> given_sun = sun_from_options(given, sun_source);
+  const std::optional<SunPosition> given_sun = sun_from_options(given, capture, co, sun_source);
   const auto ms = f.bind(estimate::MaskSettings::schema(), {}, "estimate");
   const auto es = f.bind(fit::EstimateSettings::schema(), {}, "estimate");
   const std::string model = given.has("model") ? std::get<std::string>(*given.find("model"))
@@ -167,6 +192,27 @@ int run_estimate(const EstimateCommand& c) {
   j["sun_source"] = sun_text;
   j["samples"] = ps.samples.size();
   j["sky_pixels"] = ps.sky_pixels;
+  if (!layout.calibration.empty()) j["calibration"] = layout.calibration;
+  if (capture) {
+    const io::ExifInfo& e = capture->exif;
+    auto& x = j["exif"] = nlohmann::ordered_json::object();
+    x["file"] = co.exif;
+    x["camera"] = fmt::format("{}{}{}", e.make, e.make.empty() ? "" : " ", e.model);
+    x["date_time"] = e.date_time ? nlohmann::ordered_json(*e.date_time) : nullptr;
+    x["utc_offset"] = e.utc_offset ? nlohmann::ordered_json(*e.utc_offset) : nullptr;
+    x["focal_length_mm"] = e.focal_length_mm ? nlohmann::ordered_json(*e.focal_length_mm) : nullptr;
+    x["focal_length_px"] =
+        capture->focal_length_px ? nlohmann::ordered_json(*capture->focal_length_px) : nullptr;
+    x["latitude_deg"] = e.latitude_deg ? nlohmann::ordered_json(*e.latitude_deg) : nullptr;
+    x["longitude_deg"] = e.longitude_deg ? nlohmann::ordered_json(*e.longitude_deg) : nullptr;
+    text += fmt::format(
+        "exif             {}{}{}{}\n", e.date_time.value_or("no time"),
+        e.utc_offset ? " " + *e.utc_offset : "",
+        e.focal_length_mm ? fmt::format(", focal length {:g} mm", *e.focal_length_mm) : "",
+        e.latitude_deg && e.longitude_deg
+            ? fmt::format(", GPS {:.5f}, {:.5f}", *e.latitude_deg, *e.longitude_deg)
+            : "");
+  }
   j["ransac"] = es.ransac;
   j["seed"] = es.seed;
   text += fmt::format("sun              zenith {:.3f} deg, azimuth {:.3f} deg ({})\n", zenith_deg,
@@ -193,7 +239,7 @@ void add_estimate_command(CLI::App& app, Commands& commands) {
   cmd->add_option("--mask", c->mask,
                   "sky mask (.png, .pfm, .exr, .hdr) of the image's size: nonzero = sky");
   c->flags.add(*cmd, op.parameters);
-  wire_solar_position(c->flags, {"sun-zenith", "sun-azimuth"});
+  wire_solar_position(c->flags, {"sun-zenith", "sun-azimuth"}, false);
   cmd->add_option("--compare", c->compare,
                   "write a .png: the photo's luminance (sky pixels) beside the fitted sky, false "
                   "colour on one log scale");

@@ -17,6 +17,7 @@
 #include "skylight/core/numbers.h"
 #include "skylight/haze/attenuation.h"
 #include "skylight/haze/request.h"
+#include "skylight/io/camera_calibration.h"
 #include "skylight/io/image.h"
 #include "skylight/operations/operations.h"
 #include "skylight/version.h"
@@ -160,7 +161,7 @@ int run_sky_mask(const HazeCommand& f) {
     throw InvalidArgument(
         fmt::format("-o '{}' is also an input; write to another file", excerpt(f.output)));
   const io::ImageF photo = io::read_image(f.sky_path());
-  const Camera cam = f.sky_image().camera(photo.width, photo.height);
+  const Camera cam = io::photo_camera(f.sky_image(), photo.width, photo.height);
   const estimate::SkyMask mask = haze::segment_sky(photo, cam);
   io::write_png(f.output, haze::mask_image(mask),
                 {{"Software", fmt::format("skylight {}", kVersion)},

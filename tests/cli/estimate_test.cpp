@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <string>
 
 #include "skylight/estimate/photo.h"
@@ -89,6 +90,69 @@ TEST_F(Cli, EstimateFindsTheSunOrTakesItFromTheTime) {
   r = run("estimate --image '" + exr.string() + "' " + when);
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_NE(r.out.find("turbidity        3.00"), std::string::npos) << r.out;
+}
+
+// A photo with its capture's EXIF (tests/data/exif/capture.jpg: 2024-06-21 15:00:00 +02:00 at
+// 48 deg 8' N, 11 deg 34' 30" E, 520 m) and a calibration file instead of the layout flags: the
+// sun is the SPA's for the EXIF time and GPS place, and the fit recovers the rendered sky.
+TEST_F(Cli, EstimateTakesTheSunFromExifAndTheLayoutFromACalibration) {
+  const std::string exif = std::string(SKYLIGHT_SOURCE_DIR) + "/tests/data/exif/capture.jpg";
+  const std::string when =
+      "--time 2024-06-21T15:00:00+02:00 --lat 48.133333333333333 --lon 11.575 --elevation 520";
+  const fs::path exr = dir_ / "sky.exr", cal = dir_ / "camera.json";
+  auto r = run("render --model preetham --turbidity 4 " + when +
+               " --projection fisheye --lens equisolid --north-angle 30 --width 200 --height 200 "
+               "-o '" +
+               exr.string() + "'");
+  ASSERT_EQ(r.status, 0) << r.err;
+  std::ofstream(cal) << R"({"projection": "fisheye", "lens": "equisolid", "north_angle_deg": 30,
+                           "radius_px": 100, "image_size": [200, 200]})";
+  r = run("estimate --image '" + exr.string() + "' " + when + " --json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto by_time = nlohmann::json::parse(r.out);
+  const std::string photo = "estimate --image '" + exr.string() + "' --calibration '" +
+                            cal.string() + "' --exif '" + exif + "'";
+  r = run(photo + " --json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["sun_source"], "exif");
+  EXPECT_DOUBLE_EQ(j["sun_zenith_deg"].get<double>(), by_time["sun_zenith_deg"].get<double>());
+  EXPECT_DOUBLE_EQ(j["sun_azimuth_deg"].get<double>(), by_time["sun_azimuth_deg"].get<double>());
+  EXPECT_NEAR(j["turbidity"].get<double>(), 4.0, kRoundTripTurbidityTol);
+  EXPECT_EQ(j["exif"]["camera"], "SkylightTest Fisheye 8mm");
+  EXPECT_EQ(j["exif"]["date_time"], "2024:06:21 15:00:00");
+  EXPECT_EQ(j["exif"]["focal_length_mm"], 8.0);
+  EXPECT_EQ(j["calibration"], cal.string());
+  // The layout flags beside a calibration are not read: warned, the calibration wins.
+  r = run(photo + " --lens equidistant --json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.err.find("warning: --lens is not read (--calibration gives the layout); ignored"),
+            std::string::npos)
+      << r.err;
+  EXPECT_NEAR(nlohmann::json::parse(r.out)["turbidity"].get<double>(), 4.0, kRoundTripTurbidityTol);
+  // --lat overrides the GPS place; the sun moves with it.
+  r = run(photo + " --lat 40 --json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_GT(std::abs(nlohmann::json::parse(r.out)["sun_zenith_deg"].get<double>() -
+                     j["sun_zenith_deg"].get<double>()),
+            1.0);
+  // An EXIF time without an offset needs --utc-offset; --lat without a time is refused.
+  const std::string tif = std::string(SKYLIGHT_SOURCE_DIR) + "/tests/data/exif/capture.tif";
+  r = run("estimate --image '" + exr.string() + "' --exif '" + tif + "'");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("has no UTC offset (OffsetTimeOriginal, EXIF 2.31); give it with "
+                       "--utc-offset"),
+            std::string::npos)
+      << r.err;
+  r = run("estimate --image '" + exr.string() + "' --lat 40 --lon 10");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("--lat needs --time, or --exif with an EXIF time"), std::string::npos)
+      << r.err;
+  // A calibration for another image size.
+  std::ofstream(cal) << R"({"projection": "fisheye", "image_size": [400, 300]})";
+  r = run("estimate --image '" + exr.string() + "' --calibration '" + cal.string() + "'");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("is for 400 x 300 photos, not 200 x 200"), std::string::npos) << r.err;
 }
 
 TEST_F(Cli, EstimateUsesAUserMaskAndRefusesBadInputs) {

@@ -34,6 +34,11 @@ void validate_fisheye(const FisheyeLayout& f) {
                                       to_string(f.lens)));
   if (!std::isfinite(f.north_angle))
     throw InvalidArgument(fmt::format("north-angle = {} is not finite", f.north_angle));
+  if (f.radius && !(std::isfinite(*f.radius) && *f.radius > 0.0))
+    throw InvalidArgument(
+        fmt::format("the image circle's radius {} px is not positive", *f.radius));
+  if (f.centre && !(std::isfinite((*f.centre)[0]) && std::isfinite((*f.centre)[1])))
+    throw InvalidArgument("the image circle's centre is not finite");
 }
 
 }  // namespace
@@ -136,6 +141,7 @@ Camera ImageOptions::camera() const {
 }
 
 Camera ImageOptions::camera(int w, int h) const {
+  SKYLIGHT_CHECK(calibration.empty(), "a calibrated photo's camera is io::photo_camera's");
   Camera c;
   c.projection = projection;
   c.width = w;
@@ -149,6 +155,13 @@ Camera ImageOptions::camera(int w, int h) const {
 }
 
 std::vector<std::string> ImageOptions::unread(const ParameterValues& given) const {
+  if (!calibration.empty()) {
+    std::vector<std::string> out;
+    for (const std::string& name :
+         {projection_flag, std::string("lens"), std::string("fov"), std::string("north-angle")})
+      if (given.has(name)) out.push_back(name);
+    return out;
+  }
   const bool fisheye = projection == Projection::fisheye;
   const bool pinhole = projection == Projection::camera;
   const std::pair<const char*, bool> options[] = {{"lens", fisheye},
@@ -250,6 +263,15 @@ ParameterSchema<ImageOptions> image_schema(const ImageSchemaOptions& o) {
               .default_value = ParameterValue(0.0),
               .description = "fisheye: north drawn this many deg counter-clockwise from image up"});
   }
+  if (!o.size)
+    s.text(&P::calibration,
+           {.name = o.calibration_flag(),
+            .kind = ParameterKind::text,
+            .default_value = Absent{"the projection options"},
+            .description = "camera calibration file (JSON: projection, lens, fov_deg, centre_px, "
+                           "radius_px, mirrored, north_angle_deg, image_size; "
+                           "docs/CONVENTIONS.md): the photos' layout instead of the projection "
+                           "options"});
   if (pinhole) {
     s.number(&P::look_elevation_deg, {.name = "look-elevation",
                                       .unit = "deg",
@@ -266,6 +288,13 @@ ParameterSchema<ImageOptions> image_schema(const ImageSchemaOptions& o) {
               .description = "camera: azimuth of the view centre from north towards east"});
   }
   return s;
+}
+
+std::string ImageSchemaOptions::calibration_flag() const {
+  std::string f = projection_flag;
+  if (const auto at = f.find("projection"); at != std::string::npos)
+    f.replace(at, std::string_view("projection").size(), "calibration");
+  return f;
 }
 
 Camera image_camera(Projection projection, const FisheyeLayout& layout, int width, int height) {

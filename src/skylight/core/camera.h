@@ -80,12 +80,19 @@ struct ImageOptions {
   double north_angle_deg = 0.0;
   double look_elevation_deg = 0.0, look_azimuth_deg = 0.0;
   int default_width = 1024;
+  // A photo's camera calibration file (io/camera_calibration.h; the schema's --calibration, for
+  // images read from files): its layout instead of the projection options. io::photo_camera
+  // makes its camera; camera() refuses it.
+  std::string calibration;
+  std::string projection_flag = "projection";  // the schema's names of the two
+  std::string calibration_flag = "calibration";
 
   // The camera, validated. The second form is for an image read from a file (its size).
   Camera camera() const;
   Camera camera(int width, int height) const;
   // The given options (names of its schema) that this projection does not read, e.g. --lens for
-  // an equirect image: a front end warns about them.
+  // an equirect image, or every projection option beside a calibration file: a front end warns
+  // about them.
   std::vector<std::string> unread(const ParameterValues& given) const;
   // Metadata of the projection's options: (key, value) of projection, fov, lens, north angle or
   // look direction as outputs record them.
@@ -100,11 +107,16 @@ struct ImageSchemaOptions {
   bool size = true;  // --width/--height (false: the size of an image read from a file)
   int width = 1024, height = 512;
   std::string projection_flag = "projection";  // e.g. "sky-projection" for a second image
-  std::string description;                     // of the projection, e.g. "the images' projection"
+  // "calibration", "sky-calibration": the projection flag's name with "calibration" for
+  // "projection" (images read from files only).
+  std::string calibration_flag() const;
+  std::string description;  // of the projection, e.g. "the images' projection"
   // The options' values before any is given (the default projection and size).
   ImageOptions defaults() const {
     ImageOptions d;
     d.projection = default_projection;
+    d.projection_flag = projection_flag;
+    d.calibration_flag = calibration_flag();
     d.height = height;
     d.default_width = width;
     return d;

@@ -71,10 +71,7 @@ std::string_view to_string(FisheyeLens lens) {
   return "equidistant";
 }
 
-namespace {
-
-// Unnormalised lens mapping g(theta), r = g(theta) / g(fov/2).
-std::optional<double> lens_g(FisheyeLens lens, double theta) {
+std::optional<double> fisheye_lens_mapping(FisheyeLens lens, double theta) {
   switch (lens) {
     case FisheyeLens::equidistant:
       return theta;
@@ -90,19 +87,17 @@ std::optional<double> lens_g(FisheyeLens lens, double theta) {
   return std::nullopt;
 }
 
-}  // namespace
-
 std::optional<double> fisheye_radius(const FisheyeLayout& layout, double theta) {
   if (theta < 0.0 || theta > 0.5 * layout.fov) return std::nullopt;
-  const auto g = lens_g(layout.lens, theta);
-  const auto g_max = lens_g(layout.lens, 0.5 * layout.fov);
+  const auto g = fisheye_lens_mapping(layout.lens, theta);
+  const auto g_max = fisheye_lens_mapping(layout.lens, 0.5 * layout.fov);
   if (!g || !g_max || *g_max <= 0.0) return std::nullopt;
   return *g / *g_max;
 }
 
 std::optional<double> fisheye_theta(const FisheyeLayout& layout, double r) {
   if (r < 0.0 || r > 1.0) return std::nullopt;
-  const auto g_max = lens_g(layout.lens, 0.5 * layout.fov);
+  const auto g_max = fisheye_lens_mapping(layout.lens, 0.5 * layout.fov);
   if (!g_max || *g_max <= 0.0) return std::nullopt;
   const double g = r * *g_max;
   switch (layout.lens) {
@@ -118,12 +113,26 @@ std::optional<double> fisheye_theta(const FisheyeLayout& layout, double r) {
   return std::nullopt;
 }
 
+namespace {
+
+// The image circle of a fisheye layout in a width x height image: centre [px] and radius [px].
+struct ImageCircle {
+  double col, row, radius;
+};
+ImageCircle image_circle(int width, int height, const FisheyeLayout& layout) {
+  const auto centre = layout.centre.value_or(std::array<double, 2>{0.5 * width, 0.5 * height});
+  return {centre[0], centre[1], layout.radius.value_or(0.5 * std::min(width, height))};
+}
+
+}  // namespace
+
 std::optional<Vec3> fisheye_direction(double col_centre, double row_centre, int width, int height,
                                       const FisheyeLayout& layout) {
-  const double radius_px = 0.5 * std::min(width, height);
-  // Image offsets: +dx to the right, +dy downwards, in units of the image-circle radius.
-  const double dx = (col_centre - 0.5 * width) / radius_px;
-  const double dy = (row_centre - 0.5 * height) / radius_px;
+  const ImageCircle c = image_circle(width, height, layout);
+  // Image offsets: +dx to the right (to the left in a mirrored image), +dy downwards, in units
+  // of the image-circle radius.
+  const double dx = (layout.mirrored ? -1.0 : 1.0) * (col_centre - c.col) / c.radius;
+  const double dy = (row_centre - c.row) / c.radius;
   const double r = std::hypot(dx, dy);
   const auto theta = fisheye_theta(layout, r);
   if (!theta) return std::nullopt;
@@ -138,10 +147,10 @@ std::optional<std::array<double, 2>> fisheye_pixel(Vec3 d, int width, int height
   const auto za = angles_from_direction(d);
   const auto r = fisheye_radius(layout, za.zenith);
   if (!r) return std::nullopt;
-  const double radius_px = 0.5 * std::min(width, height);
+  const ImageCircle c = image_circle(width, height, layout);
   const double a = za.azimuth + layout.north_angle;
-  return std::array<double, 2>{0.5 * width - *r * radius_px * std::sin(a),
-                               0.5 * height - *r * radius_px * std::cos(a)};
+  return std::array<double, 2>{c.col - (layout.mirrored ? -1.0 : 1.0) * *r * c.radius * std::sin(a),
+                               c.row - *r * c.radius * std::cos(a)};
 }
 
 Vec3 cubemap_direction(double col_centre, double row_centre, int width, int height) {

@@ -90,8 +90,20 @@ struct FisheyeLayout {
   FisheyeLens lens = FisheyeLens::equidistant;
   double fov = kPi;          // full field of view across the image circle [rad], (0, 2 pi)
   double north_angle = 0.0;  // north is drawn this many radians counter-clockwise from image up
+  // A calibrated camera (io/camera_calibration.h): the optical axis at pixel position
+  // centre = (col, row) (pixel centres at +0.5) and the image circle's radius [px] at fov / 2;
+  // absent: the image's centre and min(width, height) / 2. mirrored: east on the right looking
+  // up (a photo of a mirror, a flipped sensor readout).
+  std::optional<std::array<double, 2>> centre{};
+  std::optional<double> radius{};
+  bool mirrored{false};
+  bool calibrated() const { return centre || radius || mirrored; }
 };
 
+// The lens's mapping g(theta): the radius of zenith angle theta in units of the focal length
+// (equidistant theta, equisolid 2 sin(theta/2), orthographic sin theta, stereographic
+// 2 tan(theta/2)); nullopt where the lens cannot image theta.
+std::optional<double> fisheye_lens_mapping(FisheyeLens lens, double theta);
 // Radius (in units of the image-circle radius, 1 at theta = fov/2) of zenith angle theta:
 // equidistant r ~ theta, equisolid r ~ 2 sin(theta/2), orthographic r ~ sin theta,
 // stereographic r ~ 2 tan(theta/2). Returns nullopt when the lens cannot image theta.
@@ -100,7 +112,8 @@ std::optional<double> fisheye_radius(const FisheyeLayout& layout, double theta);
 std::optional<double> fisheye_theta(const FisheyeLayout& layout, double r);
 
 // Direction seen by fisheye pixel (col, row) of a width x height image whose image circle has
-// diameter min(width, height) and is centred; nullopt outside the image circle.
+// diameter min(width, height) and is centred (or the layout's calibrated centre and radius);
+// nullopt outside the image circle.
 // The optical axis points to the zenith; looking up, north is at the top and east on the left.
 std::optional<Vec3> fisheye_direction(double col_centre, double row_centre, int width, int height,
                                       const FisheyeLayout& layout);

@@ -3,14 +3,17 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <fstream>
 #include <numeric>
 #include <utility>
 #include <vector>
 
 #include "skylight/core/error.h"
+#include "skylight/io/camera_calibration.h"
 #include "skylight/models/cie_sky.h"
 #include "skylight/models/hosek_wilkie.h"
 #include "skylight/models/preetham.h"
+#include "support/scratch_dir.h"
 #include "support/sky_photo.h"
 
 namespace skylight::fit {
@@ -190,6 +193,33 @@ TEST(Turbidity, SigmaMatchesTheSpreadOverNoiseRealisations) {
     EXPECT_LE(sigma, kSigmaFactor * spread) << "T " << t << ", sun zenith " << zenith_deg;
     EXPECT_GE(sigma, spread / kSigmaFactor) << "T " << t << ", sun zenith " << zenith_deg;
   }
+}
+
+// A real camera's photo: the image circle off-centre and smaller than the frame, the image
+// mirrored, north turned (io/camera_calibration.h). Read through its calibration file the estimate
+// recovers the sky's T; read as `render`'s centred layout the same pixels give another sky.
+constexpr double kCalibratedTurbidityTol = 1e-3;  // float pixels of the model itself
+constexpr double kUncalibratedMinError = 0.1;
+
+TEST(Turbidity, CalibrationFileGivesThePhotosGeometry) {
+  testing_support::ScratchDir dir;
+  const std::string file = (dir.path() / "camera.json").string();
+  std::ofstream(file) << R"({"projection": "fisheye", "lens": "equisolid", "fov_deg": 180,
+      "centre_px": [170.5, 140.0], "radius_px": 120, "mirrored": true, "north_angle_deg": 25})";
+  ImageOptions options;
+  options.projection = Projection::fisheye;
+  options.calibration = file;
+  const Camera cam = io::photo_camera(options, 320, 280);
+  const PreethamModel model({kTable1Sun, 4.0});
+  const io::ImageF img = testing_support::render_photo(model, cam);
+  const PhotoFit calibrated =
+      estimate_from_photo("preetham", img, cam, kTable1Sun, MaskSettings{}, EstimateSettings{});
+  EXPECT_NEAR(calibrated.fit.parameter("turbidity").value, 4.0, kCalibratedTurbidityTol);
+  options.calibration.clear();
+  const Camera centred = options.camera(320, 280);
+  const PhotoFit wrong =
+      estimate_from_photo("preetham", img, centred, kTable1Sun, MaskSettings{}, EstimateSettings{});
+  EXPECT_GT(std::abs(wrong.fit.parameter("turbidity").value - 4.0), kUncalibratedMinError);
 }
 
 TEST(Turbidity, ModelImageMatchesThePhotoOfTheSameSky) {

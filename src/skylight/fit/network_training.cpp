@@ -1,4 +1,5 @@
 #include "skylight/fit/network_training.h"
+#include "skylight/io/camera_calibration.h"
 
 #include <fmt/format.h>
 
@@ -476,7 +477,7 @@ ImageTrainingResult train_on_images(
     li.entry = e;
     const std::optional<SunPosition> sun = entry_sun(o, e, li.sun_source);
     const io::ImageF image = io::read_image(e.file);
-    const Camera camera = o.image.camera(image.width, image.height);
+    const Camera camera = io::photo_camera(o.image, image.width, image.height);
     std::optional<io::ImageF> own_mask;
     if (!e.mask.empty()) own_mask = estimate::load_mask(e.mask);
     const io::ImageF* mask = own_mask ? &*own_mask : common_mask ? &*common_mask : nullptr;

@@ -29,20 +29,9 @@ std::string pi_literal() {
   return fmt::format("{:.8e}", static_cast<float>(kPi));
 }
 
-// Unnormalised lens mapping g(theta) of core/frame.cpp at the field-of-view edge, in double.
+// The lens mapping g(theta) of core/frame.h at the field-of-view edge.
 double lens_g_max(const FisheyeLayout& f) {
-  const double t = 0.5 * f.fov;
-  switch (f.lens) {
-    case FisheyeLens::equidistant:
-      return t;
-    case FisheyeLens::equisolid:
-      return 2.0 * std::sin(0.5 * t);
-    case FisheyeLens::orthographic:
-      return std::sin(t);
-    case FisheyeLens::stereographic:
-      return 2.0 * std::tan(0.5 * t);
-  }
-  return t;
+  return fisheye_lens_mapping(f.lens, 0.5 * f.fov).value_or(0.5 * f.fov);
 }
 
 std::string fisheye_theta_glsl(FisheyeLens lens) {
@@ -92,6 +81,10 @@ std::string glsl_pixel_direction(const render::RenderSettings& s) {
       g += "  dir = skylight_direction(theta, phi);\n  return true;\n}\n";
       break;
     case Projection::fisheye:
+      // The GL port draws the centred image circle of render; a calibrated layout (a photo's
+      // camera, io/camera_calibration.h) is read on the CPU only.
+      if (s.fisheye.calibrated())
+        throw InvalidArgument("the GPU renders the centred fisheye layout, not a calibrated one");
       g += "uniform float skylight_g_max;        // lens g(fov / 2)\n";
       g += "uniform float skylight_north_angle;  // [rad]\n";
       g += "bool skylight_pixel_direction(vec2 pixel, out vec3 dir) {\n";

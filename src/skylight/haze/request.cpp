@@ -1,4 +1,5 @@
 #include "skylight/haze/request.h"
+#include "skylight/io/camera_calibration.h"
 
 #include <fmt/format.h>
 
@@ -283,7 +284,7 @@ PhotoAirlight AirlightSource::photo_horizon(double t, double theta) const {
   const AirlightOptions& o = options_;
   if (!photo_) {
     const io::ImageF image = io::read_image(o.sky_photo);
-    const Camera cam = o.sky_image.camera(image.width, image.height);
+    const Camera cam = io::photo_camera(o.sky_image, image.width, image.height);
     HorizonSettings h;
     h.region = o.horizon_region;
     if (h.region == HorizonRegion::band && !o.sky_mask.empty())

@@ -6,6 +6,7 @@
 
 #include "skylight/core/camera.h"
 #include "skylight/core/error.h"
+#include "skylight/estimate/capture.h"
 #include "skylight/estimate/photo.h"
 #include "skylight/fit/luminance_fit.h"
 #include "skylight/fit/network_training.h"
@@ -64,7 +65,9 @@ OperationInfo estimate_operation() {
           concat({{fit::estimation_model_spec()},
                   image_schema(estimate::photo_image_options()).specs(),
                   sun_specs("from --time, or found in the image"),
-                  solar_position_specs("the sun from the angles, or found in the image"),
+                  solar_position_specs("the sun from the angles, the EXIF time (--exif), or "
+                                       "found in the image"),
+                  estimate::CaptureOptions::schema().specs(),
                   estimate::MaskSettings::schema().specs(),
                   fit::EstimateSettings::schema().specs()}),
           "fit::LuminanceFit"};
