@@ -158,20 +158,26 @@ int run_error(const ShCommand& c) {
   nlohmann::json j = nlohmann::json::array();
   std::string text = fmt::format(
       "skylight sh error: model '{}', degrees ({}, {}), {} points, E in %\n{:>2} {:>3} {:>12} "
-      "{:>12} {:>12} {:>12}\n",
+      "{:>12} {:>12} {:>12} {:>14}\n",
       t.model, t.degree_theta, t.degree_tau, e.points, "N", "ch", "E_mean worst", "E_mean median",
-      "E_max worst", "E_max median");
+      "E_max worst", "E_max median", "worst at");
   for (const fit::ShErrorRow& r : e.rows) {
     const std::string name = names.substr(2 * static_cast<std::size_t>(r.channel), 1);
-    text += fmt::format("{:>2} {:>3} {:>12.5f} {:>12.5f} {:>12.5f} {:>12.5f}\n", r.bands, name,
-                        100 * r.e_mean_worst, 100 * r.e_mean_median, 100 * r.e_max_worst,
-                        100 * r.e_max_median);
+    const std::string where =
+        t.parameter.empty()
+            ? fmt::format("{:.2f} deg", rad_to_deg(r.worst_theta))
+            : fmt::format("{:.2f} deg, {:.3g}", rad_to_deg(r.worst_theta), r.worst_tau);
+    text += fmt::format("{:>2} {:>3} {:>12.5f} {:>12.5f} {:>12.5f} {:>12.5f} {:>14}\n", r.bands,
+                        name, 100 * r.e_mean_worst, 100 * r.e_mean_median, 100 * r.e_max_worst,
+                        100 * r.e_max_median, where);
     j.push_back({{"bands", r.bands},
                  {"channel", name},
                  {"e_mean_worst_percent", 100 * r.e_mean_worst},
                  {"e_mean_median_percent", 100 * r.e_mean_median},
                  {"e_max_worst_percent", 100 * r.e_max_worst},
-                 {"e_max_median_percent", 100 * r.e_max_median}});
+                 {"e_max_median_percent", 100 * r.e_max_median},
+                 {"worst_sun_zenith_deg", rad_to_deg(r.worst_theta)},
+                 {"worst_tau", r.worst_tau}});
   }
   write_stdout(c.json ? j.dump(1) + "\n" : text);
   return kExitOk;

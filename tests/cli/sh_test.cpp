@@ -77,16 +77,16 @@ TEST_F(Cli, ShFitOtherModelsFromTheirSchema) {
   EXPECT_EQ(hj["tau_max"].get<double>(), 10.0);
   EXPECT_EQ(hj["fixed"]["albedo"].get<double>(), 0.5);
   // Hosek's own structure by default (docs/SH.md, "Hosek fits"): one piece per integer
-  // turbidity interval; --theta-axis elevation-cbrt on request.
-  EXPECT_EQ(hj["theta_axis"], "theta");
+  // turbidity interval, in elevation^(1/3); --theta-axis theta on request.
+  EXPECT_EQ(hj["theta_axis"], "elevation_cbrt");
   EXPECT_EQ(hj["tau_pieces"].get<int>(), 9);
   const auto cbrt =
       run("sh fit --model hosek --bands 2 --degrees 1,1 --grid 2,2 --tolerance 1e-2 --range 2,4 "
-          "--theta-axis elevation-cbrt -o " +
+          "--theta-axis theta -o " +
           h);
   ASSERT_EQ(cbrt.status, 0) << cbrt.err;
   const auto cj = nlohmann::json::parse(Cli::slurp(h));
-  EXPECT_EQ(cj["theta_axis"], "elevation_cbrt");
+  EXPECT_EQ(cj["theta_axis"], "theta");
   EXPECT_EQ(cj["tau_pieces"].get<int>(), 2);
   EXPECT_EQ(run("sh eval --table " + h + " --sun-zenith 40 --turbidity 3.5").status, 0);
   // A ground of albedo 0.2 is recorded in the table; out-of-range albedos and pieces refused.
@@ -137,6 +137,19 @@ TEST_F(Cli, ShExportRenderAndErrors) {
   EXPECT_EQ(rows.size(), 9u);
   for (const auto& r : rows) {
     EXPECT_GE(r["e_max_worst_percent"].get<double>(), r["e_mean_worst_percent"].get<double>());
+  }
+  // The default adds the ranges' ends to the midpoints: a superset, so no worst is lower, and
+  // the worst lies inside the ranges.
+  const auto mid = run("sh error --table " + table + " --points 2,2 --midpoints-only --json");
+  ASSERT_EQ(mid.status, 0) << mid.err;
+  const auto mid_rows = nlohmann::json::parse(mid.out);
+  ASSERT_EQ(mid_rows.size(), rows.size());
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    EXPECT_GE(rows[i]["e_mean_worst_percent"].get<double>(),
+              mid_rows[i]["e_mean_worst_percent"].get<double>());
+    const double z = rows[i]["worst_sun_zenith_deg"];
+    EXPECT_GE(z, 0.0);
+    EXPECT_LE(z, 90.0);
   }
   // Bad inputs: a missing table is an I/O error, a malformed one names the field.
   const auto missing = run("sh eval --table " + (dir_ / "none.json").string());

@@ -219,7 +219,8 @@ const ParameterSchema<ShFitRequest>& ShFitRequest::schema() {
         .custom(
             {.name = "theta-axis",
              .kind = ParameterKind::text,
-             .default_value = Absent{"the model's: theta"},
+             .default_value =
+                 Absent{"the model's ShFitPolicy (e.g. hosek elevation-cbrt), else theta"},
              .description =
                  "the sun-zenith coordinate of the fit: theta, or elevation-cbrt ((elevation / "
                  "90 deg)^(1/3), Hosek's)",
@@ -403,7 +404,13 @@ const ParameterSchema<ShErrorOptions>& ShErrorOptions::schema() {
                .max = 1000,
                .count = 2,
                .default_value = ParameterValue(ShErrorOptions{}.points),
-               .description = "test points (cell midpoints) in theta, tau"});
+               .description = "test points (cell midpoints) in theta, tau; the ends of both "
+                              "ranges are added unless --midpoints-only"})
+        .flag(&ShErrorOptions::midpoints_only,
+              {.name = "midpoints-only",
+               .kind = ParameterKind::flag,
+               .default_value = ParameterValue(false),
+               .description = "the cell midpoints only (Habel 2008 Fig. 3), not the ranges' ends"});
     return s;
   }();
   return s;
@@ -411,16 +418,32 @@ const ParameterSchema<ShErrorOptions>& ShErrorOptions::schema() {
 
 ShTableError table_error(const sh::PolynomialTable& t, const ShErrorOptions& options,
                          const std::function<void(int, int)>& progress) {
-  const int nt = static_cast<int>(options.points[0]);
-  const int nv = t.parameter.empty() ? 1 : static_cast<int>(options.points[1]);
+  // The sampled values of one axis: its cell midpoints, then (unless midpoints_only) its ends.
+  const auto axis = [&](double lo, double hi, int cells) {
+    std::vector<double> v;
+    for (int i = 0; i < cells; ++i) v.push_back(lo + (hi - lo) * (i + 0.5) / cells);
+    if (!options.midpoints_only && hi > lo) {
+      v.push_back(lo);
+      v.push_back(hi);
+    }
+    return v;
+  };
+  const std::vector<double> thetas =
+      axis(t.theta_min, t.theta_max, static_cast<int>(options.points[0]));
+  const std::vector<double> taus =
+      t.parameter.empty() ? std::vector<double>{t.tau_min}
+                          : axis(t.tau_min, t.tau_max, static_cast<int>(options.points[1]));
+  const int nt = static_cast<int>(thetas.size()), nv = static_cast<int>(taus.size());
   const int n_bands = t.bands;
   // [band N - 1][channel] -> values over the points
   std::vector<std::array<std::vector<double>, 3>> e_mean(static_cast<std::size_t>(n_bands)),
       e_max(static_cast<std::size_t>(n_bands));
+  std::vector<std::array<double, 2>> at;  // (theta, tau) of each point
   for (int it = 0; it < nt; ++it) {
     for (int iv = 0; iv < nv; ++iv) {
-      const double theta = t.theta_min + (t.theta_max - t.theta_min) * (it + 0.5) / nt;
-      const double tau = t.tau_min + (t.tau_max - t.tau_min) * (iv + 0.5) / nv;
+      const double theta = thetas[static_cast<std::size_t>(it)];
+      const double tau = taus[static_cast<std::size_t>(iv)];
+      at.push_back({theta, tau});
       const sh::Projection ref = project_reference(t, theta, tau, 0.0, n_bands);
       const sh::Coefficients rec = sh::evaluate_table(t, theta, tau, 0.0, n_bands, false);
       const auto model = make_model(t.model, t.parameter, t.fixed, theta, tau, 0.0);
@@ -441,8 +464,10 @@ ShTableError table_error(const sh::PolynomialTable& t, const ShErrorOptions& opt
     for (std::size_t ch = 0; ch < 3; ++ch) {
       const auto& a = e_mean[static_cast<std::size_t>(n - 1)][ch];
       const auto& b = e_max[static_cast<std::size_t>(n - 1)][ch];
-      out.rows.push_back({n, static_cast<int>(ch), *std::max_element(a.begin(), a.end()), median(a),
-                          *std::max_element(b.begin(), b.end()), median(b)});
+      const auto worst = std::max_element(a.begin(), a.end());
+      const auto& where = at[static_cast<std::size_t>(worst - a.begin())];
+      out.rows.push_back({n, static_cast<int>(ch), *worst, median(a),
+                          *std::max_element(b.begin(), b.end()), median(b), where[0], where[1]});
     }
   }
   return out;

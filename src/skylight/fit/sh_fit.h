@@ -82,15 +82,20 @@ sh::Projection project_reference(const sh::PolynomialTable& table, double theta,
 
 // Habel 2008 §3.2, Fig. 3 (`skylight sh error`): E_max (eq. 2) and E_mean (eq. 3) of a table
 // against converged projections of its model at the cell midpoints of a (theta, tau) grid over
-// the fitted range (points[1] ignored for a table in theta only), per band count N and channel;
-// the worst and the median over the points [fractions].
+// the fitted range and (unless midpoints_only) at the range's ends (points[1] ignored for a table
+// in theta only), per band count N and channel; the worst (and where) and the median over the
+// points [fractions].
 struct ShErrorOptions {
   std::vector<double> points{10.0, 7.0};
+  // Also the ends of each range (sun at the range's first and last zenith, the first and last
+  // tau): where the fits are worst (docs/SH.md); false: the cell midpoints only (Habel's Fig. 3).
+  bool midpoints_only = false;
   static const ParameterSchema<ShErrorOptions>& schema();
 };
 struct ShErrorRow {
   int bands = 0, channel = 0;
   double e_mean_worst = 0, e_mean_median = 0, e_max_worst = 0, e_max_median = 0;
+  double worst_theta = 0, worst_tau = 0;  // where E_mean is worst [rad], [tau's unit]
 };
 struct ShTableError {
   int points = 0;

@@ -227,6 +227,25 @@ double worst_mean_error(const PolynomialTable& t, const std::vector<double>& the
   return worst;
 }
 
+// `sh fit --model hosek` without options takes its registry entry's structure (docs/SH.md, "Hosek
+// fits": worst E_mean 0.29 % at 7 bands, range ends included): 9 unit pieces over T 1-10, degree
+// 24 in elevation^(1/3), degree 4 in T on 6 turbidities per piece.
+TEST(ShFit, HosekDefaultsAreItsStructure) {
+  ShFitRequest r;
+  r.model = "hosek";
+  r.set = {"albedo=0.3"};
+  const ShFitSettings s = sh_fit_settings(r);
+  EXPECT_EQ(s.polynomial.tau_pieces, 9);
+  EXPECT_EQ(s.polynomial.tau_min, 1.0);
+  EXPECT_EQ(s.polynomial.tau_max, 10.0);
+  EXPECT_EQ(s.polynomial.degree_theta, 24);
+  EXPECT_EQ(s.polynomial.degree_tau, 4);
+  EXPECT_EQ(s.polynomial.grid_tau, 6);
+  EXPECT_EQ(s.polynomial.theta_axis, ThetaAxis::elevation_cbrt);
+  r.theta_axis = ThetaAxis::theta;
+  EXPECT_EQ(sh_fit_settings(r).polynomial.theta_axis, ThetaAxis::theta);
+}
+
 // Hosek & Wilkie's own structure (docs/SH.md, "Hosek fits"), reduced: 3 bands, T in [2, 4], sun
 // zenith 30-90 deg, albedo 0.3. One polynomial in (theta, T) of degrees (6, 5) against two
 // turbidity pieces (the knot at T = 3, where Hosek's linear interpolation between integer
