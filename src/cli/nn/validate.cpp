@@ -63,7 +63,8 @@ std::string paper_network_note(const fit::PietrasErrors& day) {
   return fmt::format(
       "the paper network's luminance error is its M output's: N = max N (M - 0.05) / 0.9, so an "
       "error dM is a relative error dM / (0.9 N / max N) of N; N / max N has median {:.3f} on the "
-      "day set (max N: the brightest of the training samples), so dM = 0.001 is {} there. "
+      "day set (max N: the file's max_value, the brightest training samples' N or their 99.9th "
+      "percentile), so dM = 0.001 is {} there. "
       "On Earth no trainer tried brought M's MSE below 6e-5 (an independent experiment's 2 % day "
       "median is not reproduced); the log3 network learns log-luminance instead (docs/PIETRAS.md)",
       day.scaled_median, per_milli);

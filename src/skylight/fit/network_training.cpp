@@ -197,6 +197,14 @@ void add_pietras_specs(ParameterSchema<Request>& s) {
          if (!r.network) return std::nullopt;
          return std::string(nn::to_string(*r.network));
        })
+      .choice(&Request::region,
+              {.name = "region",
+               .kind = ParameterKind::text,
+               .default_value = ParameterValue(std::string("full")),
+               .description = "--network: the samples' region: full (any view, altitude to the "
+                              "top, any sun: the planet from orbit) or sky-dome (upward views "
+                              "0-20 km, sun zenith 0-100 deg: skies seen from the ground)"},
+              {{"full", PietrasRegion::full}, {"sky-dome", PietrasRegion::sky_dome}})
       .text(
           &Request::init,
           {.name = "init",
@@ -252,6 +260,7 @@ std::vector<std::string> Request::unread(const ParameterValues& given, Kind kind
   for (const char* name : {"starts", "start-iterations", "max-error"})
     check(name, kind != Kind::pietras);
   check("samples", kind != Kind::sky);
+  check("region", kind == Kind::pietras);
   return out;
 }
 
@@ -316,6 +325,7 @@ PietrasTraining Request::pietras_training(std::optional<nn::PietrasNetwork>& ini
                                       t.atmosphere.top_radius(), spelled("ground-radius"),
                                       t.atmosphere.ground_radius_m));
   t.samples = static_cast<std::size_t>(samples.value_or(kPietrasSamples));
+  t.region = region;
   t.options.trainer = trainer.value_or(kPietrasTrainer);
   t.options.seed = static_cast<std::uint64_t>(seed);
   t.options.max_iterations = iterations.value_or(kPietrasIterations);

@@ -28,12 +28,13 @@ inline constexpr double kSkyTimeLimitS = 60.0;
 inline constexpr int kSkyStarts = 4;
 inline constexpr int kSkyStartIterations = 60;
 // Sky pixels sampled per image of an image sequence (docs/NN.md: 2000 per image keep a 12-image
-// sequence at 24 000 examples), and Pietras's 800 000 samples of nishita (§VI).
+// sequence at 24 000 examples), and 200 000 samples of nishita for a Pietras network (§VI uses
+// 800 000; with kPietrasTimeLimitS a default training is <= 300 s of CPU: docs/PIETRAS.md).
 inline constexpr int kImageSamples = 2000;
 // The bound on the held-out captures' relative error p95 of a sequence (docs/NN.md, "Sparse
 // sequences"): beyond it the captures are too far apart for the network to interpolate them.
 inline constexpr double kImageMaxRelativeP95 = 0.20;
-inline constexpr int kPietrasSamples = 800000;
+inline constexpr int kPietrasSamples = 200000;
 
 struct NetworkTrainingRequest {
   std::string source;  // empty: the embedded network's source (the paper's Preetham)
@@ -51,7 +52,8 @@ struct NetworkTrainingRequest {
   std::optional<nn::PietrasKind> network;             // a Pietras network instead
   std::optional<int> samples;  // absent: kPietrasSamples (--network), kImageSamples (images)
   std::string init;            // --network: a weights file to continue from
-  ParameterValues planet;      // --network: nishita's planet and atmosphere as given
+  PietrasRegion region = PietrasRegion::full;  // --network: what the samples cover
+  ParameterValues planet;  // --network: nishita's planet and atmosphere as given
 
   static const ParameterSchema<NetworkTrainingRequest>& schema();
   // What is trained: a sky network on a model, on images, or a Pietras network.

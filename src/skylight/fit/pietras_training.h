@@ -25,7 +25,14 @@ namespace skylight::fit {
 // Which inputs to draw: the training distribution (above), or the validation sets: altitude
 // uniform 0-20 km, upward views (cos alpha0 uniform in [0, 1]) and cos theta0 uniform over
 // day (theta0 <= 85 deg), twilight (85-96 deg) or night (96-180 deg).
-enum class PietrasSampling { training, day, twilight, night };
+// sky_dome: the training distribution of --region sky-dome: upward views, altitude uniform 0-20 km,
+// cos theta0 uniform over sun zenith 0-100 deg (day and twilight as seen from the ground).
+enum class PietrasSampling { training, day, twilight, night, sky_dome };
+
+// What a Pietras network is trained on (`nn train --region`): the full input range (any view,
+// altitude to the top, any sun: the planet from orbit) or the sky dome seen from the ground
+// (PietrasSampling::sky_dome), where the validation sets lie.
+enum class PietrasRegion { full, sky_dome };
 
 struct PietrasSamples {
   std::vector<nn::PietrasInput> inputs;
@@ -38,10 +45,11 @@ PietrasSamples sample_nishita(const NishitaSampler& source, PietrasSampling samp
                               std::uint64_t seed);
 
 // Training defaults per sub-network (docs/PIETRAS.md): full-batch L-BFGS (at 800 000 samples LM's
-// J^T J costs seconds per iteration), up to kPietrasIterations or kPietrasTimeLimitS.
+// J^T J costs seconds per iteration), up to kPietrasIterations or kPietrasTimeLimitS of CPU time
+// (4 sub-networks: <= 280 s; the committed networks trained for longer, docs/PIETRAS.md).
 inline constexpr nn::Trainer kPietrasTrainer = nn::Trainer::lbfgs;
 inline constexpr int kPietrasIterations = 4000;
-inline constexpr double kPietrasTimeLimitS = 600.0;
+inline constexpr double kPietrasTimeLimitS = 70.0;
 inline nn::TrainOptions pietras_train_options() {
   nn::TrainOptions o;
   o.trainer = kPietrasTrainer;
@@ -54,6 +62,7 @@ struct PietrasTraining {
   nn::PietrasKind kind = nn::PietrasKind::pietras;
   NishitaParameters atmosphere;  // sun and observer ignored
   std::size_t samples = 800000;
+  PietrasRegion region = PietrasRegion::full;
   // Per sub-network; seed is also the sampling seed.
   nn::TrainOptions options = pietras_train_options();
   // Warm start (nn train --init): every sub-network continues from this network's. It must be of

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "skylight/core/math.h"
@@ -70,6 +71,48 @@ TEST(PietrasTraining, TrainingSamplesAreConsistentGeometry) {
     EXPECT_GE(x.density, std::exp(-60e3 / 8000.0) - 1e-15);
     EXPECT_LE(x.density, 1.0);
   }
+}
+
+// --region sky-dome: skies seen from the ground: upward views, altitudes 0-20 km, sun zenith
+// 0-100 deg (day and twilight), every sample consistent geometry.
+TEST(PietrasTraining, SkyDomeSamplesAreSkiesSeenFromTheGround) {
+  const NishitaSampler sampler(NishitaParameters{});
+  const PietrasSamples s = sample_nishita(sampler, PietrasSampling::sky_dome, 2000, 7);
+  double lowest_sun = 1.0;
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    const nn::PietrasInput& x = s.inputs[i];
+    EXPECT_GE(x.cos_view_zenith, 0.0);
+    EXPECT_GE(s.altitude_m[i], 0.0);
+    EXPECT_LE(s.altitude_m[i], 20e3);
+    EXPECT_GE(x.cos_sun_zenith, std::cos(deg_to_rad(100.0)) - 1e-12);
+    lowest_sun = std::min(lowest_sun, x.cos_sun_zenith);
+  }
+  EXPECT_LT(lowest_sun, std::cos(deg_to_rad(99.0)));  // the range is covered to its end
+}
+
+// The targets' scale: on the full range the brightest training sample's N; on the sky dome their
+// 99.9th percentile (nearest rank from below), 0.1 % of the samples above it.
+TEST(PietrasTraining, TheScaleIsTheSamplesMaximumOrTheirPercentileOnTheDome) {
+  const NishitaSampler sampler(NishitaParameters{});
+  PietrasTraining t = small_training(nn::PietrasKind::pietras);
+  const PietrasSamples full =
+      sample_nishita(sampler, PietrasSampling::training, t.samples, t.options.seed);
+  double brightest = 0.0;
+  for (const Rgb& c : full.rgb) brightest = std::max({brightest, c.r, c.g, c.b});
+  EXPECT_EQ(small_pietras().max_value, brightest);
+  t.region = PietrasRegion::sky_dome;
+  t.options.max_iterations = 1;
+  const nn::PietrasNetwork net = train_pietras(t);
+  const PietrasSamples s =
+      sample_nishita(sampler, PietrasSampling::sky_dome, t.samples, t.options.seed);
+  std::size_t lit = 0, above = 0;
+  for (const Rgb& c : s.rgb) {
+    const double n = std::max({c.r, c.g, c.b});
+    lit += n > 0.0;
+    above += n > net.max_value;
+  }
+  const auto k = static_cast<std::size_t>(0.999 * static_cast<double>(lit - 1));
+  EXPECT_EQ(above, lit - 1 - k);
 }
 
 // PietrasNetwork::lit is exactly where nishita is not 0: nishita cuts its view rays at the shadow

@@ -71,7 +71,7 @@ struct PietrasNetwork {
   double scale_height_m = 8000.0;   // H0 of rho0 [m]
   double top_altitude_m = 60e3;     // the atmosphere's top above the ground [m] (rho0 floor)
   double ground_radius_m = 6360e3;  // for the night bound (night_cos_sun_zenith)
-  double max_value = 1.0;           // pietras: max N; log3: Y_max (source rgb units)
+  double max_value = 1.0;  // pietras: N, log3: Y (source rgb units) that the targets scale to 1
   PietrasProvenance provenance;
 
   std::size_t parameter_count() const;
