@@ -99,6 +99,14 @@ std::optional<sun::SpaInput> solar_position_input(const ParameterValues& given) 
   return in;
 }
 
+void warn_unread_layout(const ImageOptions& layout, const ParameterValues& given) {
+  for (const std::string& name : layout.unread(given))
+    warn(fmt::format("{} is not read ({}); ignored", flag_spelling(name),
+                     layout.calibration.empty()
+                         ? "not a parameter of this projection"
+                         : flag_spelling(layout.calibration_flag) + " gives the layout"));
+}
+
 void wire_solar_position(const SchemaFlags& flags, const std::vector<std::string>& angles,
                          bool spa_needs_time) {
   CLI::Option* time = flags.option("time");

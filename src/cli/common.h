@@ -17,6 +17,7 @@
 #include <string_view>
 #include <vector>
 
+#include "skylight/core/camera.h"
 #include "skylight/core/parameters.h"
 #include "skylight/io/image.h"
 #include "skylight/models/evaluation.h"
@@ -136,6 +137,9 @@ model_parameter_names();
 void warn_domain(const SkyModel& model, bool spectral = false);
 // One warning line on stderr.
 void warn(std::string_view message);
+// Warns of each given image option that `layout` does not read (a projection's, or every layout
+// flag beside a calibration file: ImageOptions::unread).
+void warn_unread_layout(const ImageOptions& layout, const ParameterValues& given);
 
 // Metadata of an output made from `model`: version, model, the sun and every parameter the model
 // read (ParameterSpec::metadata_key()), plus the solar disc mode.

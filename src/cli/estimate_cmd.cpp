@@ -153,10 +153,7 @@ int run_estimate(const EstimateCommand& c) {
   const io::ImageF image = io::read_image(c.image);
   const ImageSchemaOptions photo = estimate::photo_image_options();
   const ImageOptions layout = f.bind(image_schema(photo), photo.defaults(), "estimate");
-  for (const std::string& name : layout.unread(given))
-    warn(fmt::format("{} is not read ({}); ignored", flag_spelling(name),
-                     layout.calibration.empty() ? "not a parameter of this projection"
-                                                : "--calibration gives the layout"));
+  warn_unread_layout(layout, given);
   const auto co = f.bind(estimate::CaptureOptions::schema(), {}, "estimate");
   std::optional<estimate::Capture> capture;
   if (!co.exif.empty())

@@ -102,6 +102,7 @@ std::string cross_validation_text(const nn::CrossValidation& cv, int kfold,
 int run_images(const TrainCommand& c, const fit::NetworkTrainingRequest& req) {
   const auto options = c.flags.bind(fit::ImageTrainingOptions::schema(),
                                     fit::ImageTrainingOptions{}, "nn train --images");
+  warn_unread_layout(options.image, c.flags.values());
   Progress progress("nn train --images");
   const fit::ImageTrainingResult r = fit::train_on_images(
       options, req.sky_training(), req.samples.value_or(fit::kImageSamples),
