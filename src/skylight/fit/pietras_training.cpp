@@ -23,14 +23,27 @@ constexpr double kValidationMaxAltitude = 20e3;  // [m]
 constexpr double kDayMaxSunZenithDeg = 85.0;
 constexpr double kTwilightMaxSunZenithDeg = 96.0;
 constexpr double kSkyDomeMaxSunZenithDeg = 100.0;
-// The targets' scale (max_value) per region: a quantile of the training samples' values (N for
-// pietras, Y for log3; 1 = their maximum, §III's max N). On the sky dome the 99.9th percentile
-// (the brightest 0.1 %, views into the sun's aureole, clamp at M = 0.999) gave day errors 2.54 % /
-// 11.1 % against 3.13 % / 15.0 % with the maximum; on the full range it gave 14.2 % / 80.6 %
-// against 10.1 % / 36.4 % (200 000 samples, 70 s per sub-network; docs/PIETRAS.md, "Training
-// region").
-double scale_quantile(PietrasRegion region) {
-  return region == PietrasRegion::sky_dome ? 0.999 : 1.0;
+// The targets' scale (max_value) per region, over the lit training samples' values (N for
+// pietras, Y for log3). Full range: §III's maximum over the first 100 000 samples. Sky dome: the
+// 99.9th percentile of all (the brightest 0.1 %, views into the sun's aureole, clamp at
+// M = 0.999). Measured (200 000 samples, 70 s per sub-network, seed 1; docs/PIETRAS.md, "Training
+// region"): on the dome the percentile gave day errors 2.54 % / 11.1 % against 3.13 % / 15.0 %
+// with §III's maximum; on the full range §III's maximum 10.1 % / 36.4 %, the maximum of all
+// samples 13.3 % / 56.5 %, the percentile 14.2 % / 80.6 %.
+constexpr std::size_t kMaxNSamples = 100000;
+constexpr double kDomeScaleQuantile = 0.999;
+// values: every sample's, in sample order (0 where dark).
+double target_scale(std::vector<double> values, PietrasRegion region) {
+  if (region == PietrasRegion::full) {
+    values.resize(std::min(values.size(), kMaxNSamples));
+    return *std::max_element(values.begin(), values.end());
+  }
+  std::erase_if(values, [](double v) { return !(v > 0.0); });
+  if (values.empty()) return 0.0;
+  const auto q = values.begin() + static_cast<std::ptrdiff_t>(
+                                      kDomeScaleQuantile * static_cast<double>(values.size() - 1));
+  std::nth_element(values.begin(), q, values.end());
+  return *q;
 }
 
 }  // namespace
@@ -207,16 +220,10 @@ nn::PietrasNetwork train_pietras(const PietrasTraining& t) {
   net.ground_radius_m = p.ground_radius_m;
   const bool paper = t.kind == nn::PietrasKind::pietras;
   const std::size_t n = s.size();
-  std::vector<double> values;
-  values.reserve(n);
-  for (std::size_t i = 0; i < n; ++i)
-    if (const double v = pietras_value(s.rgb[i], t.kind); v > 0.0) values.push_back(v);
-  if (values.empty()) throw InvalidArgument("nn train: every sample of nishita is dark");
-  const auto q =
-      values.begin() + static_cast<std::ptrdiff_t>(scale_quantile(t.region) *
-                                                   static_cast<double>(values.size() - 1));
-  std::nth_element(values.begin(), q, values.end());
-  double max_value = *q;
+  std::vector<double> values(n);
+  for (std::size_t i = 0; i < n; ++i) values[i] = pietras_value(s.rgb[i], t.kind);
+  double max_value = target_scale(std::move(values), t.region);
+  if (!(max_value > 0.0)) throw InvalidArgument("nn train: every sample of nishita is dark");
   const auto layouts = nn::pietras_layouts(t.kind);
   if (t.initial != nullptr) {
     check_initial(*t.initial, t.kind, layouts.size(), p);
