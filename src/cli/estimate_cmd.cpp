@@ -219,7 +219,10 @@ int run_estimate(const EstimateCommand& c) {
   for (const auto& [key, value] : j.items())
     if (value.is_number_float() && !std::isfinite(value.get<double>()))
       throw InvalidArgument(fmt::format("the fit gave a non-finite {}; nothing was written", key));
-  write_stdout(c.json ? j.dump(2) + "\n" : text);
+  // Paths in other encodings than UTF-8: replaced, not an exception.
+  write_stdout(c.json
+                   ? j.dump(2, ' ', false, nlohmann::ordered_json::error_handler_t::replace) + "\n"
+                   : text);
   return kExitOk;
 }
 

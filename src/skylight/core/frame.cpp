@@ -113,22 +113,14 @@ std::optional<double> fisheye_theta(const FisheyeLayout& layout, double r) {
   return std::nullopt;
 }
 
-namespace {
-
-// The image circle of a fisheye layout in a width x height image: centre [px] and radius [px].
-struct ImageCircle {
-  double col, row, radius;
-};
-ImageCircle image_circle(int width, int height, const FisheyeLayout& layout) {
+FisheyeCircle fisheye_image_circle(int width, int height, const FisheyeLayout& layout) {
   const auto centre = layout.centre.value_or(std::array<double, 2>{0.5 * width, 0.5 * height});
   return {centre[0], centre[1], layout.radius.value_or(0.5 * std::min(width, height))};
 }
 
-}  // namespace
-
 std::optional<Vec3> fisheye_direction(double col_centre, double row_centre, int width, int height,
                                       const FisheyeLayout& layout) {
-  const ImageCircle c = image_circle(width, height, layout);
+  const FisheyeCircle c = fisheye_image_circle(width, height, layout);
   // Image offsets: +dx to the right (to the left in a mirrored image), +dy downwards, in units
   // of the image-circle radius.
   const double dx = (layout.mirrored ? -1.0 : 1.0) * (col_centre - c.col) / c.radius;
@@ -147,7 +139,7 @@ std::optional<std::array<double, 2>> fisheye_pixel(Vec3 d, int width, int height
   const auto za = angles_from_direction(d);
   const auto r = fisheye_radius(layout, za.zenith);
   if (!r) return std::nullopt;
-  const ImageCircle c = image_circle(width, height, layout);
+  const FisheyeCircle c = fisheye_image_circle(width, height, layout);
   const double a = za.azimuth + layout.north_angle;
   return std::array<double, 2>{c.col - (layout.mirrored ? -1.0 : 1.0) * *r * c.radius * std::sin(a),
                                c.row - *r * c.radius * std::cos(a)};

@@ -100,6 +100,13 @@ struct FisheyeLayout {
   bool calibrated() const { return centre || radius || mirrored; }
 };
 
+// The image circle of `layout` in a width x height image [px]: its calibrated centre (col, row)
+// and radius at fov / 2, or the centred circle of diameter min(width, height).
+struct FisheyeCircle {
+  double col = 0.0, row = 0.0, radius = 1.0;
+};
+FisheyeCircle fisheye_image_circle(int width, int height, const FisheyeLayout& layout);
+
 // The lens's mapping g(theta): the radius of zenith angle theta in units of the focal length
 // (equidistant theta, equisolid 2 sin(theta/2), orthographic sin theta, stereographic
 // 2 tan(theta/2)); nullopt where the lens cannot image theta.

@@ -63,13 +63,14 @@ namespace {
 
 // Which pixels a camera images above an elevation, decided from the pixel position alone (no
 // trigonometry per pixel): for a fisheye, the zenith angle grows with the distance r from the
-// image centre, so theta < pi/2 - e  <=>  r < r(pi/2 - e); for an equirect map, row by row.
+// image circle's centre (calibrated or centred), so theta < pi/2 - e  <=>  r < r(pi/2 - e); for an
+// equirect map, row by row.
 class HorizonTest {
  public:
   HorizonTest(const Camera& c, double min_elevation) : camera_(c) {
     const double theta_max = kPi / 2 - min_elevation;
     if (c.projection == Projection::fisheye) {
-      radius_px_ = 0.5 * std::min(c.width, c.height);
+      circle_ = fisheye_image_circle(c.width, c.height, c.fisheye);
       if (theta_max > 0.5 * c.fisheye.fov) {
         limit_ = 1.0;  // every imaged direction is high enough
         inclusive_ = true;
@@ -84,15 +85,15 @@ class HorizonTest {
   bool operator()(int col, int row) const {
     if (camera_.projection == Projection::equirect)
       return kPi * (row + 0.5) / camera_.height < limit_;
-    const double dx = (col + 0.5 - 0.5 * camera_.width) / radius_px_;
-    const double dy = (row + 0.5 - 0.5 * camera_.height) / radius_px_;
+    const double dx = (col + 0.5 - circle_.col) / circle_.radius;
+    const double dy = (row + 0.5 - circle_.row) / circle_.radius;
     const double r2 = dx * dx + dy * dy;
     return inclusive_ ? r2 <= limit_ * limit_ : r2 < limit_ * limit_;
   }
 
  private:
   const Camera& camera_;
-  double radius_px_ = 1.0;
+  FisheyeCircle circle_;
   double limit_ = 0.0;
   bool inclusive_ = false;
 };

@@ -46,6 +46,8 @@ struct Point {
 // single samples would take its pixels as independent and understate sigma (docs/ESTIMATE.md,
 // "Uncertainty").
 constexpr double kBootstrapBlockDeg = 15.0;
+// Fewer patches than this among the inliers: the bootstrap draws single samples.
+constexpr std::ptrdiff_t kMinBootstrapBlocks = 10;
 
 int sky_block(Vec3 view) {
   const ZenithAzimuth za = angles_from_direction(view);
@@ -369,8 +371,21 @@ std::vector<double> bootstrap_sigmas(const Problem& pr, const Point& fit,
   for (std::size_t k = 0; k < inliers.size(); ++k) row_of[inliers[k]] = k;
   const auto size = static_cast<std::size_t>(n + 1);
   std::vector<double> jtj(size * size), jtr(size);
+  // A sky of a few patches (a small mask, a narrow crop) has too few blocks to resample: the
+  // samples are drawn one by one there.
+  std::vector<int> blocks;
+  for (std::size_t i : inliers) blocks.push_back(pr.blocks()[i]);
+  std::sort(blocks.begin(), blocks.end());
+  const bool few_blocks =
+      std::unique(blocks.begin(), blocks.end()) - blocks.begin() < kMinBootstrapBlocks;
+  std::vector<int> own;
+  if (few_blocks) {
+    own.resize(pr.size());
+    std::iota(own.begin(), own.end(), 0);
+  }
   return block_bootstrap_sigma(
-      inliers, pr.blocks(), resamples, rng, [&](std::span<const std::size_t> r) {
+      inliers, few_blocks ? std::span<const int>(own) : pr.blocks(), resamples, rng,
+      [&](std::span<const std::size_t> r) {
         std::fill(jtj.begin(), jtj.end(), 0.0);
         std::fill(jtr.begin(), jtr.end(), 0.0);
         for (std::size_t i : r) {

@@ -197,7 +197,8 @@ TEST(Turbidity, SigmaMatchesTheSpreadOverNoiseRealisations) {
 
 // A real camera's photo: the image circle off-centre and smaller than the frame, the image
 // mirrored, north turned (io/camera_calibration.h). Read through its calibration file the estimate
-// recovers the sky's T; read as `render`'s centred layout the same pixels give another sky.
+// recovers the sky's T (the grey outside the circle masked by the calibrated circle); read as
+// `render`'s centred layout the same pixels give another sky.
 constexpr double kCalibratedTurbidityTol = 1e-3;  // float pixels of the model itself
 constexpr double kUncalibratedMinError = 0.1;
 
@@ -211,7 +212,13 @@ TEST(Turbidity, CalibrationFileGivesThePhotosGeometry) {
   options.calibration = file;
   const Camera cam = io::photo_camera(options, 320, 280);
   const PreethamModel model({kTable1Sun, 4.0});
-  const io::ImageF img = testing_support::render_photo(model, cam);
+  io::ImageF img = testing_support::render_photo(model, cam);
+  // Outside the circle a real photo is not black (sensor noise, glow): a grey the mask must not
+  // take for sky.
+  for (int row = 0; row < cam.height; ++row)
+    for (int col = 0; col < cam.width; ++col)
+      if (!cam.pixel_direction(col, row))
+        for (int ch = 0; ch < 3; ++ch) img.pixel(col, row)[ch] = 50.0f;
   const PhotoFit calibrated =
       estimate_from_photo("preetham", img, cam, kTable1Sun, MaskSettings{}, EstimateSettings{});
   EXPECT_NEAR(calibrated.fit.parameter("turbidity").value, 4.0, kCalibratedTurbidityTol);

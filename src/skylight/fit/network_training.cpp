@@ -432,6 +432,9 @@ nn::TrainedSkyNetwork train_check_network(const nn::Dataset& ds, nn::NetworkSetu
   const nn::Dataset held_out = nn::subset_by_state(ds, held);
   const nn::Dataset selection = nn::every_nth_example(held_out, 2, 0);
   const nn::Dataset measured = nn::every_nth_example(held_out, 2, 1);
+  if (measured.size() == 0)
+    throw InvalidArgument(
+        "nn train --images: the held-out captures have too few sky samples to check the network");
   const std::vector<double> selection_targets = selection.targets(setup.encoding);
   const nn::Examples selection_ex{selection.inputs, selection_targets, selection.size()};
   setup.options.validation = &selection_ex;

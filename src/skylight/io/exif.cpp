@@ -4,6 +4,7 @@
 #include <libexif/exif-data.h>
 
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <memory>
 #include <vector>
@@ -25,6 +26,10 @@ std::optional<std::string> ascii(ExifEntry* e) {
   std::string s(reinterpret_cast<const char*>(e->data), e->size);
   while (!s.empty() && (s.back() == '\0' || s.back() == ' ')) s.pop_back();
   if (const auto nul = s.find('\0'); nul != std::string::npos) s.resize(nul);
+  // EXIF ASCII is 7-bit: anything else (control characters, other encodings) becomes '?', so
+  // no output or message carries it.
+  for (char& c : s)
+    if (c < 0x20 || c > 0x7e) c = '?';
   if (s.empty()) return std::nullopt;
   return s;
 }
@@ -88,6 +93,17 @@ ExifInfo parse_exif(std::span<const char> bytes, std::string_view name_in) {
   if (starts_with(bytes, "\xff\xd8", 2)) {
     data.assign(bytes.begin(), bytes.end());
   } else if (starts_with(bytes, "II*\0", 4) || starts_with(bytes, "MM\0*", 4)) {
+    // libexif reads the first 65 534 bytes of the TIFF structure (an APP1 segment's limit): a
+    // TIFF whose IFD0 lies beyond is refused rather than read as having no EXIF.
+    const auto u = [&](std::size_t i) { return static_cast<std::uint32_t>(bytes[i] & 0xff); };
+    const std::uint32_t ifd0 = bytes.size() < 8  ? 0
+                               : bytes[0] == 'I' ? u(4) | u(5) << 8 | u(6) << 16 | u(7) << 24
+                                                 : u(4) << 24 | u(5) << 16 | u(6) << 8 | u(7);
+    if (ifd0 >= 0xfffe)
+      throw InvalidArgument(fmt::format(
+          "'{}': its first IFD lies beyond the first 64 KiB, which libexif does not read; give "
+          "the capture's JPEG",
+          name));
     const char header[] = {'E', 'x', 'i', 'f', '\0', '\0'};
     data.assign(header, header + 6);
     data.insert(data.end(), bytes.begin(), bytes.end());

@@ -54,6 +54,11 @@ TEST(Exif, TiffSignsUnitsAndAMissingOffset) {
 TEST(Exif, OtherFilesAreRefusedByName) {
   EXPECT_THROW(read_exif(kDir + "make_fixtures.py"), InvalidArgument);
   EXPECT_THROW(read_exif(kDir + "missing.jpg"), IoError);
+  // A TIFF whose first IFD starts beyond the 64 KiB libexif reads.
+  const char far[] = {'I', 'I', '*', '\0', '\0', '\0', '\1', '\0'};  // IFD0 at 65 536
+  EXPECT_EQ(error_message([&] { parse_exif(far, "big.tif"); }),
+            "'big.tif': its first IFD lies beyond the first 64 KiB, which libexif does not read; "
+            "give the capture's JPEG");
   const ExifInfo none;
   EXPECT_EQ(error_message([&] { none.time_iso8601(std::nullopt, "x.jpg"); }),
             "'x.jpg': the EXIF has no DateTimeOriginal");
