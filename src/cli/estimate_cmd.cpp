@@ -195,13 +195,13 @@ int run_estimate(const EstimateCommand& c) {
     auto& x = j["exif"] = nlohmann::ordered_json::object();
     x["file"] = co.exif;
     x["camera"] = fmt::format("{}{}{}", e.make, e.make.empty() ? "" : " ", e.model);
-    x["date_time"] = e.date_time ? nlohmann::ordered_json(*e.date_time) : nullptr;
-    x["utc_offset"] = e.utc_offset ? nlohmann::ordered_json(*e.utc_offset) : nullptr;
-    x["focal_length_mm"] = e.focal_length_mm ? nlohmann::ordered_json(*e.focal_length_mm) : nullptr;
-    x["focal_length_px"] =
-        capture->focal_length_px ? nlohmann::ordered_json(*capture->focal_length_px) : nullptr;
-    x["latitude_deg"] = e.latitude_deg ? nlohmann::ordered_json(*e.latitude_deg) : nullptr;
-    x["longitude_deg"] = e.longitude_deg ? nlohmann::ordered_json(*e.longitude_deg) : nullptr;
+    const auto or_null = [](const auto& v) { return v ? nlohmann::ordered_json(*v) : nullptr; };
+    x["date_time"] = or_null(e.date_time);
+    x["utc_offset"] = or_null(e.utc_offset);
+    x["focal_length_mm"] = or_null(e.focal_length_mm);
+    x["focal_length_px"] = or_null(capture->focal_length_px);
+    x["latitude_deg"] = or_null(e.latitude_deg);
+    x["longitude_deg"] = or_null(e.longitude_deg);
     text += fmt::format(
         "exif             {}{}{}{}\n", e.date_time.value_or("no time"),
         e.utc_offset ? " " + *e.utc_offset : "",

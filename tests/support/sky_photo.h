@@ -29,19 +29,26 @@ inline io::ImageF render_photo(const SkyModel& model, const Camera& camera) {
   return img;
 }
 
-// img with multiplicative Gaussian noise of relative standard deviation `sigma`, independent per
-// pixel and channel (Box-Muller on a fixed LCG: the same noise on every platform), clamped at 0.
-inline io::ImageF with_noise(const io::ImageF& img, double sigma, std::uint32_t seed) {
-  io::ImageF out = img;
-  std::uint32_t state = seed;
-  auto uniform = [&] {
+// A fixed LCG (the same numbers on every platform): uniform in (0, 1) from its top 24 bits, and
+// standard normal by Box-Muller.
+struct FixedLcg {
+  std::uint32_t state;
+  double uniform() {
     state = state * 1664525u + 1013904223u;
     return (static_cast<double>(state >> 8) + 0.5) / static_cast<double>(1u << 24);
-  };
-  for (float& v : out.data) {
-    const double g = std::sqrt(-2.0 * std::log(uniform())) * std::cos(2.0 * kPi * uniform());
-    v = static_cast<float>(std::max(0.0, v * (1.0 + sigma * g)));
   }
+  double gaussian() {
+    return std::sqrt(-2.0 * std::log(uniform())) * std::cos(2 * kPi * uniform());
+  }
+};
+
+// img with multiplicative Gaussian noise of relative standard deviation `sigma`, independent per
+// pixel and channel (FixedLcg), clamped at 0.
+inline io::ImageF with_noise(const io::ImageF& img, double sigma, std::uint32_t seed) {
+  io::ImageF out = img;
+  FixedLcg rng{seed};
+  for (float& v : out.data)
+    v = static_cast<float>(std::max(0.0, v * (1.0 + sigma * rng.gaussian())));
   return out;
 }
 

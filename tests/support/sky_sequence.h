@@ -42,11 +42,7 @@ inline io::ImageF render_capture(const SkyModel& model, const SunPosition& sun,
   io::ImageF img = render_photo(model, camera);
   float peak = 0.0f;
   for (float v : img.data) peak = std::max(peak, v);
-  std::uint32_t state = x.seed;
-  auto uniform = [&] {  // a fixed LCG: the same images on every platform
-    state = state * 1664525u + 1013904223u;
-    return (static_cast<double>(state >> 8) + 0.5) / static_cast<double>(1u << 24);
-  };
+  FixedLcg rng{x.seed};  // the same images on every platform
   const Vec3 s = sun.direction();
   for (int row = 0; row < camera.height; ++row)
     for (int col = 0; col < camera.width; ++col) {
@@ -54,10 +50,7 @@ inline io::ImageF render_capture(const SkyModel& model, const SunPosition& sun,
       if (!d) continue;
       float* p = img.pixel(col, row);
       double f = 1.0;
-      if (x.noise > 0.0) {  // Box-Muller
-        const double g = std::sqrt(-2.0 * std::log(uniform())) * std::cos(2 * kPi * uniform());
-        f = std::max(0.0, 1.0 + x.noise * g);
-      }
+      if (x.noise > 0.0) f = std::max(0.0, 1.0 + x.noise * rng.gaussian());
       if (x.occluder && occluded(*d)) f *= x.occluder_factor;
       for (int c = 0; c < 3; ++c) p[c] = static_cast<float>(p[c] * f);
       if (x.sun_radius > 0.0 && angle_between(*d, s) <= x.sun_radius)

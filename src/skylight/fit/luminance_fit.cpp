@@ -62,6 +62,12 @@ int sky_block(Vec3 view) {
   return band * 1000 + sector;
 }
 
+std::vector<std::size_t> all_indices(std::size_t n) {
+  std::vector<std::size_t> idx(n);
+  std::iota(idx.begin(), idx.end(), std::size_t{0});
+  return idx;
+}
+
 // The samples as the fit evaluates them, and the model's prepared ln L.
 class Problem {
  public:
@@ -118,10 +124,7 @@ class Problem {
   }
   // The samples with |r_i| < threshold at (p, c), and their sum of squares.
   Consensus consensus(const Point& q, double threshold, std::vector<double>& work) const {
-    std::vector<std::size_t> all(size());
-    std::iota(all.begin(), all.end(), std::size_t{0});
-    model(q.p, all, work);
-    return consensus_of(work, q.log_scale, threshold);
+    return consensus_over(all_indices(size()), q, threshold, work);
   }
   // The same over the samples idx only (m: their model values), the inliers as sample indices.
   Consensus consensus_over(std::span<const std::size_t> idx, const Point& q, double threshold,
@@ -229,12 +232,6 @@ Point to_point(const LeastSquaresResult& r) {
   q.log_scale = r.p.back();
   q.cost = r.cost;
   return q;
-}
-
-std::vector<std::size_t> all_indices(std::size_t n) {
-  std::vector<std::size_t> idx(n);
-  std::iota(idx.begin(), idx.end(), std::size_t{0});
-  return idx;
 }
 
 // The value of grid point k of an axis.
@@ -378,27 +375,22 @@ std::vector<double> bootstrap_sigmas(const Problem& pr, const Point& fit,
   std::sort(blocks.begin(), blocks.end());
   const bool few_blocks =
       std::unique(blocks.begin(), blocks.end()) - blocks.begin() < kMinBootstrapBlocks;
-  std::vector<int> own;
-  if (few_blocks) {
-    own.resize(pr.size());
-    std::iota(own.begin(), own.end(), 0);
-  }
-  return block_bootstrap_sigma(
-      inliers, few_blocks ? std::span<const int>(own) : pr.blocks(), resamples, rng,
-      [&](std::span<const std::size_t> r) {
-        std::fill(jtj.begin(), jtj.end(), 0.0);
-        std::fill(jtr.begin(), jtr.end(), 0.0);
-        for (std::size_t i : r) {
-          const std::size_t k = row_of[i];
-          accumulate_normal_equations(&rows[k * size], residuals[k], n + 1, jtj, jtr);
-        }
-        const Eigen::MatrixXd A = Eigen::Map<const Eigen::MatrixXd>(jtj.data(), n + 1, n + 1);
-        const Eigen::VectorXd step =
-            A.ldlt().solve(-Eigen::Map<const Eigen::VectorXd>(jtr.data(), n + 1));
-        std::vector<double> p = fit.p;
-        for (int a = 0; a < n; ++a) p[static_cast<std::size_t>(a)] += step[a];
-        return p;
-      });
+  const auto one_step = [&](std::span<const std::size_t> r) {
+    std::fill(jtj.begin(), jtj.end(), 0.0);
+    std::fill(jtr.begin(), jtr.end(), 0.0);
+    for (std::size_t i : r) {
+      const std::size_t k = row_of[i];
+      accumulate_normal_equations(&rows[k * size], residuals[k], n + 1, jtj, jtr);
+    }
+    const Eigen::MatrixXd A = Eigen::Map<const Eigen::MatrixXd>(jtj.data(), n + 1, n + 1);
+    const Eigen::VectorXd step =
+        A.ldlt().solve(-Eigen::Map<const Eigen::VectorXd>(jtr.data(), n + 1));
+    std::vector<double> p = fit.p;
+    for (int a = 0; a < n; ++a) p[static_cast<std::size_t>(a)] += step[a];
+    return p;
+  };
+  return few_blocks ? bootstrap_sigma(inliers, resamples, rng, one_step)
+                    : block_bootstrap_sigma(inliers, pr.blocks(), resamples, rng, one_step);
 }
 
 void set_sigmas(LuminanceFit& fit, const std::vector<double>& sigma) {
