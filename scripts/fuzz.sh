@@ -8,6 +8,8 @@
 #              SKYLIGHT_FUZZ_CORPUS a directory that keeps the grown corpus between runs
 #                                   (<dir>/<target>/); default: a temporary copy, removed
 #              SKYLIGHT_FUZZ_FLAGS  extra libFuzzer flags, e.g. "-max_len=65536"
+#              SKYLIGHT_FUZZ_RUNS   run each target for this many executions (-runs) instead of
+#                                   SECONDS: with a fixed -seed the same inputs on every machine
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 seconds="${1:-10}"
@@ -22,6 +24,8 @@ cmake -S "$root" -B "$build" -G Ninja -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD
   -DSKYLIGHT_FUZZ=ON -DSKYLIGHT_BUILD_TESTS=OFF -DSKYLIGHT_BUILD_BENCH=OFF >/dev/null
 cmake --build "$build" --target skylight_fuzz -j "$(nproc)"
 
+budget="${seconds} s"
+[ -n "${SKYLIGHT_FUZZ_RUNS:-}" ] && budget="${SKYLIGHT_FUZZ_RUNS} runs"
 artifacts="$build/artifacts"
 mkdir -p "$artifacts"
 scratch="$(mktemp -d)"
@@ -39,14 +43,19 @@ for t in "${targets[@]}"; do
   fi
   mkdir -p "$corpus"
   cp -n "$root/tests/fuzz/corpus/$t/"* "$corpus/"
-  flags=(-max_total_time="$seconds" -timeout=25 -rss_limit_mb=2048 -print_final_stats=1
+  if [ -n "${SKYLIGHT_FUZZ_RUNS:-}" ]; then
+    flags=(-runs="$SKYLIGHT_FUZZ_RUNS")
+  else
+    flags=(-max_total_time="$seconds")
+  fi
+  flags+=(-timeout=25 -rss_limit_mb=2048 -print_final_stats=1
          -artifact_prefix="$artifacts/$t-")
   dict="$root/tests/fuzz/dict/$t.dict"
   [ -f "$dict" ] && flags+=(-dict="$dict")
   # shellcheck disable=SC2206
   flags+=(${SKYLIGHT_FUZZ_FLAGS:-})
   log="$scratch/$t.log"
-  echo "== fuzz_$t (${seconds} s)"
+  echo "== fuzz_$t ($budget)"
   status=0
   UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 "$exe" "${flags[@]}" "$corpus" >"$log" 2>&1 || status=$?
   runs="$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -1)"
@@ -58,7 +67,7 @@ for t in "${targets[@]}"; do
     summary+=("$(printf '%-16s %12s  ok, corpus %d files' "$t" "${runs:-?}" "$(ls "$corpus" | wc -l)")")
   fi
 done
-echo "== fuzz summary: target, executions (${seconds} s each)"
+echo "== fuzz summary: target, executions ($budget each)"
 printf '%s\n' "${summary[@]}"
 if [ ${#failed[@]} -gt 0 ]; then
   echo "fuzz: findings in ${failed[*]}" >&2

@@ -614,6 +614,7 @@ namespace {
 //  * Empty IDAT chunks are dropped: stb copies each IDAT's data into a buffer that is still null
 //    before the first non-empty one, and memcpy(nullptr, src, 0) is undefined behaviour (found by
 //    the same target). An empty IDAT carries no image data, so dropping it changes nothing.
+//  * Bytes after the last whole chunk, with no IEND before them, are refused: the file was cut.
 // Everything else is copied as it is (stb reports what is corrupt).
 std::vector<char> checked_png_chunks(const std::filesystem::path& path,
                                      const std::vector<char>& png) {
@@ -637,7 +638,13 @@ std::vector<char> checked_png_chunks(const std::filesystem::path& path,
     pos = end;
     if (std::memcmp(p + 4, "IEND", 4) == 0) return out;
   }
-  out.insert(out.end(), png.begin() + static_cast<std::ptrdiff_t>(pos), png.end());
+  // No IEND: what is left is less than a whole chunk (or nothing). stb would read the header of a
+  // partial chunk, an empty IDAT's among them (found by the image_png fuzz target), so a file cut
+  // short is refused here by name.
+  if (pos < png.size())
+    throw_read_error(path,
+                     fmt::format("truncated PNG: the {} bytes at byte {} are not a whole chunk",
+                                 png.size() - pos, pos));
   return out;
 }
 

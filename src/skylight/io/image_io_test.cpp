@@ -436,6 +436,29 @@ TEST(ImageIo, PngChunkLongerThanTheFileIsRefused) {
   EXPECT_EQ(read_png(dir / "trailing.png").data, img.data);
 }
 
+// A file cut inside a chunk, before IEND, is refused by name: stb would read the partial chunk's
+// header (an empty IDAT's in the image_png fuzz target's find, corpus file cut_empty_idat_*).
+TEST(ImageIo, PngCutInsideAChunkIsRefused) {
+  ScratchDir dir;
+  const Image8 img = byte_pattern(3, 2, 41);
+  write_png(dir / "plain.png", img);
+  const std::string bytes = slurp(dir / "plain.png");
+  const std::size_t iend = bytes.find("IEND");
+  ASSERT_NE(iend, std::string::npos);
+  for (const std::size_t cut : {iend - 4 + 1, iend - 4 + 8, iend - 4 + 11}) {
+    SCOPED_TRACE(cut);
+    spit(dir / "cut.png", bytes.substr(0, cut));
+    try {
+      (void)read_png(dir / "cut.png");
+      ADD_FAILURE() << "a PNG cut inside its last chunk was read";
+    } catch (const IoError& e) {
+      EXPECT_NE(std::string(e.what()).find("truncated PNG: the"), std::string::npos) << e.what();
+    }
+  }
+  spit(dir / "cut_empty_idat.png", bytes.substr(0, iend - 4) + std::string("\0\0\0\0IDAT\x82", 9));
+  EXPECT_THROW((void)read_png(dir / "cut_empty_idat.png"), IoError);
+}
+
 TEST(ImageIo, FloatImageToPngIsRefused) {
   ScratchDir dir;
   EXPECT_THROW(write_image(dir / "p.png", ramp_grey(2, 2)), InvalidArgument);
