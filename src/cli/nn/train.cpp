@@ -66,7 +66,8 @@ int run_pietras(const TrainCommand& c, const fit::NetworkTrainingRequest& req) {
     }
     return true;
   };
-  nn::PietrasNetwork net = fit::train_pietras(t);
+  fit::PietrasTrainingResult result = fit::train_pietras(t);
+  nn::PietrasNetwork& net = result.network;
   net.provenance.date = utc_now_iso8601();
   net.provenance.software = software();
   io::write_text_file(c.output, nn::to_json(net));
@@ -74,9 +75,10 @@ int run_pietras(const TrainCommand& c, const fit::NetworkTrainingRequest& req) {
   for (int i : net.provenance.iterations) its += (its.empty() ? "" : ", ") + std::to_string(i);
   write_stdout(fmt::format(
       "nn train: {} network ({} weights) on {}, {} samples, trainer {}, seed {}: iterations "
-      "{}, {:.1f} s\nwrote {}\n",
+      "{}, {:.1f} s, region {}\n{}\nwrote {}\n",
       nn::to_string(t.kind), net.parameter_count(), NishitaModel::kName, net.provenance.samples,
-      nn::to_string(t.options.trainer), req.seed, its, net.provenance.training_seconds, c.output));
+      nn::to_string(t.options.trainer), req.seed, its, net.provenance.training_seconds,
+      net.provenance.region, result.check->summary(), c.output));
   return kExitOk;
 }
 

@@ -13,6 +13,9 @@
 #include <cstddef>
 #include <cstdint>
 #include <functional>
+#include <optional>
+#include <string>
+#include <string_view>
 #include <vector>
 
 #include "skylight/models/nishita.h"
@@ -34,6 +37,17 @@ enum class PietrasSampling { training, day, twilight, night, sky_dome };
 // (PietrasSampling::sky_dome), where the validation sets lie.
 enum class PietrasRegion { full, sky_dome };
 
+// Everything that differs between the regions, declared once (pietras_training.cpp).
+struct PietrasRegionPolicy {
+  std::string_view name;      // --region's value; provenance.region
+  PietrasSampling sampling;   // the training samples
+  std::string_view geometry;  // provenance.geometry: how the training inputs were drawn
+  // The default bound of the held-out check (PietrasCheck) on the p95 of the day luminance error,
+  // above the p95 of every seed measured with the defaults (docs/PIETRAS.md, "Held-out check").
+  double max_luminance_p95;
+};
+const PietrasRegionPolicy& pietras_region_policy(PietrasRegion region);
+
 struct PietrasSamples {
   std::vector<nn::PietrasInput> inputs;
   std::vector<double> altitude_m;
@@ -46,7 +60,9 @@ PietrasSamples sample_nishita(const NishitaSampler& source, PietrasSampling samp
 
 // Training defaults per sub-network (docs/PIETRAS.md): full-batch L-BFGS (at 800 000 samples LM's
 // J^T J costs seconds per iteration), up to kPietrasIterations or kPietrasTimeLimitS of CPU time
-// (4 sub-networks: <= 280 s; the committed networks trained for longer, docs/PIETRAS.md).
+// on average (4 sub-networks: <= 280 s; the committed networks trained for longer,
+// docs/PIETRAS.md): sub-network k gets time_limit_s * pietras_time_shares(kind)[k] (the shares
+// average 1).
 inline constexpr nn::Trainer kPietrasTrainer = nn::Trainer::lbfgs;
 inline constexpr int kPietrasIterations = 4000;
 inline constexpr double kPietrasTimeLimitS = 70.0;
@@ -57,6 +73,8 @@ inline nn::TrainOptions pietras_train_options() {
   o.time_limit_s = kPietrasTimeLimitS;
   return o;
 }
+
+std::vector<double> pietras_time_shares(nn::PietrasKind kind);
 
 struct PietrasTraining {
   nn::PietrasKind kind = nn::PietrasKind::pietras;
@@ -72,8 +90,11 @@ struct PietrasTraining {
   const nn::PietrasNetwork* initial = nullptr;
   // progress(sub-network index, entry) after every iteration; return false to stop.
   std::function<bool(int, const nn::TrainLogEntry&)> progress;
+  // The held-out check (PietrasCheck); false skips it (tests of the trainer alone).
+  bool check = true;
+  // Its bound on the p95 of the luminance error; absent: the region's (PietrasRegionPolicy).
+  std::optional<double> max_luminance_p95;
 };
-nn::PietrasNetwork train_pietras(const PietrasTraining& t);
 
 // Errors of a network against nishita on one validation set (metrics.h's nearest-rank
 // percentiles): relative luminance error |Y_net - Y| / Y over samples with Y > 0, and the
@@ -99,5 +120,31 @@ struct PietrasValidation {
 PietrasErrors pietras_errors(const nn::PietrasNetwork& net, const PietrasSamples& s);
 PietrasValidation validate_pietras(const nn::PietrasNetwork& net, std::size_t samples,
                                    std::uint64_t seed);
+
+// The held-out check of a trained network: its errors on kPietrasCheckSamples day samples
+// (PietrasSampling::day: upward views, 0-20 km, sun zenith <= 85 deg, where a user looks at the
+// sky; both regions cover them) drawn from Rng(seed + kPietrasCheckSeedOffset), a stream the
+// training never draws from. Beyond the bound on the p95 of the luminance error, train_pietras
+// throws FitFailed with summary() and nn train writes nothing.
+inline constexpr std::size_t kPietrasCheckSamples = 20000;
+inline constexpr std::uint64_t kPietrasCheckSeedOffset = 0x5eedc4ec;
+struct PietrasCheck {
+  PietrasErrors errors;
+  std::uint64_t seed = 0;
+  double max_luminance_p95 = 0.0;
+  bool passed() const { return errors.luminance_p95 <= max_luminance_p95; }
+  // "held-out check (20000 day samples, seed ...): luminance error median .. %, p95 .. % (bound
+  // .. %), chromaticity ..."
+  std::string summary() const;
+};
+PietrasCheck check_pietras(const nn::PietrasNetwork& net, std::uint64_t training_seed,
+                           double max_luminance_p95);
+
+struct PietrasTrainingResult {
+  nn::PietrasNetwork network;
+  std::optional<PietrasCheck> check;  // absent with PietrasTraining::check = false
+};
+// Trains every sub-network, then (with t.check) the held-out check: FitFailed beyond its bound.
+PietrasTrainingResult train_pietras(const PietrasTraining& t);
 
 }  // namespace skylight::fit

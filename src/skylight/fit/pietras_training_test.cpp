@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "skylight/core/error.h"
 #include "skylight/core/math.h"
 #include "skylight/io/file.h"
 
@@ -52,12 +53,68 @@ PietrasTraining small_training(nn::PietrasKind kind) {
   t.samples = 20000;
   t.options.max_iterations = 60;
   t.options.time_limit_s = 30.0;
+  t.check = false;  // the trainer alone; the check: PietrasTraining.TheHeldOutCheckBoundsTheFit
   return t;
 }
 
 const nn::PietrasNetwork& small_pietras() {
-  static const nn::PietrasNetwork net = train_pietras(small_training(nn::PietrasKind::pietras));
+  static const nn::PietrasNetwork net =
+      train_pietras(small_training(nn::PietrasKind::pietras)).network;
   return net;
+}
+
+// The held-out check (kPietrasCheckSamples day samples, a seed the training does not draw from):
+// the committed log3 network passes the full range's bound with the day errors nn validate
+// measures for it; a network after 3 iterations fails a 5 % bound with FitFailed naming the check,
+// and with a bound it meets the result carries the check.
+TEST(PietrasTraining, TheHeldOutCheckBoundsTheFit) {
+  const std::string path = std::string(SKYLIGHT_TEST_DATA_DIR) + "/nn/log3.json";
+  const nn::PietrasNetwork log3 = nn::pietras_from_json(io::read_text_file(path), path);
+  const double full_bound = pietras_region_policy(PietrasRegion::full).max_luminance_p95;
+  const PietrasCheck c = check_pietras(log3, 1, full_bound);
+  EXPECT_TRUE(c.passed());
+  EXPECT_EQ(c.seed, 1 + kPietrasCheckSeedOffset);
+  EXPECT_EQ(c.errors.count, kPietrasCheckSamples);
+  EXPECT_EQ(c.errors.excluded, 0u);  // day samples are lit
+  EXPECT_LT(c.errors.luminance_median, kLog3Bounds.day_median);
+  EXPECT_LT(c.errors.luminance_p95, kLog3Bounds.day_p95);
+
+  PietrasTraining t = small_training(nn::PietrasKind::pietras);
+  t.options.max_iterations = 3;
+  t.check = true;
+  t.max_luminance_p95 = 0.05;
+  try {
+    (void)train_pietras(t);
+    ADD_FAILURE() << "a network after 3 iterations met a 5 % bound";
+  } catch (const FitFailed& e) {
+    EXPECT_NE(std::string(e.what()).find("fails its held-out check (20000 day samples"),
+              std::string::npos)
+        << e.what();
+    EXPECT_NE(std::string(e.what()).find("(bound 5 %)"), std::string::npos) << e.what();
+  }
+  t.max_luminance_p95 = 1e4;
+  const PietrasTrainingResult r = train_pietras(t);
+  ASSERT_TRUE(r.check.has_value());
+  EXPECT_TRUE(r.check->passed());
+  EXPECT_GT(r.check->errors.luminance_p95, 0.05);
+  EXPECT_EQ(r.network.provenance.region, "full");
+}
+
+// The time budget's shares per sub-network average 1 (the budget is time_limit_s times their
+// number); the paper network's M, which carries the luminance, gets the most.
+TEST(PietrasTraining, TimeSharesSplitTheBudget) {
+  for (const nn::PietrasKind kind : {nn::PietrasKind::pietras, nn::PietrasKind::log3}) {
+    const std::vector<double> shares = pietras_time_shares(kind);
+    ASSERT_EQ(shares.size(), nn::pietras_layouts(kind).size());
+    double sum = 0.0;
+    for (double x : shares) {
+      EXPECT_GT(x, 0.0);
+      sum += x;
+    }
+    EXPECT_NEAR(sum / static_cast<double>(shares.size()), 1.0, 1e-12);
+  }
+  const std::vector<double> paper = pietras_time_shares(nn::PietrasKind::pietras);
+  EXPECT_EQ(*std::max_element(paper.begin(), paper.end()), paper[3]);
 }
 
 TEST(PietrasTraining, TrainingSamplesAreConsistentGeometry) {
@@ -102,7 +159,7 @@ TEST(PietrasTraining, TheScaleIsTheSamplesMaximumOrTheirPercentileOnTheDome) {
   EXPECT_EQ(small_pietras().max_value, brightest);
   t.region = PietrasRegion::sky_dome;
   t.options.max_iterations = 1;
-  const nn::PietrasNetwork net = train_pietras(t);
+  const nn::PietrasNetwork net = train_pietras(t).network;
   const PietrasSamples s =
       sample_nishita(sampler, PietrasSampling::sky_dome, t.samples, t.options.seed);
   std::size_t lit = 0, above = 0;

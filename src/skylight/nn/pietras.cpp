@@ -175,6 +175,7 @@ std::string to_json(const PietrasNetwork& net) {
   prov["source"] = pv.source;
   prov["colour"] = pv.colour;
   prov["geometry"] = pv.geometry;
+  prov["region"] = pv.region;
   nlohmann::json sp = nlohmann::json::object();
   for (const auto& [k, v] : pv.source_parameters) sp[k] = v;
   prov["source_parameters"] = sp;
@@ -246,6 +247,7 @@ PietrasNetwork pietras_from_json(std::string_view s, const std::string& where) {
   pv.source = text(field(pj, where, "source"), where, "provenance.source");
   pv.colour = text(field(pj, where, "colour"), where, "provenance.colour");
   pv.geometry = text(field(pj, where, "geometry"), where, "provenance.geometry");
+  if (pj.contains("region")) pv.region = text(pj.at("region"), where, "provenance.region");
   const auto& sp = field(pj, where, "source_parameters");
   if (!sp.is_object()) bad(where, "provenance.source_parameters", "is not an object");
   for (const auto& [key, v] : sp.items())

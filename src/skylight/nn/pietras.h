@@ -55,6 +55,8 @@ struct PietrasProvenance {
   std::string source;    // the source model's registry name
   std::string colour;    // what the outputs are, e.g. "linear sRGB, cd/m^2 scale"
   std::string geometry;  // how the training inputs were sampled
+  // fit::PietrasRegionPolicy::name of the training samples; files before the field: "full".
+  std::string region = "full";
   // The source's parameters held fixed during training (the schema's names and values).
   std::vector<std::pair<std::string, double>> source_parameters;
   std::size_t samples = 0;
