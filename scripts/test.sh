@@ -1,16 +1,51 @@
 #!/usr/bin/env bash
-# The test command (README): installs what is missing, builds, runs the whole GoogleTest suite
-# (unit + CLI end-to-end, the docs' shell blocks) in the Release build, builds the README's library
-# example against the installed package, runs every libFuzzer target for a few seconds
-# (scripts/fuzz.sh, docs/TESTING.md) and runs the suite again under ASan + UBSan.
+# The test command (README): installs what is missing, builds `build/` in Release, runs the whole
+# ctest suite there (GoogleTest unit + CLI end-to-end tests, the report in headless Chromium, the
+# docs' shell blocks) and builds the README's library example against the installed package.
+# `--full` (what CI runs, .ci/run) adds the libFuzzer pass (scripts/fuzz.sh, docs/TESTING.md) and
+# the whole suite again under ASan + UBSan. Each phase's wall time is printed at the end.
+# Usage: scripts/test.sh [--full]
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "$root"
+full=0
+case "${1:-}" in
+  "") ;;
+  --full) full=1 ;;
+  *) echo "usage: scripts/test.sh [--full]" >&2; exit 2 ;;
+esac
+
+phases=()
+phase_start=0
+phase_name=""
+begin() {
+  end_phase
+  phase_name="$1"
+  phase_start=$(date +%s)
+  echo "== $1"
+}
+end_phase() {
+  if [ -n "$phase_name" ]; then
+    phases+=("$(printf '%6d s  %s' $(($(date +%s) - phase_start)) "$phase_name")")
+  fi
+  phase_name=""
+}
+summary() {
+  local status=$?
+  end_phase
+  echo "== phases (wall time; exit $status)"
+  printf '%s\n' "${phases[@]}"
+  exit "$status"
+}
+trap summary EXIT
+
+begin "setup (packages)"
 bash scripts/setup.sh
-echo "== Release build + tests"
+begin "Release build"
 bash scripts/build.sh build -DCMAKE_BUILD_TYPE=Release -DSKYLIGHT_BUILD_TESTS=ON -DSKYLIGHT_BUILD_BENCH=ON
+begin "Release tests (ctest)"
 ctest --test-dir build --output-on-failure -j "$(nproc)"
-echo "== install + find_package(skylight) from a separate project"
+begin "install + find_package(skylight) from a separate project"
 rm -rf build/install build/consumer
 cmake --install build --prefix build/install >/dev/null
 cmake -S tests/consumer -B build/consumer -G Ninja -DCMAKE_PREFIX_PATH="$root/build/install" >/dev/null
@@ -22,14 +57,17 @@ example="$(build/consumer/readme_example)"
 echo "$example"
 grep -qx 'zenith luminance 7320.4 cd/m^2' <<<"$example"
 grep -qxF -- 'turbidity = 100 is outside [1, 64] (model '"'preetham'"')' <<<"$example"
-echo "== libFuzzer targets, 40000 executions each on a copy of the seed corpus, fixed seed (docs/TESTING.md)"
-# A fixed -seed and a fixed number of executions make the test command's fuzz pass the same on
-# every machine: a finding here recurs on rerun, and one CI finds is found here.
+[ "$full" = 1 ] || exit 0
+
+begin "libFuzzer targets, 40000 executions each, fixed seed (docs/TESTING.md)"
+# A fixed -seed and a fixed number of executions make the fuzz pass the same on every machine: a
+# finding here recurs on rerun, and one CI finds is found here.
 SKYLIGHT_FUZZ_RUNS="${SKYLIGHT_FUZZ_RUNS:-40000}" SKYLIGHT_FUZZ_FLAGS="-seed=1 ${SKYLIGHT_FUZZ_FLAGS:-}" \
   bash scripts/fuzz.sh
 if [ "${SKYLIGHT_SKIP_SANITIZERS:-0}" != "1" ]; then
-  echo "== ASan + UBSan build + tests"
+  begin "ASan + UBSan build"
   bash scripts/build.sh build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSKYLIGHT_SANITIZE=ON -DSKYLIGHT_BUILD_TESTS=ON -DSKYLIGHT_BUILD_BENCH=OFF
+  begin "ASan + UBSan tests (ctest)"
   ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
     ctest --test-dir build-asan --output-on-failure -j "$(nproc)"
 fi
