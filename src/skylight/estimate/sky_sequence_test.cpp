@@ -156,7 +156,7 @@ TEST(SkySequence, FourCaptureNetworkReproducesAHeldOutCapture) {
 // A real photograph (data/hdr_sky/city.exr, CC0, equirect, clipped sun, buildings): read through
 // io, its sun found, the automatic mask applied and sky pixels sampled.
 TEST(SkySequence, RealPanoramaIsReadMaskedAndSampled) {
-  const io::ImageF img = io::read_image(std::string(SKYLIGHT_TEST_DATA_DIR) + "/hdr_sky/city.exr");
+  const io::ImageF img = io::read_image(SKYLIGHT_TEST_DATA_DIR "/hdr_sky/city.exr");
   const Camera cam = equirect(img.width, img.height);
   SequenceSampling s;
   s.samples_per_image = 2000;

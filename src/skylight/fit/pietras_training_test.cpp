@@ -34,7 +34,7 @@ constexpr CommittedBounds kLog3Bounds{0.0147, 0.0455, 0.00061, 0.0329};
 // Validates data/nn/<name> and checks it against the bounds; night must be exactly dark.
 void expect_committed_within(const std::string& name, nn::PietrasKind kind,
                              const CommittedBounds& b) {
-  const std::string path = std::string(SKYLIGHT_TEST_DATA_DIR) + "/nn/" + name;
+  const std::string path = std::string(SKYLIGHT_TEST_DATA_DIR "/nn/") + name;
   const nn::PietrasNetwork net = nn::pietras_from_json(io::read_text_file(path), path);
   EXPECT_EQ(net.kind, kind);
   const PietrasValidation v = validate_pietras(net, kCommittedSamples, kCommittedSeed);
@@ -68,7 +68,7 @@ const nn::PietrasNetwork& small_pietras() {
 // measures for it; a network after 3 iterations fails a 5 % bound with FitFailed naming the check,
 // and with a bound it meets the result carries the check.
 TEST(PietrasTraining, TheHeldOutCheckBoundsTheFit) {
-  const std::string path = std::string(SKYLIGHT_TEST_DATA_DIR) + "/nn/log3.json";
+  const std::string path = SKYLIGHT_TEST_DATA_DIR "/nn/log3.json";
   const nn::PietrasNetwork log3 = nn::pietras_from_json(io::read_text_file(path), path);
   const double full_bound = pietras_region_policy(PietrasRegion::full).max_luminance_p95;
   const PietrasCheck c = check_pietras(log3, 1, full_bound);
