@@ -5,7 +5,8 @@ set -euo pipefail
 # chromium: the headless browser test of the report (tests/report_browser_test.sh).
 # clang + libclang-rt-14-dev: the libFuzzer targets (scripts/fuzz.sh, docs/TESTING.md).
 # EGL/GL + Mesa (llvmpipe) + glslang-tools: the headless GL module gpu/ and its tests (docs/GPU.md).
-PACKAGES=(build-essential cmake ninja-build pkg-config git
+# ccache: the compiler launcher when present (CMakeLists.txt, SKYLIGHT_CCACHE).
+PACKAGES=(build-essential cmake ninja-build pkg-config git ccache
   libeigen3-dev libopenexr-dev libimath-dev libstb-dev libcli11-dev libfmt-dev libexif-dev
   nlohmann-json3-dev libhwy-dev libgtest-dev libgmock-dev libbenchmark-dev
   chromium clang libclang-rt-14-dev
