@@ -119,9 +119,11 @@ void add_training_specs(ParameterSchema<Request>& s) {
            .min = 0.01,
            .max = 1e6,
            .default_value = Absent{fmt::format(
-               "{} s, with --network {} s per sub-network on average (pietras: M 16/7 of it, R, "
-               "G, B 4/7 each)",
-               kSkyTimeLimitS, kPietrasTimeLimitS)},
+               "{} s, with --network {} s per sub-network on average (pietras: M {:.0f} s, R, G, "
+               "B {:.0f} s each)",
+               kSkyTimeLimitS, kPietrasTimeLimitS,
+               kPietrasTimeLimitS * pietras_time_shares(nn::PietrasKind::pietras)[3],
+               kPietrasTimeLimitS * pietras_time_shares(nn::PietrasKind::pietras)[0])},
            .description = "stop training after this much CPU time (all threads; not wall time, "
                           "so a result does not depend on the machine's load)"})
       .optional_integer(
@@ -165,10 +167,12 @@ void add_training_specs(ParameterSchema<Request>& s) {
                100.0 * pietras_region_policy(PietrasRegion::full).max_luminance_p95,
                pietras_region_policy(PietrasRegion::sky_dome).name,
                100.0 * pietras_region_policy(PietrasRegion::sky_dome).max_luminance_p95)},
-           .description = "bound on the 95th percentile of the relative radiance error on the "
-                          "held-out check skies (T every 0.1; --images: the held-out captures; "
-                          "--network: the luminance error on 20 000 held-out day samples); "
-                          "beyond it training fails and nothing is written"})
+           .description = fmt::format(
+               "bound on the 95th percentile of the relative radiance error on the held-out "
+               "check skies (T every 0.1; --images: the held-out captures; --network: the "
+               "luminance error on {} held-out day samples); beyond it training fails and "
+               "nothing is written",
+               kPietrasCheckSamples)})
       .optional_number(
           &Request::target_scale,
           {.name = "target-scale",

@@ -234,6 +234,17 @@ void record_provenance(nn::PietrasNetwork& net, const PietrasTraining& t,
   }
 }
 
+// The held-out check against nishita as `source` samples it (the network's own planet).
+PietrasCheck check_against(const nn::PietrasNetwork& net, const NishitaSampler& source,
+                           std::uint64_t training_seed, double max_luminance_p95) {
+  PietrasCheck c;
+  c.seed = training_seed + kPietrasCheckSeedOffset;
+  c.max_luminance_p95 = max_luminance_p95;
+  c.errors = pietras_errors(
+      net, sample_nishita(source, PietrasSampling::day, kPietrasCheckSamples, c.seed));
+  return c;
+}
+
 }  // namespace
 
 PietrasTrainingResult train_pietras(const PietrasTraining& t) {
@@ -290,8 +301,8 @@ PietrasTrainingResult train_pietras(const PietrasTraining& t) {
       net, t, p, n,
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
   if (t.check) {
-    result.check = check_pietras(
-        net, t.options.seed,
+    result.check = check_against(
+        net, source, t.options.seed,
         t.max_luminance_p95.value_or(pietras_region_policy(t.region).max_luminance_p95));
     if (!result.check->passed())
       throw FitFailed(fmt::format(
@@ -315,13 +326,8 @@ std::string PietrasCheck::summary() const {
 
 PietrasCheck check_pietras(const nn::PietrasNetwork& net, std::uint64_t training_seed,
                            double max_luminance_p95) {
-  PietrasCheck c;
-  c.seed = training_seed + kPietrasCheckSeedOffset;
-  c.max_luminance_p95 = max_luminance_p95;
-  c.errors =
-      pietras_errors(net, sample_nishita(NishitaSampler(nishita_parameters_of(net)),
-                                         PietrasSampling::day, kPietrasCheckSamples, c.seed));
-  return c;
+  return check_against(net, NishitaSampler(nishita_parameters_of(net)), training_seed,
+                       max_luminance_p95);
 }
 
 PietrasErrors pietras_errors(const nn::PietrasNetwork& net, const PietrasSamples& s) {

@@ -411,51 +411,59 @@ TEST(ImageIo, PngWithAnEmptyIdatChunkReadsTheSamePixels) {
   EXPECT_THROW(read_png(dir / "pnm.png"), IoError);
 }
 
+// A small PNG as write_png writes it, and the offset of its IEND chunk (its length field).
+struct PlainPng {
+  Image8 image = byte_pattern(3, 2, 41);
+  std::string bytes;
+  std::size_t iend = 0;
+};
+PlainPng plain_png(const ScratchDir& dir) {
+  PlainPng png;
+  write_png(dir / "plain.png", png.image);
+  png.bytes = slurp(dir / "plain.png");
+  const std::size_t type = png.bytes.find("IEND");
+  EXPECT_NE(type, std::string::npos);
+  png.iend = type - 4;
+  return png;
+}
+
+// read_png refuses `bytes` with an IoError whose message contains `fragment`.
+void expect_png_refused(const ScratchDir& dir, const std::string& bytes,
+                        const std::string& fragment) {
+  spit(dir / "bad.png", bytes);
+  try {
+    (void)read_png(dir / "bad.png");
+    ADD_FAILURE() << "read a PNG that should be refused with '" << fragment << "'";
+  } catch (const IoError& e) {
+    EXPECT_NE(std::string(e.what()).find(fragment), std::string::npos) << e.what();
+  }
+}
+
 // A chunk that claims more bytes than the file has is refused before stb grows its buffer to the
 // claimed length (a few bytes once asked for 2 GiB: the image_png fuzz target, corpus file
 // oom_idat_length_*); bytes after IEND are not read.
 TEST(ImageIo, PngChunkLongerThanTheFileIsRefused) {
   ScratchDir dir;
-  const Image8 img = byte_pattern(3, 2, 41);
-  write_png(dir / "plain.png", img);
-  const std::string bytes = slurp(dir / "plain.png");
-  const std::size_t iend = bytes.find("IEND");
-  ASSERT_NE(iend, std::string::npos);
-  std::string bad = bytes.substr(0, iend - 4);
-  bad += std::string("\x7f\xff\xff\xf0IDAT", 8) + "xB`\x82 and some more";
-  spit(dir / "long.png", bad);
-  try {
-    (void)read_png(dir / "long.png");
-    ADD_FAILURE() << "a chunk longer than the file was read";
-  } catch (const IoError& e) {
-    EXPECT_NE(std::string(e.what()).find("truncated or corrupt PNG: the chunk at byte"),
-              std::string::npos)
-        << e.what();
-  }
-  spit(dir / "trailing.png", bytes + std::string("\xff\xff\xff\xffjunk", 8));
-  EXPECT_EQ(read_png(dir / "trailing.png").data, img.data);
+  const PlainPng png = plain_png(dir);
+  expect_png_refused(dir,
+                     png.bytes.substr(0, png.iend) + std::string("\x7f\xff\xff\xf0IDAT", 8) +
+                         "xB`\x82 and some more",
+                     "truncated or corrupt PNG: the chunk at byte");
+  spit(dir / "trailing.png", png.bytes + std::string("\xff\xff\xff\xffjunk", 8));
+  EXPECT_EQ(read_png(dir / "trailing.png").data, png.image.data);
 }
 
 // A file cut inside a chunk, before IEND, is refused by name: stb would read the partial chunk's
 // header (an empty IDAT's in the image_png fuzz target's find, corpus file cut_empty_idat_*).
 TEST(ImageIo, PngCutInsideAChunkIsRefused) {
   ScratchDir dir;
-  const Image8 img = byte_pattern(3, 2, 41);
-  write_png(dir / "plain.png", img);
-  const std::string bytes = slurp(dir / "plain.png");
-  const std::size_t iend = bytes.find("IEND");
-  ASSERT_NE(iend, std::string::npos);
-  for (const std::size_t cut : {iend - 4 + 1, iend - 4 + 8, iend - 4 + 11}) {
+  const PlainPng png = plain_png(dir);
+  for (const std::size_t cut : {png.iend + 1, png.iend + 8, png.iend + 11}) {
     SCOPED_TRACE(cut);
-    spit(dir / "cut.png", bytes.substr(0, cut));
-    try {
-      (void)read_png(dir / "cut.png");
-      ADD_FAILURE() << "a PNG cut inside its last chunk was read";
-    } catch (const IoError& e) {
-      EXPECT_NE(std::string(e.what()).find("truncated PNG: the"), std::string::npos) << e.what();
-    }
+    expect_png_refused(dir, png.bytes.substr(0, cut), "truncated PNG: the");
   }
-  spit(dir / "cut_empty_idat.png", bytes.substr(0, iend - 4) + std::string("\0\0\0\0IDAT\x82", 9));
+  spit(dir / "cut_empty_idat.png",
+       png.bytes.substr(0, png.iend) + std::string("\0\0\0\0IDAT\x82", 9));
   EXPECT_THROW((void)read_png(dir / "cut_empty_idat.png"), IoError);
 }
 
