@@ -5,6 +5,8 @@
 #include <fmt/format.h>
 #include <algorithm>
 #include <cmath>
+#include <mutex>
+#include <utility>
 
 #include "skylight/atmosphere/detail/scatter_kernel.h"
 #include "skylight/core/data.h"
@@ -344,6 +346,62 @@ Atmosphere::~Atmosphere() = default;
 Atmosphere::Atmosphere(Atmosphere&&) noexcept = default;
 Atmosphere& Atmosphere::operator=(Atmosphere&&) noexcept = default;
 
+namespace {
+
+// What one component's table depends on: its density profile, the planet's radii and the table's
+// resolution; not its coefficients or phase function, nor the sun. Skies that differ only in
+// those (a sun path, an animation, a sweep of g or albedo) share their tables.
+struct TableKey {
+  Profile profile = Profile::exponential;
+  double scale_height_m = 0, peak_altitude_m = 0, half_width_m = 0;
+  double ground_radius_m = 0, top_radius_m = 0;
+  int rho = 0, mu = 0, quadrature = 0;
+  bool operator==(const TableKey&) const = default;
+};
+
+// The tables of the last kTableCacheEntries distinct keys (256 KB each at the default 256 x 256),
+// most recently used first. A table stays alive while an Atmosphere holds it, cached or not.
+constexpr std::size_t kTableCacheEntries = 16;
+
+class TableCache {
+ public:
+  template <class Build>
+  std::shared_ptr<const std::vector<float>> get(const TableKey& key, const Build& build) {
+    {
+      const std::lock_guard lock(mutex_);
+      if (auto t = take(key)) return t;
+    }
+    // Built outside the lock: threads building different atmospheres do not wait for each
+    // other. Two threads building the same key keep the first one cached.
+    auto table = std::make_shared<const std::vector<float>>(build());
+    const std::lock_guard lock(mutex_);
+    if (auto t = take(key)) return t;
+    entries_.insert(entries_.begin(), {key, table});
+    if (entries_.size() > kTableCacheEntries) entries_.pop_back();
+    return table;
+  }
+
+ private:
+  // The entry for key, moved to the front; null when absent. Caller holds mutex_.
+  std::shared_ptr<const std::vector<float>> take(const TableKey& key) {
+    const auto it = std::find_if(entries_.begin(), entries_.end(),
+                                 [&](const auto& e) { return e.first == key; });
+    if (it == entries_.end()) return nullptr;
+    std::rotate(entries_.begin(), it, it + 1);
+    return entries_.front().second;
+  }
+
+  std::mutex mutex_;
+  std::vector<std::pair<TableKey, std::shared_ptr<const std::vector<float>>>> entries_;
+};
+
+TableCache& table_cache() {
+  static TableCache cache;
+  return cache;
+}
+
+}  // namespace
+
 Atmosphere::Atmosphere(const AtmosphereParameters& p, const FastSettings& s)
     : params_(p), settings_(s) {
   params_.validate();
@@ -362,24 +420,35 @@ Atmosphere::Atmosphere(const AtmosphereParameters& p, const FastSettings& s)
     const double x_top = tent ? 0.0 : std::exp(-(Rt - R0) / c.scale_height_m);
     coord_top_.push_back(x_top);
     coord_scale_.push_back((s.table_rho - 1) / (1.0 - x_top));
-    std::vector<float> t(static_cast<std::size_t>(s.table_rho) * s.table_mu);
-    for (int i = 1; i < s.table_rho; ++i) {  // row 0 (the top) stays 0
-      const double x = x_top + (1.0 - x_top) * i / (s.table_rho - 1);
-      const double h = tent ? (1.0 - x) * (Rt - R0) : -c.scale_height_m * std::log(x);
-      const double r = std::min(Rt, R0 + h);
-      for (int j = 0; j < s.table_mu; ++j) {
-        const double y = static_cast<double>(j) / (s.table_mu - 1);
-        t[static_cast<std::size_t>(i) * s.table_mu + j] =
-            static_cast<float>(optical_length_quadrature(r, y * y, c, R0, Rt, s.table_quadrature));
+    const TableKey key{c.profile,
+                       tent ? 0.0 : c.scale_height_m,
+                       tent ? c.peak_altitude_m : 0.0,
+                       tent ? c.half_width_m : 0.0,
+                       R0,
+                       Rt,
+                       s.table_rho,
+                       s.table_mu,
+                       s.table_quadrature};
+    tables_.push_back(table_cache().get(key, [&] {
+      std::vector<float> t(static_cast<std::size_t>(s.table_rho) * s.table_mu);
+      for (int i = 1; i < s.table_rho; ++i) {  // row 0 (the top) stays 0
+        const double x = x_top + (1.0 - x_top) * i / (s.table_rho - 1);
+        const double h = tent ? (1.0 - x) * (Rt - R0) : -c.scale_height_m * std::log(x);
+        const double r = std::min(Rt, R0 + h);
+        for (int j = 0; j < s.table_mu; ++j) {
+          const double y = static_cast<double>(j) / (s.table_mu - 1);
+          t[static_cast<std::size_t>(i) * s.table_mu + j] = static_cast<float>(
+              optical_length_quadrature(r, y * y, c, R0, Rt, s.table_quadrature));
+        }
       }
-    }
-    tables_.push_back(std::move(t));
+      return t;
+    }));
   }
   kernel_tables_ = std::make_unique<detail::KernelTable[]>(p.components.size());
   for (std::size_t i = 0; i < p.components.size(); ++i) {
     const Component& c = p.components[i];
     detail::KernelTable& t = kernel_tables_[i];
-    t.data = tables_[i].data();
+    t.data = tables_[i]->data();
     t.rows = s.table_rho;
     t.cols = s.table_mu;
     t.exponential = c.profile == Profile::exponential;
@@ -410,7 +479,7 @@ double Atmosphere::lookup(std::size_t i, double x, MuCoord c) const {
   const double fx = std::clamp((x - coord_top_[i]) * coord_scale_[i], 0.0, nr - 1.0);
   const int ix = std::min(static_cast<int>(fx), nr - 2);
   const double ax = fx - ix, ay = c.a;
-  const float* row0 = tables_[i].data() + static_cast<std::size_t>(ix) * nm + c.i;
+  const float* row0 = tables_[i]->data() + static_cast<std::size_t>(ix) * nm + c.i;
   const float* row1 = row0 + nm;
   return (1 - ax) * ((1 - ay) * row0[0] + ay * row0[1]) + ax * ((1 - ay) * row1[0] + ay * row1[1]);
 }

@@ -136,6 +136,8 @@ class Atmosphere {
   const FastSettings& settings() const { return settings_; }
   // Radii of the tent profiles' kinks inside the atmosphere (where view rays are cut).
   std::span<const double> kink_radii() const { return kink_radii_; }
+  // Component i's optical-length table, [level index][mu index] (table_rho x table_mu).
+  std::span<const float> table(std::size_t i) const { return *tables_.at(i); }
 
   // Optical length of component i from radius r along cos(zenith) mu to the top [m], from the
   // table. mu >= 0: bilinear lookup L[x, mu] at the level x of r (its density for exponential
@@ -199,7 +201,9 @@ class Atmosphere {
   std::vector<double> inv_height_;   // per component, 1/H (exponential) or 1/(r_top - R0) (tent)
   std::vector<double> coord_top_;    // per component, level coordinate at the top radius
   std::vector<double> coord_scale_;  // per component, (table_rho - 1) / (1 - coord_top)
-  std::vector<std::vector<float>> tables_;  // per component, [level index][mu index]
+  // Per component, [level index][mu index]; shared with other atmospheres of the same profile,
+  // radii and table settings (a process-wide cache of recent tables, atmosphere.cpp).
+  std::vector<std::shared_ptr<const std::vector<float>>> tables_;
   // Views of tables_ for the SIMD kernel (detail/scatter_kernel.h), one per component.
   std::unique_ptr<detail::KernelTable[]> kernel_tables_;
 };

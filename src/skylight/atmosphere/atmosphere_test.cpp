@@ -73,6 +73,40 @@ TEST(Atmosphere, VerticalOpticalLengthClosedForm) {
   }
 }
 
+// Atmospheres whose components have the same profile, radii and table settings share the table
+// (atmosphere.cpp's cache); a component with another profile gets its own, and a table rebuilt
+// after the cache let it go holds the same numbers.
+TEST(Atmosphere, TablesAreSharedByProfileAndRebuiltEqual) {
+  AtmosphereParameters a = off_earth();
+  AtmosphereParameters b = a;
+  b.components[1].g = -0.3;  // phase and coefficients: not the table's
+  b.components[1].scattering_per_m *= 2;
+  b.components[1].extinction_per_m *= 2;
+  AtmosphereParameters c = a;
+  c.components[1].scale_height_m = 2.5e3;  // another profile
+  const Atmosphere ta(a), tb(b), tc(c);
+  EXPECT_EQ(ta.table(0).data(), tb.table(0).data());
+  EXPECT_EQ(ta.table(1).data(), tb.table(1).data());
+  EXPECT_EQ(ta.table(0).data(), tc.table(0).data());
+  EXPECT_NE(ta.table(1).data(), tc.table(1).data());
+  EXPECT_NE(ta.table(1)[ta.table(1).size() - 1], tc.table(1)[tc.table(1).size() - 1]);
+  const std::vector<float> kept(ta.table(1).begin(), ta.table(1).end());
+  // More distinct profiles than the cache keeps: a's tables leave it, ta keeps them alive.
+  for (int k = 0; k < 40; ++k) {
+    AtmosphereParameters d = a;
+    d.components[0].scale_height_m = 5e3 + 100.0 * k;
+    d.components[1].scale_height_m = 1e3 + 50.0 * k;
+    const Atmosphere td(d, FastSettings{.table_rho = 16, .table_mu = 16});
+    EXPECT_GT(td.optical_length(0, d.ground_radius_m, 1.0), 0.0);
+  }
+  const Atmosphere again(a);
+  EXPECT_NE(again.table(1).data(), ta.table(1).data());
+  EXPECT_TRUE(std::equal(kept.begin(), kept.end(), again.table(1).begin()));
+  EXPECT_TRUE(std::equal(kept.begin(), kept.end(), ta.table(1).begin()));
+  const double r = a.ground_radius_m + 2e3;
+  EXPECT_EQ(ta.optical_length(1, r, 0.3), again.optical_length(1, r, 0.3));
+}
+
 TEST(Atmosphere, HorizontalAndReflectedOpticalLength) {
   // Against a high-accuracy quadrature (2 x 20000 intervals); rays below the horizontal use the
   // table's reflection rule L[rho, -c] = 2 L[rho_x, 0] - L[rho, c].

@@ -61,7 +61,11 @@ const Camera kFisheye{Projection::fisheye, 256, 256,
                       FisheyeLayout{FisheyeLens::equidistant, kPi, 0.0}};
 
 TEST(SkySegmentation, WatershedMaskMatchesTheSceneSky) {
-  for (const auto& [name, cam] : {std::pair{"equirect", kEquirect}, {"fisheye", kFisheye}}) {
+  for (const auto& entry : {std::pair{"equirect", kEquirect}, {"fisheye", kFisheye}}) {
+    // Named references, not structured bindings: the lambda below captures the camera, which
+    // clang 14 (the sanitizer and fuzz builds' compiler) does not allow for a binding.
+    const char* const name = entry.first;
+    const Camera& cam = entry.second;
     const ScenePhoto p = render_skyline_scene(cam);
     const estimate::SkyMask mask = segment_sky(p.image, cam);
     const double score = iou(mask, p.truth);

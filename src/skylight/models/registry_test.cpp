@@ -57,8 +57,9 @@ TEST(Registry, ModelsReportWhatTheyReadAsParameterValues) {
     const auto m = info.make(sp);
     const ParameterValues read = m->parameter_values();
     for (const auto& [name, value] : read.all()) {
-      const auto it = std::find_if(info.parameters.begin(), info.parameters.end(),
-                                   [&](const ParameterSpec& s) { return s.name == name; });
+      const auto it =
+          std::find_if(info.parameters.begin(), info.parameters.end(),
+                       [&name = name](const ParameterSpec& s) { return s.name == name; });
       ASSERT_NE(it, info.parameters.end()) << info.name << " reports '" << name << "'";
       EXPECT_NO_THROW(it->check(value)) << info.name << " " << name;
     }

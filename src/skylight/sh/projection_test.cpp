@@ -15,9 +15,6 @@ namespace {
 // Closed forms of a few terms: double round-off only.
 constexpr double kRoundOff = 1e-15;
 constexpr double kExact = 1e-12;
-// The refinement's stopping tolerance (relative to c_00); the sin terms vanish by the symmetry of
-// the azimuth grid about phi = 0, so 10x this is a loose bound.
-constexpr double kConvergedTolerance = 1e-6;
 
 TEST(ShProjection, GaussLegendreIntegratesPolynomialsExactly) {
   std::vector<double> x, w;
