@@ -19,7 +19,7 @@ namespace skylight::analysis {
 namespace {
 
 // The same sky compared with itself: exactly 0 (same numbers); allow last-bit noise of log10.
-constexpr double kSelfRmsTol = 1e-12;
+constexpr double kScanSelfRmsTol = 1e-12;
 // log10(1 +- 0.05): the largest |d| the synthetic scan's noise can produce against its own sky.
 const double kNoiseLog10Bound = std::log10(1.0 / 0.95);
 
@@ -115,8 +115,8 @@ TEST(Scan, ErrorsAgainstTheGeneratingSky) {
   const auto sky = make_sky_model("cie", p);
   const ScanErrors e0 = compare_to_scan(*sky, exact, deg_to_rad(5.0));
   // The same sky, unrounded in memory: round-off only.
-  EXPECT_NEAR(e0.rms_log10_absolute, 0.0, kSelfRmsTol);
-  EXPECT_NEAR(e0.rms_log10_relative, 0.0, kSelfRmsTol);
+  EXPECT_NEAR(e0.rms_log10_absolute, 0.0, kScanSelfRmsTol);
+  EXPECT_NEAR(e0.rms_log10_relative, 0.0, kScanSelfRmsTol);
   const ScanErrors e = compare_to_scan(*sky, noisy, deg_to_rad(5.0));
   EXPECT_EQ(e.samples_used, 145u);
   EXPECT_GT(e.rms_log10_absolute, 0.0);

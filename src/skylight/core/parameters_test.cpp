@@ -1,5 +1,6 @@
 #include "skylight/core/parameters.h"
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <array>
@@ -72,7 +73,7 @@ struct Example {
   }
 };
 
-std::string error_of(const std::function<void()>& f) {
+std::string parameter_error(const std::function<void()>& f) {
   try {
     f();
   } catch (const InvalidArgument& e) {
@@ -105,32 +106,33 @@ TEST(Parameters, BindAppliesValuesOverDefaultsAndConvertsUnits) {
 TEST(Parameters, BindRejectsUnknownMissingAndOutOfRange) {
   Example e;
   const auto& s = Example::schema();
-  EXPECT_EQ(error_of([&] { s.bind(ParameterValues(), e, "model 'x'"); }),
+  EXPECT_EQ(parameter_error([&] { s.bind(ParameterValues(), e, "model 'x'"); }),
             "pair is required (model 'x'): two values");
   const auto pair = ParameterValue(std::vector<double>{0, 0});
-  EXPECT_EQ(
-      error_of([&] { s.bind(ParameterValues().set("pair", pair).set("bogus", 1.0), e, "t"); }),
-      "bogus is not a parameter (t) (parameters: height, angle, scale, count, "
-      "pair, path, fast)");
-  EXPECT_EQ(
-      error_of([&] { s.bind(ParameterValues().set("pair", pair).set("height", 11.0), e, "t"); }),
-      "height = 11 is outside [0, 10] (t)");
-  EXPECT_EQ(
-      error_of([&] { s.bind(ParameterValues().set("pair", pair).set("count", 2.5), e, "t"); }),
-      "count = 2.5 is not an integer (t)");
-  EXPECT_EQ(error_of([&] {
+  EXPECT_EQ(parameter_error(
+                [&] { s.bind(ParameterValues().set("pair", pair).set("bogus", 1.0), e, "t"); }),
+            "bogus is not a parameter (t) (parameters: height, angle, scale, count, "
+            "pair, path, fast)");
+  EXPECT_EQ(parameter_error(
+                [&] { s.bind(ParameterValues().set("pair", pair).set("height", 11.0), e, "t"); }),
+            "height = 11 is outside [0, 10] (t)");
+  EXPECT_EQ(parameter_error(
+                [&] { s.bind(ParameterValues().set("pair", pair).set("count", 2.5), e, "t"); }),
+            "count = 2.5 is not an integer (t)");
+  EXPECT_EQ(parameter_error([&] {
               s.bind(ParameterValues().set("pair", std::vector<double>{0, 0, 0}), e, "t");
             }),
             "pair needs 2 values, got 3 (t)");
-  EXPECT_EQ(error_of([&] {
+  EXPECT_EQ(parameter_error([&] {
               s.bind(ParameterValues().set("pair", std::vector<double>{0, 1.5}), e, "t");
             }),
             "pair = 1.5 (value 2) is outside [-1, 1] (t)");
-  EXPECT_NE(error_of([&] {
+  EXPECT_NE(parameter_error([&] {
               s.bind(ParameterValues().set("pair", pair).set("height", std::nan("")), e, "t");
             }),
             "no error");
-  EXPECT_NE(error_of([&] { s.bind(ParameterValues().set("pair", pair).set("path", 1.0), e, "t"); }),
+  EXPECT_NE(parameter_error(
+                [&] { s.bind(ParameterValues().set("pair", pair).set("path", 1.0), e, "t"); }),
             "no error");
 }
 
@@ -139,11 +141,11 @@ TEST(Parameters, ValidateChecksAStructBuiltInCode) {
   e.pair = std::array<double, 2>{0.0, 0.0};
   EXPECT_NO_THROW(Example::schema().validate(e, "t"));
   e.angle = 100 * kDegree;
-  EXPECT_EQ(error_of([&] { Example::schema().validate(e, "t"); }),
+  EXPECT_EQ(parameter_error([&] { Example::schema().validate(e, "t"); }),
             "angle = 100 is outside [-90, 90] (t)");
   e.angle = 0;
   e.pair.reset();
-  EXPECT_EQ(error_of([&] { Example::schema().validate(e, "t"); }),
+  EXPECT_EQ(parameter_error([&] { Example::schema().validate(e, "t"); }),
             "pair is required (t): two values");
 }
 
@@ -153,9 +155,10 @@ TEST(Parameters, MessagesUseTheFrontEndsSpelling) {
   Example e;
   e.pair = std::array<double, 2>{0.0, 0.0};
   e.angle = 100 * kDegree;
-  set_parameter_spelling([](std::string_view name) { return "<" + std::string(name) + ">"; });
-  const std::string spelled_by_front_end = error_of([&] { Example::schema().validate(e, "t"); });
-  const std::string unknown = error_of([&] {
+  set_parameter_spelling([](std::string_view name) { return fmt::format("<{}>", name); });
+  const std::string spelled_by_front_end =
+      parameter_error([&] { Example::schema().validate(e, "t"); });
+  const std::string unknown = parameter_error([&] {
     Example::schema().bind(ParameterValues().set("pair", std::vector<double>{0, 0}).set("x", 1.0),
                            e, "t");
   });

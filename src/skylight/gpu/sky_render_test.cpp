@@ -24,24 +24,24 @@ using testing_support::GpuTest;
 // channel, both with the CPU's float directions (DirectionSource::texture: the network alone) and
 // with the directions computed in GLSL (the render path): the relative difference where the CPU
 // value is above the floor (docs/GPU.md). Measured worst 2.2e-5.
-constexpr double kGpuRelativeTolerance = 1e-4;
+constexpr double kImageRelativeTolerance = 1e-4;
 // Floor: a fraction of the image's brightest channel; below it the output is "tiny" (the satilmis
 // decoding 0.5 (1/y - 1) cancels as y -> 1 and absolute float rounding dominates).
-constexpr double kGpuRelativeFloor = 1e-3;
+constexpr double kImageRelativeFloor = 1e-3;
 // Angle between the GLSL and the CPU (double) direction of a pixel [rad]: Mesa's GLSL atan is a
 // polynomial approximation (measured errors up to 7e-6 rad, stereographic fisheye), the rest
 // single-precision rounding of angles up to 2 pi (1e-6).
 constexpr double kDirectionTolerance = 2e-5;
 
-struct Difference {
+struct ImageDifference {
   double worst_relative = 0.0;
   int compared = 0, mask_mismatches = 0;
 };
 
-Difference compare(const render::SkyImage& gpu, const render::SkyImage& cpu) {
-  Difference d;
+ImageDifference compare(const render::SkyImage& gpu, const render::SkyImage& cpu) {
+  ImageDifference d;
   const float peak = *std::max_element(cpu.rgb.data.begin(), cpu.rgb.data.end());
-  const double floor = kGpuRelativeFloor * peak;
+  const double floor = kImageRelativeFloor * peak;
   for (std::size_t i = 0; i < cpu.mask.size(); ++i) {
     if (gpu.mask[i] != cpu.mask[i]) {
       ++d.mask_mismatches;
@@ -106,7 +106,7 @@ void expect_matches_cpu(const NeuralSkyModel& model, const render::RenderSetting
   r.draw();
   const render::SkyImage gpu = r.image();
   const render::SkyImage cpu = render::render_sky(model, s);
-  const Difference d = compare(gpu, cpu);
+  const ImageDifference d = compare(gpu, cpu);
   EXPECT_GT(d.compared, s.width * s.height) << name(s);
   EXPECT_LE(d.worst_relative, tolerance) << name(s);
   // Shader directions: a pixel centre at the very edge of a fisheye circle may fall on either
@@ -121,7 +121,7 @@ TEST_F(GpuTest, NetworkMatchesTheCpuBatchPathInEveryProjection) {
   for (const double sun_zenith_deg : {40.0, 75.0}) {
     const NeuralSkyModel model(sky(sun_zenith_deg, 250.0));
     for (const auto& s : layouts())
-      expect_matches_cpu(model, s, DirectionSource::texture, kGpuRelativeTolerance);
+      expect_matches_cpu(model, s, DirectionSource::texture, kImageRelativeTolerance);
   }
 }
 
@@ -129,7 +129,7 @@ TEST_F(GpuTest, ShaderRenderMatchesTheCpuRenderInEveryProjection) {
   for (const double sun_zenith_deg : {40.0, 75.0}) {
     const NeuralSkyModel model(sky(sun_zenith_deg, 250.0));
     for (const auto& s : layouts())
-      expect_matches_cpu(model, s, DirectionSource::shader, kGpuRelativeTolerance);
+      expect_matches_cpu(model, s, DirectionSource::shader, kImageRelativeTolerance);
   }
 }
 
@@ -190,7 +190,7 @@ PietrasDifference compare_pietras(const render::SkyImage& gpu, const render::Sky
                                   double max_value) {
   PietrasDifference d;
   const float peak = *std::max_element(cpu.rgb.data.begin(), cpu.rgb.data.end());
-  const double floor = std::max(kGpuRelativeFloor * peak, kPietrasScaleFloor * max_value);
+  const double floor = std::max(kImageRelativeFloor * peak, kPietrasScaleFloor * max_value);
   for (std::size_t i = 0; i < cpu.mask.size(); ++i) {
     const float* a = gpu.rgb.data.data() + 3 * i;
     const float* b = cpu.rgb.data.data() + 3 * i;
@@ -248,7 +248,7 @@ TEST_F(GpuTest, PietrasNetworksMatchTheCpuRender) {
     const std::string what =
         fmt::format("{} at {} m, sun zenith {} deg", c.file, c.altitude_m, c.sun_zenith_deg);
     EXPECT_GT(d.compared, 0) << what;
-    EXPECT_LE(d.worst_relative, kGpuRelativeTolerance) << what;
+    EXPECT_LE(d.worst_relative, kImageRelativeTolerance) << what;
     EXPECT_LE(d.lit_mismatches, kPietrasLitMismatches) << what;
     EXPECT_EQ(d.dark > 0, c.expect_dark) << what << ": " << d.dark << " dark pixels";
     ::testing::Test::RecordProperty(what + " worst_relative", std::to_string(d.worst_relative));

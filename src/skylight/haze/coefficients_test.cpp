@@ -16,7 +16,7 @@ constexpr double kPrintedDigitTol = 1e-4;
 // (ours) and e^(-0.01 beta s) (Zhao) relative to Preetham's e^(-beta s) are the two-digit
 // statements checked here; eq. 18 gives 0.0134, Preetham's K(550 nm) = 0.678 (3 % margin).
 constexpr double kPaperRatioRelTol = 0.03;
-constexpr double kClosedFormRelTol = 1e-12;  // the same formula evaluated twice
+constexpr double kCoefficientsClosedFormRelTol = 1e-12;  // the same formula evaluated twice
 
 constexpr double kPerKm = 1e3;  // [1/m] -> [1/km]
 
@@ -37,17 +37,17 @@ TEST(HazeCoefficients, RayleighAt550nmSeaLevelMatchesSection51) {
 TEST(HazeCoefficients, AltitudeScalesByTheScaleHeights) {
   for (auto v : {ScatteringVariant::improved, ScatteringVariant::preetham}) {
     EXPECT_NEAR(rayleigh_per_m(500.0, kRayleighScaleHeight_m, v) / rayleigh_per_m(500.0, 0.0, v),
-                std::exp(-1.0), kClosedFormRelTol);
+                std::exp(-1.0), kCoefficientsClosedFormRelTol);
     EXPECT_NEAR(mie_per_m(500.0, 3.0, kMieScaleHeight_m, v) / mie_per_m(500.0, 3.0, 0.0, v),
-                std::exp(-1.0), kClosedFormRelTol);
+                std::exp(-1.0), kCoefficientsClosedFormRelTol);
   }
   // lambda^-4 (Rayleigh) and lambda^-(nu - 2) (Mie, nu = 4; improved K_M is constant).
   EXPECT_NEAR(rayleigh_per_m(400.0, 0.0, ScatteringVariant::improved) /
                   rayleigh_per_m(800.0, 0.0, ScatteringVariant::improved),
-              16.0, 16.0 * kClosedFormRelTol);
+              16.0, 16.0 * kCoefficientsClosedFormRelTol);
   EXPECT_NEAR(mie_per_m(400.0, 3.0, 0.0, ScatteringVariant::improved) /
                   mie_per_m(800.0, 3.0, 0.0, ScatteringVariant::improved),
-              4.0, 4.0 * kClosedFormRelTol);
+              4.0, 4.0 * kCoefficientsClosedFormRelTol);
 }
 
 TEST(HazeCoefficients, ImprovedMieAgainstPreethamAndZhaoSection721) {
@@ -63,7 +63,7 @@ TEST(HazeCoefficients, ImprovedMieAgainstPreethamAndZhaoSection721) {
     // Zhao's is Preetham's / 100 (c x 1e-18); ours / Zhao's = 0.0137 / 0.01 = 1.37: ours is the
     // larger (§7.2.1, Fig. 9: our attenuation is stronger than Zhao's). The text's "1.43 times
     // smaller" is this ratio's inverse 0.7 read the other way round (docs/HAZE.md).
-    EXPECT_NEAR(zhao / preetham, 0.01, 0.01 * kClosedFormRelTol);
+    EXPECT_NEAR(zhao / preetham, 0.01, 0.01 * kCoefficientsClosedFormRelTol);
     EXPECT_NEAR(ours / zhao, 1.37, 1.37 * kPaperRatioRelTol);
   }
 }
@@ -73,7 +73,7 @@ TEST(HazeCoefficients, Equation24MieRatioIsTurbidityRatio) {
     for (double t2 : {1.9, 3.0, 9.0}) {
       const double r = mie_per_m(480.0, t1, 40.0, ScatteringVariant::improved) /
                        mie_per_m(480.0, t2, 40.0, ScatteringVariant::improved);
-      EXPECT_NEAR(r, (t1 - 1.0) / (t2 - 1.0), kClosedFormRelTol) << t1 << " " << t2;
+      EXPECT_NEAR(r, (t1 - 1.0) / (t2 - 1.0), kCoefficientsClosedFormRelTol) << t1 << " " << t2;
     }
   // T = 1 is pure air (eq. 5): no Mie scattering with eq. 16.
   EXPECT_EQ(mie_per_m(550.0, 1.0, 0.0, ScatteringVariant::improved), 0.0);

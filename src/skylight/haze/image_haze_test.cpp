@@ -14,16 +14,16 @@
 namespace skylight::haze {
 namespace {
 
-constexpr double kClosedFormRelTol = 1e-12;
+constexpr double kImageClosedFormRelTol = 1e-12;
 // Float images and float tables against double arithmetic: a few float ulps of values <= ~2.
 constexpr double kFloatTol = 2e-6;
 // The fast path's Gamma tables are within kDefaultTableError (1e-5) of eq. 11; an output moves by
 // at most that times |I - A| / Gamma_s (<= 2 / 0.05 here) plus float rounding.
-constexpr double kTableVsExactTol = 1e-5 * 40.0 + 1e-5;
+constexpr double kImageTableVsExactTol = 1e-5 * 40.0 + 1e-5;
 // Morales 2017 §7.2.3 quality floor for a re-targeted image against its ground truth.
 constexpr double kRetargetQualityFloor = 0.98;
 
-const CameraSensitivity& eos() {
+const CameraSensitivity& canon_eos() {
   return find_camera("canon-eos-5d");
 }
 
@@ -61,10 +61,10 @@ HazeSettings settings(HazeOperation op, double t, std::optional<double> target =
 
 TEST(HazeImage, NormalisedDepthEquation19) {
   EXPECT_DOUBLE_EQ(depth_from_normalised(0.0, 10.0, 5000.0), 10.0);
-  EXPECT_NEAR(depth_from_normalised(1.0, 10.0, 5000.0), 5000.0, 5000.0 * kClosedFormRelTol);
+  EXPECT_NEAR(depth_from_normalised(1.0, 10.0, 5000.0), 5000.0, 5000.0 * kImageClosedFormRelTol);
   // s_bar = 1/2: s = 2 near far / (far + near).
   EXPECT_NEAR(depth_from_normalised(0.5, 10.0, 5000.0), 2.0 * 10 * 5000 / 5010.0,
-              kClosedFormRelTol * 20);
+              kImageClosedFormRelTol * 20);
   io::ImageF d(4, 3, 1);
   d.data.assign(12, 0.5f);
   const io::ImageF m = depth_in_metres(d, {10.0, 5000.0}, 4, 3, "depth");
@@ -87,7 +87,7 @@ TEST(HazeImage, DepthMapsAreChecked) {
   EXPECT_THROW(depth_in_metres(d, {std::nullopt, 10.0}, 4, 3, "depth"), InvalidArgument);
   // Depth maps built in code are checked by the kernel too.
   d.data[7] = -1.0f;
-  EXPECT_THROW(apply_haze(pattern(4, 3), d, eos(), settings(HazeOperation::add, 2.0)),
+  EXPECT_THROW(apply_haze(pattern(4, 3), d, canon_eos(), settings(HazeOperation::add, 2.0)),
                InvalidArgument);
 }
 
@@ -95,37 +95,38 @@ TEST(HazeImage, AddIsEquation10AndMatchesTheExactPath) {
   const io::ImageF im = pattern(40, 30), d = ramp(40, 30, 200.0f, 20000.0f);
   const HazeSettings s = settings(HazeOperation::add, 3.0);
   HazeReport report;
-  const io::ImageF fast = apply_haze(im, d, eos(), s, &report);
-  const io::ImageF exact = apply_haze_exact(im, d, eos(), s);
+  const io::ImageF fast = apply_haze(im, d, canon_eos(), s, &report);
+  const io::ImageF exact = apply_haze_exact(im, d, canon_eos(), s);
   EXPECT_LE(report.table_error_bound, kDefaultTableError);
-  const Attenuation att(s.source, eos());
+  const Attenuation att(s.source, canon_eos());
   for (int y = 0; y < 30; y += 7)
     for (int x = 0; x < 40; x += 5) {
       const Rgb3 g = att.gamma(d.pixel(x, y)[0]);
       for (std::size_t c = 0; c < 3; ++c) {
         const double expected = im.pixel(x, y)[c] * g[c] + s.airlight_source[c] * (1.0 - g[c]);
         EXPECT_NEAR(exact.pixel(x, y)[c], expected, kFloatTol);
-        EXPECT_NEAR(fast.pixel(x, y)[c], expected, kTableVsExactTol);
+        EXPECT_NEAR(fast.pixel(x, y)[c], expected, kImageTableVsExactTol);
       }
     }
   // Depth 0: unchanged.
-  const io::ImageF zero = apply_haze(im, io::ImageF(40, 30, 1), eos(), s);
+  const io::ImageF zero = apply_haze(im, io::ImageF(40, 30, 1), canon_eos(), s);
   for (std::size_t i = 0; i < im.data.size(); ++i) EXPECT_NEAR(zero.data[i], im.data[i], kFloatTol);
 }
 
 TEST(HazeImage, RemoveInvertsAddWhereTransmissionIsAboveTheFloor) {
   const io::ImageF im = pattern(32, 24), d = ramp(32, 24, 100.0f, 8000.0f);
-  const io::ImageF hazy = apply_haze(im, d, eos(), settings(HazeOperation::add, 2.0));
+  const io::ImageF hazy = apply_haze(im, d, canon_eos(), settings(HazeOperation::add, 2.0));
   HazeReport report;
-  const io::ImageF back = apply_haze(hazy, d, eos(), settings(HazeOperation::remove, 2.0), &report);
+  const io::ImageF back =
+      apply_haze(hazy, d, canon_eos(), settings(HazeOperation::remove, 2.0), &report);
   EXPECT_EQ(report.clamped_transmission_pixels, 0u);
   // Both directions use the same Gamma table; Gamma >= ~0.2 at 8 km amplifies float rounding 5x.
   for (std::size_t i = 0; i < im.data.size(); ++i) EXPECT_NEAR(back.data[i], im.data[i], 1e-4);
   // Dense haze far away: Gamma_s below the floor there, the output stays finite and >= 0.
   const io::ImageF far = ramp(32, 24, 100.0f, 200000.0f);
-  const io::ImageF fog = apply_haze(im, far, eos(), settings(HazeOperation::add, 8.0));
+  const io::ImageF fog = apply_haze(im, far, canon_eos(), settings(HazeOperation::add, 8.0));
   const io::ImageF cleared =
-      apply_haze(fog, far, eos(), settings(HazeOperation::remove, 8.0), &report);
+      apply_haze(fog, far, canon_eos(), settings(HazeOperation::remove, 8.0), &report);
   EXPECT_GT(report.clamped_transmission_pixels, 0u);
   for (float v : cleared.data) EXPECT_TRUE(std::isfinite(v) && v >= 0.0f);
 }
@@ -135,17 +136,18 @@ TEST(HazeImage, RetargetIsEquation26AndComposes) {
   // T -> T with the same airlight is the identity.
   HazeSettings same = settings(HazeOperation::retarget, 2.5, 2.5);
   same.airlight_target = same.airlight_source;
-  const io::ImageF id = apply_haze(im, d, eos(), same);
+  const io::ImageF id = apply_haze(im, d, canon_eos(), same);
   for (std::size_t i = 0; i < im.data.size(); ++i) EXPECT_NEAR(id.data[i], im.data[i], kFloatTol);
   // add(T_t) == retarget(add(T_s), T_s -> T_t) for T_t > T_s (no floor involved).
-  const io::ImageF at_s = apply_haze(im, d, eos(), settings(HazeOperation::add, 2.0));
+  const io::ImageF at_s = apply_haze(im, d, canon_eos(), settings(HazeOperation::add, 2.0));
   HazeSettings up = settings(HazeOperation::retarget, 2.0, 4.0);
   up.airlight_target = up.airlight_source;
-  const io::ImageF retargeted = apply_haze(at_s, d, eos(), up);
-  const io::ImageF at_t = apply_haze(im, d, eos(), settings(HazeOperation::add, 4.0));
+  const io::ImageF retargeted = apply_haze(at_s, d, canon_eos(), up);
+  const io::ImageF at_t = apply_haze(im, d, canon_eos(), settings(HazeOperation::add, 4.0));
   for (std::size_t i = 0; i < im.data.size(); ++i)
     EXPECT_NEAR(retargeted.data[i], at_t.data[i], 1e-4);
-  EXPECT_THROW(apply_haze(im, d, eos(), settings(HazeOperation::retarget, 2.0)), InvalidArgument);
+  EXPECT_THROW(apply_haze(im, d, canon_eos(), settings(HazeOperation::retarget, 2.0)),
+               InvalidArgument);
 }
 
 // Morales 2017 §7.2.3 on synthetic ground truth: a scene with known spectra and depth rendered
@@ -154,7 +156,7 @@ TEST(HazeImage, RetargetIsEquation26AndComposes) {
 TEST(HazeImage, RetargetMatchesSpectralGroundTruth) {
   const int w = 96, h = 72;
   const Atmosphere src{1.9, 40.0}, dst{4.36, 40.0};
-  const SpectralWeights weights(eos());
+  const SpectralWeights weights(canon_eos());
   std::array<double, kGridSamples> beta_s{}, beta_t{}, sky{};
   for (std::size_t i = 0; i < kGridSamples; ++i) {
     const double nm = SpectralWeights::nm(i);
@@ -198,7 +200,7 @@ TEST(HazeImage, RetargetMatchesSpectralGroundTruth) {
   s.source = src;
   s.target_turbidity = dst.turbidity;
   s.airlight_source = s.airlight_target = airlight;
-  const io::ImageF result = apply_haze(source, d, eos(), s);
+  const io::ImageF result = apply_haze(source, d, canon_eos(), s);
   const double q_ssim = ssim(result, truth), q_hsv = hsv_histogram_correlation(result, truth);
   const double base_ssim = ssim(source, truth), base_hsv = hsv_histogram_correlation(source, truth);
   // Per channel: a single bin makes a channel's histograms equal (correlation 1).
@@ -224,8 +226,8 @@ TEST(HazeImage, CompositeBlendsTheHazedObjectOverTheBackground) {
   for (int x = 0; x < 16; ++x) alpha.pixel(x, 5)[0] = x < 8 ? 1.0f : 0.25f;
   const io::ImageF depth = ramp(16, 12, 3500.0f, 3500.0f);
   const HazeSettings s = settings(HazeOperation::add, 2.94);
-  const io::ImageF out = composite(bg, rgb, alpha, depth, eos(), s);
-  const io::ImageF hazed = apply_haze(rgb, depth, eos(), s);
+  const io::ImageF out = composite(bg, rgb, alpha, depth, canon_eos(), s);
+  const io::ImageF hazed = apply_haze(rgb, depth, canon_eos(), s);
   for (int x = 0; x < 16; ++x)
     for (int c = 0; c < 3; ++c) {
       const float a = alpha.pixel(x, 5)[0];
@@ -233,7 +235,7 @@ TEST(HazeImage, CompositeBlendsTheHazedObjectOverTheBackground) {
                   kFloatTol);
       EXPECT_EQ(out.pixel(x, 4)[c], bg.pixel(x, 4)[c]);
     }
-  EXPECT_THROW(composite(bg, pattern(8, 12), alpha, depth, eos(), s), InvalidArgument);
+  EXPECT_THROW(composite(bg, pattern(8, 12), alpha, depth, canon_eos(), s), InvalidArgument);
 }
 
 TEST(HazeImage, PhotoAirlightEquations12And13) {
@@ -251,7 +253,7 @@ TEST(HazeImage, PhotoAirlightEquations12And13) {
   const PhotoAirlight a = photo_airlight(sky, cam, 2.5, kPi / 2);
   EXPECT_EQ(a.pixels, 2u);
   const double theta_prime = kPi * 15.5 / 32.0;
-  EXPECT_NEAR(a.theta_prime, theta_prime, kClosedFormRelTol);
+  EXPECT_NEAR(a.theta_prime, theta_prime, kImageClosedFormRelTol);
   const double z = zeta(2.5, kPi / 2, theta_prime);
   EXPECT_NEAR(a.airlight[0], 0.8 * z, kFloatTol);
   EXPECT_NEAR(a.airlight[2], 1.4 * z, kFloatTol);
@@ -281,7 +283,7 @@ TEST(HazeImage, PhotoAirlightPerSectorOfAzimuth) {
   ASSERT_EQ(a.sectors.size(), static_cast<std::size_t>(kHorizonSectors));
   for (int s = 0; s < kHorizonSectors; ++s) {
     const HorizonSector& sector = a.sectors[static_cast<std::size_t>(s)];
-    EXPECT_NEAR(sector.azimuth, (s + 0.5) * 2 * kPi / kHorizonSectors, kClosedFormRelTol);
+    EXPECT_NEAR(sector.azimuth, (s + 0.5) * 2 * kPi / kHorizonSectors, kImageClosedFormRelTol);
     // The brightest of the sector: the largest azimuth of row 17 within it.
     double expected = 0.0;
     for (int col = 0; col < 72; ++col) {
@@ -291,7 +293,7 @@ TEST(HazeImage, PhotoAirlightPerSectorOfAzimuth) {
     }
     EXPECT_EQ(sector.pixels, 1u);
     EXPECT_NEAR(sector.horizon[0], expected, kFloatTol) << "sector " << s;
-    EXPECT_NEAR(sector.theta_prime, kPi * 17.5 / 36.0, kClosedFormRelTol);
+    EXPECT_NEAR(sector.theta_prime, kPi * 17.5 / 36.0, kImageClosedFormRelTol);
   }
   // The whole region's brightest 1 % (2 of 144): the two brightest sectors' pixels.
   EXPECT_EQ(a.pixels, 2u);
@@ -300,19 +302,20 @@ TEST(HazeImage, PhotoAirlightPerSectorOfAzimuth) {
 
 TEST(HazeImage, ZetaEquation13AndSkyModelAirlight) {
   EXPECT_DOUBLE_EQ(zeta(3.0, 1.2, 1.2), 1.0);
-  EXPECT_NEAR(zeta(3.0, 0.3, 1.0) * zeta(3.0, 1.0, 0.3), 1.0, kClosedFormRelTol);
+  EXPECT_NEAR(zeta(3.0, 0.3, 1.0) * zeta(3.0, 1.0, 0.3), 1.0, kImageClosedFormRelTol);
   const double horizon = zeta(3.0, kPi / 2, 1.0);
   EXPECT_TRUE(std::isfinite(horizon) && horizon > 1.0);  // brighter towards the horizon
   SkyParameters p;
   p.values.set("turbidity", 3.0);
   const auto preetham = make_sky_model("preetham", p);
-  const Rgb3 a = sky_model_airlight(*preetham, direction_from_angles(kPi / 2 - 0.05, 0.0), eos());
+  const Rgb3 a =
+      sky_model_airlight(*preetham, direction_from_angles(kPi / 2 - 0.05, 0.0), canon_eos());
   for (double v : a) EXPECT_TRUE(std::isfinite(v) && v > 0.0) << v;
   EXPECT_GT(a[2] / a[0], 0.5);  // a daylight sky is not red
   SkyParameters cie;
   cie.values = find_model("cie")->example;
   const auto perez = make_sky_model("cie", cie);
-  EXPECT_THROW(sky_model_airlight(*perez, Vec3{0, 0, 1}, eos()), InvalidArgument);
+  EXPECT_THROW(sky_model_airlight(*perez, Vec3{0, 0, 1}, canon_eos()), InvalidArgument);
 }
 
 }  // namespace

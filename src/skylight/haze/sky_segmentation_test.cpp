@@ -27,7 +27,7 @@ constexpr double kWatershedAirlightRelTol = 0.02;
 // The fixed band's brightest pixels are the snow field (measured 134 % off): the watershed region
 // must do at least this many times better.
 constexpr double kBandOverWatershed = 10.0;
-constexpr double kClosedFormRelTol = 1e-12;
+constexpr double kSegmentationClosedFormRelTol = 1e-12;
 
 double iou(const estimate::SkyMask& a, const estimate::SkyMask& b) {
   std::size_t both = 0, either = 0;
@@ -152,7 +152,7 @@ TEST(SkySegmentation, MaskImageRoundTripAndErrors) {
   const PhotoAirlight a =
       photo_airlight(p.image, kFisheye, kSceneTurbidity, kPi / 2, band_region());
   const PhotoAirlight b = photo_airlight(p.image, kFisheye, kSceneTurbidity, kPi / 2);
-  EXPECT_NEAR(a.airlight[1], b.airlight[1], kClosedFormRelTol * b.airlight[1]);
+  EXPECT_NEAR(a.airlight[1], b.airlight[1], kSegmentationClosedFormRelTol * b.airlight[1]);
 }
 
 }  // namespace

@@ -13,7 +13,7 @@ constexpr double kHandValueTol = 1e-12;
 // a e^{b/0.01} <= 4 e^{-15} ~ 1.2e-6 instead of exactly 0.
 constexpr double kHorizonClampTol = 2e-6;
 
-CieParameters params(int type, double sun_zenith_deg, double sun_azimuth_deg = 180.0) {
+CieParameters cie_params(int type, double sun_zenith_deg, double sun_azimuth_deg = 180.0) {
   CieParameters p;
   p.type = type;
   p.sun = {deg_to_rad(sun_zenith_deg), deg_to_rad(sun_azimuth_deg)};
@@ -59,7 +59,7 @@ TEST(CieSky, GradationAndIndicatrixByHand) {
 TEST(CieSky, ZenithEqualsLzForEveryType) {
   for (int type = 1; type <= 16; ++type) {
     for (double zs : {0.0, 20.0, 45.0, 70.0, 89.0}) {
-      CieParameters p = params(type, zs, 33.0);
+      CieParameters p = cie_params(type, zs, 33.0);
       p.zenith_luminance = 4321.0;
       const CieSkyModel m(p);
       EXPECT_NEAR(m.tristimulus({0, 0, 1}).Y, 4321.0, 4321.0 * kHandValueTol) << type << " " << zs;
@@ -68,7 +68,7 @@ TEST(CieSky, ZenithEqualsLzForEveryType) {
 }
 
 TEST(CieSky, TraditionalOvercastFormula) {
-  CieParameters p = params(16, 40.0);
+  CieParameters p = cie_params(16, 40.0);
   p.zenith_luminance = 3000.0;
   const CieSkyModel m(p);
   for (double Z : {0.0, 30.0, 60.0, 89.0, 90.0}) {
@@ -82,7 +82,7 @@ TEST(CieSky, TraditionalOvercastFormula) {
 
 TEST(CieSky, SymmetricAboutSolarMeridian) {
   for (int type : {2, 7, 12, 15}) {
-    const CieSkyModel m(params(type, 50.0, 200.0));
+    const CieSkyModel m(cie_params(type, 50.0, 200.0));
     for (double t : {5.0, 40.0, 85.0})
       for (double dphi : {15.0, 90.0, 160.0}) {
         const double a =
@@ -106,10 +106,10 @@ TEST(CieSky, KittlerDarulaTypicalZenithLuminance) {
   // Type 16: 9/(7 pi) * 0.1 * 133.8 klx * sin30 = 2.738 kcd/m^2.
   EXPECT_NEAR(kittler_darula_zenith_luminance(16, gs), 1000 * 9.0 / (7 * kPi) * 13.38 * 0.5, 1e-9);
   // Used by the model when no zenith luminance is given.
-  const CieSkyModel m(params(12, 60.0));
+  const CieSkyModel m(cie_params(12, 60.0));
   EXPECT_NEAR(m.zenith_luminance(), 1876.4242937286251, 1e-9);
   EXPECT_TRUE(m.domain().valid());
-  EXPECT_EQ(CieSkyModel(params(12, 85.0)).domain().worst(), Validity::extrapolated);
+  EXPECT_EQ(CieSkyModel(cie_params(12, 85.0)).domain().worst(), Validity::extrapolated);
 }
 
 TEST(CieSky, KittlerDarulaBand) {
@@ -135,16 +135,16 @@ TEST(CieSky, KittlerDarulaBand) {
 }
 
 TEST(CieSky, SunBelowHorizonAndGroundAreZero) {
-  const CieSkyModel night(params(12, 95.0));
+  const CieSkyModel night(cie_params(12, 95.0));
   EXPECT_EQ(night.domain().worst(), Validity::undefined);
   EXPECT_EQ(night.tristimulus({0, 0, 1}).Y, 0.0);
-  const CieSkyModel day(params(12, 40.0));
+  const CieSkyModel day(cie_params(12, 40.0));
   EXPECT_EQ(day.tristimulus({0.6, 0.0, -0.8}).Y, 0.0);
   // Luminance only: neutral D65 colour.
   const Rgb rgb = day.rgb({0, 0, 1});
   EXPECT_NEAR(rgb.r, rgb.g, rgb.g * 1e-9);
   EXPECT_NEAR(rgb.b, rgb.g, rgb.g * 1e-9);
-  EXPECT_THROW(CieSkyModel(params(17, 40.0)), InvalidArgument);
+  EXPECT_THROW(CieSkyModel(cie_params(17, 40.0)), InvalidArgument);
 }
 
 }  // namespace

@@ -18,7 +18,7 @@ namespace {
 // <= 0.08 % in Y and <= 0.63 % in X, Z.
 constexpr double kXyzVsDenseRelTol = 1.5e-2;
 
-NishitaParameters params(double sun_elevation_deg, double altitude_m = 0.0) {
+NishitaParameters nishita_params(double sun_elevation_deg, double altitude_m = 0.0) {
   NishitaParameters p;
   p.sun = {deg_to_rad(90 - sun_elevation_deg), kPi};
   p.observer_altitude_m = altitude_m;
@@ -54,7 +54,7 @@ TEST(Nishita, RegisteredWithEarthDefaults) {
 }
 
 TEST(Nishita, XyzFromTwentyWavelengthsMatchesDenseIntegration) {
-  const NishitaModel m(params(35));
+  const NishitaModel m(nishita_params(35));
   for (Vec3 v : {Vec3{0, 0, 1}, direction_from_angles(deg_to_rad(85), 0.3),
                  direction_from_angles(deg_to_rad(60), kPi)}) {
     std::vector<double> nm, L;
@@ -73,7 +73,7 @@ TEST(Nishita, XyzFromTwentyWavelengthsMatchesDenseIntegration) {
 }
 
 TEST(Nishita, UnitIrradianceAndObserverAltitude) {
-  NishitaParameters p = params(40);
+  NishitaParameters p = nishita_params(40);
   p.solar_irradiance = 1.0;
   const NishitaModel ground(p);
   p.observer_altitude_m = 20e3;
@@ -91,7 +91,7 @@ TEST(Nishita, UnitIrradianceAndObserverAltitude) {
 }
 
 TEST(Nishita, ReferenceTristimulusAgrees) {
-  const NishitaModel m(params(15, 1000));
+  const NishitaModel m(nishita_params(15, 1000));
   constexpr double kRelTol = 5e-3;  // the fast-vs-reference bound of docs/MODELS.md (0.5 %)
   for (Vec3 v : {Vec3{0, 0, 1}, direction_from_angles(deg_to_rad(89), 0.0),
                  direction_from_angles(deg_to_rad(95), kPi)}) {
@@ -102,31 +102,31 @@ TEST(Nishita, ReferenceTristimulusAgrees) {
 }
 
 TEST(Nishita, GroundReflectionOnlyWithAnAlbedo) {
-  NishitaParameters p = params(40, 1000);
+  NishitaParameters p = nishita_params(40, 1000);
   const Vec3 down = direction_from_angles(deg_to_rad(150), 0.0);
   const double plain = NishitaModel(p).tristimulus(down).Y;
   p.albedo = 0.3;
   const double lit = NishitaModel(p).tristimulus(down).Y;
   EXPECT_GT(lit, plain * 1.5);
   // The same ground through a custom planet setup.
-  NishitaSetup setup = params(40, 1000).setup();
+  NishitaSetup setup = nishita_params(40, 1000).setup();
   setup.atmosphere.ground_albedo = 0.3;
   EXPECT_EQ(NishitaModel(setup).tristimulus(down).Y, lit);
 }
 
 TEST(Nishita, BadParametersAreRejected) {
-  NishitaParameters p = params(30);
+  NishitaParameters p = nishita_params(30);
   p.observer_altitude_m = -1;
   EXPECT_THROW(NishitaModel{p}, InvalidArgument);
   p.observer_altitude_m = 2e7;
   EXPECT_THROW(NishitaModel{p}, InvalidArgument);
-  p = params(30);
+  p = nishita_params(30);
   p.solar_irradiance = 0.0;
   EXPECT_THROW(NishitaModel{p}, InvalidArgument);
-  p = params(30);
+  p = nishita_params(30);
   p.top_radius_m = p.ground_radius_m - 1;
   EXPECT_THROW(NishitaModel{p}, InvalidArgument);
-  NishitaSetup setup = params(30).setup();
+  NishitaSetup setup = nishita_params(30).setup();
   setup.atmosphere.top_radius_m = setup.atmosphere.ground_radius_m - 1;
   EXPECT_THROW(NishitaModel{setup}, InvalidArgument);
 }

@@ -12,7 +12,8 @@ namespace {
 // Closed forms evaluated in double: only round-off separates the library from the hand value.
 constexpr double kClosedFormRelTol = 1e-12;
 
-PreethamParameters params(double T, double sun_zenith_deg, double sun_azimuth_deg = 180.0) {
+PreethamParameters preetham_params(double T, double sun_zenith_deg,
+                                   double sun_azimuth_deg = 180.0) {
   PreethamParameters p;
   p.turbidity = T;
   p.sun = {deg_to_rad(sun_zenith_deg), deg_to_rad(sun_azimuth_deg)};
@@ -43,7 +44,7 @@ TEST(Preetham, ZenithLuminanceClosedForm) {
 
 TEST(Preetham, NegativeZenithRegionIsFlaggedAndReturnsZero) {
   // Zotti et al. 2007 Fig. 1: very clear air (T ~ 1) with a high sun gives Yz < 0.
-  const PreethamModel m(params(1.0, 0.0));
+  const PreethamModel m(preetham_params(1.0, 0.0));
   EXPECT_LT(m.zenith_luminance(), 0.0);
   const Domain d = m.domain();
   EXPECT_EQ(d.worst(), Validity::unphysical);
@@ -55,20 +56,20 @@ TEST(Preetham, NegativeZenithRegionIsFlaggedAndReturnsZero) {
   EXPECT_EQ(c.Y, 0.0);
   EXPECT_EQ(c.X, 0.0);
   // Also at T = 12 at sunset (Zotti: fails for T >~ 10 near theta_s = 90 deg).
-  const PreethamModel sunset(params(12.0, 90.0));
+  const PreethamModel sunset(preetham_params(12.0, 90.0));
   EXPECT_EQ(sunset.domain().worst(), Validity::unphysical);
   EXPECT_EQ(sunset.tristimulus(direction_from_angles(1.0, 0.5)).Y, 0.0);
   // Inside the fitted range, nothing to report.
-  EXPECT_TRUE(PreethamModel(params(3.0, 45.0)).domain().valid());
-  EXPECT_EQ(PreethamModel(params(8.0, 45.0)).domain().worst(), Validity::extrapolated);
-  EXPECT_EQ(PreethamModel(params(1.5, 45.0)).domain().worst(), Validity::unphysical);
+  EXPECT_TRUE(PreethamModel(preetham_params(3.0, 45.0)).domain().valid());
+  EXPECT_EQ(PreethamModel(preetham_params(8.0, 45.0)).domain().worst(), Validity::extrapolated);
+  EXPECT_EQ(PreethamModel(preetham_params(1.5, 45.0)).domain().worst(), Validity::unphysical);
 }
 
 TEST(Preetham, ZenithValuesAreReproduced) {
   // Y(zenith) = Yz exactly (the Perez ratio is F(0, ts)/F(0, ts) = 1), chromaticity = (x_z, y_z).
   for (double T : {2.0, 3.0, 4.5, 6.0}) {
     for (double ts : {0.0, 30.0, 60.0, 85.0}) {
-      const PreethamModel m(params(T, ts));
+      const PreethamModel m(preetham_params(T, ts));
       const Xyz c = m.tristimulus({0, 0, 1});
       EXPECT_NEAR(c.Y, m.zenith_luminance(), m.zenith_luminance() * kClosedFormRelTol);
       const Chromaticity xy = chromaticity(c);
@@ -93,7 +94,7 @@ TEST(Preetham, PerezCoefficientsLinearInT) {
 }
 
 TEST(Preetham, SymmetricAboutSolarMeridianAndBrighterTowardsSun) {
-  const PreethamModel m(params(3.0, 50.0, 120.0));
+  const PreethamModel m(preetham_params(3.0, 50.0, 120.0));
   for (double dphi : {10.0, 45.0, 90.0, 170.0}) {
     for (double t : {10.0, 45.0, 80.0}) {
       const Xyz a = m.tristimulus(direction_from_angles(deg_to_rad(t), deg_to_rad(120.0 + dphi)));
@@ -113,30 +114,30 @@ TEST(Preetham, SymmetricAboutSolarMeridianAndBrighterTowardsSun) {
 }
 
 TEST(Preetham, DefinedBelowHorizonAndForSunBelowHorizon) {
-  const PreethamModel m(params(3.0, 45.0));
+  const PreethamModel m(preetham_params(3.0, 45.0));
   EXPECT_EQ(m.tristimulus({0, 0.6, -0.8}).Y, 0.0);
-  const PreethamModel night(params(3.0, 100.0));
+  const PreethamModel night(preetham_params(3.0, 100.0));
   EXPECT_EQ(night.domain().worst(), Validity::undefined);
   EXPECT_EQ(night.tristimulus({0, 0, 1}).Y, 0.0);
   EXPECT_EQ(*night.spectral_radiance({0, 0, 1}, 550.0), 0.0);
   EXPECT_EQ(night.sun_tristimulus(night.sun().direction()).Y, 0.0);
   // The horizon itself is finite for every turbidity in the accepted range.
   for (double T : {1.0, 1.1, 2.0, 10.0, 30.0, 64.0}) {
-    const PreethamModel h(params(T, 60.0));
+    const PreethamModel h(preetham_params(T, 60.0));
     for (double az = 0; az < 360; az += 30) {
       const Xyz c = h.tristimulus(direction_from_angles(kPi / 2, deg_to_rad(az)));
       EXPECT_TRUE(std::isfinite(c.X) && std::isfinite(c.Y) && std::isfinite(c.Z)) << T;
       EXPECT_GE(c.Y, 0.0);
     }
   }
-  EXPECT_THROW(PreethamModel(params(0.5, 45.0)), InvalidArgument);
+  EXPECT_THROW(PreethamModel(preetham_params(0.5, 45.0)), InvalidArgument);
 }
 
 TEST(Preetham, SpectralRadianceIntegratesToLuminance) {
   // L(lambda) is the daylight spectrum scaled so that 683 int L y-bar = Y; integrating it back on
   // a 1 nm grid reproduces Y and xy (linear interpolation of the 5 nm basis: < 1e-3 relative).
   constexpr double kSpectralRoundTripTol = 1e-3;
-  const PreethamModel m(params(3.0, 40.0));
+  const PreethamModel m(preetham_params(3.0, 40.0));
   const Vec3 v = direction_from_angles(deg_to_rad(60.0), deg_to_rad(30.0));
   std::vector<double> nm, L;
   for (int l = 360; l <= 830; ++l) {
@@ -175,7 +176,7 @@ TEST(Preetham, SunTransmittanceClosedForms) {
 }
 
 TEST(Preetham, SunDiscRadiance) {
-  const PreethamModel m(params(3.0, 30.0));
+  const PreethamModel m(preetham_params(3.0, 30.0));
   const Vec3 s = m.sun().direction();
   // Inside the disc: extraterrestrial table value x transmittance; 550 nm table value 25503.8.
   const double expected =

@@ -16,9 +16,9 @@ namespace {
 // Float batch (MlpBatch) vs the double path, relative to the largest channel over the views:
 // float rounding of inputs, weights and ~50 operations per sub-network (mlp_test.cpp's bound for
 // one network is 1e-5); pietras decoding multiplies two outputs.
-constexpr double kBatchRelativeTolerance = 1e-5;
+constexpr double kPietrasBatchRelativeTolerance = 1e-5;
 // Closed forms evaluated in double.
-constexpr double kExact = 1e-12;
+constexpr double kPietrasExact = 1e-12;
 
 PietrasNetwork random_network(PietrasKind kind, std::uint64_t seed) {
   PietrasNetwork net;
@@ -42,9 +42,9 @@ TEST(Pietras, DecodesThePapersNormalisation) {
   // M = 0.9 N / max N + 0.05 -> N = max N (M - 0.05) / 0.9; R, G, B = I / N.
   const double o[4] = {0.5, 1.0, 0.25, 0.05 + 0.9 * 0.4};
   const Rgb c = decode_pietras(PietrasKind::pietras, 100.0, o);
-  EXPECT_NEAR(c.r, 20.0, kExact);
-  EXPECT_NEAR(c.g, 40.0, kExact);
-  EXPECT_NEAR(c.b, 10.0, kExact);
+  EXPECT_NEAR(c.r, 20.0, kPietrasExact);
+  EXPECT_NEAR(c.g, 40.0, kPietrasExact);
+  EXPECT_NEAR(c.b, 10.0, kPietrasExact);
   // Night: M below the 0.05 offset decodes to exactly 0.
   const double night[4] = {0.5, 1.0, 0.25, 0.049};
   const Rgb d = decode_pietras(PietrasKind::pietras, 100.0, night);
@@ -59,8 +59,8 @@ TEST(Pietras, DecodesLog3) {
   const double o[3] = {std::log(y + kLog3Epsilon), r, b};
   const Rgb c = decode_pietras(PietrasKind::log3, 1000.0, o);
   EXPECT_NEAR(0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b, 250.0, 1e-9);
-  EXPECT_NEAR(c.r / (c.r + c.g + c.b), r, kExact);
-  EXPECT_NEAR(c.b / (c.r + c.g + c.b), b, kExact);
+  EXPECT_NEAR(c.r / (c.r + c.g + c.b), r, kPietrasExact);
+  EXPECT_NEAR(c.b / (c.r + c.g + c.b), b, kPietrasExact);
   const double night[3] = {std::log(kLog3Epsilon) - 0.5, r, b};
   EXPECT_EQ(decode_pietras(PietrasKind::log3, 1000.0, night).g, 0.0);
 }
@@ -69,8 +69,9 @@ TEST(Pietras, NightBoundIsGeometric) {
   // theta = pi/2 + 2 acos(R0 / (R0 + 60 km)) + acos(R0 / (R0 + h)).
   const PietrasNetwork net = random_network(PietrasKind::pietras, 2);
   const double t0 = kPi / 2 + 2.0 * std::acos(6360.0 / 6420.0);
-  EXPECT_NEAR(net.night_cos_sun_zenith(0.0), std::cos(t0), kExact);
-  EXPECT_NEAR(net.night_cos_sun_zenith(10e3), std::cos(t0 + std::acos(6360.0 / 6370.0)), kExact);
+  EXPECT_NEAR(net.night_cos_sun_zenith(0.0), std::cos(t0), kPietrasExact);
+  EXPECT_NEAR(net.night_cos_sun_zenith(10e3), std::cos(t0 + std::acos(6360.0 / 6370.0)),
+              kPietrasExact);
   const Rgb c = net.rgb_at(0.0, 1.0, 0.0, std::cos(t0) - 1e-9);
   EXPECT_EQ(c.r + c.g + c.b, 0.0);
 }
@@ -134,9 +135,9 @@ TEST(Pietras, BatchMatchesScalar) {
     }
     ASSERT_GT(top, 0.0);
     for (std::size_t i = 0; i < n; ++i) {
-      EXPECT_NEAR(r[i], ref[i].r, kBatchRelativeTolerance * top);
-      EXPECT_NEAR(g[i], ref[i].g, kBatchRelativeTolerance * top);
-      EXPECT_NEAR(b[i], ref[i].b, kBatchRelativeTolerance * top);
+      EXPECT_NEAR(r[i], ref[i].r, kPietrasBatchRelativeTolerance * top);
+      EXPECT_NEAR(g[i], ref[i].g, kPietrasBatchRelativeTolerance * top);
+      EXPECT_NEAR(b[i], ref[i].b, kPietrasBatchRelativeTolerance * top);
     }
   }
 }

@@ -50,7 +50,7 @@ TEST(ShPolynomial, FilterAndRotationApplyAfterEvaluation) {
 // Fast (float SIMD) vs reference (double) evaluation: float coefficients times a float product
 // vector, summed in float over <= 234 terms whose sum is dominated by the first few; measured
 // 2.8e-7 of |c_00| (the reduced and the default table), so 2e-6 leaves a factor 7.
-constexpr double kFastVsReference = 2e-6;
+constexpr double kPolynomialFastVsReference = 2e-6;
 
 TEST(ShPolynomial, FastEvaluationMatchesTheDoubleReference) {
   double worst = 0.0;  // largest |fast - reference| / |c_00|
@@ -66,7 +66,7 @@ TEST(ShPolynomial, FastEvaluationMatchesTheDoubleReference) {
             const double scale = std::abs(ref.c[0][ch]);
             for (std::size_t i = 0; i < ref.c.size(); ++i) {
               worst = std::max(worst, std::abs(fast.c[i][ch] - ref.c[i][ch]) / scale);
-              EXPECT_NEAR(fast.c[i][ch], ref.c[i][ch], kFastVsReference * scale)
+              EXPECT_NEAR(fast.c[i][ch], ref.c[i][ch], kPolynomialFastVsReference * scale)
                   << "bands " << bands << " i " << i << " ch " << ch;
             }
           }

@@ -13,8 +13,8 @@ namespace {
 
 // A band-limited function is integrated exactly by the product rule: round-off only.
 // Closed forms of a few terms: double round-off only.
-constexpr double kRoundOff = 1e-15;
-constexpr double kExact = 1e-12;
+constexpr double kProjectionRoundOff = 1e-15;
+constexpr double kProjectionExact = 1e-12;
 
 TEST(ShProjection, GaussLegendreIntegratesPolynomialsExactly) {
   std::vector<double> x, w;
@@ -24,8 +24,8 @@ TEST(ShProjection, GaussLegendreIntegratesPolynomialsExactly) {
     s0 += w[i];
     s9 += w[i] * std::pow(x[i], 9);
   }
-  EXPECT_NEAR(s0, 1.0, kRoundOff);
-  EXPECT_NEAR(s9, 0.1, kRoundOff);  // degree 2n - 1 = 9 is exact
+  EXPECT_NEAR(s0, 1.0, kProjectionRoundOff);
+  EXPECT_NEAR(s9, 0.1, kProjectionRoundOff);  // degree 2n - 1 = 9 is exact
 }
 
 TEST(ShProjection, AKnownShFunctionReproducesItsCoefficients) {
@@ -41,7 +41,8 @@ TEST(ShProjection, AKnownShFunctionReproducesItsCoefficients) {
   const auto p = project([&](Vec3 d) { return reconstruct(known, d); }, kBands, o);
   ASSERT_TRUE(p.converged);
   for (std::size_t i = 0; i < known.c.size(); ++i) {
-    for (int ch = 0; ch < 3; ++ch) EXPECT_NEAR(p.coefficients.c[i][ch], known.c[i][ch], kExact);
+    for (int ch = 0; ch < 3; ++ch)
+      EXPECT_NEAR(p.coefficients.c[i][ch], known.c[i][ch], kProjectionExact);
   }
 }
 
@@ -68,8 +69,8 @@ TEST(ShProjection, AConstantSkyGivesTheClosedForm) {
     for (int m = -l; m <= l; ++m) {
       const double expect = m == 0 ? 2.0 * kPi * kL * normalisation(l, 0) * integral : 0.0;
       const auto& c = p.coefficients.c[static_cast<std::size_t>(index(l, m))];
-      EXPECT_NEAR(c[0], expect, kExact) << "l=" << l << " m=" << m;
-      EXPECT_NEAR(c[2], 3 * expect, 3 * kExact) << "l=" << l << " m=" << m;
+      EXPECT_NEAR(c[0], expect, kProjectionExact) << "l=" << l << " m=" << m;
+      EXPECT_NEAR(c[2], 3 * expect, 3 * kProjectionExact) << "l=" << l << " m=" << m;
     }
   }
 }

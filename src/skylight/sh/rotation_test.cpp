@@ -14,7 +14,7 @@ namespace skylight::sh {
 namespace {
 
 // Rotation and reconstruction are exact: round-off only.
-constexpr double kExact = 1e-12;
+constexpr double kRotationExact = 1e-12;
 // Two projections converged to a change below 1e-6 of c_00 are each within ~1.5e-7 of the limit
 // (the change shrinks ~8x per doubling, docs/SH.md): they agree to 1e-6 with a factor 3 margin.
 constexpr double kProjectionTolerance = 1e-6;
@@ -102,13 +102,13 @@ TEST(ShRotation, RotatesTheReconstructedSignalAboutTheZenith) {
     for (double phi : {0.0, 1.5, 4.0}) {
       const Triple a = reconstruct(c, direction_from_angles(theta, phi));
       const Triple b = reconstruct(r, direction_from_angles(theta, phi + kAlpha));
-      for (int ch = 0; ch < 3; ++ch) EXPECT_NEAR(a[ch], b[ch], kExact);
+      for (int ch = 0; ch < 3; ++ch) EXPECT_NEAR(a[ch], b[ch], kRotationExact);
     }
   }
   // Zonal coefficients are unchanged; a full turn is the identity.
   const auto full = rotate_about_zenith(c, 2.0 * kPi);
   for (std::size_t i = 0; i < c.c.size(); ++i) {
-    for (int ch = 0; ch < 3; ++ch) EXPECT_NEAR(full.c[i][ch], c.c[i][ch], kExact);
+    for (int ch = 0; ch < 3; ++ch) EXPECT_NEAR(full.c[i][ch], c.c[i][ch], kRotationExact);
   }
   EXPECT_EQ(r.c[static_cast<std::size_t>(index(5, 0))], c.c[static_cast<std::size_t>(index(5, 0))]);
 }
@@ -146,7 +146,7 @@ TEST(ShRingingFilter, ScalesOnlyZonalCoefficientsBySinc) {
     const double s = l == 0 ? 1.0 : std::sin(x) / x;
     for (int m = -l; m <= l; ++m) {
       const auto i = static_cast<std::size_t>(index(l, m));
-      EXPECT_NEAR(f.c[i][1], m == 0 ? s * c.c[i][1] : c.c[i][1], kExact);
+      EXPECT_NEAR(f.c[i][1], m == 0 ? s * c.c[i][1] : c.c[i][1], kRotationExact);
     }
   }
 }
@@ -156,8 +156,8 @@ TEST(ShRingingFilter, EnergyBelowHorizonClosedFormForAConstant) {
   Coefficients c{3, std::vector<Triple>(9)};
   c.c[0] = {2.0, 1.0, 0.5};
   const auto e = energy_below(c);
-  EXPECT_NEAR(e[0], 2.0, kExact);
-  EXPECT_NEAR(e[2], 0.125, kExact);
+  EXPECT_NEAR(e[0], 2.0, kRotationExact);
+  EXPECT_NEAR(e[2], 0.125, kRotationExact);
 }
 
 // Away from the horizon (theta >= 120 deg) the filter must cut the ringing energy at least 3x

@@ -15,10 +15,10 @@ namespace skylight::sun {
 namespace {
 
 // Test-vector fields through the project's strict number parser.
-double num(const std::string& s) {
+double field_number(const std::string& s) {
   return parse_number(s, "test vector field");
 }
-int integer(const std::string& s) {
+int field_integer(const std::string& s) {
   return static_cast<int>(parse_integer(s, "test vector field"));
 }
 
@@ -140,9 +140,10 @@ TEST(JulianDay, PaperTableA41) {
       testing_support::read_test_vector_csv("reda_andreas_2008_table_a4_1_julian_day.csv");
   ASSERT_EQ(rows.size(), 16u);
   for (const auto& r : rows) {
-    const int year = integer(r.at(0)), month = integer(r.at(1)), day = integer(r.at(2));
-    const int h = integer(r.at(3).substr(0, 2)), m = integer(r.at(3).substr(3, 2));
-    const double jd = num(r.at(4));
+    const int year = field_integer(r.at(0)), month = field_integer(r.at(1)),
+              day = field_integer(r.at(2));
+    const int h = field_integer(r.at(3).substr(0, 2)), m = field_integer(r.at(3).substr(3, 2));
+    const double jd = field_number(r.at(4));
     EXPECT_NEAR(julian_day(year, month, day + (h + m / 60.0) / 24.0), jd, kJdTol)
         << year << "-" << month << "-" << day;
     // Calendar date from JD (A.3) inverts it.
