@@ -3,17 +3,68 @@
 #include <fmt/format.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <cstdio>
 #include <iostream>
 
 #include "skylight/core/error.h"
 #include "skylight/core/numbers.h"
+#include "skylight/core/text.h"
 #include "skylight/io/file.h"
 #include "skylight/operations/operations.h"
 #include "skylight/version.h"
 
 namespace skylight::cli {
+
+// ---- unknown names ------------------------------------------------------------------------------
+
+std::optional<std::string> unknown_name_error(const CLI::App& app, int argc,
+                                              const char* const* argv) {
+  const CLI::App* current = &app;
+  std::string path;  // the subcommands so far, "nn train"
+  // Options of the current command and of every command above it (global options fall through).
+  const auto find_option = [&](const std::string& name) -> const CLI::Option* {
+    for (const CLI::App* a = current; a; a = a->get_parent())
+      if (const CLI::Option* o = a->get_option_no_throw(name)) return o;
+    return nullptr;
+  };
+  for (int i = 1; i < argc; ++i) {
+    const std::string token = argv[i];
+    if (token == "--") break;
+    const bool negative_number =
+        token.size() > 1 && (std::isdigit(static_cast<unsigned char>(token[1])) || token[1] == '.');
+    if (token.size() > 1 && token[0] == '-' && !negative_number) {
+      const std::string name = token.substr(0, token.find('='));
+      const CLI::Option* option = find_option(name);
+      if (!option) {
+        std::vector<std::string> names;
+        for (const CLI::App* a = current; a; a = a->get_parent())
+          for (const CLI::Option* o : a->get_options()) {
+            for (const std::string& l : o->get_lnames()) names.push_back("--" + l);
+            for (const std::string& s : o->get_snames()) names.push_back("-" + s);
+          }
+        return fmt::format("unknown option '{}' for '{}'{}", excerpt(name),
+                           path.empty() ? "skylight" : path, did_you_mean(name, names));
+      }
+      // Its value is the next word (unless given as --flag=value).
+      if (token.find('=') == std::string::npos && option->get_items_expected_max() > 0) ++i;
+      continue;
+    }
+    std::vector<std::string> subcommands;
+    for (const CLI::App* s : current->get_subcommands([](const CLI::App*) { return true; }))
+      subcommands.push_back(s->get_name());
+    if (subcommands.empty()) continue;  // a positional argument of a leaf command
+    if (std::find(subcommands.begin(), subcommands.end(), token) == subcommands.end())
+      return fmt::format("unknown subcommand '{}'{}{} (subcommands: {})", excerpt(token),
+                         path.empty() ? "" : " for '" + path + "'",
+                         did_you_mean(token, subcommands), fmt::join(subcommands, ", "));
+    current = current->get_subcommand(token);
+    path += (path.empty() ? "" : " ") + token;
+  }
+  return std::nullopt;
+}
 
 // ---- flags from the schema ----------------------------------------------------------------------
 
@@ -190,14 +241,7 @@ SunMode ModelOptions::sun_mode() const {
 }
 
 const ModelInfo& ModelOptions::info() const {
-  const std::string name = model_name();
-  const ModelInfo* m = find_model(name);
-  if (!m) {
-    std::string names;
-    for (const auto& r : model_registry()) names += (names.empty() ? "" : ", ") + r.name;
-    throw InvalidArgument(fmt::format("unknown model '{}' (known: {})", excerpt(name), names));
-  }
-  return *m;
+  return require_model(model_name());
 }
 
 SkyParameters ModelOptions::parameters() const {

@@ -50,6 +50,13 @@ void add_estimate_command(CLI::App& app, Commands& commands);
 void add_sh_command(CLI::App& app, Commands& commands);
 void add_haze_command(CLI::App& app, Commands& commands);
 
+// When CLI11 refused the command line: the first flag that no command on the path (or the global
+// options) has, or the first word that is not a subcommand where one is expected, as a one-line
+// message with the nearest name ("unknown option '--turbidty' for 'render'; did you mean
+// '--turbidity'?"). nullopt when every name is known (CLI11's own message then stands).
+std::optional<std::string> unknown_name_error(const CLI::App& app, int argc,
+                                              const char* const* argv);
+
 // ---- flags from the schema ----------------------------------------------------------------------
 
 // How the library's messages name a parameter here (set_parameter_spelling): its flag, "--name";

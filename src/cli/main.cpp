@@ -58,6 +58,12 @@ int main(int argc, char** argv) {
   } catch (const CLI::CallForVersion& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
+    // A mistyped flag or subcommand is named with the nearest known one; CLI11 would report
+    // whatever it checks first (a missing --model before an unknown flag).
+    if (const auto unknown = cli::unknown_name_error(app, argc, argv)) {
+      std::cerr << "skylight: error: " << *unknown << "\n";
+      return cli::kExitUsage;
+    }
     std::string msg = e.what();
     std::replace(msg.begin(), msg.end(), '\n', ' ');
     std::cerr << "skylight: error: " << msg << " (see --help)\n";

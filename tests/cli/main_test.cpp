@@ -28,6 +28,44 @@ TEST_F(Cli, EverySubcommandHelpListsTheGlobalThreadsOption) {
   }
 }
 
+// A mistyped flag, subcommand, model or camera: exit 2, one line naming it and the nearest known
+// name (core/text.h: within a third of its length), nothing for a word that is no typo.
+TEST_F(Cli, TyposAreNamedWithTheNearestName) {
+  struct Case {
+    std::string args, line;
+  };
+  const Case cases[] = {
+      {"render --turbidty 3",
+       "skylight: error: unknown option '--turbidty' for 'render'; did you mean '--turbidity'?"},
+      {"render --model preetham --sun-azimuth -30 --frobnicate -o x.exr",
+       "skylight: error: unknown option '--frobnicate' for 'render'"},
+      {"--threads 2 rendr",
+       "skylight: error: unknown subcommand 'rendr'; did you mean 'render'? (subcommands: models, "
+       "operations, render, eval, bench, report, sun, nn, estimate, sh, haze)"},
+      {"frobnicate",
+       "skylight: error: unknown subcommand 'frobnicate' (subcommands: models, "
+       "operations, render, eval, bench, report, sun, nn, estimate, sh, haze)"},
+      {"nn trian --samples 10",
+       "skylight: error: unknown subcommand 'trian' for 'nn'; did you mean 'train'? (subcommands: "
+       "train, validate, export, animate, study, planet)"},
+      {"sh eval --sun-zenit 30",
+       "skylight: error: unknown option '--sun-zenit' for 'sh eval'; did you mean "
+       "'--sun-zenith'?"},
+      {"eval --model preethm",
+       "skylight: error: unknown model 'preethm'; did you mean 'preetham'? (known: perez, "
+       "preetham, cie, hosek, nishita, nn, pietras, sh)"},
+      {"haze attenuation --camera canon-eos-5 --turbidity 3 --distance 1000",
+       "skylight: error: unknown camera 'canon-eos-5'; did you mean 'canon-eos-5d'? (`skylight "
+       "haze cameras` lists the 40; or --camera-csv)"},
+  };
+  for (const auto& c : cases) {
+    const testing_support::CliResult r = run(c.args);
+    EXPECT_EQ(r.status, 2) << c.args << "\n" << r.err;
+    EXPECT_EQ(r.err, c.line + "\n") << c.args;
+  }
+  EXPECT_FALSE(fs::exists(dir_ / "x.exr"));
+}
+
 TEST_F(Cli, BadInputExitsTwoWithMessage) {
   struct Case {
     std::string args, input, must_contain;

@@ -137,12 +137,33 @@ check_quoted() {
   done
 }
 
+# What a reader pastes must run, skipped blocks included: no synopsis (`[--json]`, `A|B`: those go in
+# ```text blocks) and no output into the repository's own folders (a pasted command would
+# overwrite tracked files).
+check_pasteable() {
+  local where="$1" file="$2" line
+  while IFS= read -r line || [ -n "$line" ]; do
+    [[ "$line" =~ ^[[:space:]]*(#.*)?$ ]] && continue
+    line="${line%%  #*}"
+    if [[ "$line" =~ \[-|\ [A-Z]+\|[A-Z]+ ]]; then
+      fail "$where: a synopsis in a runnable block (put it in a \`\`\`text block): $line"
+    fi
+    if [[ "$line" =~ (-o|--output|--log|--preview|--false-colour|\>)[[:space:]]+\'?(docs|data|src|tests|scripts|cmake|bench)/ ]]; then
+      fail "$where: writes into the repository's ${BASH_REMATCH[2]}/ (write into the working directory): $line"
+    fi
+  done < <(tail -n +2 "$file")
+}
+tree_before=""
+if git -C "$src" rev-parse --is-inside-work-tree >/dev/null 2>&1; then
+  tree_before="$(git -C "$src" status --porcelain --untracked-files=all)"
+fi
 for f in "$scratch"/parsed/*.sh; do
   [ -e "$f" ] || continue
   base="${f%.sh}"
   where="$(head -1 "$f")"
   where="${where#\#}"
   [ -e "$base.outside" ] && continue
+  check_pasteable "$where" "$f"
   if [ -e "$base.skip" ]; then
     echo "skip block $where: $(cat "$base.skip")"
     skipped_blocks=$((skipped_blocks + 1))
@@ -170,6 +191,14 @@ for f in "$scratch"/parsed/*.sh; do
   [ -z "$cmd" ] || run_command "$where" "$cmd"
   echo "ran block $where ($(awk -v a="$block_start" -v b="$(date +%s.%N)" 'BEGIN { printf "%.1f", b - a }') s)"
 done
+
+# Nothing the commands ran may have written into the source tree (through data/ or a path).
+if [ -n "$tree_before" ] || git -C "$src" rev-parse --is-inside-work-tree >/dev/null 2>&1; then
+  tree_after="$(git -C "$src" status --porcelain --untracked-files=all)"
+  if [ "$tree_after" != "$tree_before" ]; then
+    fail "the commands changed the source tree: $(diff <(echo "$tree_before") <(echo "$tree_after") | grep '^[<>]' | head -5 | tr '\n' ' ')"
+  fi
+fi
 
 checked_outputs=0
 for e in "$scratch"/parsed/*.expect; do

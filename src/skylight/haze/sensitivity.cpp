@@ -13,6 +13,7 @@
 #include "skylight/core/error.h"
 #include "skylight/core/numbers.h"
 #include "skylight/core/parameters.h"
+#include "skylight/core/text.h"
 #include "skylight/io/file.h"
 
 namespace skylight::haze {
@@ -85,10 +86,10 @@ const CameraSensitivity& find_camera(std::string_view name) {
   const auto& cameras = embedded_cameras();
   const auto it = cameras.find(std::string(name));
   if (it != cameras.end()) return it->second;
-  std::string known;
-  for (const auto& [key, cam] : cameras) known += (known.empty() ? "" : ", ") + key;
-  throw InvalidArgument(fmt::format("unknown camera '{}' (known: {}; or {})", excerpt(name), known,
-                                    spelled("camera-csv")));
+  const std::vector<std::string> names = camera_names();
+  throw InvalidArgument(
+      fmt::format("unknown camera '{}'{} (`skylight haze cameras` lists the {}; or {})",
+                  excerpt(name), did_you_mean(name, names), names.size(), spelled("camera-csv")));
 }
 
 CameraSensitivity parse_camera_csv(std::string_view text, const std::string& source) {

@@ -133,6 +133,25 @@ TEST(Registry, EdgeSweepsGiveFiniteNonNegativeOutput) {
   std::printf("edge sweeps: %zu models, %zu directions each way\n", models_built, evaluations);
 }
 
+// README.md's --model row names every model of the registry, and nothing else.
+TEST(Registry, ReadmeModelFlagListsEveryModel) {
+  const std::string readme = testing_support::source_file("README.md");
+  const std::size_t at = readme.find("| `--model NAME` |");
+  ASSERT_NE(at, std::string::npos) << "README.md: no --model NAME row";
+  const std::string row = readme.substr(at, readme.find('\n', at) - at);
+  std::size_t named = 0;
+  for (std::size_t p = row.find('`'); p != std::string::npos; p = row.find('`', p + 1)) {
+    const std::size_t end = row.find('`', p + 1);
+    ASSERT_NE(end, std::string::npos) << row;
+    const std::string word = row.substr(p + 1, end - p - 1);
+    if (find_model(word)) ++named;
+    p = end;
+  }
+  for (const auto& info : model_registry())
+    EXPECT_NE(row.find("`" + info.name + "`"), std::string::npos) << info.name << ": " << row;
+  EXPECT_EQ(named, model_registry().size()) << row;
+}
+
 // docs/MODELS.md shows each model's parameter table as generated from the schema; a change of
 // either without the other fails here (regenerate with `skylight models --markdown`).
 TEST(Registry, DocsParameterTablesMatchTheSchema) {

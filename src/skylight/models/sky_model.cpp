@@ -7,7 +7,9 @@
 #include <cmath>
 
 #include "skylight/core/error.h"
+#include "skylight/core/numbers.h"
 #include "skylight/core/parallel.h"
+#include "skylight/core/text.h"
 
 namespace skylight {
 
@@ -168,15 +170,18 @@ const ModelInfo* find_model(std::string_view name) {
   return nullptr;
 }
 
+const ModelInfo& require_model(std::string_view name) {
+  if (const ModelInfo* info = find_model(name)) return *info;
+  std::vector<std::string> names;
+  for (const auto& m : model_registry()) names.push_back(m.name);
+  throw InvalidArgument(fmt::format("unknown model '{}'{} (known: {})", excerpt(name),
+                                    did_you_mean(name, names), fmt::join(names, ", ")));
+}
+
 std::unique_ptr<SkyModel> make_sky_model(std::string_view name, const SkyParameters& params) {
-  const ModelInfo* info = find_model(name);
-  if (!info) {
-    std::string names;
-    for (const auto& m : model_registry()) names += (names.empty() ? "" : ", ") + m.name;
-    throw InvalidArgument(fmt::format("unknown model '{}' (known: {})", name, names));
-  }
+  const ModelInfo& info = require_model(name);
   validate_sun(params.sun);
-  return info->make(params);
+  return info.make(params);
 }
 
 }  // namespace skylight

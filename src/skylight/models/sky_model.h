@@ -312,6 +312,8 @@ std::vector<ParameterSpec> all_parameters(const ModelInfo& model);
 std::string parameter_docs_block(const ModelInfo& model);
 // nullptr if unknown.
 const ModelInfo* find_model(std::string_view name);
+// The same, or InvalidArgument "unknown model 'X'; did you mean 'Y'? (known: ...)".
+const ModelInfo& require_model(std::string_view name);
 // Builds a model; throws InvalidArgument for an unknown name, a parameter the model does not have,
 // a missing required one, or a value out of range (the message names the parameter and the value).
 std::unique_ptr<SkyModel> make_sky_model(std::string_view name, const SkyParameters& params);
