@@ -153,10 +153,9 @@ check_pasteable() {
     fi
   done < <(tail -n +2 "$file")
 }
-tree_before=""
-if git -C "$src" rev-parse --is-inside-work-tree >/dev/null 2>&1; then
-  tree_before="$(git -C "$src" status --porcelain --untracked-files=all)"
-fi
+in_git=0
+git -C "$src" rev-parse --is-inside-work-tree >/dev/null 2>&1 && in_git=1
+[ "$in_git" = 1 ] && tree_before="$(git -C "$src" status --porcelain --untracked-files=all)"
 for f in "$scratch"/parsed/*.sh; do
   [ -e "$f" ] || continue
   base="${f%.sh}"
@@ -193,7 +192,7 @@ for f in "$scratch"/parsed/*.sh; do
 done
 
 # Nothing the commands ran may have written into the source tree (through data/ or a path).
-if [ -n "$tree_before" ] || git -C "$src" rev-parse --is-inside-work-tree >/dev/null 2>&1; then
+if [ "$in_git" = 1 ]; then
   tree_after="$(git -C "$src" status --porcelain --untracked-files=all)"
   if [ "$tree_after" != "$tree_before" ]; then
     fail "the commands changed the source tree: $(diff <(echo "$tree_before") <(echo "$tree_after") | grep '^[<>]' | head -5 | tr '\n' ' ')"

@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "skylight/core/numbers.h"
+
 namespace skylight::testing_support {
 
 inline std::string test_vector_path(const std::string& name) {
@@ -32,6 +34,15 @@ inline std::vector<std::vector<std::string>> read_test_vector_csv(const std::str
     rows.push_back(cells);
   }
   return rows;
+}
+
+// A cell as a number / an integer, by the library's strict parsers (a malformed cell throws and
+// fails the test).
+inline double cell_number(const std::string& cell) {
+  return parse_number(cell, "test vector field");
+}
+inline int cell_integer(const std::string& cell) {
+  return static_cast<int>(parse_integer(cell, "test vector field"));
 }
 
 }  // namespace skylight::testing_support

@@ -9,6 +9,7 @@
 
 #include "skylight/core/error.h"
 #include "skylight/core/math.h"
+#include "support/error_message.h"
 
 namespace skylight {
 namespace {
@@ -73,15 +74,6 @@ struct Example {
   }
 };
 
-std::string parameter_error(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const InvalidArgument& e) {
-    return e.what();
-  }
-  return "no error";
-}
-
 TEST(Parameters, BindAppliesValuesOverDefaultsAndConvertsUnits) {
   Example e;
   ParameterValues v;
@@ -106,32 +98,32 @@ TEST(Parameters, BindAppliesValuesOverDefaultsAndConvertsUnits) {
 TEST(Parameters, BindRejectsUnknownMissingAndOutOfRange) {
   Example e;
   const auto& s = Example::schema();
-  EXPECT_EQ(parameter_error([&] { s.bind(ParameterValues(), e, "model 'x'"); }),
+  EXPECT_EQ(testing_support::error_message([&] { s.bind(ParameterValues(), e, "model 'x'"); }),
             "pair is required (model 'x'): two values");
   const auto pair = ParameterValue(std::vector<double>{0, 0});
-  EXPECT_EQ(parameter_error(
+  EXPECT_EQ(testing_support::error_message(
                 [&] { s.bind(ParameterValues().set("pair", pair).set("bogus", 1.0), e, "t"); }),
             "bogus is not a parameter (t) (parameters: height, angle, scale, count, "
             "pair, path, fast)");
-  EXPECT_EQ(parameter_error(
+  EXPECT_EQ(testing_support::error_message(
                 [&] { s.bind(ParameterValues().set("pair", pair).set("height", 11.0), e, "t"); }),
             "height = 11 is outside [0, 10] (t)");
-  EXPECT_EQ(parameter_error(
+  EXPECT_EQ(testing_support::error_message(
                 [&] { s.bind(ParameterValues().set("pair", pair).set("count", 2.5), e, "t"); }),
             "count = 2.5 is not an integer (t)");
-  EXPECT_EQ(parameter_error([&] {
+  EXPECT_EQ(testing_support::error_message([&] {
               s.bind(ParameterValues().set("pair", std::vector<double>{0, 0, 0}), e, "t");
             }),
             "pair needs 2 values, got 3 (t)");
-  EXPECT_EQ(parameter_error([&] {
+  EXPECT_EQ(testing_support::error_message([&] {
               s.bind(ParameterValues().set("pair", std::vector<double>{0, 1.5}), e, "t");
             }),
             "pair = 1.5 (value 2) is outside [-1, 1] (t)");
-  EXPECT_NE(parameter_error([&] {
+  EXPECT_NE(testing_support::error_message([&] {
               s.bind(ParameterValues().set("pair", pair).set("height", std::nan("")), e, "t");
             }),
             "no error");
-  EXPECT_NE(parameter_error(
+  EXPECT_NE(testing_support::error_message(
                 [&] { s.bind(ParameterValues().set("pair", pair).set("path", 1.0), e, "t"); }),
             "no error");
 }
@@ -141,11 +133,11 @@ TEST(Parameters, ValidateChecksAStructBuiltInCode) {
   e.pair = std::array<double, 2>{0.0, 0.0};
   EXPECT_NO_THROW(Example::schema().validate(e, "t"));
   e.angle = 100 * kDegree;
-  EXPECT_EQ(parameter_error([&] { Example::schema().validate(e, "t"); }),
+  EXPECT_EQ(testing_support::error_message([&] { Example::schema().validate(e, "t"); }),
             "angle = 100 is outside [-90, 90] (t)");
   e.angle = 0;
   e.pair.reset();
-  EXPECT_EQ(parameter_error([&] { Example::schema().validate(e, "t"); }),
+  EXPECT_EQ(testing_support::error_message([&] { Example::schema().validate(e, "t"); }),
             "pair is required (t): two values");
 }
 
@@ -157,8 +149,8 @@ TEST(Parameters, MessagesUseTheFrontEndsSpelling) {
   e.angle = 100 * kDegree;
   set_parameter_spelling([](std::string_view name) { return fmt::format("<{}>", name); });
   const std::string spelled_by_front_end =
-      parameter_error([&] { Example::schema().validate(e, "t"); });
-  const std::string unknown = parameter_error([&] {
+      testing_support::error_message([&] { Example::schema().validate(e, "t"); });
+  const std::string unknown = testing_support::error_message([&] {
     Example::schema().bind(ParameterValues().set("pair", std::vector<double>{0, 0}).set("x", 1.0),
                            e, "t");
   });

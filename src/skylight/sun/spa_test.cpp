@@ -56,22 +56,16 @@ constexpr double kSolsticeDeclinationTolDeg = 3e-4;
 // A default in degrees bound to a radian field and read back: a few ulps of the conversion.
 constexpr double kDegRadRoundTripRel = 1e-12;
 
-// Test-vector fields through the project's strict number parser.
-double num(const std::string& s) {
-  return parse_number(s, "test vector field");
-}
-int integer(const std::string& s) {
-  return static_cast<int>(parse_integer(s, "test vector field"));
-}
-
-// Rows of a test-vector CSV file (tests/support/test_vectors.h).
+// Rows of a test-vector CSV file and their cells (tests/support/test_vectors.h).
+using testing_support::cell_integer;
+using testing_support::cell_number;
 using testing_support::read_test_vector_csv;
 
 // One unit of the last printed digit of a decimal number ("1.666568e-03" -> 1e-9).
 double last_digit_unit(const std::string& s) {
   const auto e = s.find_first_of("eE");
   const std::string mantissa = s.substr(0, e);
-  const int exponent = e == std::string::npos ? 0 : integer(s.substr(e + 1));
+  const int exponent = e == std::string::npos ? 0 : cell_integer(s.substr(e + 1));
   const auto dot = mantissa.find('.');
   const int decimals = dot == std::string::npos ? 0 : static_cast<int>(mantissa.size() - dot - 1);
   return std::pow(10.0, exponent - decimals);
@@ -79,14 +73,15 @@ double last_digit_unit(const std::string& s) {
 
 // "hh:mm:ss[.ff]" -> seconds of the day.
 double clock_seconds(const std::string& s) {
-  return integer(s.substr(0, 2)) * 3600.0 + integer(s.substr(3, 2)) * 60.0 + num(s.substr(6));
+  return cell_integer(s.substr(0, 2)) * 3600.0 + cell_integer(s.substr(3, 2)) * 60.0 +
+         cell_number(s.substr(6));
 }
 
 // The worked example (Reda & Andreas 2004, A.5) from the inputs CSV.
 SpaInput example_input() {
   std::map<std::string, double> v;
   for (const auto& row : read_test_vector_csv("nrel_spa_reda_andreas_example_inputs.csv")) {
-    v[row.at(0)] = num(row.at(1));
+    v[row.at(0)] = cell_number(row.at(1));
   }
   SpaInput in;
   in.time.year = static_cast<int>(v.at("year"));
@@ -195,7 +190,7 @@ TEST(Spa, WorkedExampleEveryPublishedValue) {
     if (name == "sunrise" || name == "sunset") continue;  // RiseSetTransit tests below
     const auto g = getters.find(name);
     ASSERT_NE(g, getters.end()) << "no check for the published value " << name;
-    const double published = num(row.at(1));
+    const double published = cell_number(row.at(1));
     const double computed = g->second(r);
     const double unit = last_digit_unit(row.at(1));
     double tol = kHalfUnit * unit;
@@ -219,12 +214,12 @@ TEST(Spa, WorkedExampleJulianCenturiesFromThePublishedJd) {
   for (const auto& row : read_test_vector_csv("nrel_spa_reda_andreas_example_outputs.csv")) {
     pub[row.at(0)] = row.at(1);
   }
-  const double JD = num(pub.at("JD"));
+  const double JD = cell_number(pub.at("JD"));
   const double JDE = spa::julian_ephemeris_day(JD, example_input().delta_t);
   const double JC = spa::julian_century(JD), JCE = spa::julian_century(JDE);
-  EXPECT_NEAR(JC, num(pub.at("JC")), kHalfUnit * last_digit_unit(pub.at("JC")));
-  EXPECT_NEAR(JCE, num(pub.at("JCE")), kHalfUnit * last_digit_unit(pub.at("JCE")));
-  EXPECT_NEAR(spa::julian_ephemeris_millennium(JCE), num(pub.at("JME")),
+  EXPECT_NEAR(JC, cell_number(pub.at("JC")), kHalfUnit * last_digit_unit(pub.at("JC")));
+  EXPECT_NEAR(JCE, cell_number(pub.at("JCE")), kHalfUnit * last_digit_unit(pub.at("JCE")));
+  EXPECT_NEAR(spa::julian_ephemeris_millennium(JCE), cell_number(pub.at("JME")),
               kHalfUnit * last_digit_unit(pub.at("JME")));
 }
 
@@ -272,7 +267,7 @@ TEST(Spa, PaperTableA51) {
     const std::string& name = row.at(0);
     ASSERT_TRUE(computed.count(name)) << "no check for Table A5.1's " << name;
     const bool is_time = row.at(2) == "UT";
-    const double published = is_time ? clock_seconds(row.at(1)) : num(row.at(1));
+    const double published = is_time ? clock_seconds(row.at(1)) : cell_number(row.at(1));
     const double ulp = std::nextafter(std::abs(published), INFINITY) - std::abs(published);
     const double tol = special_tol.count(name)
                            ? special_tol.at(name)
@@ -322,11 +317,12 @@ TEST(Spa, PaperTableA21SunriseSunset) {
   const std::map<int, double> delta_t = {{1994, 59.98}, {1996, 61.63}, {2004, 64.57}};
   for (const auto& row : read_test_vector_csv("reda_andreas_2008_table_a2_1_sunrise_sunset.csv")) {
     SpaInput in;
-    const int year = integer(row.at(0));
+    const int year = cell_integer(row.at(0));
     in.delta_t = delta_t.at(year);
-    in.latitude = deg_to_rad(num(row.at(3)));
-    in.longitude = deg_to_rad(num(row.at(4)));
-    const auto r = rise_transit_set_ut_day(year, integer(row.at(1)), integer(row.at(2)), in);
+    in.latitude = deg_to_rad(cell_number(row.at(3)));
+    in.longitude = deg_to_rad(cell_number(row.at(4)));
+    const auto r =
+        rise_transit_set_ut_day(year, cell_integer(row.at(1)), cell_integer(row.at(2)), in);
     ASSERT_EQ(r.kind, DayKind::normal);
     EXPECT_NEAR(86400.0 * *r.sunrise, clock_seconds(row.at(6)), kTableA21TolSec) << row.at(0);
     EXPECT_NEAR(86400.0 * *r.sunset, clock_seconds(row.at(8)), kTableA21TolSec) << row.at(0);

@@ -14,13 +14,8 @@
 namespace skylight::sun {
 namespace {
 
-// Test-vector fields through the project's strict number parser.
-double field_number(const std::string& s) {
-  return parse_number(s, "test vector field");
-}
-int field_integer(const std::string& s) {
-  return static_cast<int>(parse_integer(s, "test vector field"));
-}
+using testing_support::cell_integer;
+using testing_support::cell_number;
 
 // Table A4.1 prints JD to 0.1 day, but every entry is an exact multiple of 0.1; the double JD
 // near 2.4e6 has a resolution of 4.7e-10 day.
@@ -140,10 +135,10 @@ TEST(JulianDay, PaperTableA41) {
       testing_support::read_test_vector_csv("reda_andreas_2008_table_a4_1_julian_day.csv");
   ASSERT_EQ(rows.size(), 16u);
   for (const auto& r : rows) {
-    const int year = field_integer(r.at(0)), month = field_integer(r.at(1)),
-              day = field_integer(r.at(2));
-    const int h = field_integer(r.at(3).substr(0, 2)), m = field_integer(r.at(3).substr(3, 2));
-    const double jd = field_number(r.at(4));
+    const int year = cell_integer(r.at(0)), month = cell_integer(r.at(1)),
+              day = cell_integer(r.at(2));
+    const int h = cell_integer(r.at(3).substr(0, 2)), m = cell_integer(r.at(3).substr(3, 2));
+    const double jd = cell_number(r.at(4));
     EXPECT_NEAR(julian_day(year, month, day + (h + m / 60.0) / 24.0), jd, kJdTol)
         << year << "-" << month << "-" << day;
     // Calendar date from JD (A.3) inverts it.
