@@ -66,36 +66,115 @@ std::optional<std::string> unknown_name_error(const CLI::App& app, int argc,
   return std::nullopt;
 }
 
-// ---- flags from the schema ----------------------------------------------------------------------
+// ---- help pages ---------------------------------------------------------------------------------
 
 namespace {
 
-// CLI11 puts "--flag: " before a validator's message: drop the flag from ours.
-std::string without_flag(const std::string& message, const std::string& flag) {
-  for (const std::string& prefix : {flag + ": ", flag + " "})
-    if (message.rfind(prefix, 0) == 0) return message.substr(prefix.size());
-  return message;
+// `text` broken at spaces into lines of at most `width` columns (a longer word stands alone),
+// every line after the first indented by `indent` columns; its own line breaks are kept.
+std::string wrapped(std::string_view text, std::size_t indent, std::size_t width) {
+  const std::size_t room = width > indent + 20 ? width - indent : 20;
+  std::string out, line;
+  const auto flush = [&] {
+    if (!out.empty()) out += "\n" + std::string(indent, ' ');
+    out += line;
+    line.clear();
+  };
+  std::size_t start = 0;
+  while (start <= text.size()) {
+    const std::size_t end = std::min(text.find('\n', start), text.size());
+    const std::string_view paragraph = text.substr(start, end - start);
+    // Words; a range "2 .. 1000000" stays one.
+    std::vector<std::string> words;
+    for (std::size_t pos = 0; pos < paragraph.size();) {
+      const std::size_t space = std::min(paragraph.find(' ', pos), paragraph.size());
+      std::string word(paragraph.substr(pos, space - pos));
+      if (!words.empty() && (word == ".." || words.back().ends_with(" ..")))
+        words.back() += " " + word;
+      else
+        words.push_back(std::move(word));
+      pos = space + 1;
+    }
+    for (const std::string& word : words) {
+      if (!line.empty() && line.size() + 1 + word.size() > room) flush();
+      if (!line.empty()) line += ' ';
+      line += word;
+    }
+    flush();
+    start = end + 1;
+  }
+  return out;
 }
 
 }  // namespace
+
+HelpFormatter::HelpFormatter() {
+  column_width(30);
+}
+
+std::string HelpFormatter::make_option(const CLI::Option* opt, bool is_positional) const {
+  std::string name = "  " + make_option_name(opt, is_positional) + make_option_opts(opt);
+  const std::string desc = make_option_desc(opt);
+  if (desc.empty()) return name + "\n";
+  name += name.size() >= get_column_width() ? "\n" + std::string(get_column_width(), ' ')
+                                            : std::string(get_column_width() - name.size(), ' ');
+  return name + wrapped(desc, get_column_width(), kHelpWidth) + "\n";
+}
+
+std::string HelpFormatter::make_subcommand(const CLI::App* sub) const {
+  const std::string& d = sub->get_description();
+  std::string name = "  " + sub->get_display_name(true);
+  name.resize(std::max(name.size() + 1, get_column_width()), ' ');
+  return name + d.substr(0, d.find('\n')) + "\n";
+}
+
+std::string HelpFormatter::make_description(const CLI::App* app) const {
+  // "summary\ndetail": the page shows the detail, which says it all.
+  const std::string& d = app->get_description();
+  const std::size_t newline = d.find('\n');
+  const std::string page = newline == std::string::npos ? d : d.substr(newline + 1);
+  return page.empty() ? std::string() : wrapped(page, 0, kHelpWidth) + "\n";
+}
+
+// ---- flags from the schema ----------------------------------------------------------------------
+
+namespace {}  // namespace
 
 std::string flag_spelling(std::string_view name) {
   return name == "output" ? "-o" : "--" + std::string(name);
 }
 
 CLI::Validator number_in(const ParameterSpec& spec) {
+  // No description: the help text already shows the range as the schema writes it.
   return CLI::Validator(
       [spec](std::string& text) -> std::string {
-        try {
-          spec.check(spec.parse(text));
-        } catch (const InvalidArgument& e) {
-          return without_flag(e.what(), spec.flag());
-        }
+        // The library's message names the flag ("--lat = 91 is outside [-90, 90]"): thrown as
+        // it is rather than under CLI11's "--lat: " prefix (main() prints it).
+        spec.check(spec.parse(text));
         return {};
       },
-      spec.kind == ParameterKind::numbers
-          ? fmt::format("{} values in [{}, {}]", spec.count, spec.min, spec.max)
-          : fmt::format("{} in [{}, {}]", spec.unit, spec.min, spec.max));
+      "");
+}
+
+std::string value_label(const ParameterSpec& spec) {
+  switch (spec.kind) {
+    case ParameterKind::integer:
+      return "INT";
+    case ParameterKind::number:
+      return "NUMBER";
+    case ParameterKind::numbers: {
+      if (spec.count <= 0) return "N,N,...";
+      std::string label = "N";
+      for (std::size_t i = 1; i < spec.count; ++i) label += ",N";
+      return label;
+    }
+    case ParameterKind::text:
+      return spec.choices.empty() ? "TEXT"
+                                  : "{" + fmt::format("{}", fmt::join(spec.choices, "|")) + "}";
+    case ParameterKind::flag:
+      return {};
+  }
+  return {};
 }
 
 void SchemaFlags::add(CLI::App& app, const std::vector<ParameterSpec>& specs) {
@@ -114,10 +193,11 @@ void SchemaFlags::add(CLI::App& app, const std::vector<ParameterSpec>& specs) {
       opt = app.add_option_function<std::string>(
           spec.flag(), [&raw](const std::string& s) { raw = s; }, spec.help());
       if (spec.kind == ParameterKind::text && !spec.choices.empty())
-        opt->check(CLI::IsMember(spec.choices));
+        opt->check(CLI::IsMember(spec.choices).description(""));
       else if (spec.kind != ParameterKind::text)
         opt->check(number_in(spec));
     }
+    if (spec.kind != ParameterKind::flag) opt->type_name(value_label(spec));
     options_[spec.name] = opt;
   }
 }
@@ -193,7 +273,7 @@ namespace {
 std::string model_flag_help(const std::vector<std::pair<std::string, ParameterSpec>>& specs) {
   const ParameterSpec& first = specs.front().second;
   std::string h = first.description;
-  if (!first.unit.empty()) h += fmt::format(" [{}]", first.unit);
+  if (!first.unit.empty() && first.unit != "1") h += fmt::format(" [{}]", first.unit);
   for (const auto& [model, spec] : specs) {
     h += fmt::format("; {}: ", model);
     if (spec.kind == ParameterKind::numbers) h += fmt::format("{} values, each ", spec.count);
@@ -227,7 +307,8 @@ void ModelOptions::add(CLI::App& app) {
       app.add_flag_callback(
           "--" + name, [this, n = name] { raw_[n] = "true"; }, model_flag_help(specs));
     } else {
-      app.add_option("--" + name, raw_[name], model_flag_help(specs));
+      app.add_option("--" + name, raw_[name], model_flag_help(specs))
+          ->type_name(value_label(specs.front().second));
     }
   }
 }

@@ -64,8 +64,22 @@ std::optional<std::string> unknown_name_error(const CLI::App& app, int argc,
 std::string flag_spelling(std::string_view name);
 
 // A CLI11 check that the text is a number (strict parser) in the spec's range; the help text shows
-// the unit and range.
+// the unit and range. A bad value throws the library's InvalidArgument, which names the flag.
 CLI::Validator number_in(const ParameterSpec& spec);
+// What --help shows for a flag's value: INT, NUMBER, N,N (a list of two), TEXT or {a|b|c}.
+std::string value_label(const ParameterSpec& spec);
+
+// --help as a manual page: option descriptions wrapped at kHelpWidth columns under their flag. A
+// command's description is "summary" or "summary\ndetail": its line in the parent's list shows the
+// summary, its own page the detail.
+class HelpFormatter : public CLI::Formatter {
+ public:
+  static constexpr std::size_t kHelpWidth = 100;
+  HelpFormatter();
+  std::string make_option(const CLI::Option* opt, bool is_positional) const override;
+  std::string make_subcommand(const CLI::App* sub) const override;
+  std::string make_description(const CLI::App* app) const override;
+};
 
 // The flags of a library schema (an operation's settings, core/parameters.h): one per spec, the
 // values kept as given until the command runs, then parsed and checked by the specs and bound

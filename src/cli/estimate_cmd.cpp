@@ -233,8 +233,9 @@ void add_estimate_command(CLI::App& app, Commands& commands) {
   const OperationInfo& op = operations::find("estimate");
   auto* cmd = app.add_subcommand(
       "estimate",
-      "turbidity of a clear sky from an HDR photo (fisheye or equirect; Preetham, Hosek-Wilkie or "
-      "CIE sky-type fit)");
+      "turbidity (or CIE sky type) of a clear sky from an HDR photo\n"
+      "Turbidity of a clear sky from an HDR photo, fisheye or equirect: a Preetham, Hosek-Wilkie "
+      "or CIE sky-type fit (Morales et al. 2017; docs/ESTIMATE.md).");
   cmd->add_option("--image", c->image, "the sky photo: linear .exr, .hdr or .pfm")->required();
   cmd->add_option("--mask", c->mask,
                   "sky mask (.png, .pfm, .exr, .hdr) of the image's size: nonzero = sky");

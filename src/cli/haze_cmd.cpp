@@ -277,20 +277,28 @@ void add_operation_flags(CLI::App& cmd, HazeCommand& c, const std::string& opera
 void add_haze_command(CLI::App& app, Commands& commands) {
   auto* haze = app.add_subcommand(
       "haze",
-      "aerial perspective (Morales et al. 2017): coefficients, attenuation, cameras, "
-      "add/retarget/remove haze, composite, sky-mask");
+      "aerial perspective: add, remove or retarget the haze of a photo\n"
+      "Aerial perspective (Morales et al. 2017; docs/HAZE.md): scattering coefficients, "
+      "attenuation, cameras, add/retarget/remove haze on an image with depth, composite, "
+      "sky-mask.");
   haze->require_subcommand(1);
 
   auto cf = std::make_shared<HazeCommand>();
   auto* coeff = haze->add_subcommand(
-      "coefficients", "Rayleigh and Mie scattering coefficients and the weather class (Table 2)");
+      "coefficients",
+      "Rayleigh and Mie scattering coefficients and the weather class\n"
+      "Rayleigh and Mie scattering coefficients of air of turbidity T and the weather class "
+      "(Morales et al. 2017 Table 2).");
   add_operation_flags(*coeff, *cf, "haze coefficients");
   coeff->add_flag("--json", cf->json, "write JSON");
   commands.push_back({coeff, [cf] { return run_coefficients(*cf); }});
 
   auto af = std::make_shared<HazeCommand>();
   auto* att = haze->add_subcommand(
-      "attenuation", "the attenuation factor Gamma_c (eq. 11) of a horizontal path for a camera");
+      "attenuation",
+      "the attenuation of a horizontal path for a camera\n"
+      "The attenuation factor Gamma_c (Morales et al. 2017 eq. 11) of a horizontal path for a "
+      "camera.");
   add_operation_flags(*att, *af, "haze attenuation");
   af->flags.option("distance")->required();
   att->add_flag("--json", af->json, "write JSON");
@@ -321,7 +329,10 @@ void add_haze_command(CLI::App& app, Commands& commands) {
 
   auto sm = std::make_shared<HazeCommand>();
   auto* mask_cmd = haze->add_subcommand(
-      "sky-mask", "the sky of a photo by a marker-controlled watershed (eq. 12's segmentation)");
+      "sky-mask",
+      "the sky of a photo as a mask\n"
+      "The sky of a photo by a marker-controlled watershed (the segmentation of Morales et al. "
+      "2017 eq. 12).");
   add_operation_flags(*mask_cmd, *sm, "haze sky-mask");
   sm->flags.option("sky")->required();
   mask_cmd->add_option("-o,--output", sm->output, "the mask: 8-bit .png, 255 = sky")->required();
@@ -329,7 +340,9 @@ void add_haze_command(CLI::App& app, Commands& commands) {
 
   auto comp = std::make_shared<HazeCommand>();
   auto* c = haze->add_subcommand(
-      "composite", "a virtual object (RGB + depth) given the haze of T, over a background photo");
+      "composite",
+      "a virtual object given haze, over a background photo\n"
+      "A virtual object (RGB + depth) given the haze of turbidity T, over a background photo.");
   c->add_option("--background", comp->image, "the background photo (.exr, .pfm, .hdr; linear RGB)")
       ->required();
   c->add_option("--object", comp->object, "the virtual object's RGB without haze")->required();

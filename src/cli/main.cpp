@@ -22,12 +22,17 @@ int main(int argc, char** argv) {
   // The library's messages name parameters; here they read as the flags the user typed.
   skylight::set_parameter_spelling(cli::flag_spelling);
   CLI::App app{"skylight: daylight sky models, renders and checks"};
+  // Before the subcommands: they take their parent's formatter.
+  const auto formatter = std::make_shared<cli::HelpFormatter>();
+  app.formatter(formatter);
   app.set_version_flag("--version", std::string("skylight ") + skylight::kVersion);
   app.require_subcommand(1);
   int threads = 0;
   const std::string threads_help = fmt::format(
       "worker threads, 1-{}; default: SKYLIGHT_THREADS or all cores", skylight::kMaxThreads);
-  app.add_option("--threads", threads, threads_help)->check(CLI::Range(1, skylight::kMaxThreads));
+  app.add_option("--threads", threads, threads_help)
+      ->type_name("INT")
+      ->check(CLI::Range(1, skylight::kMaxThreads).description(""));
   // Global options (--threads) are accepted after the subcommand too.
   app.fallthrough();
 
@@ -42,12 +47,17 @@ int main(int argc, char** argv) {
   cli::add_estimate_command(app, commands);
   cli::add_sh_command(app, commands);
   cli::add_haze_command(app, commands);
-  // Each subcommand's --help also lists the global option (CLI11 shows only its own options).
-  for (const auto& c : commands)
-    c.app->footer(
-        fmt::format("Global option (before or after the subcommand):\n  --threads "
-                    "INT in [1 - {}]  {}\n",
-                    skylight::kMaxThreads, threads_help));
+  // Each subcommand's --help, a group's (nn, sh, haze) too, also lists the global option (CLI11
+  // shows only the page's own options).
+  const std::string global =
+      fmt::format("Global option (before or after the subcommand):\n{}",
+                  formatter->make_option(app.get_option("--threads"), false));
+  const auto add_footer = [&global](CLI::App* sub, auto& self) -> void {
+    sub->footer(global);
+    for (CLI::App* s : sub->get_subcommands([](const CLI::App*) { return true; })) self(s, self);
+  };
+  for (CLI::App* sub : app.get_subcommands([](const CLI::App*) { return true; }))
+    add_footer(sub, add_footer);
 
   try {
     app.parse(argc, argv);
@@ -57,6 +67,10 @@ int main(int argc, char** argv) {
     return app.exit(e);
   } catch (const CLI::CallForVersion& e) {
     return app.exit(e);
+  } catch (const skylight::InvalidArgument& e) {
+    // A value out of its schema's range (number_in): the library's message names the flag.
+    std::cerr << "skylight: error: " << e.what() << "\n";
+    return cli::kExitUsage;
   } catch (const CLI::ParseError& e) {
     // A mistyped flag or subcommand is named with the nearest known one; CLI11 would report
     // whatever it checks first (a missing --model before an unknown flag).

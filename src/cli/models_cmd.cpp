@@ -117,8 +117,9 @@ void add_models_command(CLI::App& app, Commands& commands) {
   auto op_flags = std::make_shared<std::array<bool, 2>>();
   auto* ops = app.add_subcommand(
       "operations",
-      "list the operations with options (estimate, sh fit, nn train, haze add, ...), their "
-      "parameters (unit, range, default) and results; the models' parameters: `models`");
+      "list the operations with options, their parameters and results\n"
+      "Every operation with options (estimate, sh fit, nn train, haze add, ...): its parameters "
+      "(unit, range, default) and results; the models' parameters: `skylight models`.");
   ops->add_flag("--json", (*op_flags)[0], "machine-readable JSON");
   ops->add_flag("--markdown", (*op_flags)[1], "the parameter tables of docs/OPERATIONS.md");
   commands.push_back({ops, [op_flags] { return run_operations((*op_flags)[0], (*op_flags)[1]); }});

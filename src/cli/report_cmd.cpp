@@ -50,7 +50,10 @@ int run_report(const ReportCommand& f) {
 void add_report_command(CLI::App& app, Commands& commands) {
   auto f = std::make_shared<ReportCommand>();
   auto* cmd = app.add_subcommand(
-      "report", "write the validation and comparison report (HTML + SVG/PNG + report.json)");
+      "report",
+      "write the validation and comparison report (HTML, figures, JSON)\n"
+      "The validation and comparison report: index.html, SVG/PNG figures and report.json "
+      "(docs/REPORT.md).");
   cmd->add_option("-o,--output", f->output,
                   "output directory (created if needed): index.html, report.json, figures");
   f->flags.add(*cmd, operations::find("report").parameters);

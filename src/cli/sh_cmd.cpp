@@ -198,7 +198,10 @@ std::shared_ptr<ShCommand> subcommand(CLI::App& sh, Commands& commands, const ch
 
 void add_sh_command(CLI::App& app, Commands& commands) {
   auto* sh = app.add_subcommand(
-      "sh", "spherical-harmonics sky lighting: polynomial SH tables (Habel et al. 2008)");
+      "sh",
+      "spherical-harmonics sky lighting: fit, eval, export, render, error\n"
+      "Spherical-harmonics sky lighting: polynomial tables of SH coefficients over the sun's "
+      "zenith and turbidity (Habel et al. 2008; docs/SH.md).");
   sh->require_subcommand(1);
   CLI::App* cmd = nullptr;
 
@@ -209,7 +212,9 @@ void add_sh_command(CLI::App& app, Commands& commands) {
 
   auto eval =
       subcommand(*sh, commands, "eval",
-                 "SH coefficients of the sky for a sun and turbidity (CSV l,m,channels or --json)",
+                 "SH coefficients of the sky for a sun and turbidity\n"
+                 "SH coefficients of the sky for a sun and turbidity: CSV l,m,channels, or JSON "
+                 "(--json).",
                  run_eval, &cmd);
   cmd->add_flag("--json", eval->json, "JSON output");
 
@@ -219,14 +224,18 @@ void add_sh_command(CLI::App& app, Commands& commands) {
 
   auto ren =
       subcommand(*sh, commands, "render",
-                 "the reconstructed sky as an equirect env map, and a diffuse sphere lit by it",
+                 "the reconstructed sky as an env map; a diffuse sphere lit by it\n"
+                 "The sky reconstructed from a table as an equirect environment map, and a diffuse "
+                 "sphere lit by it (--sphere).",
                  run_render, &cmd);
   cmd->add_option("-o,--output", ren->output, "env map (.exr/.hdr/.pfm; .png clamped)")->required();
   cmd->add_option("--sphere", ren->sphere, "also a diffuse sphere lit by the SH sky here");
 
   auto err =
       subcommand(*sh, commands, "error",
-                 "E_mean (eq. 3) and E_max (eq. 2) of a table per band count, worst and median",
+                 "a table's reconstruction errors per band count\n"
+                 "E_mean (Habel et al. 2008 eq. 3) and E_max (eq. 2) of a table per band count, "
+                 "worst and median over the table's suns and turbidities.",
                  run_error, &cmd);
   cmd->add_flag("--json", err->json, "JSON output");
 }

@@ -6,7 +6,9 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <string>
+#include <vector>
 
 #include "skylight/core/colorimetry.h"
 #include "skylight/core/frame.h"
@@ -20,12 +22,63 @@ namespace {
 
 using Cli = testing_support::CliTest;
 
-TEST_F(Cli, EverySubcommandHelpListsTheGlobalThreadsOption) {
-  for (const char* sub : {"models", "render", "eval", "bench", "report", "sun"}) {
-    const testing_support::CliResult r = run(std::string(sub) + " --help");
-    EXPECT_EQ(r.status, 0) << sub;
-    EXPECT_NE(r.out.find("--threads INT in [1 - 1024]"), std::string::npos) << sub << ": " << r.out;
+// Every help page, found by walking the "Subcommands:" lists from the top: the group pages (nn, sh,
+// haze) and the leaves list the global --threads; a command's line in its parent's list fits in
+// HelpFormatter::kHelpWidth columns; values read as a manual (INT, NUMBER, {a|b}; no CLI11
+// "TEXT:1" or "INT:INT", no "[1]" unit, integers written whole).
+TEST_F(Cli, EveryHelpPageReadsLikeAManual) {
+  constexpr std::size_t kWidth = 100;  // HelpFormatter::kHelpWidth
+  std::vector<std::string> pages = {""};
+  std::size_t visited = 0;
+  for (std::size_t i = 0; i < pages.size(); ++i, ++visited) {
+    const std::string page = pages[i];  // a copy: pages grows below
+    const testing_support::CliResult r = run(page + (page.empty() ? "" : " ") + "--help");
+    ASSERT_EQ(r.status, 0) << page;
+    std::istringstream lines(r.out);
+    bool listing = false;
+    for (std::string line; std::getline(lines, line);) {
+      if (line == "Subcommands:") {
+        listing = true;
+        continue;
+      }
+      if (line.empty()) listing = false;
+      if (listing) {
+        EXPECT_LE(line.size(), kWidth) << page << ": " << line;
+        pages.push_back(page + (page.empty() ? "" : " ") + line.substr(2, line.find(' ', 2) - 2));
+      }
+    }
+    if (!page.empty()) {
+      EXPECT_NE(r.out.find("Global option (before or after the subcommand):\n  --threads INT"),
+                std::string::npos)
+          << page << ":\n"
+          << r.out;
+    }
+    for (const char* noise : {"TEXT:", "INT:", "NUMBER:", ":deg", "[1]", "2.14748e+09"})
+      EXPECT_EQ(r.out.find(noise), std::string::npos) << page << ": '" << noise << "' in\n"
+                                                      << r.out;
   }
+  // The top page, 3 groups, every leaf.
+  EXPECT_GE(visited, 30u);
+  const testing_support::CliResult est = run("estimate --help");
+  EXPECT_NE(est.out.find("--seed INT "), std::string::npos) << est.out;
+  EXPECT_NE(est.out.find("0 .. 2147483647; default 1"), std::string::npos) << est.out;
+  EXPECT_NE(est.out.find("2 .. 1000000;"), std::string::npos) << est.out;  // --samples
+  EXPECT_NE(est.out.find("--model {preetham|cie|hosek}"), std::string::npos) << est.out;
+  EXPECT_NE(run("render --help").out.find("--false-colour-range N,N "), std::string::npos);
+}
+
+// A value outside its range: the one line names the flag as typed ("--lat = 91", not CLI11's
+// "--lat: = 91").
+TEST_F(Cli, OutOfRangeValuesNameTheirFlag) {
+  const testing_support::CliResult r = run("sun --time 2003-10-17T12:30:30-07:00 --lat 91 --lon 0");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_EQ(r.err, "skylight: error: --lat = 91 is outside [-90, 90]\n");
+  const testing_support::CliResult w = run("render --model preetham --width 0 -o x.exr");
+  EXPECT_EQ(w.status, 2);
+  EXPECT_EQ(w.err, "skylight: error: --width = 0 is outside [1, 32768]\n");
+  const testing_support::CliResult z = run("sun --time 2003-10-17T12:30:30+25:00 --lat 0 --lon 0");
+  EXPECT_EQ(z.status, 2);
+  EXPECT_NE(z.err.find("UTC offset: +25:00 is beyond +-18:00"), std::string::npos) << z.err;
 }
 
 // A mistyped flag, subcommand, model or camera: exit 2, one line naming it and the nearest known

@@ -92,8 +92,9 @@ void add_nn_animate_command(CLI::App& nn, Commands& commands) {
   auto c = std::make_shared<AnimateCommand>();
   auto* cmd = nn.add_subcommand(
       "animate",
-      "an environment-map sequence of a neural sky or a Pietras network with the sun moving "
-      "between two positions or times");
+      "environment maps of a network's sky with the sun moving\n"
+      "An environment-map sequence of a neural sky or a Pietras network with the sun moving "
+      "between two positions or times.");
   cmd->add_option("--weights", c->weights,
                   "weights file (JSON): a sky network or a Pietras network")
       ->required();

@@ -104,8 +104,9 @@ void add_nn_planet_command(CLI::App& nn, Commands& commands) {
   auto c = std::make_shared<PlanetCommand>();
   auto* cmd = nn.add_subcommand(
       "planet",
-      "a Pietras network shading an icosphere planet and its atmosphere in a GL vertex shader, "
-      "from orbit or from the ground (docs/PIETRAS.md)");
+      "a planet and its atmosphere shaded by a network, from orbit or ground\n"
+      "A Pietras network shading an icosphere planet and its atmosphere in a GL vertex shader, "
+      "from orbit or from the ground (docs/PIETRAS.md).");
   cmd->add_option("--weights", c->weights, "Pietras weights file (JSON)")->required();
   c->flags.add(*cmd, operations::find("nn planet").parameters);
   cmd->add_option("-o,--output", c->output,

@@ -43,8 +43,9 @@ void add_nn_study_command(CLI::App& nn, Commands& commands) {
   auto flags = std::make_shared<SchemaFlags>();
   auto* cmd = nn.add_subcommand(
       "study",
-      "hidden-layer study (Satilmis et al. 2016 Fig. 5, eq. 8): error, evaluation time "
-      "and efficiency per hidden-layer width");
+      "error and speed per hidden-layer width\n"
+      "The hidden-layer study (Satilmis et al. 2016 Fig. 5, eq. 8): error, evaluation time "
+      "and efficiency per hidden-layer width.");
   flags->add(*cmd, operations::find("nn study").parameters);
   commands.push_back({cmd, [flags] { return run_study(*flags); }});
 }

@@ -198,7 +198,10 @@ int run_train(const TrainCommand& c) {
 void add_nn_train_command(CLI::App& nn, Commands& commands) {
   auto c = std::make_shared<TrainCommand>();
   auto* train = nn.add_subcommand(
-      "train", "train a network on a registered sky model (defaults: the paper's protocol)");
+      "train",
+      "train a network on a sky model or on HDR photos\n"
+      "Train a network on a registered sky model (defaults: the paper's protocol) or on a sequence "
+      "of HDR photos (--images); validated on held-out data (docs/NN.md).");
   c->flags.add(*train, operations::find("nn train").parameters);
   // The flags of model-source training have no meaning for images: giving them is an error.
   for (const char* name : {"source", "suns", "view-zeniths", "view-azimuths", "network"})

@@ -214,7 +214,9 @@ void add_nn_validate_command(CLI::App& nn, Commands& commands) {
 
   auto ef = std::make_shared<ExportCommand>();
   auto* exp = nn.add_subcommand(
-      "export", "write a network as a GLSL function with its weights baked in (docs/GPU.md)");
+      "export",
+      "write a network as a GLSL function\n"
+      "Write a network as a GLSL function with its weights baked in (docs/GPU.md).");
   exp->add_option("--weights", ef->weights, "weights file (JSON); default: the embedded network");
   exp->add_option("--glsl", ef->glsl,
                   "GLSL file to write: vec3 skylight_sky(vec3 view, vec3 sun, float turbidity); "

@@ -84,6 +84,8 @@ std::string ParameterSpec::range_text() const {
     return out;
   }
   if (kind == ParameterKind::flag) return {};
+  // An integer's bounds are written out whole (0 .. 2147483647, not 2.14748e+09).
+  if (kind == ParameterKind::integer) return fmt::format("{:.0f} .. {:.0f}", min, max);
   return fmt::format("{} .. {}", display_number(min), display_number(max));
 }
 
@@ -91,13 +93,15 @@ std::string ParameterSpec::default_text() const {
   if (std::holds_alternative<Required>(default_value)) return "required";
   if (const auto* a = std::get_if<Absent>(&default_value)) return "none (" + a->meaning + ")";
   const ParameterValue& v = std::get<ParameterValue>(default_value);
-  if (const auto* d = std::get_if<double>(&v)) return display_number(*d);
+  if (const auto* d = std::get_if<double>(&v))
+    return kind == ParameterKind::integer ? fmt::format("{:.0f}", *d) : display_number(*d);
   return format(v);
 }
 
 std::string ParameterSpec::help() const {
   std::string h = description;
-  if (!unit.empty()) h += fmt::format(" [{}]", unit);
+  // A dimensionless value ("1") shows no unit.
+  if (!unit.empty() && unit != "1") h += fmt::format(" [{}]", unit);
   if (kind == ParameterKind::numbers && count > 0) h += fmt::format(", {} values", count);
   // (A text's choices are the front end's to show: CLI11 lists them beside the flag.)
   if (const std::string r = range_text(); !r.empty() && kind != ParameterKind::text)

@@ -67,11 +67,13 @@ struct ParameterSpec {
   // "skylight:" + name with '-' -> '_' + a unit suffix ("_deg", "_m", "_cd_m2", "_W_m2_nm",
   // "_DU"; none for "1" and ""): e.g. skylight:zenith_luminance_cd_m2.
   std::string metadata_key() const;
-  // "1 .. 64" for numbers; "a|b|c" for a text of choices; "" for other text and flags.
+  // "1 .. 64" for numbers (an integer's bounds whole: "0 .. 2147483647"); "a|b|c" for a text of
+  // choices; "" for other text and flags.
   std::string range_text() const;
   // The default as the user sees it: "3", "-1,-0.32,10,-3,0.45", "required", "none (<meaning>)".
   std::string default_text() const;
-  // One line for --help: "<description> [<unit>], <range>; default <default>".
+  // One line for --help: "<description> [<unit>], <range>; default <default>" (no unit shown for
+  // a dimensionless "1"; an integer's bounds and default written whole).
   std::string help() const;
 
   // Parses the text form (command line, metadata) with the strict number parser. Throws

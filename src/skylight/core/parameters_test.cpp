@@ -169,6 +169,16 @@ TEST(Parameters, TextFormsAndMetadataKeys) {
   EXPECT_EQ(specs[2].spec.default_text(), "none (no scaling)");
   EXPECT_EQ(specs[4].spec.default_text(), "required");
   EXPECT_EQ(specs[0].spec.help(), "a height [m], 0 .. 10; default 2");
+  // An integer's bounds and default are written whole; a dimensionless unit is not shown.
+  const ParameterSpec seed{.name = "seed",
+                           .unit = "1",
+                           .kind = ParameterKind::integer,
+                           .min = 0,
+                           .max = 2147483647,
+                           .default_value = ParameterValue{1234567.0},
+                           .description = "a seed"};
+  EXPECT_EQ(seed.range_text(), "0 .. 2147483647");
+  EXPECT_EQ(seed.help(), "a seed, 0 .. 2147483647; default 1234567");
   EXPECT_EQ(std::get<std::vector<double>>(specs[4].spec.parse("0.5,-1")),
             (std::vector<double>{0.5, -1.0}));
   EXPECT_EQ(specs[4].spec.format(std::vector<double>{0.5, -1.0}), "0.5,-1");

@@ -213,8 +213,7 @@ DateTime parse_iso8601(std::string_view text) {
     if (mm > 59) in.fail("UTC offset minutes", std::to_string(mm) + " is out of range [00, 59]");
     const int minutes = 60 * hh + mm;
     if (minutes > kMaxOffsetMinutes) {
-      in.fail("UTC offset", std::string(1, sign) + std::to_string(hh) + ":" + std::to_string(mm) +
-                                " is beyond +-18:00");
+      in.fail("UTC offset", fmt::format("{}{:02}:{:02} is beyond +-18:00", sign, hh, mm));
     }
     t.utc_offset_minutes = sign == '-' ? -minutes : minutes;
   } else if (in.at_end()) {
