@@ -13,6 +13,7 @@
 #include "skylight/core/colorimetry.h"
 #include "skylight/core/frame.h"
 #include "skylight/io/image.h"
+#include "skylight/models/sky_model.h"
 #include "support/cli_run.h"
 
 namespace fs = std::filesystem;
@@ -185,6 +186,34 @@ TEST_F(Cli, FlagsUseTheStrictNumberParser) {
   // Subnormal values in range are numbers.
   const auto r = run("eval --model cie --zenith-luminance 1e-9 --sun-azimuth 1e-310", csv);
   EXPECT_EQ(r.status, 0) << r.err;
+}
+
+// README ("a model flag the chosen model does not read is ignored with a warning"), for every
+// registered model: a flag another model declares, given with a value valid for that model, is
+// named in a warning and the command succeeds.
+TEST_F(Cli, EveryModelWarnsOfAModelFlagItDoesNotRead) {
+  const std::string csv = "zenith_deg,azimuth_deg\n30,90\n";
+  for (const ModelInfo& m : model_registry()) {
+    std::string args = "eval --model " + m.name;
+    for (const auto& [name, value] : m.example.all())
+      args += " --" + name + " " + m.find_parameter(name)->format(value);
+    // The first parameter of another model that this one does not declare.
+    const ParameterSpec* foreign = nullptr;
+    for (const ModelInfo& other : model_registry())
+      for (const ParameterSpec& spec : other.parameters)
+        if (!foreign && spec.kind != ParameterKind::flag && !m.find_parameter(spec.name) &&
+            std::holds_alternative<ParameterValue>(spec.default_value))
+          foreign = &spec;
+    ASSERT_NE(foreign, nullptr) << m.name;
+    args += " " + foreign->flag() + " " +
+            foreign->format(std::get<ParameterValue>(foreign->default_value));
+    const auto r = run(args, csv);
+    EXPECT_EQ(r.status, 0) << args << ": " << r.err;
+    EXPECT_NE(r.err.find("skylight: warning: " + foreign->flag() +
+                         " is not a parameter of model '" + m.name + "'; ignored\n"),
+              std::string::npos)
+        << args << ": " << r.err;
+  }
 }
 
 TEST_F(Cli, AFlagTheModelDoesNotReadIsAWarning) {
