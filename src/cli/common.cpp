@@ -405,6 +405,7 @@ io::Metadata model_metadata(const SkyModel& model, std::string_view sun_mode) {
     if (const ParameterValue* v = values.find(spec.name))
       md.emplace_back(spec.metadata_key(), spec.format(*v));
   md.emplace_back("skylight:sun", std::string(sun_mode));
+  md.emplace_back("skylight:colour", find_model(model.name())->colour_note());
   return md;
 }
 

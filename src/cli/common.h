@@ -163,7 +163,8 @@ void warn(std::string_view message);
 void warn_unread_layout(const ImageOptions& layout, const ParameterValues& given);
 
 // Metadata of an output made from `model`: version, model, the sun and every parameter the model
-// read (ParameterSpec::metadata_key()), plus the solar disc mode.
+// read (ParameterSpec::metadata_key()), the solar disc mode and what the colours mean
+// (skylight:colour, ModelInfo::colour_note()).
 io::Metadata model_metadata(const SkyModel& model, std::string_view sun_mode);
 
 // ---- output -------------------------------------------------------------------------------------

@@ -58,13 +58,15 @@ int run_models(bool json, bool markdown) {
                       {"parameters", params},
                       {"domain", m.domain},
                       {"spectral", m.spectral},
-                      {"sun", m.sun}});
+                      {"sun", m.sun},
+                      {"luminance_only", m.luminance_only},
+                      {"colour", m.colour_note()}});
     }
     out = list.dump(2) + "\n";
   } else {
     for (const auto& m : model_registry()) {
-      out += fmt::format("{}\n  {}\n  output: {}\n  domain: {}\n  parameters:\n", m.name,
-                         m.description, m.output, m.domain);
+      out += fmt::format("{}\n  {}\n  output: {}\n  colour: {}\n  domain: {}\n  parameters:\n",
+                         m.name, m.description, m.output, m.colour_note(), m.domain);
       for (const auto& p : all_parameters(m))
         out += fmt::format("    --{:<22} [{}] {}, default {}: {}\n", p.name, p.unit, p.range_text(),
                            p.default_text(), p.description);

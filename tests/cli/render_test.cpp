@@ -5,11 +5,14 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <string>
 
 #include "skylight/core/colorimetry.h"
 #include "skylight/core/frame.h"
 #include "skylight/io/image.h"
+#include "skylight/models/sky_model.h"
 #include "support/cli_run.h"
 #include "support/exr_metadata.h"
 #include "support/scratch_dir.h"
@@ -56,6 +59,44 @@ TEST_F(Cli, RenderedExrPixelMatchesEval) {
   EXPECT_EQ(metadata_value(md, "skylight:turbidity"), "3.5");
   EXPECT_EQ(metadata_value(md, "skylight:sun_zenith_deg"), "50");
   EXPECT_NE(metadata_value(md, "skylight:version"), testing_support::kMissingMetadata);
+}
+
+// A luminance-only model's images are grey by design and say so (skylight:colour, in the EXR and in
+// the PNG preview's text chunks); every other model's sky has colour. Checked on the pixels, for
+// every registered model.
+TEST_F(Cli, GreyByDesignIsSaidAndTrue) {
+  for (const ModelInfo& m : model_registry()) {
+    std::string args = "render --model " + m.name;
+    for (const auto& [name, value] : m.example.all())
+      args += " --" + name + " " + m.find_parameter(name)->format(value);
+    const fs::path exr = dir_ / (m.name + ".exr"), png = dir_ / (m.name + ".png");
+    const auto r = run(args + " --width 32 --height 16 -o '" + exr.string() + "' --preview '" +
+                       png.string() + "'");
+    ASSERT_EQ(r.status, 0) << args << ": " << r.err;
+    EXPECT_EQ(testing_support::metadata_value(io::read_exr_metadata(exr), "skylight:colour"),
+              m.colour_note())
+        << m.name;
+    std::ifstream in(png, std::ios::binary);
+    const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    std::string chunk = "skylight:colour";  // a tEXt chunk: key, NUL, text
+    chunk.push_back('\0');
+    chunk.append(m.colour_note());
+    EXPECT_NE(bytes.find(chunk), std::string::npos) << m.name << ": no tEXt chunk";
+    // Largest chroma difference over the upper half (the sky).
+    const io::ImageF img = io::read_image(exr);
+    float spread = 0.0f;
+    for (int y = 0; y < img.height / 2; ++y)
+      for (int x = 0; x < img.width; ++x) {
+        const float* p = img.pixel(x, y);
+        const float mx = std::max({p[0], p[1], p[2]}), mn = std::min({p[0], p[1], p[2]});
+        if (mx > 0.0f) spread = std::max(spread, (mx - mn) / mx);
+      }
+    if (m.luminance_only)
+      EXPECT_LT(spread, 1e-6f) << m.name << " is declared luminance-only";
+    else
+      EXPECT_GT(spread, 0.05f) << m.name << " is declared chromatic";
+    EXPECT_EQ(m.colour_note().starts_with("grey by design"), m.luminance_only);
+  }
 }
 
 TEST_F(Cli, RenderAllFormatsAndProjections) {

@@ -282,6 +282,7 @@ ModelInfo CieSkyModel::registry_entry() {
       .domain =
           "all sun positions above the horizon; the Kittler-Darula typical zenith luminance is "
           "recommended for solar elevations 10-80 deg (flagged extrapolated outside)",
+      .luminance_only = true,
       .make = model_factory<CieSkyModel, CieParameters>(),
       .neural = NeuralPolicy{},
       // The 15 standard types of CIE S 011 ranked against the photo (type 16, the traditional

@@ -120,6 +120,7 @@ ModelInfo PerezModel::registry_entry() {
       .output = "luminance Y [cd/m^2] = Lz F(theta,gamma)/F(0,theta_s); XYZ at D65 chromaticity",
       .parameters = PerezParameters::schema().specs(),
       .domain = "any coefficients that keep F > 0; sun above the horizon (below: 0)",
+      .luminance_only = true,
       .make = model_factory<PerezModel, PerezParameters>(),
       // A clear sky: the CIE S 011 type 12 gradation and indicatrix coefficients as A..E.
       .example = ParameterValues()

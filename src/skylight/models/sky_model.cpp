@@ -147,6 +147,10 @@ void require_in_range(std::string_view name, double value, double min, double ma
   }
 }
 
+std::string ModelInfo::colour_note() const {
+  return luminance_only ? "grey by design: luminance only (XYZ at the D65 white point)" : "colour";
+}
+
 const ParameterSpec* ModelInfo::find_parameter(std::string_view parameter) const {
   for (const auto& s : parameters)
     if (s.name == parameter) return &s;

@@ -277,6 +277,9 @@ struct ModelInfo {
   std::string domain;  // where it is valid, in words
   bool spectral = false;
   bool sun = false;
+  // The model gives luminance only, its XYZ at the D65 white point: its images are grey by
+  // design (colour_note()).
+  bool luminance_only = false;
   ModelFactory make;
   // Values that make a typical sky where the defaults do not (the required parameters): used by
   // benchmarks, the report and the docs' examples.
@@ -294,6 +297,9 @@ struct ModelInfo {
 
   // The model's own parameter of that name (not the sun's); nullptr if it has none.
   const ParameterSpec* find_parameter(std::string_view parameter) const;
+  // What its images' colours mean, for their metadata (skylight:colour) and `skylight models`:
+  // "colour" or "grey by design: luminance only (XYZ at the D65 white point)".
+  std::string colour_note() const;
 };
 
 // The factory of a model class built from its typed parameters P (bind_parameters).
