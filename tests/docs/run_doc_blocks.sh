@@ -7,8 +7,9 @@
 #   data/ is the repository's;
 #   every `/tmp/` in a command is replaced by the scratch directory's tmp/, so runs never collide.
 # * A command must exit 0, or with N where it ends in the comment `# exit N`.
-# * A comment line right after a command that quotes output (`# "key": 1.23..., "other": "x", ...`)
-#   is checked fragment by fragment (split at ", "; a trailing "..." means "starts with"): each
+# * A comment line right after a command that quotes output (`# "key": 1.23..., "other": "x", ...`
+#   for JSON, `# => turbidity        3.49..., sky pixels` for text) is checked fragment by fragment
+#   (split at ", "; a trailing "..." means "starts with"; the "=> " is not part of the text): each
 #   fragment must occur in that command's stdout.
 # * A ```text block preceded by `<!-- doc-test: stdout of `COMMAND PART` -->` must equal, line for
 #   line, the stdout of the first command run that contains COMMAND PART.
@@ -91,7 +92,7 @@ for entry in "${doc_files[@]}"; do
     END { print n }' "$md")
 done
 
-ran_blocks=0 skipped_blocks=0 ran_cmds=0 skipped_cmds=0 failures=0
+ran_blocks=0 skipped_blocks=0 ran_cmds=0 skipped_cmds=0 failures=0 quoted_lines=0 quoted_fragments=0
 declare -a cmd_texts=()
 fail() {
   echo "FAIL: $*" >&2
@@ -127,12 +128,15 @@ run_command() {
 check_quoted() {
   local where="$1" line="$2" body frag
   body="${line#\# }"
+  body="${body#=> }"
   [ -n "$last_out" ] || return 0
+  quoted_lines=$((quoted_lines + 1))
   local IFS=$'\x1f'
   # shellcheck disable=SC2086
   for frag in $(sed 's/, /\x1f/g' <<<"$body"); do
     frag="${frag%...}"
     [ -z "$frag" ] && continue
+    quoted_fragments=$((quoted_fragments + 1))
     if ! grep -qF -- "$frag" "$last_out"; then fail "$where: output lacks $frag (quoted in the docs)"; fi
   done
 }
@@ -156,6 +160,7 @@ check_pasteable() {
 in_git=0
 git -C "$src" rev-parse --is-inside-work-tree >/dev/null 2>&1 && in_git=1
 [ "$in_git" = 1 ] && tree_before="$(git -C "$src" status --porcelain --untracked-files=all)"
+quoted_output_re='^#[[:space:]]("|=> )'
 for f in "$scratch"/parsed/*.sh; do
   [ -e "$f" ] || continue
   base="${f%.sh}"
@@ -175,7 +180,7 @@ for f in "$scratch"/parsed/*.sh; do
   while IFS= read -r line || [ -n "$line" ]; do
     if [ -n "$cmd" ]; then
       cmd+=$'\n'"$line"
-    elif [[ "$line" =~ ^#[[:space:]]\" ]]; then
+    elif [[ "$line" =~ $quoted_output_re ]]; then
       check_quoted "$where" "$line"
       continue
     elif [[ "$line" =~ ^[[:space:]]*(#.*)?$ ]]; then
@@ -227,5 +232,5 @@ for e in "$scratch"/parsed/*.expect; do
 done
 
 echo "doc blocks: $ran_blocks run ($ran_cmds commands), $skipped_blocks skipped;" \
-  "$skipped_cmds commands skipped; $checked_outputs quoted outputs compared; $failures failures"
+  "$skipped_cmds commands skipped; $checked_outputs quoted outputs compared; $quoted_lines quoted lines ($quoted_fragments fragments) checked; $failures failures"
 [ "$failures" -eq 0 ] && [ "$ran_blocks" -gt 0 ]
