@@ -144,7 +144,7 @@ std::string flag_spelling(std::string_view name) {
   return name == "output" ? "-o" : "--" + std::string(name);
 }
 
-CLI::Validator number_in(const ParameterSpec& spec) {
+CLI::Validator schema_check(const ParameterSpec& spec) {
   // No description: the help text already shows the range as the schema writes it.
   return CLI::Validator(
       [spec](std::string& text) -> std::string {
@@ -192,10 +192,7 @@ void SchemaFlags::add(CLI::App& app, const std::vector<ParameterSpec>& specs) {
     } else {
       opt = app.add_option_function<std::string>(
           spec.flag(), [&raw](const std::string& s) { raw = s; }, spec.help());
-      if (spec.kind == ParameterKind::text && !spec.choices.empty())
-        opt->check(CLI::IsMember(spec.choices).description(""));
-      else if (spec.kind != ParameterKind::text)
-        opt->check(number_in(spec));
+      if (spec.kind != ParameterKind::text || !spec.choices.empty()) opt->check(schema_check(spec));
     }
     if (spec.kind != ParameterKind::flag) opt->type_name(value_label(spec));
     options_[spec.name] = opt;

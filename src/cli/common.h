@@ -63,9 +63,10 @@ std::optional<std::string> unknown_name_error(const CLI::App& app, int argc,
 // "output" is every command's -o.
 std::string flag_spelling(std::string_view name);
 
-// A CLI11 check that the text is a number (strict parser) in the spec's range; the help text shows
-// the unit and range. A bad value throws the library's InvalidArgument, which names the flag.
-CLI::Validator number_in(const ParameterSpec& spec);
+// A CLI11 check of a value by its spec: a number (strict parser) in the spec's range, or one of a
+// text's choices; the help text shows the unit and range. A bad value throws the library's
+// InvalidArgument, which names the flag (and the nearest choice).
+CLI::Validator schema_check(const ParameterSpec& spec);
 // What --help shows for a flag's value: INT, NUMBER, N,N (a list of two), TEXT or {a|b|c}.
 std::string value_label(const ParameterSpec& spec);
 
@@ -87,8 +88,8 @@ class HelpFormatter : public CLI::Formatter {
 // specs'.
 class SchemaFlags {
  public:
-  // Adds --NAME per spec: numbers range-checked (number_in), a text of choices by CLI11's
-  // IsMember, a flag as a switch. Returns the first option added.
+  // Adds --NAME per spec: numbers range-checked and a text of choices checked (schema_check), a
+  // flag as a switch. Returns the first option added.
   void add(CLI::App& app, const std::vector<ParameterSpec>& specs);
   CLI::Option* option(std::string_view name) const;
   bool has(std::string_view name) const { return options_.count(name) > 0; }

@@ -68,7 +68,7 @@ int main(int argc, char** argv) {
   } catch (const CLI::CallForVersion& e) {
     return app.exit(e);
   } catch (const skylight::InvalidArgument& e) {
-    // A value out of its schema's range (number_in): the library's message names the flag.
+    // A value out of its schema's range (schema_check): the library's message names the flag.
     std::cerr << "skylight: error: " << e.what() << "\n";
     return cli::kExitUsage;
   } catch (const CLI::ParseError& e) {

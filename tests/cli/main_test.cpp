@@ -108,6 +108,18 @@ TEST_F(Cli, TyposAreNamedWithTheNearestName) {
       {"eval --model preethm",
        "skylight: error: unknown model 'preethm'; did you mean 'preetham'? (known: perez, "
        "preetham, cie, hosek, nishita, nn, pietras, sh)"},
+      {"nn train --source hosk -o x.json",
+       "skylight: error: --source: unknown model 'hosk'; did you mean 'hosek'? (known: perez, "
+       "preetham, cie, hosek, nishita, nn, pietras, sh)"},
+      {"bench --models preetham,hosk",
+       "skylight: error: --models: unknown model 'hosk'; did you mean 'hosek'? (known: perez, "
+       "preetham, cie, hosek, nishita, nn, pietras, sh)"},
+      {"sh fit --model preethm -o x.json",
+       "skylight: error: --model = 'preethm' is not one of "
+       "perez|preetham|cie|hosek|nishita|nn|pietras; did you mean 'preetham'?"},
+      {"render --model cie --projection fisheey -o x.exr",
+       "skylight: error: --projection = 'fisheey' is not one of "
+       "equirect|hemisphere|fisheye|cubemap|camera; did you mean 'fisheye'?"},
       {"haze attenuation --camera canon-eos-5 --turbidity 3 --distance 1000",
        "skylight: error: unknown camera 'canon-eos-5'; did you mean 'canon-eos-5d'? (`skylight "
        "haze cameras` lists the 40; or --camera-csv)"},

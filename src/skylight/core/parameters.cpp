@@ -7,6 +7,7 @@
 
 #include "skylight/core/error.h"
 #include "skylight/core/numbers.h"
+#include "skylight/core/text.h"
 
 namespace skylight {
 namespace {
@@ -174,8 +175,9 @@ void ParameterSpec::check(const ParameterValue& value, std::string_view context)
       const auto* s = std::get_if<std::string>(&value);
       if (!s) wrong_kind();
       if (!choices.empty() && std::find(choices.begin(), choices.end(), *s) == choices.end())
-        throw InvalidArgument(fmt::format("{} = '{}' is not one of {}{}", spelled(name),
-                                          excerpt(*s), range_text(), where(context)));
+        throw InvalidArgument(fmt::format("{} = '{}' is not one of {}{}{}", spelled(name),
+                                          excerpt(*s), range_text(), did_you_mean(*s, choices),
+                                          where(context)));
       return;
     }
     case ParameterKind::flag:

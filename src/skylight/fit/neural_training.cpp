@@ -13,9 +13,7 @@ namespace skylight::fit {
 namespace {
 
 const ModelInfo& source_info(std::string_view source) {
-  const ModelInfo* info = find_model(source);
-  if (!info) throw InvalidArgument("source: unknown sky model '" + excerpt(source) + "'");
-  return *info;
+  return require_model(source, "source");
 }
 
 void apply_overrides(nn::SamplingSpec& spec, const NeuralTraining& t) {

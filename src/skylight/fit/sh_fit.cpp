@@ -320,10 +320,7 @@ void apply_structure(sh::PolynomialFitSettings& p, const ShFitRequest& r,
 }  // namespace
 
 ShFitSettings sh_fit_settings(const ShFitRequest& r) {
-  const ModelInfo* info = find_model(r.model);
-  if (!info)
-    throw InvalidArgument(
-        fmt::format("{}: unknown model '{}'", spelled("model"), excerpt(r.model)));
+  const ModelInfo* info = &require_model(r.model, "model");
   if (!info->sh_fit)
     throw InvalidArgument(
         fmt::format("{} {}: no SH table is fitted to this model (a table "

@@ -304,10 +304,7 @@ PhotoAirlight AirlightSource::photo_horizon(double t, double theta) const {
 }
 
 std::unique_ptr<SkyModel> AirlightSource::model_at(double t) const {
-  const ModelInfo* info = find_model(options_.sky_model);
-  if (!info)
-    throw InvalidArgument(
-        fmt::format("unknown {} '{}'", spelled("sky-model"), excerpt(options_.sky_model)));
+  const ModelInfo* info = &require_model(options_.sky_model, "sky-model");
   SkyParameters p;
   p.sun = sun_from_degrees(options_.sun_zenith_deg, options_.sun_azimuth_deg);
   p.values = info->example;

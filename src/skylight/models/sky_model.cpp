@@ -174,12 +174,13 @@ const ModelInfo* find_model(std::string_view name) {
   return nullptr;
 }
 
-const ModelInfo& require_model(std::string_view name) {
+const ModelInfo& require_model(std::string_view name, std::string_view parameter) {
   if (const ModelInfo* info = find_model(name)) return *info;
   std::vector<std::string> names;
   for (const auto& m : model_registry()) names.push_back(m.name);
-  throw InvalidArgument(fmt::format("unknown model '{}'{} (known: {})", excerpt(name),
-                                    did_you_mean(name, names), fmt::join(names, ", ")));
+  throw InvalidArgument(fmt::format(
+      "{}unknown model '{}'{} (known: {})", parameter.empty() ? "" : spelled(parameter) + ": ",
+      excerpt(name), did_you_mean(name, names), fmt::join(names, ", ")));
 }
 
 std::unique_ptr<SkyModel> make_sky_model(std::string_view name, const SkyParameters& params) {

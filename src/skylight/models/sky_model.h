@@ -318,8 +318,9 @@ std::vector<ParameterSpec> all_parameters(const ModelInfo& model);
 std::string parameter_docs_block(const ModelInfo& model);
 // nullptr if unknown.
 const ModelInfo* find_model(std::string_view name);
-// The same, or InvalidArgument "unknown model 'X'; did you mean 'Y'? (known: ...)".
-const ModelInfo& require_model(std::string_view name);
+// The same, or InvalidArgument "unknown model 'X'; did you mean 'Y'? (known: ...)", prefixed with
+// the parameter that named it when given ("--sky-model: unknown model ...", spelled()).
+const ModelInfo& require_model(std::string_view name, std::string_view parameter = {});
 // Builds a model; throws InvalidArgument for an unknown name, a parameter the model does not have,
 // a missing required one, or a value out of range (the message names the parameter and the value).
 std::unique_ptr<SkyModel> make_sky_model(std::string_view name, const SkyParameters& params);

@@ -164,14 +164,7 @@ std::vector<const ModelInfo*> bench_infos(const BenchSettings& s) {
   std::vector<const ModelInfo*> models;
   for (const auto& name : s.models.empty() ? default_bench_models() : s.models) {
     if (name == "gpu") continue;  // not a model: the GL frames (gpu/bench.h)
-    const ModelInfo* m = find_model(name);
-    if (!m) {
-      std::string known;
-      for (const auto& r : model_registry()) known += (known.empty() ? "" : ", ") + r.name;
-      throw InvalidArgument(
-          fmt::format("{}: unknown model '{}' (known: {})", spelled("models"), name, known));
-    }
-    models.push_back(m);
+    models.push_back(&require_model(name, "models"));
   }
   return models;
 }
