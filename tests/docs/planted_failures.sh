@@ -2,7 +2,7 @@
 # The docs test can fail: runs tests/docs/run_doc_blocks.sh on small Markdown files, each with one
 # planted stale claim of a kind the docs have held (a removed command, a stale quoted output, a
 # synopsis pasted as a command, a command writing into the repository, an output block that no
-# longer matches), and requires each run to fail with the message that names it; a correct file
+# longer matches, a table split by a blank line), and requires each run to fail with the message that names it; a correct file
 # must pass. ctest: DocsRunner.CatchesPlantedFailures.
 # Usage: tests/docs/planted_failures.sh SOURCE_DIR PATH/TO/skylight
 set -euo pipefail
@@ -109,6 +109,19 @@ cd data && skylight render --model cie --width 8 --height 4 -o new.exr
 ${fence}
 EOF
 check changes_the_tree 1 "the commands changed the source tree"
+
+write split_table <<EOF
+| flag | meaning |
+|---|---|
+| \`--width\` | image width |
+
+| \`--height\` | image height |
+
+${fence}sh
+./build/skylight sun --time 2026-06-21T12:00:00+02:00 --lat 48.14 --lon 11.58
+${fence}
+EOF
+check split_table 1 "README.md:5: a table row after a blank line"
 
 [ "$failures" = 0 ] && echo "all planted failures caught, the correct file passes"
 [ "$failures" = 0 ]

@@ -196,6 +196,20 @@ for f in "$scratch"/parsed/*.sh; do
   echo "ran block $where ($(awk -v a="$block_start" -v b="$(date +%s.%N)" 'BEGIN { printf "%.1f", b - a }') s)"
 done
 
+# Every Markdown table is whole: a row after a blank line (outside code blocks) that does not start
+# a new table (no |---| line under it) is a table split by a blank line, which renders as raw text.
+for entry in "${doc_files[@]}"; do
+  md="${entry%%:[0-9]*-*}"
+  while IFS= read -r where; do
+    fail "$where: a table row after a blank line (the table is split; remove the blank line)"
+  done < <(awk -v file="${md#"$src"/}" '
+    /^```/ { code = !code; prev = $0; next }
+    !code && prev ~ /^[[:space:]]*$/ && $0 ~ /^\|/ { pending = NR; next_is_sep = 1; prev = $0; next }
+    pending { if ($0 !~ /^\|[ :-]*-/) print file ":" pending; pending = 0 }
+    { prev = $0 }
+    END { if (pending) print file ":" pending }' "$md")
+done
+
 # Nothing the commands ran may have written into the source tree (through data/ or a path).
 if [ "$in_git" = 1 ]; then
   tree_after="$(git -C "$src" status --porcelain --untracked-files=all)"
