@@ -451,7 +451,8 @@ void Progress::operator()(int done, int total, std::string_view step) {
                              std::string(kBar - filled, ' '), done, total, elapsed_s(), step)
               << std::flush;
     if (done == total) std::cerr << "\n";
-  } else {
+  } else if (elapsed_s() >= kQuietSeconds) {
+    // A log (not a terminal): one line per step, none while the command is still short.
     std::cerr << fmt::format("skylight {}: [{}/{}] {:.1f} s {}\n", command_, done, total,
                              elapsed_s(), step);
   }

@@ -178,10 +178,11 @@ void write_stdout(std::string_view text);
 // standard input: <reason>".
 std::string read_stdin();
 
-// Progress of a long command on stderr: a bar redrawn in place on a terminal, one line per step
-// otherwise (logs, CI).
+// Progress of a long command on stderr: a bar redrawn in place on a terminal; otherwise (logs, CI)
+// one line per step once the command has run kQuietSeconds, so a short command prints none.
 class Progress {
  public:
+  static constexpr double kQuietSeconds = 1.0;
   explicit Progress(std::string command);
   void operator()(int done, int total, std::string_view step);
   double elapsed_s() const;

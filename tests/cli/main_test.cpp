@@ -228,6 +228,75 @@ TEST_F(Cli, EveryModelWarnsOfAModelFlagItDoesNotRead) {
   }
 }
 
+// A command's outputs are one transaction (io::OutputTransaction): an output that cannot be
+// written leaves the others unwritten; two outputs naming one file, or an output naming an input,
+// are a usage error and nothing is written.
+TEST_F(Cli, OutputsCommitTogetherAndNeverCollide) {
+  const std::string train =
+      "nn train --source preetham --iterations 3 --starts 1 --start-iterations 1 --max-error 1e6 ";
+  fs::create_directory(dir_ / "logdir");
+  auto r = run(train + "-o '" + (dir_ / "w.json").string() + "' --log '" +
+               (dir_ / "logdir").string() + "'");
+  EXPECT_EQ(r.status, 1) << r.err;
+  EXPECT_NE(r.err.find("logdir': is a directory"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir_ / "w.json")) << "the weights were written without their log";
+  const std::string x = (dir_ / "x").string();
+  r = run(train + "-o '" + x + "' --log '" + x + "'");
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_NE(r.err.find("two outputs of this command name the same file"), std::string::npos)
+      << r.err;
+  EXPECT_FALSE(fs::exists(x));
+  const std::string png = (dir_ / "p.png").string();
+  r = run("render --model cie --width 8 --height 4 -o '" + png + "' --false-colour '" + png + "'");
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_FALSE(fs::exists(png));
+  // nn train --init W -o W: the weights it continues from are an input.
+  const std::string w = (dir_ / "p.json").string();
+  r =
+      run("nn train --source nishita --network pietras --samples 200 --iterations 1 --max-error "
+          "1e6 -o '" +
+          w + "'");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const std::string before = testing_support::CliTest::slurp(w);
+  r =
+      run("nn train --source nishita --network pietras --samples 200 --iterations 1 --max-error "
+          "1e6 --init '" +
+          w + "' -o '" + w + "'");
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_NE(r.err.find("; write to another file"), std::string::npos) << r.err;
+  EXPECT_EQ(testing_support::CliTest::slurp(w), before);
+}
+
+// kill -9 in the middle of a command leaves at most its temporaries, which the next command that
+// writes there removes: a rerun succeeds and nothing of the killed run is left.
+TEST_F(Cli, ARerunAfterKillNineLeavesNothingBehind) {
+  const fs::path report = dir_ / "report", log = dir_ / "train.csv", w = dir_ / "w.json";
+  const auto killed_after = [](const std::string& args, const char* seconds) {
+    const std::string cmd = std::string("timeout -s KILL ") + seconds + " '" + SKYLIGHT_CLI_PATH +
+                            "' " + args + " > /dev/null 2>&1";
+    const int raw = std::system(cmd.c_str());
+    EXPECT_TRUE(WIFEXITED(raw) && WEXITSTATUS(raw) == 128 + 9) << cmd << ": " << raw;
+  };
+  killed_after("report -o '" + report.string() + "'", "2");
+  killed_after("nn train --source preetham --iterations 100000 --max-error 1e6 -o '" + w.string() +
+                   "' --log '" + log.string() + "'",
+               "1.5");
+  EXPECT_FALSE(fs::exists(w));
+  auto r = run("report --quick -o '" + report.string() + "'");
+  ASSERT_EQ(r.status, 0) << r.err;
+  r =
+      run("nn train --source preetham --iterations 3 --starts 1 --start-iterations 1 --max-error "
+          "1e6 -o '" +
+          w.string() + "' --log '" + log.string() + "'");
+  ASSERT_EQ(r.status, 0) << r.err;
+  for (const fs::path& d : {report, dir_})
+    for (const auto& e : fs::directory_iterator(d))
+      EXPECT_NE(e.path().filename().string().rfind(".skylight-", 0), 0u)
+          << "left behind: " << e.path();
+  EXPECT_TRUE(fs::exists(report / "index.html"));
+  EXPECT_TRUE(fs::exists(w));
+}
+
 TEST_F(Cli, AFlagTheModelDoesNotReadIsAWarning) {
   const auto r = run("eval --model cie --turbidity 5", "zenith_deg,azimuth_deg\n0,0\n");
   EXPECT_EQ(r.status, 0) << r.err;
