@@ -27,12 +27,19 @@ int main(int argc, char** argv) {
   app.formatter(formatter);
   app.set_version_flag("--version", std::string("skylight ") + skylight::kVersion);
   app.require_subcommand(1);
-  int threads = 0;
-  const std::string threads_help = fmt::format(
-      "worker threads, 1-{}; default: SKYLIGHT_THREADS or all cores", skylight::kMaxThreads);
-  app.add_option("--threads", threads, threads_help)
-      ->type_name("INT")
-      ->check(CLI::Range(1, skylight::kMaxThreads).description(""));
+  // Checked by its spec like every flag (strict decimal integer: no 0x10, no 1e3).
+  const skylight::ParameterSpec threads_spec{
+      .name = "threads",
+      .unit = "1",
+      .kind = skylight::ParameterKind::integer,
+      .min = 1,
+      .max = skylight::kMaxThreads,
+      .default_value = skylight::Absent{"SKYLIGHT_THREADS, else all cores"},
+      .description = "worker threads"};
+  std::string threads;
+  app.add_option("--threads", threads, threads_spec.help())
+      ->type_name(cli::value_label(threads_spec))
+      ->check(cli::schema_check(threads_spec));
   // Global options (--threads) are accepted after the subcommand too.
   app.fallthrough();
 
@@ -90,7 +97,8 @@ int main(int argc, char** argv) {
       throw skylight::InvalidArgument(
           fmt::format("SKYLIGHT_THREADS = '{}' is not an integer in [1, {}]",
                       skylight::excerpt(env), skylight::kMaxThreads));
-    if (threads > 0) skylight::set_thread_count(threads);
+    if (!threads.empty())
+      skylight::set_thread_count(static_cast<int>(std::get<double>(threads_spec.parse(threads))));
     for (const auto& c : commands) {
       if (!c.app->parsed()) continue;
       // A command's files are all-or-nothing: written to temporaries, renamed when it succeeds.

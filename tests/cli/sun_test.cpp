@@ -84,6 +84,18 @@ TEST_F(Cli, SunTextOutput) {
   EXPECT_NE(r.out.find("sunrise           2003-10-17T06:12:43-07:00"), std::string::npos) << r.out;
 }
 
+// The SPA's range, -2000 .. 6000, is reachable: years before 0 in ISO 8601's expanded form.
+TEST_F(Cli, SunAcceptsTheWholeSpaRangeOfYears) {
+  auto r = run("sun --time -2000-01-01T12:00:00Z --lat 0 --lon 0 --json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("\"time\": \"-2000-01-01T12:00:00.000Z\""), std::string::npos) << r.out;
+  r = run("sun --time 6000-12-31T12:00:00Z --lat 0 --lon 0");
+  EXPECT_EQ(r.status, 0) << r.err;
+  r = run("sun --time -2001-12-31T12:00:00Z --lat 0 --lon 0");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("is out of range [-2000, 6000]"), std::string::npos) << r.err;
+}
+
 TEST_F(Cli, SunPolarNightHasNoSunriseOrSunset) {
   const testing_support::CliResult r =
       run("sun --time 2003-12-21T12:00:00+01:00 --lat 69.6492 --lon 18.9553 --json");

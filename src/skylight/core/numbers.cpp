@@ -4,6 +4,9 @@
 
 #include <charconv>
 #include <cmath>
+#include <cstdlib>
+#include <limits>
+#include <string>
 #include <system_error>
 
 #include "skylight/core/error.h"
@@ -64,8 +67,18 @@ std::optional<long long> parse_integer(std::string_view text) {
 
 double parse_number(std::string_view text, std::string_view what) {
   const auto v = parse_number(text);
-  if (!v) throw InvalidArgument(fmt::format("{}: '{}' is not a number", what, excerpt(text)));
-  return *v;
+  if (v) return *v;
+  if (is_decimal_literal(text)) {
+    // A number, but not one a double holds: too large, or non-zero and too small.
+    const double magnitude = std::strtod(std::string(text).c_str(), nullptr);
+    throw InvalidArgument(
+        std::isinf(magnitude) || std::abs(magnitude) > 1.0
+            ? fmt::format("{}: '{}' overflows (the largest number is {:.3g})", what, excerpt(text),
+                          std::numeric_limits<double>::max())
+            : fmt::format("{}: '{}' underflows to 0 (the smallest non-zero number is {:.3g})", what,
+                          excerpt(text), std::numeric_limits<double>::denorm_min()));
+  }
+  throw InvalidArgument(fmt::format("{}: '{}' is not a number", what, excerpt(text)));
 }
 
 long long parse_integer(std::string_view text, std::string_view what) {

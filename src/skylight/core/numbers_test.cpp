@@ -51,6 +51,12 @@ TEST(Numbers, ErrorsNameTheFieldAndQuoteAnExcerpt) {
             "--turbidity: '12abc' is not a number");
   EXPECT_EQ(error_message([] { parse_integer("4.5", "--cie-type"); }),
             "--cie-type: '4.5' is not an integer");
+  // A number a double cannot hold says which way it fails.
+  EXPECT_EQ(error_message([] { parse_number("1e-400", "--zenith-luminance"); }),
+            "--zenith-luminance: '1e-400' underflows to 0 (the smallest non-zero number is "
+            "4.94e-324)");
+  EXPECT_EQ(error_message([] { parse_number("-1e400", "--albedo"); }),
+            "--albedo: '-1e400' overflows (the largest number is 1.8e+308)");
 }
 
 TEST(Numbers, ListsRejectEmptyElements) {

@@ -27,6 +27,18 @@ fs::path private_name(const fs::path& dir, std::string_view suffix) {
   return dir / fmt::format(".skylight-{}-{}{}", static_cast<long>(::getpid()), counter++, suffix);
 }
 
+// Whether process `pid` still runs: it exists and is not a zombie (a killed process whose parent
+// has not reaped it yet, which never writes again).
+bool process_running(long pid) {
+  if (::kill(static_cast<pid_t>(pid), 0) != 0 && errno == ESRCH) return false;
+  std::FILE* f = std::fopen(fmt::format("/proc/{}/stat", pid).c_str(), "r");
+  if (f == nullptr) return true;  // no procfs: assume it runs
+  char state = 0;
+  const int read = std::fscanf(f, "%*d (%*[^)]) %c", &state);
+  std::fclose(f);
+  return read != 1 || state != 'Z';
+}
+
 // Removes, once per directory and process, the temporaries and backups (`.skylight-<pid>-<n>.tmp`
 // / `.old`) that a process which no longer runs left in `dir` (killed before it could clean up).
 void remove_stale_temporaries(const fs::path& dir) {
@@ -47,7 +59,7 @@ void remove_stale_temporaries(const fs::path& dir) {
     if (std::sscanf(name.c_str(), ".skylight-%ld-%u.%3s", &pid, &n, suffix) != 3) continue;
     if (std::string_view(suffix) != "tmp" && std::string_view(suffix) != "old") continue;
     if (pid <= 0 || pid == static_cast<long>(::getpid())) continue;
-    if (::kill(static_cast<pid_t>(pid), 0) == 0 || errno != ESRCH) continue;  // still running
+    if (process_running(pid)) continue;
     std::error_code ignored;
     fs::remove(it->path(), ignored);
   }

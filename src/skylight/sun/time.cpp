@@ -155,10 +155,12 @@ DateTime parse_iso8601(std::string_view text) {
   Iso8601Reader in(text);
   if (text.empty()) in.fail("year", "empty text");
   DateTime t;
-  if (in.peek() == '+' || in.peek() == '-') {
-    in.fail("year", "signed (expanded) years are not supported; expected 4 digits");
-  }
+  // ISO 8601 expanded years: a sign and 4 digits, astronomical numbering (0000 = 1 BC,
+  // -2000 = 2001 BC), for the SPA's years before 0.
+  const char year_sign = in.peek();
+  if (year_sign == '+' || year_sign == '-') in.skip();
   t.year = in.digits(4, "year");
+  if (year_sign == '-') t.year = -t.year;
   in.expect('-', "date separator after year");
   t.month = in.digits(2, "month");
   if (t.month < 1 || t.month > 12) {
@@ -242,13 +244,13 @@ std::string format_iso8601(const DateTime& t_in, int fraction_digits) {
     ticks -= 60 * scale;
     add_one_minute(t);
   }
-  if (t.year < 0 || t.year > 9999) {
+  if (t.year < -9999 || t.year > 9999) {
     throw InvalidArgument("time.year = " + std::to_string(t.year) +
-                          " cannot be written as 4 ISO 8601 digits (0000..9999)");
+                          " cannot be written as 4 ISO 8601 digits (-9999..9999)");
   }
   char buf[64];
-  int n = std::snprintf(buf, sizeof buf, "%04d-%02d-%02dT%02d:%02d:%02lld", t.year, t.month, t.day,
-                        t.hour, t.minute, ticks / scale);
+  int n = std::snprintf(buf, sizeof buf, "%s%04d-%02d-%02dT%02d:%02d:%02lld", t.year < 0 ? "-" : "",
+                        std::abs(t.year), t.month, t.day, t.hour, t.minute, ticks / scale);
   std::string s(buf, static_cast<std::size_t>(n));
   if (fraction_digits > 0) {
     n = std::snprintf(buf, sizeof buf, ".%0*lld", fraction_digits, ticks % scale);

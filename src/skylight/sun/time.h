@@ -33,15 +33,17 @@ int days_in_month(int year, int month);
 // "<name>.<field> = <value> is out of range ...").
 void validate(const DateTime& t, std::string_view name = "time");
 
-// Strict ISO 8601 / RFC 3339 date-time: YYYY-MM-DDThh:mm:ss[.f](Z|+hh:mm|-hh:mm), with 1 to 9
-// fraction digits. Everything else (missing seconds or offset, lower-case 't'/'z', space instead
-// of 'T', basic format, 24:00:00, leap second 60, nonexistent dates, trailing text) throws
-// InvalidArgument with a one-line message naming the offending field.
+// Strict ISO 8601 / RFC 3339 date-time: [+-]YYYY-MM-DDThh:mm:ss[.f](Z|+hh:mm|-hh:mm), with 1 to 9
+// fraction digits; a signed year is ISO 8601's expanded form with 4 digits, astronomical
+// numbering (0000 = 1 BC, -2000 = 2001 BC). Everything else (missing seconds or offset, lower-case
+// 't'/'z', space instead of 'T', basic format, 24:00:00, leap second 60, nonexistent dates,
+// trailing text) throws InvalidArgument with a one-line message naming the offending field.
 DateTime parse_iso8601(std::string_view text);
 
 // YYYY-MM-DDThh:mm:ss[.fff](Z|+hh:mm|-hh:mm), the seconds rounded to fraction_digits (0..9)
 // decimals (a carry into the next minute, day, month or year is propagated). UTC is written as
-// "Z". Throws InvalidArgument if the fields are invalid or the year is outside 0000..9999.
+// "Z"; a year before 0 with a '-' (expanded form). Throws InvalidArgument if the fields are
+// invalid or the year is outside -9999..9999.
 std::string format_iso8601(const DateTime& t, int fraction_digits = 0);
 
 // Julian Day of the calendar date `year`-`month` at day-of-month `day` with the time of day as

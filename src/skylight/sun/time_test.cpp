@@ -50,7 +50,8 @@ TEST(Iso8601, RejectsMalformedTextNamingTheField) {
   const Bad bad[] = {
       {"", "year"},
       {"03-10-17T12:30:30Z", "year"},
-      {"+2003-10-17T12:30:30Z", "year"},
+      {"+203-10-17T12:30:30Z", "year"},
+      {"--2003-10-17T12:30:30Z", "year"},
       {"2003/10/17T12:30:30Z", "date separator after year"},
       {"2003-1-17T12:30:30Z", "month"},
       {"2003-13-17T12:30:30Z", "month: 13 is out of range"},
@@ -122,8 +123,13 @@ TEST(Iso8601, FormatsRoundTripAndCarries) {
   EXPECT_EQ(format_iso8601(parse_iso8601("2004-02-28T23:59:59.5Z")), "2004-02-29T00:00:00Z");
   // ... and across the calendar reform.
   EXPECT_EQ(format_iso8601(parse_iso8601("1582-10-04T23:59:59.5Z")), "1582-10-15T00:00:00Z");
+  // Expanded years (astronomical numbering): the SPA's range reaches -2000.
+  EXPECT_EQ(parse_iso8601("-2000-01-01T12:00:00Z").year, -2000);
+  EXPECT_EQ(parse_iso8601("+2003-10-17T12:30:30Z").year, 2003);
+  EXPECT_EQ(format_iso8601(parse_iso8601("-2000-02-29T12:00:00Z")), "-2000-02-29T12:00:00Z");
+  EXPECT_EQ(format_iso8601(parse_iso8601("0000-12-31T23:59:59.5Z")), "0001-01-01T00:00:00Z");
   DateTime t;
-  t.year = -1;
+  t.year = -10000;
   EXPECT_THROW(format_iso8601(t), InvalidArgument);
   t.year = 2000;
   t.second = std::nan("");
