@@ -42,6 +42,8 @@ std::vector<Case> cases() {
       {"eval --model preetham --turbidity inf", kDirs, 2, e + "--turbidity: 'inf' is not a number"},
       {"eval --model preetham --turbidity -1e308", kDirs, 2, e + "--turbidity = -1e+308"},
       {"eval --model preetham --turbidity 1e", kDirs, 2, e + "--turbidity: '1e' is not a number"},
+      {"sh fit --model cie --range 5,2 -o OUT.json", "", 2,
+       e + "--range: a fit in the sun zenith only has no second parameter (model 'cie'"},
       {"eval --model cie --zenith-luminance 1e-400", kDirs, 2,
        e + "--zenith-luminance: '1e-400' underflows to 0"},
       {"eval --model preetham --turbidity 1e400", kDirs, 2, e + "--turbidity: '1e400' overflows"},

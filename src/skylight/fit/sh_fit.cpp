@@ -353,6 +353,10 @@ ShFitSettings sh_fit_settings(const ShFitRequest& r) {
   if (!(r.theta_range_deg[0] < r.theta_range_deg[1]))
     throw InvalidArgument(spelled("theta-range") + " LO,HI: LO must be below HI");
   if (tau) set_tau_range(p, r, *tau, policy);
+  if (!tau && !r.range.empty())
+    throw InvalidArgument(fmt::format(
+        "{}: a fit in the sun zenith only has no second parameter (model '{}' fits none{})",
+        spelled("range"), info->name, r.parameter == "none" ? ": --parameter none" : ""));
   if (!r.grid.empty()) {
     p.grid_theta = static_cast<int>(r.grid[0]);
     p.grid_tau = static_cast<int>(r.grid[1]);

@@ -1,5 +1,7 @@
 #include "skylight/nn/mlp.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -9,6 +11,16 @@
 #include "skylight/nn/detail/mlp_kernel.h"
 
 namespace skylight::nn {
+
+void check_weight_magnitudes(std::span<const double> weights, const std::string& where,
+                             const std::string& name) {
+  for (std::size_t i = 0; i < weights.size(); ++i)
+    if (!(std::abs(weights[i]) <= kMaxWeightMagnitude))
+      throw InvalidArgument(fmt::format(
+          "{}: field '{}' holds {} (element {}), beyond +-{:g}, the largest weight a network file "
+          "may hold (finite in single precision on the GPU; trained networks stay far below)",
+          where, name, weights[i], i + 1, kMaxWeightMagnitude));
+}
 
 namespace {
 

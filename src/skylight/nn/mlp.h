@@ -60,6 +60,16 @@ struct MlpLayout {
   std::string describe() const;
 };
 
+// The largest weight magnitude a weights file may hold (the loaders refuse larger ones, naming
+// the element): trained networks stay far below it (data/nn/: at most 531), and with it every
+// weight is finite in single precision (the GPU's type and the GLSL export's) and so are the
+// products of a layer.
+inline constexpr double kMaxWeightMagnitude = 1e6;
+// InvalidArgument "<where>: field '<name>' holds <value> (element <i>), beyond ±1e+06 ..." for the
+// first weight beyond kMaxWeightMagnitude.
+void check_weight_magnitudes(std::span<const double> weights, const std::string& where,
+                             const std::string& name);
+
 class Mlp {
  public:
   Mlp() = default;

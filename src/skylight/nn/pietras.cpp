@@ -236,6 +236,7 @@ PietrasNetwork pietras_from_json(std::string_view s, const std::string& where) {
     if (widths != layouts[i].widths || acts != layouts[i].activations)
       bad(where, name, "is not the " + layouts[i].describe() + " sub-network of " + kind);
     auto params = numbers(field(subs[i], where, "parameters"), where, name + ".parameters");
+    check_weight_magnitudes(params, where, name + ".parameters");
     if (params.size() != layouts[i].parameter_count())
       bad(where, name + ".parameters",
           "holds " + std::to_string(params.size()) + " numbers, not " +

@@ -196,6 +196,7 @@ SkyNetwork sky_network_from_json(std::string_view s, const std::string& where) {
     if (!(*sky.max_radiance > 0.0)) bad(where, "max_radiance", "is not positive");
   }
   std::vector<double> params = numbers(field(j, where, "parameters"), where, "parameters");
+  check_weight_magnitudes(params, where, "parameters");
   if (params.size() != layout.parameter_count())
     bad(where, "parameters",
         "has " + std::to_string(params.size()) + " values, the architecture " +

@@ -231,6 +231,16 @@ TEST(SkyNetwork, CorruptWeightsFilesNameTheField) {
   // Found by the nn_weights_json fuzz target (docs/TESTING.md): a number beyond the double range
   // escaped as nlohmann::json::out_of_range instead of our error.
   expect_error(replaced("\"parameters\": [", "\"parameters\": [1e400,"), "not valid JSON");
+  // A weight beyond single precision (1e39: the GLSL export wrote `inf * x[0]`) or absurdly large
+  // (1e30: nn validate reported an error of 4e58 %) is refused, naming the element.
+  const auto first_weight = [&](const std::string& value) {
+    std::string s = good;
+    const std::size_t start = s.find("\"parameters\": [") + std::string("\"parameters\": [").size();
+    return s.replace(start, s.find(',', start) - start, value);
+  };
+  expect_error(first_weight("1e39"), "field 'parameters' holds 1e+39 (element 1), beyond +-1e+06");
+  expect_error(first_weight("-1e30"), "(element 1), beyond +-1e+06");
+  EXPECT_NO_THROW(sky_network_from_json(first_weight("-999999.5"), "w.json"));
 }
 
 }  // namespace
