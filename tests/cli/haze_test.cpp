@@ -12,6 +12,7 @@
 #include <string>
 
 #include "skylight/core/math.h"
+#include "skylight/haze/request.h"
 #include "skylight/io/image.h"
 #include "support/cli_run.h"
 #include "support/skyline_scene.h"
@@ -248,6 +249,30 @@ TEST_F(HazeCli, ShippedValleyRoundTripsLikeTheQuickStart) {
   ASSERT_GT(near, 0u);
   ASSERT_GT(far, 0u);
   EXPECT_GT(far_shift / far, 3 * near_shift / near) << "far ridges hazier than the meadow";
+}
+
+// Every model --help lists for --sky-model works (hosek's spectrum ends at 720 nm, the camera's at
+// 780: flat tails), its airlight is positive and finite and makes distant pixels brighter; any
+// other model is refused with the list.
+TEST_F(HazeCli, EverySkyModelTheHelpListsWorks) {
+  write_scene();
+  const std::string common = " --depth " + p("depth.exr") +
+                             " --turbidity 3 --camera canon-eos-5d --sun-zenith 40 "
+                             "--sun-azimuth 150 --image " +
+                             p("scene.exr") + " ";
+  const std::string help = run("haze add --help").out;
+  for (const std::string& m : haze::airlight_models()) {
+    EXPECT_NE(help.find(m), std::string::npos) << m;
+    const auto r = run("haze add --sky-model " + m + common + "-o " + p(m + ".exr"));
+    ASSERT_EQ(r.status, 0) << m << ": " << r.err;
+    const io::ImageF out = io::read_image(dir_ / (m + ".exr"));
+    for (const float v : out.data) ASSERT_TRUE(std::isfinite(v) && v >= 0.0f) << m;
+    EXPECT_GT(out.pixel(3, 0)[1], scene_.pixel(3, 0)[1]) << m << ": far pixel not brightened";
+  }
+  EXPECT_EQ(haze::airlight_models(), (std::vector<std::string>{"preetham", "hosek"}));
+  const auto r = run("haze add --sky-model nishita" + common + "-o " + p("n.exr"));
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("is not one of preetham|hosek"), std::string::npos) << r.err;
 }
 
 // `haze retarget --gpu` against the CPU path end to end: the shader reproduces the CPU kernel's

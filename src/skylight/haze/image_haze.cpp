@@ -4,8 +4,10 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <cmath>
+#include <optional>
 #include <utility>
 #include <vector>
 
@@ -290,13 +292,27 @@ io::ImageF composite(const io::ImageF& background, const io::ImageF& object,
 
 Rgb3 sky_model_airlight(const SkyModel& model, Vec3 view, const CameraSensitivity& camera) {
   const SpectralWeights w(camera);
+  std::array<std::optional<double>, kGridSamples> radiance;
+  std::size_t first = kGridSamples, last = 0;
+  for (std::size_t i = 0; i < kGridSamples; ++i) {
+    radiance[i] = model.spectral_radiance(view, SpectralWeights::nm(i));
+    if (!radiance[i]) continue;
+    first = std::min(first, i);
+    last = i;
+  }
+  if (first == kGridSamples)
+    throw InvalidArgument(fmt::format("sky model '{}' has no spectral radiance in {}-{} nm",
+                                      model.name(), SpectralWeights::nm(0),
+                                      SpectralWeights::nm(kGridSamples - 1)));
+  // Beyond the model's spectrum (hosek ends at 720 nm, the cameras at 780 nm) the camera sees the
+  // radiance of its last wavelength: flat tails (docs/HAZE.md gives their share of the response).
   Rgb3 out{};
   for (std::size_t i = 0; i < kGridSamples; ++i) {
-    const std::optional<double> l = model.spectral_radiance(view, SpectralWeights::nm(i));
-    if (!l)
+    const std::size_t at = std::clamp(i, first, last);
+    if (!radiance[at])
       throw InvalidArgument(fmt::format("sky model '{}' has no spectral radiance at {} nm",
-                                        model.name(), SpectralWeights::nm(i)));
-    for (std::size_t c = 0; c < 3; ++c) out[c] += w.raw()[c][i] * *l;
+                                        model.name(), SpectralWeights::nm(at)));
+    for (std::size_t c = 0; c < 3; ++c) out[c] += w.raw()[c][i] * *radiance[at];
   }
   return out;
 }

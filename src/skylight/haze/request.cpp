@@ -228,8 +228,10 @@ const ParameterSchema<AirlightOptions>& AirlightOptions::schema() {
               {.name = "sky-model",
                .kind = ParameterKind::text,
                .default_value = Absent{"--airlight"},
-               .description = "airlight from a spectral sky model with a turbidity (`skylight "
-                              "models`) at the turbidity, seen through the camera (eq. 7)"})
+               .description = "airlight from a spectral sky model with a turbidity at the "
+                              "turbidity, seen through the camera (eq. 7); beyond the model's "
+                              "spectrum the camera sees its last radiance (docs/HAZE.md)",
+               .choices = airlight_models()})
         .text(&A::sky_photo,
               {.name = "sky",
                .kind = ParameterKind::text,
@@ -303,14 +305,22 @@ PhotoAirlight AirlightSource::photo_horizon(double t, double theta) const {
   return out;
 }
 
+std::vector<std::string> airlight_models() {
+  std::vector<std::string> names;
+  for (const ModelInfo& m : model_registry())
+    if (m.spectral && m.find_parameter("turbidity") != nullptr) names.push_back(m.name);
+  return names;
+}
+
 std::unique_ptr<SkyModel> AirlightSource::model_at(double t) const {
   const ModelInfo* info = &require_model(options_.sky_model, "sky-model");
   SkyParameters p;
   p.sun = sun_from_degrees(options_.sun_zenith_deg, options_.sun_azimuth_deg);
   p.values = info->example;
-  if (info->find_parameter("turbidity") == nullptr)
+  if (!info->spectral || info->find_parameter("turbidity") == nullptr)
     throw InvalidArgument(
-        fmt::format("{} '{}' has no turbidity", spelled("sky-model"), info->name));
+        fmt::format("{} '{}' is not a spectral model with a turbidity (those are: {})",
+                    spelled("sky-model"), info->name, fmt::join(airlight_models(), ", ")));
   p.values.set("turbidity", t);
   return make_sky_model(info->name, p);
 }

@@ -67,6 +67,9 @@ struct AirlightOptions {
   static const ParameterSchema<AirlightOptions>& schema();
 };
 
+// The models --sky-model takes: the registry's spectral models with a turbidity (preetham, hosek).
+std::vector<std::string> airlight_models();
+
 // The airlight of AirlightOptions at any turbidity. The sky photo's horizon region (the watershed
 // or the band, sky_segmentation.h) is found once; only zeta (eq. 13) depends on T and theta.
 class AirlightSource {
