@@ -61,10 +61,11 @@ const ParameterSchema<NishitaParameters>& NishitaParameters::schema() {
                                    .default_value = ParameterValue(d.ground_radius_m),
                                    .description = "planet radius R0"});
     s.custom(
+        // Twice the largest ground radius, so that every ground radius has a top above it.
         {.name = "top-radius",
          .unit = "m",
          .min = 1.0,
-         .max = 1e9,
+         .max = 2e9,
          .default_value = Absent{"ground radius + 60 km"},
          .description = "top of the atmosphere (> ground radius)"},
         [](P& p, const ParameterValue& v) { p.top_radius_m = std::get<double>(v); },

@@ -53,6 +53,23 @@ TEST(Nishita, RegisteredWithEarthDefaults) {
   EXPECT_FALSE(make_sky_model("nishita", sky_parameters(-5))->domain().valid());
 }
 
+// The radii depend on each other (top > ground): every documented extreme of each is reachable
+// with the other's default or extreme.
+TEST(Nishita, EveryDocumentedExtremeOfTheRadiiIsReachable) {
+  const ModelInfo& info = require_model("nishita");
+  const ParameterSpec& ground = *info.find_parameter("ground-radius");
+  const ParameterSpec& top = *info.find_parameter("top-radius");
+  SkyParameters p = sky_parameters(30);
+  p.values.set("ground-radius", ground.max);  // the top defaults to ground + 60 km
+  EXPECT_NO_THROW(make_sky_model("nishita", p));
+  p.values.set("top-radius", top.max);
+  EXPECT_NO_THROW(make_sky_model("nishita", p));
+  p.values.set("ground-radius", ground.min);
+  p.values.set("top-radius", ground.min + 1.0);
+  EXPECT_NO_THROW(make_sky_model("nishita", p));
+  EXPECT_GT(top.max, ground.max);
+}
+
 TEST(Nishita, XyzFromTwentyWavelengthsMatchesDenseIntegration) {
   const NishitaModel m(nishita_params(35));
   for (Vec3 v : {Vec3{0, 0, 1}, direction_from_angles(deg_to_rad(85), 0.3),
