@@ -169,8 +169,7 @@ std::string value_label(const ParameterSpec& spec) {
       return label;
     }
     case ParameterKind::text:
-      return spec.choices.empty() ? "TEXT"
-                                  : "{" + fmt::format("{}", fmt::join(spec.choices, "|")) + "}";
+      return spec.choices.empty() ? "TEXT" : fmt::format("{{{}}}", fmt::join(spec.choices, "|"));
     case ParameterKind::flag:
       return {};
   }
@@ -398,11 +397,12 @@ io::Metadata model_metadata(const SkyModel& model, std::string_view sun_mode) {
       {sun[1].metadata_key(), fmt::format("{}", rad_to_deg(model.sun().azimuth))},
   };
   const ParameterValues values = model.parameter_values();
-  for (const auto& spec : find_model(model.name())->parameters)
+  const ModelInfo& info = require_model(model.name());
+  for (const auto& spec : info.parameters)
     if (const ParameterValue* v = values.find(spec.name))
       md.emplace_back(spec.metadata_key(), spec.format(*v));
   md.emplace_back("skylight:sun", std::string(sun_mode));
-  md.emplace_back("skylight:colour", find_model(model.name())->colour_note());
+  md.emplace_back("skylight:colour", info.colour_note());
   return md;
 }
 

@@ -206,9 +206,7 @@ TEST_F(Cli, FlagsUseTheStrictNumberParser) {
 TEST_F(Cli, EveryModelWarnsOfAModelFlagItDoesNotRead) {
   const std::string csv = "zenith_deg,azimuth_deg\n30,90\n";
   for (const ModelInfo& m : model_registry()) {
-    std::string args = "eval --model " + m.name;
-    for (const auto& [name, value] : m.example.all())
-      args += " --" + name + " " + m.find_parameter(name)->format(value);
+    std::string args = "eval --model " + m.name + testing_support::example_flags(m);
     // The first parameter of another model that this one does not declare.
     const ParameterSpec* foreign = nullptr;
     for (const ModelInfo& other : model_registry())
@@ -250,6 +248,16 @@ TEST_F(Cli, OutputsCommitTogetherAndNeverCollide) {
   r = run("render --model cie --width 8 --height 4 -o '" + png + "' --false-colour '" + png + "'");
   EXPECT_EQ(r.status, 2) << r.err;
   EXPECT_FALSE(fs::exists(png));
+  // haze add -o over its own --image: refused by the transaction, the image untouched.
+  const std::string image = (dir_ / "i.exr").string();
+  ASSERT_EQ(run("render --model cie --width 8 --height 4 -o '" + image + "'").status, 0);
+  const std::string image_bytes = testing_support::CliTest::slurp(image);
+  r = run("haze add --image '" + image + "' --depth '" + image +
+          "' --turbidity 3 --camera canon-eos-5d --airlight 1,1,1 -o '" + image + "'");
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_NE(r.err.find("is an input of this command and one of its outputs"), std::string::npos)
+      << r.err;
+  EXPECT_EQ(testing_support::CliTest::slurp(image), image_bytes);
   // nn train --init W -o W: the weights it continues from are an input.
   const std::string w = (dir_ / "p.json").string();
   r =

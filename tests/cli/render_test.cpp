@@ -66,9 +66,7 @@ TEST_F(Cli, RenderedExrPixelMatchesEval) {
 // every registered model.
 TEST_F(Cli, GreyByDesignIsSaidAndTrue) {
   for (const ModelInfo& m : model_registry()) {
-    std::string args = "render --model " + m.name;
-    for (const auto& [name, value] : m.example.all())
-      args += " --" + name + " " + m.find_parameter(name)->format(value);
+    const std::string args = "render --model " + m.name + testing_support::example_flags(m);
     const fs::path exr = dir_ / (m.name + ".exr"), png = dir_ / (m.name + ".png");
     const auto r = run(args + " --width 32 --height 16 -o '" + exr.string() + "' --preview '" +
                        png.string() + "'");

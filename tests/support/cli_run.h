@@ -13,7 +13,18 @@
 #include <string>
 #include <vector>
 
+#include "skylight/models/sky_model.h"
+
 namespace skylight::testing_support {
+
+// " --NAME VALUE" for each of the model's example values (ModelInfo::example: what its required
+// parameters need for a typical sky).
+inline std::string example_flags(const ModelInfo& m) {
+  std::string flags;
+  for (const auto& [name, value] : m.example.all())
+    flags += " --" + name + " " + m.find_parameter(name)->format(value);
+  return flags;
+}
 
 struct CliResult {
   int status = -1;

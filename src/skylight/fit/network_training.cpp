@@ -312,10 +312,12 @@ PietrasTraining Request::pietras_training(std::optional<nn::PietrasNetwork>& ini
   PietrasTraining t;
   t.kind = *network;
   if (!init.empty()) {
+    // Checked before minutes of training (the command's transaction would refuse it after).
     std::error_code ec;
     if (init == output || std::filesystem::equivalent(init, output, ec))
       throw InvalidArgument(fmt::format("{} '{}' is also the {} file; write to another file",
-                                        spelled("output"), excerpt(output), spelled("init")));
+                                        spelled("output"), io::shown_path(output),
+                                        spelled("init")));
     if (!planet.empty())
       throw InvalidArgument(fmt::format("{}: the planet is the file's; drop {} etc.",
                                         spelled("init"), spelled("ground-radius")));
