@@ -8,6 +8,8 @@
 #include <cerrno>
 #include <cstdio>
 #include <iostream>
+#include <utility>
+#include <vector>
 
 #include "skylight/core/error.h"
 #include "skylight/core/numbers.h"
@@ -416,6 +418,28 @@ void write_stdout(std::string_view text) {
     std::cout.clear();
     throw IoError(fmt::format("cannot write to standard output: {}",
                               err != 0 ? io::errno_message(err) : "write failed"));
+  }
+}
+
+namespace {
+std::vector<std::pair<std::string, bool>>& commit_notices() {
+  static std::vector<std::pair<std::string, bool>> notices;
+  return notices;
+}
+}  // namespace
+
+void announce_after_commit(std::string line, bool to_stderr) {
+  commit_notices().emplace_back(std::move(line), to_stderr);
+}
+
+void print_commit_notices() {
+  std::vector<std::pair<std::string, bool>> notices;
+  notices.swap(commit_notices());
+  for (const auto& [line, to_stderr] : notices) {
+    if (to_stderr)
+      std::cerr << line << "\n";
+    else
+      write_stdout(line + "\n");
   }
 }
 

@@ -174,6 +174,13 @@ io::Metadata model_metadata(const SkyModel& model, std::string_view sun_mode);
 // IoError "cannot write to standard output: <reason>".
 void write_stdout(std::string_view text);
 
+// "wrote <path>" notices: queued, and printed by main() only once the command's outputs have
+// committed (io::OutputTransaction), so that a command whose commit fails never claims a file.
+// `to_stderr` for notices that go with the progress lines.
+void announce_after_commit(std::string line, bool to_stderr = false);
+// Prints the queued notices (main(), after the commit) and empties the queue.
+void print_commit_notices();
+
 // The whole of standard input; a read error (e.g. stdin is a directory) throws IoError "cannot read
 // standard input: <reason>".
 std::string read_stdin();

@@ -104,7 +104,10 @@ int main(int argc, char** argv) {
       // A command's files are all-or-nothing: written to temporaries, renamed when it succeeds.
       skylight::io::OutputTransaction outputs;
       const int status = c.run();
-      if (status == cli::kExitOk) outputs.commit();
+      if (status == cli::kExitOk) {
+        outputs.commit();
+        cli::print_commit_notices();
+      }
       return status;
     }
   } catch (const std::bad_alloc&) {

@@ -27,8 +27,9 @@ int run_report(const ReportCommand& f) {
     io::write_text_file(f.write_synthetic,
                         analysis::format_sky_scan(analysis::synthetic_tregenza_scan(),
                                                   analysis::synthetic_scan_comments()));
-    std::cerr << fmt::format("skylight report: wrote the synthetic scan to {}\n",
-                             f.write_synthetic);
+    announce_after_commit(fmt::format("skylight report: wrote the synthetic scan to {}",
+                                      io::shown_path(f.write_synthetic)),
+                          true);
     return kExitOk;
   }
   if (f.output.empty()) throw InvalidArgument("report: -o/--output DIR is required");
@@ -39,8 +40,9 @@ int run_report(const ReportCommand& f) {
   Progress progress("report");
   o.progress = [&](int done, int total, std::string_view step) { progress(done, total, step); };
   const report::ReportSummary s = report::write_report(o);
-  std::cerr << fmt::format("skylight report: wrote {} files to {} in {:.1f} s\n", s.files.size(),
-                           f.output, progress.elapsed_s());
+  announce_after_commit(fmt::format("skylight report: wrote {} files to {} in {:.1f} s",
+                                    s.files.size(), io::shown_path(f.output), progress.elapsed_s()),
+                        true);
   write_stdout(fmt::format("{}\n", (std::filesystem::path(f.output) / "index.html").string()));
   return kExitOk;
 }

@@ -10,7 +10,9 @@
 #include <string>
 #include <vector>
 
+#include "skylight/io/file.h"
 #include "support/cli_run.h"
+#include "support/scratch_dir.h"
 
 namespace fs = std::filesystem;
 
@@ -29,7 +31,25 @@ struct Case {
   std::string input;  // standard input
   int status;
   std::string message;  // the start of stderr's first line
+  // An input file: IN in args and message stands for it (written to a folder beside the outputs;
+  // in the message as messages show paths, io::shown_path).
+  std::string file_name = {};
+  std::string file_content = {};
 };
+
+// The EXR the fuzz target image_exr found (a float attribute of size 0, then 1.6 GB asked for).
+std::string planted_exr() {
+  return testing_support::source_file("tests/fuzz/corpus/image_exr/regression_float_size_0.exr");
+}
+
+// A valid EXR whose channel list claims one byte more than it holds.
+std::string long_channel_list_exr() {
+  std::string bytes =
+      testing_support::source_file("tests/fuzz/corpus/image_exr/y_half_none_3x2.exr");
+  const std::size_t size_at = bytes.find(std::string("chlist\0", 7));
+  if (size_at != std::string::npos) ++bytes[size_at + 7];
+  return bytes;
+}
 
 const std::string kDirs = "zenith_deg,azimuth_deg\n0,0\n45,180\n";
 
@@ -87,6 +107,17 @@ std::vector<Case> cases() {
       {"render --model cie --width 8 --height 4 -o OUT.txt", "", 2, e + "unsupported image file"},
       {"report --quick --measurements /nonexistent/scan.csv -o OUT", "", 1,
        e + "cannot read '/nonexistent/scan.csv'"},
+      // EXR headers that OpenEXR and our walk would read differently (issue 28 item 10).
+      {"estimate --image IN", "", 1,
+       e + "cannot read 'IN': not a valid OpenEXR file: attribute 'pixelAspectRatio' of type "
+           "float has 0 bytes, not 4",
+       "sky.exr", planted_exr()},
+      {"estimate --image IN", "", 1,
+       e + "cannot read 'IN': not a valid OpenEXR file: channel list 'channels' does not fill its",
+       "y.exr", long_channel_list_exr()},
+      // A file name with a newline stays on the message's one line.
+      {"haze attenuation --turbidity 3 --distance 5000 --camera-csv IN", "", 2,
+       e + "IN line 1: the header must be 'nm,r,g,b'", "cam\nera.csv", "nm,r,g\n380,1,1\n"},
   };
 }
 
@@ -102,8 +133,18 @@ TEST_F(Cli, BadInputMatrix) {
     std::string args = c.args;
     const std::string out = fmt::format("'{}'", (dir_ / "out").string());
     for (std::size_t at; (at = args.find("OUT")) != std::string::npos;) args.replace(at, 3, out);
+    std::string message = c.message;
+    const fs::path inputs = dir_.parent_path() / (dir_.filename().string() + "-inputs");
+    if (!c.file_name.empty()) {
+      fs::create_directories(inputs);
+      const fs::path in = inputs / c.file_name;
+      std::ofstream(in, std::ios::binary) << c.file_content;
+      args.replace(args.find("IN"), 2, "'" + in.string() + "'");
+      message.replace(message.find("IN"), 2, io::shown_path(in));
+    }
     const CliResult r = run(args, c.input);
-    const bool ok = r.status == c.status && r.err.rfind(c.message, 0) == 0 &&
+    if (!c.file_name.empty()) fs::remove_all(inputs);
+    const bool ok = r.status == c.status && r.err.rfind(message, 0) == 0 &&
                     r.err.size() <= kMaxErrorBytes &&
                     r.err.find('\n') == r.err.size() - 1;  // one line
     EXPECT_TRUE(ok) << "skylight " << c.args << "\n  status " << r.status << " (want " << c.status

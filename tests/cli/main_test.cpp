@@ -238,6 +238,7 @@ TEST_F(Cli, OutputsCommitTogetherAndNeverCollide) {
   EXPECT_EQ(r.status, 1) << r.err;
   EXPECT_NE(r.err.find("logdir': is a directory"), std::string::npos) << r.err;
   EXPECT_FALSE(fs::exists(dir_ / "w.json")) << "the weights were written without their log";
+  EXPECT_EQ(r.out.find("wrote"), std::string::npos) << "claims a file it did not write: " << r.out;
   const std::string x = (dir_ / "x").string();
   r = run(train + "-o '" + x + "' --log '" + x + "'");
   EXPECT_EQ(r.status, 2) << r.err;
@@ -265,6 +266,8 @@ TEST_F(Cli, OutputsCommitTogetherAndNeverCollide) {
           "1e6 -o '" +
           w + "'");
   ASSERT_EQ(r.status, 0) << r.err;
+  // "wrote" comes after the commit (cli::announce_after_commit), last.
+  EXPECT_TRUE(r.out.ends_with("\nwrote " + w + "\n")) << r.out;
   const std::string before = testing_support::CliTest::slurp(w);
   r =
       run("nn train --source nishita --network pietras --samples 200 --iterations 1 --max-error "

@@ -90,10 +90,11 @@ int run_planet(const PlanetCommand& c) {
   write_stdout(fmt::format(
       "nn planet: {} network from {} at {:.0f} m, sun zenith {} deg; icosphere level {}: {} "
       "vertices, {} triangles; vertex terms {:.2f} s (CPU), GL draw + readback {:.3f} s on "
-      "'{}'\nwrote {}\n",
+      "'{}'\n",
       nn::to_string(net.kind), orbit ? "orbit" : "ground", altitude, f.sun_zenith_deg,
       f.subdivisions, mesh.vertices.size(), mesh.indices.size() / 3, mesh_s, gl_s,
-      context.renderer(), c.output));
+      context.renderer()));
+  announce_after_commit(fmt::format("wrote {}", io::shown_path(c.output)));
   return kExitOk;
 #endif
 }

@@ -75,10 +75,11 @@ int run_pietras(const TrainCommand& c, const fit::NetworkTrainingRequest& req) {
   for (int i : net.provenance.iterations) its += (its.empty() ? "" : ", ") + std::to_string(i);
   write_stdout(fmt::format(
       "nn train: {} network ({} weights) on {}, {} samples, trainer {}, seed {}: iterations "
-      "{}, {:.1f} s, region {}\n{}\nwrote {}\n",
+      "{}, {:.1f} s, region {}\n{}\n",
       nn::to_string(t.kind), net.parameter_count(), NishitaModel::kName, net.provenance.samples,
       nn::to_string(t.options.trainer), req.seed, its, net.provenance.training_seconds,
-      net.provenance.region, result.check->summary(), c.output));
+      net.provenance.region, result.check->summary()));
+  announce_after_commit(fmt::format("wrote {}", io::shown_path(c.output)));
   return kExitOk;
 }
 
@@ -132,11 +133,12 @@ int run_images(const TrainCommand& c, const fit::NetworkTrainingRequest& req) {
   const nn::SkyNetworkProvenance& pv = network.provenance;
   out += fmt::format(
       "final: {} {}, trainer {}, seed {}: {} iterations ({}), {:.1f} s, RMSE on the training "
-      "images {:.5f}, relative error median {:.2f} %, p95 {:.2f} %\nwrote {}\n",
+      "images {:.5f}, relative error median {:.2f} %, p95 {:.2f} %\n",
       network.net.layout().describe(), nn::to_string(network.encoding), pv.trainer, pv.seed,
       pv.iterations, pv.stop, pv.training_seconds, r.errors.rmse, 100.0 * r.errors.relative_median,
-      100.0 * r.errors.relative_p95, c.output);
+      100.0 * r.errors.relative_p95);
   write_stdout(out);
+  announce_after_commit(fmt::format("wrote {}", io::shown_path(c.output)));
   return kExitOk;
 }
 
@@ -171,8 +173,8 @@ int run_sky(const TrainCommand& c, const fit::NetworkTrainingRequest& req) {
                        percent(e.relative_median), percent(e.relative_p95));
   }
   if (r.check) out += r.check->summary() + "\n";
-  out += fmt::format("wrote {}\n", c.output);
   write_stdout(out);
+  announce_after_commit(fmt::format("wrote {}", io::shown_path(c.output)));
   return kExitOk;
 }
 

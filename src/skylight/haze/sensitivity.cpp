@@ -162,7 +162,7 @@ CameraSensitivity parse_camera_csv(std::string_view text, const std::string& sou
 
 CameraSensitivity load_camera_csv(const std::filesystem::path& path) {
   const std::vector<char> bytes = io::read_file(path);
-  return parse_camera_csv(std::string_view(bytes.data(), bytes.size()), path.string());
+  return parse_camera_csv(std::string_view(bytes.data(), bytes.size()), io::shown_path(path));
 }
 
 }  // namespace skylight::haze

@@ -104,7 +104,7 @@ CameraCalibration parse_camera_calibration(std::string_view json, std::string_vi
 }
 
 CameraCalibration read_camera_calibration(const std::filesystem::path& path) {
-  return parse_camera_calibration(read_text_file(path), path.string());
+  return parse_camera_calibration(read_text_file(path), shown_path(path));
 }
 
 Camera CameraCalibration::camera(int width, int height,

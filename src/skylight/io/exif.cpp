@@ -82,7 +82,7 @@ bool starts_with(std::span<const char> b, const char* magic, std::size_t n) {
 
 ExifInfo read_exif(const std::filesystem::path& path) {
   const std::vector<char> bytes = read_file(path);
-  return parse_exif(bytes, path.string());
+  return parse_exif(bytes, shown_path(path));
 }
 
 ExifInfo parse_exif(std::span<const char> bytes, std::string_view name_in) {

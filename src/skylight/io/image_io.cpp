@@ -39,7 +39,7 @@ namespace {
 namespace fs = std::filesystem;
 
 // Runs `body`, turning library exceptions (Iex::BaseExc and other std::exceptions) into one-line
-// IoErrors naming `path`. Our own errors and std::bad_alloc pass through unchanged.
+// IoErrors naming `path`, running out of memory included. Our own errors pass through unchanged.
 template <class F>
 auto converting_errors(const fs::path& path, bool reading, F&& body) {
   try {
@@ -49,7 +49,8 @@ auto converting_errors(const fs::path& path, bool reading, F&& body) {
   } catch (const InvalidArgument&) {
     throw;
   } catch (const std::bad_alloc&) {
-    throw;
+    if (reading) throw_read_error(path, "out of memory");
+    throw_write_error(path, "out of memory");
   } catch (const std::exception& e) {
     if (reading) throw_read_error(path, e.what());
     throw_write_error(path, e.what());
@@ -75,15 +76,15 @@ class AtomicExrStream : public Imf::OStream {
 void check_shape(const fs::path& path, int width, int height, int channels, size_t size) {
   if (channels != 1 && channels != 3)
     throw InvalidArgument(fmt::format("cannot write '{}': image has {} channels, expected 1 or 3",
-                                      path.string(), channels));
+                                      shown_path(path), channels));
   if (width <= 0 || height <= 0)
     throw InvalidArgument(
-        fmt::format("cannot write '{}': image is empty ({}x{})", path.string(), width, height));
+        fmt::format("cannot write '{}': image is empty ({}x{})", shown_path(path), width, height));
   const size_t expected =
       static_cast<size_t>(width) * static_cast<size_t>(height) * static_cast<size_t>(channels);
   if (size != expected)
     throw InvalidArgument(fmt::format("cannot write '{}': image data has {} values, expected {}",
-                                      path.string(), size, expected));
+                                      shown_path(path), size, expected));
 }
 
 // Metadata keys must suit every format: 1 to 79 printable ASCII characters (PNG keyword limit),
@@ -98,10 +99,10 @@ void check_metadata(const fs::path& path, const Metadata& meta) {
       throw InvalidArgument(fmt::format(
           "cannot write '{}': metadata key '{}' must be 1-79 printable ASCII characters without "
           "spaces or '='",
-          path.string(), key));
+          shown_path(path), key));
     if (!seen.insert(key).second)
       throw InvalidArgument(
-          fmt::format("cannot write '{}': metadata key '{}' given twice", path.string(), key));
+          fmt::format("cannot write '{}': metadata key '{}' given twice", shown_path(path), key));
   }
 }
 
@@ -112,7 +113,7 @@ void check_read_size(const fs::path& path, std::int64_t width, std::int64_t heig
   if (width <= 0 || height <= 0)
     throw_read_error(path, fmt::format("empty image ({}x{})", width, height));
   throw InvalidArgument(fmt::format("cannot read '{}': {}x{} pixels exceed the limit of {}",
-                                    path.string(), width, height, options.max_pixels));
+                                    shown_path(path), width, height, options.max_pixels));
 }
 
 // No image the project reads may carry NaN or infinity into its computations.
@@ -124,7 +125,7 @@ void check_finite(const fs::path& path, const ImageF& image) {
   const std::size_t pixel = index / static_cast<std::size_t>(image.channels);
   const std::size_t width = static_cast<std::size_t>(image.width);
   throw InvalidArgument(fmt::format(
-      "cannot read '{}': pixel ({}, {}) channel {} is {} (images must be finite)", path.string(),
+      "cannot read '{}': pixel ({}, {}) channel {} is {} (images must be finite)", shown_path(path),
       pixel % width, pixel / width, index % static_cast<std::size_t>(image.channels), *bad));
 }
 
@@ -141,8 +142,9 @@ void write_exr(const fs::path& path, const ImageF& image, const Metadata& meta) 
     header.channels().insert(names[c], Imf::Channel(Imf::FLOAT));
   for (const auto& [key, value] : meta) {
     if (header.find(key) != header.end())
-      throw InvalidArgument(fmt::format(
-          "cannot write '{}': metadata key '{}' is a standard EXR attribute", path.string(), key));
+      throw InvalidArgument(
+          fmt::format("cannot write '{}': metadata key '{}' is a standard EXR attribute",
+                      shown_path(path), key));
     header.insert(key, Imf::StringAttribute(value));
   }
 
@@ -165,13 +167,49 @@ void write_exr(const fs::path& path, const ImageF& image, const Metadata& meta) 
   file.commit();
 }
 
+// The size in bytes of the value of each fixed-size attribute type (OpenEXR file layout); OpenEXR
+// reads these by their type and ignores the size field, so a size field that disagrees would put
+// our walk and OpenEXR's reader at different places in the header.
+std::optional<std::int32_t> exr_fixed_attribute_size(std::string_view type) {
+  static constexpr std::pair<std::string_view, std::int32_t> kSizes[] = {{"box2i", 16},
+                                                                         {"box2f", 16},
+                                                                         {"chromaticities", 32},
+                                                                         {"compression", 1},
+                                                                         {"deepImageState", 1},
+                                                                         {"double", 8},
+                                                                         {"envmap", 1},
+                                                                         {"float", 4},
+                                                                         {"int", 4},
+                                                                         {"keycode", 28},
+                                                                         {"lineOrder", 1},
+                                                                         {"m33f", 36},
+                                                                         {"m33d", 72},
+                                                                         {"m44f", 64},
+                                                                         {"m44d", 128},
+                                                                         {"rational", 8},
+                                                                         {"tiledesc", 9},
+                                                                         {"timecode", 8},
+                                                                         {"v2i", 8},
+                                                                         {"v2f", 8},
+                                                                         {"v2d", 16},
+                                                                         {"v3i", 12},
+                                                                         {"v3f", 12},
+                                                                         {"v3d", 24}};
+  for (const auto& [name, size] : kSizes)
+    if (name == type) return size;
+  return std::nullopt;
+}
+
 // The first part's data window, read from the header bytes without OpenEXR: Imf::InputFile sizes
-// its line buffers from the data window, and Imf::Header allocates each attribute at the size the
-// file states before reading it (2 GB for a 100-byte file), so both are checked before OpenEXR
-// sees the file. Header layout (OpenEXR file layout): magic 76 2f 31 01, a 4-byte version field,
-// then per part a list of attributes `name\0 type\0 size:int32 value[size]` ended by an empty
-// name; multi-part files (version flag 0x1000) end the list of headers with an empty header.
-// Returns the data window's width and height; throws read errors naming the path.
+// its line buffers from the data window, and Imf::Header allocates each attribute of an unknown
+// type at the size the file states before reading it (2 GB for a 100-byte file), so both are
+// checked before OpenEXR sees the file. Header layout (OpenEXR file layout): magic 76 2f 31 01, a
+// 4-byte version field, then per part a list of attributes `name\0 type\0 size:int32 value[size]`
+// ended by an empty name; multi-part files (version flag 0x1000) end the list of headers with an
+// empty header. OpenEXR reads fixed-size types and channel lists by their content, not by the
+// size field, so those must agree with it (else the walk and OpenEXR part ways and a later size
+// goes unchecked: found by the fuzz target image_exr). Returns the data window's width and height;
+// throws read errors naming the path.
 std::pair<std::int64_t, std::int64_t> exr_data_window(const fs::path& path) {
   FilePtr f = open_for_read(path);
   std::error_code ec;
@@ -209,7 +247,20 @@ std::pair<std::int64_t, std::int64_t> exr_data_window(const fs::path& path) {
       if (size < 0 || pos < 0 || size > file_size - pos)
         corrupt(fmt::format("attribute '{}' of {} bytes beyond the end of the file", excerpt(name),
                             size));
-      if (part == 0 && name == "dataWindow" && type == "box2i" && size == 16) {
+      if (const auto fixed = exr_fixed_attribute_size(type); fixed && size != *fixed)
+        corrupt(fmt::format("attribute '{}' of type {} has {} bytes, not {}", excerpt(name), type,
+                            size, *fixed));
+      if (type == "chlist") {
+        // Channels `name\0 pixel_type:int32 p_linear:uint8 reserved[3] x_sampling:int32
+        // y_sampling:int32`, ended by an empty name.
+        std::int64_t used = 0;
+        for (std::string channel = read_name(); !channel.empty(); channel = read_name()) {
+          used += static_cast<std::int64_t>(channel.size()) + 1 + 16;
+          if (used >= size || std::fseek(f.get(), 16, SEEK_CUR) != 0) break;
+        }
+        if (used + 1 != size)
+          corrupt(fmt::format("channel list '{}' does not fill its {} bytes", excerpt(name), size));
+      } else if (part == 0 && name == "dataWindow" && type == "box2i") {
         const auto x0 = static_cast<std::int32_t>(read_u32()),
                    y0 = static_cast<std::int32_t>(read_u32()),
                    x1 = static_cast<std::int32_t>(read_u32()),
@@ -395,8 +446,9 @@ std::array<std::uint8_t, 4> to_rgbe(const float* rgb) {
 void write_hdr(const fs::path& path, const ImageF& image, const Metadata& meta) {
   for (const auto& [key, value] : meta) {
     if (key == "FORMAT")
-      throw InvalidArgument(fmt::format(
-          "cannot write '{}': metadata key 'FORMAT' is reserved in Radiance files", path.string()));
+      throw InvalidArgument(
+          fmt::format("cannot write '{}': metadata key 'FORMAT' is reserved in Radiance files",
+                      shown_path(path)));
   }
   std::string header = "#?RADIANCE\n";
   for (const auto& [key, value] : meta) {
@@ -548,7 +600,7 @@ void append_bytes(void* context, void* data, int size) {
 }  // namespace
 
 ImageFormat format_from_path(const std::filesystem::path& path) {
-  std::string ext = path.extension().string();
+  std::string ext = shown_path(path.extension());
   std::transform(ext.begin(), ext.end(), ext.begin(),
                  [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   if (ext == ".exr") return ImageFormat::exr;
@@ -557,7 +609,7 @@ ImageFormat format_from_path(const std::filesystem::path& path) {
   if (ext == ".png") return ImageFormat::png;
   throw InvalidArgument(fmt::format(
       "unsupported image file '{}': extension '{}' is not one of .exr, .hdr, .pfm, .png",
-      path.string(), path.extension().string()));
+      shown_path(path), shown_path(path.extension())));
 }
 
 void write_image(const std::filesystem::path& path, const ImageF& image, const Metadata& meta) {
@@ -578,7 +630,7 @@ void write_image(const std::filesystem::path& path, const ImageF& image, const M
       throw InvalidArgument(
           fmt::format("cannot write '{}': PNG holds 8-bit data; tone-map the float image first "
                       "(render::write_image_or_preview)",
-                      path.string()));
+                      shown_path(path)));
   }
 }
 
@@ -691,65 +743,73 @@ Image8 read_png(const std::filesystem::path& path, const ReadImageOptions& optio
 }
 
 ImageF read_image(const std::filesystem::path& path, const ReadImageOptions& options) {
-  ImageF image;
-  switch (format_from_path(path)) {
-    case ImageFormat::exr:
-      image = read_exr(path, options);
-      break;
-    case ImageFormat::pfm:
-      image = read_pfm(path, options);
-      break;
-    case ImageFormat::hdr:
-      image = read_hdr(path, options);
-      break;
-    case ImageFormat::png:
-      throw InvalidArgument(
-          fmt::format("cannot read '{}': PNG files are 8-bit previews; read .exr, .hdr or .pfm",
-                      path.string()));
-  }
-  if (!options.allow_non_finite) check_finite(path, image);
-  return image;
+  // Running out of memory on a file whose header passed the checks names the file too.
+  return converting_errors(path, true, [&] {
+    ImageF image;
+    switch (format_from_path(path)) {
+      case ImageFormat::exr:
+        image = read_exr(path, options);
+        break;
+      case ImageFormat::pfm:
+        image = read_pfm(path, options);
+        break;
+      case ImageFormat::hdr:
+        image = read_hdr(path, options);
+        break;
+      case ImageFormat::png:
+        throw InvalidArgument(
+            fmt::format("cannot read '{}': PNG files are 8-bit previews; read .exr, .hdr or .pfm",
+                        shown_path(path)));
+    }
+    if (!options.allow_non_finite) check_finite(path, image);
+    return image;
+  });
 }
 
 ImageF read_scalar_image(const std::filesystem::path& path, const ReadImageOptions& options) {
-  ImageF image;
-  switch (format_from_path(path)) {
-    case ImageFormat::exr:
-      image = read_exr(path, options, true);
-      break;
-    case ImageFormat::pfm: {
-      const ImageF all = read_pfm(path, options);
-      image = ImageF(all.width, all.height, 1);
-      for (std::size_t i = 0; i < image.data.size(); ++i)
-        image.data[i] = all.data[i * static_cast<std::size_t>(all.channels)];
-      break;
-    }
-    case ImageFormat::png: {
-      PngFile png = open_png(path, options);
-      if (!stbi_is_16_bit_from_memory(png.data(), png.size()))
+  // Running out of memory on a file whose header passed the checks names the file too.
+  return converting_errors(path, true, [&] {
+    ImageF image;
+    switch (format_from_path(path)) {
+      case ImageFormat::exr:
+        image = read_exr(path, options, true);
+        break;
+      case ImageFormat::pfm: {
+        const ImageF all = read_pfm(path, options);
+        image = ImageF(all.width, all.height, 1);
+        for (std::size_t i = 0; i < image.data.size(); ++i)
+          image.data[i] = all.data[i * static_cast<std::size_t>(all.channels)];
+        break;
+      }
+      case ImageFormat::png: {
+        PngFile png = open_png(path, options);
+        if (!stbi_is_16_bit_from_memory(png.data(), png.size()))
+          throw InvalidArgument(
+              fmt::format("cannot read '{}': an 8-bit PNG is too coarse for depth; write 16-bit",
+                          shown_path(path)));
+        std::uint16_t* pixels =
+            stbi_load_16_from_memory(png.data(), png.size(), &png.w, &png.h, &png.n, 1);
+        if (pixels == nullptr) throw_read_error(path, stbi_failure_reason());
+        image = ImageF(png.w, png.h, 1);
+        for (std::size_t i = 0; i < image.data.size(); ++i)
+          image.data[i] = static_cast<float>(pixels[i]) / 65535.0f;
+        stbi_image_free(pixels);
+        break;
+      }
+      case ImageFormat::hdr:
         throw InvalidArgument(fmt::format(
-            "cannot read '{}': an 8-bit PNG is too coarse for depth; write 16-bit", path.string()));
-      std::uint16_t* pixels =
-          stbi_load_16_from_memory(png.data(), png.size(), &png.w, &png.h, &png.n, 1);
-      if (pixels == nullptr) throw_read_error(path, stbi_failure_reason());
-      image = ImageF(png.w, png.h, 1);
-      for (std::size_t i = 0; i < image.data.size(); ++i)
-        image.data[i] = static_cast<float>(pixels[i]) / 65535.0f;
-      stbi_image_free(pixels);
-      break;
+            "cannot read '{}' as one channel: use .exr (Z, Y or R), .pfm or a 16-bit .png",
+            shown_path(path)));
     }
-    case ImageFormat::hdr:
-      throw InvalidArgument(fmt::format(
-          "cannot read '{}' as one channel: use .exr (Z, Y or R), .pfm or a 16-bit .png",
-          path.string()));
-  }
-  if (!options.allow_non_finite) check_finite(path, image);
-  return image;
+    if (!options.allow_non_finite) check_finite(path, image);
+    return image;
+  });
 }
 
 Metadata read_exr_metadata(const std::filesystem::path& path) {
   open_for_read(path);
   return converting_errors(path, true, [&] {
+    exr_data_window(path);  // the header's sizes checked before OpenEXR allocates them
     Imf::InputFile in(path.c_str());
     Metadata meta;
     for (auto it = in.header().begin(); it != in.header().end(); ++it) {

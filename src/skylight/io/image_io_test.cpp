@@ -687,6 +687,56 @@ TEST(ImageIo, ExrErrorsQuotingFileBytesStayPrintable) {
   }
 }
 
+// Found by the fuzz target image_exr (docs/TESTING.md): a float attribute whose size field says 0
+// ended our walk of the header early (its value began with a NUL, read as the empty name that ends
+// the header), while OpenEXR reads a float's 4 bytes whatever the field says and went on to an
+// attribute of an unknown type declaring 1.6 GB, which it allocated before finding the end of the
+// 700-byte file. Fixed-size types and channel lists must now fill exactly their size field, and
+// read_exr_metadata walks the header too.
+TEST(ImageIo, ExrAttributeSizesThatDisagreeWithTheirTypeAreRefusedBeforeOpenExr) {
+  ScratchDir dir;
+  write_image(dir / "y.exr", ImageF(1, 1, 1));
+  const std::string bytes = slurp(dir / "y.exr");
+  const std::string window("dataWindow\0box2i\0", 17);
+  const std::size_t after_window = bytes.find(window) + window.size() + 4 + 16;
+  ASSERT_LT(after_window, bytes.size());
+  auto le32 = [](std::uint32_t v) {
+    std::string s(4, '\0');
+    for (int i = 0; i < 4; ++i) s[i] = static_cast<char>((v >> (8 * i)) & 0xffu);
+    return s;
+  };
+  const std::string planted = std::string("skew\0float\0", 11) + le32(0) +
+                              std::string("\0\0\x80\x3f", 4) + std::string("big\0blob\0", 9) +
+                              le32(1600000000u) + "xyz";
+  spit(dir / "planted.exr", bytes.substr(0, after_window) + planted + bytes.substr(after_window));
+  for (const bool metadata : {false, true}) {
+    try {
+      if (metadata)
+        read_exr_metadata(dir / "planted.exr");
+      else
+        read_image(dir / "planted.exr");
+      ADD_FAILURE() << "accepted";
+    } catch (const IoError& e) {
+      EXPECT_NE(std::string(e.what()).find("attribute 'skew' of type float has 0 bytes, not 4"),
+                std::string::npos)
+          << e.what();
+    }
+  }
+  // A channel list whose size field is one byte more than its channels.
+  std::string list = bytes;
+  const std::size_t size_at = list.find(std::string("chlist\0", 7)) + 7;
+  list.replace(size_at, 4, le32(static_cast<std::uint8_t>(list[size_at]) + 1u));
+  spit(dir / "list.exr", list);
+  try {
+    read_image(dir / "list.exr");
+    ADD_FAILURE() << "accepted";
+  } catch (const IoError& e) {
+    EXPECT_NE(std::string(e.what()).find("channel list 'channels' does not fill its"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
 TEST(ImageIo, FormatFromPath) {
   EXPECT_EQ(format_from_path("a/b.exr"), ImageFormat::exr);
   EXPECT_EQ(format_from_path("b.HDR"), ImageFormat::hdr);

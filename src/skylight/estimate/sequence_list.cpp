@@ -1,0 +1,107 @@
+// The image list of `nn train --images` (estimate/sky_sequence.h), apart from the sampling so
+// that the parser builds alone (the fuzz target sequence_list links only what it reads).
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <array>
+
+#include "skylight/core/error.h"
+#include "skylight/core/numbers.h"
+#include "skylight/estimate/sky_sequence.h"
+
+namespace skylight::estimate {
+namespace {
+
+constexpr std::array<std::string_view, 5> kColumns = {"file", "sun_zenith_deg", "sun_azimuth_deg",
+                                                      "time", "mask"};
+
+std::vector<std::string_view> split_cells(std::string_view line) {
+  std::vector<std::string_view> cells;
+  std::size_t pos = 0;
+  for (;;) {
+    const std::size_t end = line.find(',', pos);
+    cells.push_back(trim(line.substr(pos, end == std::string_view::npos ? end : end - pos)));
+    if (end == std::string_view::npos) return cells;
+    pos = end + 1;
+  }
+}
+
+}  // namespace
+
+std::vector<SequenceEntry> parse_sequence_list(std::string_view text, const std::string& where,
+                                               const std::filesystem::path& folder) {
+  std::vector<int> column;  // cell index -> index into kColumns
+  std::vector<SequenceEntry> rows;
+  int line = 0;
+  std::size_t pos = 0;
+  while (pos < text.size()) {
+    const std::size_t end = std::min(text.find('\n', pos), text.size());
+    std::string_view raw = text.substr(pos, end - pos);
+    pos = end + 1;
+    ++line;
+    if (!raw.empty() && raw.back() == '\r') raw.remove_suffix(1);
+    const std::string_view t = trim(raw);
+    if (t.empty() || t.front() == '#') continue;
+    const auto cells = split_cells(t);
+    auto fail = [&](const std::string& why) {
+      return InvalidArgument(fmt::format("{}:{}: {}", where, line, why));
+    };
+    if (column.empty()) {
+      for (std::string_view c : cells) {
+        const auto it = std::find(kColumns.begin(), kColumns.end(), c);
+        if (it == kColumns.end())
+          throw fail(
+              fmt::format("unknown column '{}' (file, sun_zenith_deg, sun_azimuth_deg, "
+                          "time, mask)",
+                          excerpt(c)));
+        const int k = static_cast<int>(it - kColumns.begin());
+        if (std::find(column.begin(), column.end(), k) != column.end())
+          throw fail(fmt::format("column '{}' given twice", excerpt(c)));
+        column.push_back(k);
+      }
+      if (std::find(column.begin(), column.end(), 0) == column.end())
+        throw fail("the header has no 'file' column");
+      continue;
+    }
+    if (cells.size() != column.size())
+      throw fail(fmt::format("{} cells, the header has {}", cells.size(), column.size()));
+    SequenceEntry e;
+    e.line = line;
+    for (std::size_t i = 0; i < cells.size(); ++i) {
+      const std::string_view c = cells[i];
+      if (c.empty()) continue;
+      auto angle = [&](std::string_view name, double lo, double hi) {
+        const auto v = parse_number(c);
+        if (!v || *v < lo || *v > hi)
+          throw fail(fmt::format("{} '{}' is not a number in [{}, {}]", name, excerpt(c), lo, hi));
+        return *v;
+      };
+      switch (column[i]) {
+        case 0:
+          e.file = folder / std::filesystem::path(std::string(c));
+          break;
+        case 1:
+          e.sun_zenith_deg = angle("sun_zenith_deg", 0.0, 90.0);
+          break;
+        case 2:
+          e.sun_azimuth_deg = angle("sun_azimuth_deg", -360.0, 360.0);
+          break;
+        case 3:
+          e.time = std::string(c);
+          break;
+        default:
+          e.mask = folder / std::filesystem::path(std::string(c));
+          break;
+      }
+    }
+    if (e.file.empty()) throw fail("no file");
+    if (e.sun_zenith_deg.has_value() != e.sun_azimuth_deg.has_value())
+      throw fail("sun_zenith_deg and sun_azimuth_deg go together");
+    if (e.sun_zenith_deg && !e.time.empty()) throw fail("the sun's angles and a time both given");
+    rows.push_back(std::move(e));
+  }
+  if (rows.empty()) throw InvalidArgument(fmt::format("{}: no images listed", where));
+  return rows;
+}
+
+}  // namespace skylight::estimate
