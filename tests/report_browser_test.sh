@@ -2,7 +2,8 @@
 # The report opens in a browser without broken images: writes a quick report with the CLI, loads
 # index.html in headless Chromium (Debian package `chromium`, installed by scripts/setup.sh) and
 # reads back the page's own check (an inline script that, on load, verifies every <img> and every
-# SVG <image> and writes "images ok: N of M" into <p id="image-check">). Passes only when N = M > 0.
+# SVG <image> and writes "images ok: N of M; links ok: K of L" into <p id="image-check">, L being
+# the in-page links of the contents). Passes only when N = M > 0 and K = L > 0.
 # Fails, never skips, when Chromium is missing.
 #
 # Usage: tests/report_browser_test.sh PATH/TO/skylight
@@ -25,8 +26,9 @@ dom="$(timeout 180 "$browser" --headless --no-sandbox --disable-gpu --disable-ba
   exit 1
 }
 line="$(grep -o '<p id="image-check">[^<]*</p>' <<<"$dom" || true)"
-if [[ "$line" =~ \>images\ ok:\ ([0-9]+)\ of\ ([0-9]+)\</p\>$ ]] &&
-  [ "${BASH_REMATCH[1]}" = "${BASH_REMATCH[2]}" ] && [ "${BASH_REMATCH[2]}" -gt 0 ]; then
+if [[ "$line" =~ \>images\ ok:\ ([0-9]+)\ of\ ([0-9]+)\;\ links\ ok:\ ([0-9]+)\ of\ ([0-9]+)\</p\>$ ]] &&
+  [ "${BASH_REMATCH[1]}" = "${BASH_REMATCH[2]}" ] && [ "${BASH_REMATCH[2]}" -gt 0 ] &&
+  [ "${BASH_REMATCH[3]}" = "${BASH_REMATCH[4]}" ] && [ "${BASH_REMATCH[4]}" -gt 0 ]; then
   echo "PASS: $line"
   exit 0
 fi

@@ -104,7 +104,18 @@ Config make_config(bool quick) {
     c.low_sun_zeniths_deg = {60, 70, 80};
     c.zone_n_theta = 36;
     c.zone_n_phi = 144;
+    c.trust_bands = {{"low sun", 5, 15, {7, 12}},
+                     {"mid sun", 15, 45, {20, 30, 40}},
+                     {"high sun", 45, 80, {50, 65, 80}}};
+    c.trust_n_theta = 24;
+    c.trust_n_phi = 96;
+    c.trust_axis_samples = 24;
   } else {
+    c.trust_bands = {
+        {"low sun", 5, 15, {10}}, {"mid sun", 15, 45, {30}}, {"high sun", 45, 80, {60}}};
+    c.trust_n_theta = 12;
+    c.trust_n_phi = 48;
+    c.trust_axis_samples = 8;
     c.fit_per_sun_zeniths_deg = {30, 80};
     c.zone_sun_zeniths_deg = {60, 85};
     c.pair_sun_zeniths_deg = {30, 60};
@@ -190,6 +201,21 @@ void HtmlTable::row(const std::vector<std::string>& cells, std::string_view row_
   text_ += "</tr>\n";
 }
 
+std::string esc_html(std::string_view s) {
+  std::string o;
+  for (char c : s) {
+    if (c == '&')
+      o += "&amp;";
+    else if (c == '<')
+      o += "&lt;";
+    else if (c == '>')
+      o += "&gt;";
+    else
+      o += c;
+  }
+  return o;
+}
+
 svg::Axis one_row_axis() {
   return {0.0, 1.0, false, "", {-1.0}};
 }
@@ -216,6 +242,9 @@ figcaption { font-size: 0.9em; color: #444; max-width: 900px; }
 code { background: #f5f5f5; padding: 0 0.2em; }
 #image-check { font-size: 0.85em; color: #666; }
 .note { background: #fffbe6; border: 1px solid #f0e0a0; padding: 0.6em 1em; }
+.verdict-use { color: #1b5e20; font-weight: bold; } .verdict-care { color: #8a6d00; font-weight: bold; }
+.verdict-avoid { color: #b71c1c; font-weight: bold; }
+nav#contents { background: #f7f7f7; border: 1px solid #ddd; padding: 0.4em 1em; display: inline-block; }
 )css";
 
 // Checks that every <img> and every SVG <image> loaded, and writes the result into the page.
@@ -231,9 +260,18 @@ window.addEventListener('load', function () {
     if (!im.complete || im.naturalWidth === 0) broken.push(im.getAttribute('src'));
     else ok++;
   });
+  // In-page links (the contents): each must name an element of the page.
+  var links = Array.prototype.slice.call(document.querySelectorAll('a[href^="#"]'));
+  var linked = 0, dangling = [];
+  links.forEach(function (a) {
+    var id = a.getAttribute('href').slice(1);
+    if (document.getElementById(id)) linked++; else dangling.push('#' + id);
+  });
   function done() {
     out.textContent = 'images ok: ' + ok + ' of ' + total +
-        (broken.length ? ' (broken: ' + broken.join(', ') + ')' : '');
+        (broken.length ? ' (broken: ' + broken.join(', ') + ')' : '') +
+        '; links ok: ' + linked + ' of ' + links.length +
+        (dangling.length ? ' (dangling: ' + dangling.join(', ') + ')' : '');
   }
   if (pending === 0) { done(); return; }
   refs.forEach(function (el) {
@@ -254,35 +292,57 @@ window.addEventListener('load', function () {
 void ReportWriter::write_html_and_json() {
   std::string models;
   for (const auto& m : model_registry()) models += (models.empty() ? "" : ", ") + m.name;
+  // The sections in page order: anchor, heading, body.
+  const std::vector<std::array<std::string, 3>> sections = {
+      {"trust", "Which model to trust where", html_trust_},
+      {"zotti", "Zotti et al.'s findings in brief", findings_summary_html()},
+      {"zenith", "1. Preetham's zenith luminance", html_zenith_},
+      {"relative-maps", "2. Relative luminance maps (Zotti Figs. 4, 6)", html_rel_},
+      {"absolute-maps", "3. Absolute luminance maps (Zotti Figs. 5, 7)", html_abs_},
+      {"cie", "4. Preetham against the CIE general sky", html_match_},
+      {"vertical", "5. The solar vertical (Zotti Fig. 3)", html_vertical_},
+      {"illuminance", "6. Horizontal illuminance and irradiance", html_illum_},
+      {"measurements", "7. Measurements", html_scan_},
+      {"validity", "8. Where each model is valid",
+       "<p>Each model's <code>domain().worst()</code> (valid &lt; extrapolated &lt; unphysical "
+       "&lt; undefined) over the sun zenith angle and its main parameter; sun azimuth 180°.</p>\n" +
+           html_validity_},
+      {"closing", "Closing note: Zotti et al.'s findings, paper against ours",
+       "<p>One row per finding (report.json <code>zotti_findings</code>; the summary above is "
+       "generated from the same records).</p>\n" +
+           html_findings_}};
+  std::string toc =
+      "<nav id=\"contents\"><b>Contents</b><ol>\n<li><a href=\"#summary\">Summary</a></li>\n";
+  std::string body;
+  for (const auto& [id, heading, html] : sections) {
+    toc += fmt::format("<li><a href=\"#{}\">{}</a></li>\n", id, heading);
+    body += fmt::format("<h2 id=\"{}\">{}</h2>\n{}", id, heading, html);
+  }
+  toc += "</ol></nav>\n";
+  // The plain-language summary: one line per judged model, then the findings' count.
+  std::string summary = "<ul>\n";
+  for (const std::string& line : trust_summary_) summary += "<li>" + line + "</li>\n";
+  int agree = 0;
+  for (const Finding& f : summary_.findings) agree += f.agrees ? 1 : 0;
+  summary += fmt::format(
+      "<li>Distribution only (<a href=\"#trust\">table and rule</a>); of Zotti et al.'s {} "
+      "findings on Preetham, {} agree with our numbers (<a href=\"#zotti\">in brief</a>).</li>\n"
+      "</ul>\n",
+      summary_.findings.size(), agree);
   std::string html = fmt::format(
       "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\"/>\n"
       "<title>skylight validation report</title>\n<style>{}</style>\n</head>\n<body>\n"
       "<h1>skylight validation report: which sky model to trust where</h1>\n"
-      "<p>skylight {} · models in the registry: {} · {} report. Reproduces the "
-      "analyses of Zotti, Wilkie &amp; Purgathofer 2007, <i>A Critical Review of the Preetham "
-      "Skylight Model</i> (WSCG), for every model, and compares them with the CIE standard "
-      "general sky and a sky-luminance scan. Headline numbers: <a "
+      "<p>skylight {} · models in the registry: {} · {} report. Judges every registered model "
+      "against the CIE standard general sky, reproduces the analyses of Zotti, Wilkie &amp; "
+      "Purgathofer 2007, <i>A Critical Review of the Preetham Skylight Model</i> (WSCG), and "
+      "compares the models with a sky-luminance scan. Headline numbers: <a "
       "href=\"report.json\">report.json</a>; methods: docs/REPORT.md in the repository. Angles "
-      "in degrees; theta_s = sun zenith angle, T = turbidity.</p>\n"
-      "<p id=\"image-check\">images: not checked (needs JavaScript)</p>\n"
-      "<h2>Summary</h2>\n{}"
-      "<h2>1. Preetham's zenith luminance</h2>\n{}"
-      "<h2>2. Relative luminance maps (Zotti Figs. 4, 6)</h2>\n{}"
-      "<h2>3. Absolute luminance maps (Zotti Figs. 5, 7)</h2>\n{}"
-      "<h2>4. Preetham against the CIE general sky</h2>\n{}"
-      "<h2>5. The solar vertical (Zotti Fig. 3)</h2>\n{}"
-      "<h2>6. Horizontal illuminance and irradiance</h2>\n{}"
-      "<h2>7. Measurements</h2>\n{}"
-      "<h2>8. Where each model is valid</h2>\n<p>Each model's <code>domain().worst()</code> "
-      "(valid &lt; extrapolated &lt; unphysical &lt; undefined) over the sun zenith angle and "
-      "its main parameter; sun azimuth 180 deg.</p>\n{}"
-      "<h2>Closing note: Zotti et al.'s findings, paper against ours</h2>\n<p>One row per "
-      "finding (report.json <code>zotti_findings</code>; the summary above is generated from "
-      "the same records).</p>\n{}"
-      "{}</body>\n</html>\n",
-      kStyle, kVersion, models, opt_.quick ? "quick (reduced-resolution)" : "full",
-      findings_summary_html(), html_zenith_, html_rel_, html_abs_, html_match_, html_vertical_,
-      html_illum_, html_scan_, html_validity_, html_findings_, kImageCheck);
+      "in degrees; θ<sub>s</sub> = sun zenith angle, T = turbidity.</p>\n"
+      "<p id=\"image-check\">images: not checked (needs JavaScript)</p>\n{}"
+      "<h2 id=\"summary\">Summary</h2>\n{}{}{}</body>\n</html>\n",
+      kStyle, kVersion, models, opt_.quick ? "quick (reduced-resolution)" : "full", toc, summary,
+      body, kImageCheck);
   write_text("index.html", html);
 
   Json j;
@@ -291,8 +351,9 @@ void ReportWriter::write_html_and_json() {
   j["angles"] = "degrees";
   // The headline numbers first, then the details in the order they were computed.
   for (const char* key :
-       {"zotti_findings", "preetham_negative_zenith", "antisolar_horizon_ratio_preetham_vs_cie12",
-        "best_preetham_turbidity_for_cie12", "best_cie_type_per_preetham_turbidity"})
+       {"which_model_to_trust_where", "zotti_findings", "preetham_negative_zenith",
+        "antisolar_horizon_ratio_preetham_vs_cie12", "best_preetham_turbidity_for_cie12",
+        "best_cie_type_per_preetham_turbidity"})
     if (json_.contains(key)) j[key] = json_[key];
   for (auto it = json_.begin(); it != json_.end(); ++it)
     if (!j.contains(it.key())) j[it.key()] = it.value();
@@ -325,6 +386,7 @@ ReportSummary ReportWriter::run() {
   // The measurements first: a bad file fails fast, before any work.
   section_measurements();
   step("measurements");
+  section_trust();
   section_zenith();
   step("Preetham zenith luminance (Fig. 1)");
   section_maps();

@@ -17,6 +17,7 @@
 #include "skylight/core/error.h"
 #include "skylight/models/cie_sky.h"
 #include "skylight/models/preetham.h"
+#include "skylight/report/detail/writer.h"
 #include "support/xml_check.h"
 
 namespace skylight::report {
@@ -110,6 +111,57 @@ TEST_F(ReportFiles, JsonHasTheHeadlineNumbers) {
   EXPECT_TRUE(j["measurements"]["synthetic"].get<bool>());
 }
 
+// "Which model to trust where" reads the registry: every model has an entry, each model with a
+// report policy a verdict per regime that follows the printed rule from the printed numbers, and
+// the page has its section and a row per model (the contents' links: HtmlIsWellFormed...).
+TEST_F(ReportFiles, TrustTableJudgesEveryRegisteredModelByItsPrintedRule) {
+  const auto j = nlohmann::json::parse(slurp(*dir_ / "report.json"));
+  const std::string html = slurp(*dir_ / "index.html");
+  ASSERT_TRUE(j.contains("which_model_to_trust_where"));
+  const auto& models = j["which_model_to_trust_where"]["models"];
+  ASSERT_EQ(models.size(), model_registry().size());
+  std::size_t judged = 0;
+  for (std::size_t i = 0; i < models.size(); ++i) {
+    const ModelInfo& info = model_registry()[i];
+    SCOPED_TRACE(info.name);
+    const auto& m = models[i];
+    EXPECT_EQ(m["model"], info.name);
+    EXPECT_EQ(m["judged"].get<bool>(), !info.report.title.empty());
+    EXPECT_NE(html.find("<code>" + info.name + "</code>"), std::string::npos);
+    if (!m["judged"].get<bool>()) continue;
+    ++judged;
+    ASSERT_EQ(m["regimes"].size(), 9u);  // 3 sun-elevation bands x 3 sky classes (quick)
+    for (const auto& r : m["regimes"]) {
+      const std::string verdict = r["verdict"];
+      if (verdict == "reference") continue;
+      if (r["skies_nearest_to_this_class"].get<int>() == 0) {
+        EXPECT_EQ(verdict, "avoid");
+        continue;
+      }
+      const double best = r["best_rms_log10"], step = r["neighbour_rms_log10"];
+      EXPECT_EQ(verdict, detail::trust_verdict_name(detail::trust_verdict(best, step)));
+      EXPECT_GE(r["best_cie_type"].get<int>(), r["cie_types"][0].get<int>());
+      EXPECT_LE(r["best_cie_type"].get<int>(), r["cie_types"][1].get<int>());
+    }
+  }
+  EXPECT_GE(judged, 5u);
+  EXPECT_NE(html.find("<h2 id=\"trust\">Which model to trust where</h2>"), std::string::npos);
+}
+
+// The rule's planted counter-examples: a model as far from the class as its neighbouring types
+// are from each other is not "use"; no number is never "use".
+TEST(ReportTrust, VerdictRuleFailsOnPlantedCounterExamples) {
+  using detail::TrustVerdict;
+  EXPECT_EQ(detail::trust_verdict(0.04, 0.1), TrustVerdict::use);
+  EXPECT_EQ(detail::trust_verdict(0.05, 0.1), TrustVerdict::use);  // the bound itself
+  EXPECT_EQ(detail::trust_verdict(0.051, 0.1), TrustVerdict::care);
+  EXPECT_EQ(detail::trust_verdict(0.1, 0.1), TrustVerdict::care);
+  EXPECT_EQ(detail::trust_verdict(0.101, 0.1), TrustVerdict::avoid);
+  EXPECT_EQ(detail::trust_verdict(std::nan(""), 0.1), TrustVerdict::avoid);
+  EXPECT_EQ(detail::trust_verdict(0.01, std::nan("")), TrustVerdict::avoid);
+  EXPECT_EQ(detail::trust_verdict_name(TrustVerdict::care), "use with care");
+}
+
 TEST_F(ReportFiles, ZottiFindingsInJsonMatchTheSummaryAndTheHtml) {
   const auto j = nlohmann::json::parse(slurp(*dir_ / "report.json"));
   const std::string html = slurp(*dir_ / "index.html");
@@ -182,6 +234,10 @@ TEST_F(ReportFiles, HtmlIsWellFormedAndReferencesOnlyExistingFiles) {
   EXPECT_TRUE(check.ok) << check.error;
   int images = 0;
   for (const auto& h : check.hrefs) {
+    if (h.starts_with("#")) {  // in-page: an element of the page
+      EXPECT_NE(html.find("id=\"" + h.substr(1) + "\""), std::string::npos) << h;
+      continue;
+    }
     EXPECT_TRUE(fs::is_regular_file(*dir_ / h)) << h;
     if (h.ends_with(".png")) ++images;
   }

@@ -62,18 +62,7 @@ std::string v3(double v) {
 
 // The records hold plain text; the page escapes it.
 std::string esc(const std::string& s) {
-  std::string o;
-  for (char c : s) {
-    if (c == '&')
-      o += "&amp;";
-    else if (c == '<')
-      o += "&lt;";
-    else if (c == '>')
-      o += "&gt;";
-    else
-      o += c;
-  }
-  return o;
+  return esc_html(s);
 }
 
 // One finding's record as report.json's `zotti_findings` holds it.
@@ -132,15 +121,16 @@ void ReportWriter::finding_negative_clear() {
            "clear air (§3: \"T > 1.6\", meaning T below 1.6); §7: it \"breaks down numerically "
            "for T > 1.9\" (meaning T below 1.9).",
        .paper_value_text = "T < 1.6 (§3), T < 1.9 (§7)",
-       .our_values =
-           {{"zenith luminance Yz < 0 for T below (theta_s = 0)", low_branch_t_at_zenith_},
-            {"Yz < 0 region ends at theta_s [deg] (T = 1)", rad_to_deg(low_branch_max_sun_zenith_)},
-            {"whole sky negative somewhere, every theta_s: T above (B(T) = 0)", neg.t_low},
-            {"whole sky negative somewhere, every theta_s: T below (1 + A e^B = 0)", neg.t_high}},
+       .our_values = {{"zenith luminance Yz < 0 for T below (θs = 0)", low_branch_t_at_zenith_},
+                      {"Yz < 0 region ends at θs [deg] (T = 1)",
+                       rad_to_deg(low_branch_max_sun_zenith_)},
+                      {"whole sky negative somewhere, every θs: T above (B(T) = 0)", neg.t_low},
+                      {"whole sky negative somewhere, every θs: T below (1 + A e^B = 0)",
+                       neg.t_high}},
        .agrees = std::abs(neg.t_high - 1.6) <= kOneDecimal,
        .cause = fmt::format(
            "The zenith formula alone gives Yz < 0 only below T = {} with a high sun (up to "
-           "theta_s = {} deg), which does not explain 1.6. The Perez gradation term 1 + A e^(B/cos "
+           "θs = {} deg), which does not explain 1.6. The Perez gradation term 1 + A e^(B/cos "
            "theta) is 1 at the horizon and 1 + A e^B at the zenith; with Preetham's coefficients "
            "1 + A e^B changes sign at T = {} (B = 0 at T = {}), so for {} < T < {} the sky is "
            "negative somewhere at every sun position: Zotti's 1.6. No sign change lies between {} "
@@ -159,15 +149,15 @@ void ReportWriter::finding_negative_turbid() {
       {.id = "negative_luminance_turbid",
        .title = "Negative zenith luminance near sunrise/sunset (Fig. 1)",
        .paper_statement =
-           "\"values near sunrise/sunset (theta_s > 85) are apparently problematic, and fail for "
+           "\"values near sunrise/sunset (θs > 85) are apparently problematic, and fail for "
            "turbidities T >~ 10\" (§3).",
-       .paper_value_text = "theta_s > 85 deg, T >~ 10",
-       .our_values = {{"Yz < 0 for T above (theta_s = 90 deg)", high_branch_t_at_horizon_},
-                      {"Yz < 0 for T above (theta_s = 85 deg)", t85}},
+       .paper_value_text = "θs > 85 deg, T >~ 10",
+       .our_values = {{"Yz < 0 for T above (θs = 90 deg)", high_branch_t_at_horizon_},
+                      {"Yz < 0 for T above (θs = 85 deg)", t85}},
        .agrees = high_branch_t_at_horizon_ < 12.0,
        .cause = fmt::format(
            "Yz = 0 at T = 2.4192 / 0.2155 = {} with the sun at the horizon and at T = {} at "
-           "theta_s = 85 deg: Zotti's T >~ 10 read from the map.",
+           "θs = 85 deg: Zotti's T >~ 10 read from the map.",
            v3(high_branch_t_at_horizon_), v3(t85))});
 }
 
@@ -193,17 +183,17 @@ void ReportWriter::finding_best_turbidity() {
           "\"The CIE Clear Sky (Type 12) is best approximated with T ≈ 2.3...2.5\" (§6), found by "
           "comparing the maps of Figs. 4 and 6 by eye.",
       .paper_value_text = "T ≈ 2.3-2.5",
-      .our_values = {{fmt::format("best T, pooled over theta_s {} deg", pooled), fit_t}},
+      .our_values = {{fmt::format("best T, pooled over θs {} deg", pooled), fit_t}},
       .agrees = fit_t >= 2.3 - kOneDecimal && fit_t <= 2.5 + kOneDecimal,
       .cause = fmt::format(
           "Zotti matched by eye over all sun positions; the RMS of the zenith-normalised log "
-          "ratio pooled over theta_s {} deg is smallest at T = {}, but the best T depends on the "
-          "sun position: {} to {} over theta_s {} deg, so a single T ≈ 2.3-2.5 is a compromise.",
+          "ratio pooled over θs {} deg is smallest at T = {}, but the best T depends on the "
+          "sun position: {} to {} over θs {} deg, so a single T ≈ 2.3-2.5 is a compromise.",
           pooled, v3(fit_t), v3(spread.lo()), v3(spread.hi()),
           degrees_list(cfg_.fit_per_sun_zeniths_deg))};
   for (std::size_t i = 0; i < per_sun.size(); ++i)
     f.our_values.push_back(
-        {fmt::format("best T at theta_s = {:g} deg", cfg_.fit_per_sun_zeniths_deg[i]), per_sun[i]});
+        {fmt::format("best T at θs = {:g} deg", cfg_.fit_per_sun_zeniths_deg[i]), per_sun[i]});
   summary_.findings.push_back(f);
 }
 
@@ -246,7 +236,7 @@ void ReportWriter::finding_antisolar(const HemisphereGrid& zone_grid) {
            "too high\" (§6).",
        .paper_value_text = "2-5 times too high",
        .our_values = {{fmt::format("absolute Preetham/CIE 12 over the antisolar half, T = {:.3g}, "
-                                   "theta_s {} deg: min",
+                                   "θs {} deg: min",
                                    fit_t, zs),
                        abs_fit.lo()},
                       {"the same: max", abs_fit.hi()},
@@ -256,8 +246,8 @@ void ReportWriter::finding_antisolar(const HemisphereGrid& zone_grid) {
        .agrees = abs_fit.hi() >= kZottiAntisolarMin && abs_fit.lo() <= kZottiAntisolarMax,
        .cause = fmt::format(
            "In absolute luminance Preetham (T = {}) is {}-{} times CIE 12 over the antisolar half "
-           "at theta_s {} deg (lowest at elevation {} deg), overlapping Zotti's 2-5 (the range "
-           "includes theta_s = 85 deg, outside the Kittler-Darula recommended 10-80 deg). "
+           "at θs {} deg (lowest at elevation {} deg), overlapping Zotti's 2-5 (the range "
+           "includes θs = 85 deg, outside the Kittler-Darula recommended 10-80 deg). "
            "Normalised to each model's zenith the factor is only {}-{}: the excess is mostly "
            "Preetham's higher zenith luminance (absolute level), not the shape.",
            v3(fit_t), v3(abs_fit.lo()), v3(abs_fit.hi()), zs, v3(abs_fit.at_min), v3(rel_fit.lo()),
@@ -267,7 +257,7 @@ void ReportWriter::finding_antisolar(const HemisphereGrid& zone_grid) {
        .title = "Antisolar darkening too weak in shape at T ≈ 2.3-2.5",
        .paper_statement =
            "\"The CIE Clear Sky (Type 12) is best approximated with T ≈ 2.3...2.5, however, "
-           "differences remain, esp. the mentioned darkening is too weak when theta_s >~ 60\"; "
+           "differences remain, esp. the mentioned darkening is too weak when θs >~ 60\"; "
            "\"The results for low turbidities T < 2 are definitely wrong\" (§6).",
        .paper_value_text = "darkening too weak (2-5x) at T ≈ 2.3-2.5; T < 2 wrong",
        .our_values = {{fmt::format("zenith-normalised Preetham/CIE 12, antisolar half, T = {:.3g}: "
@@ -279,7 +269,7 @@ void ReportWriter::finding_antisolar(const HemisphereGrid& zone_grid) {
                       {fmt::format("absolute at T = {:g}: max", kLowTurbidity), abs_low.hi()}},
        .agrees = rel_fit.hi() >= kZottiAntisolarMin,
        .cause = fmt::format(
-           "At T = {} the zenith-normalised antisolar half is at most {} times CIE 12's (theta_s "
+           "At T = {} the zenith-normalised antisolar half is at most {} times CIE 12's (θs "
            "{} deg): the shape fault is absent there, and the 2-5x comes from the absolute level. "
            "Below T ≈ 2 it appears: at T = {:g} the zenith-normalised factor is {}-{} (absolute "
            "up to {}), confirming \"T < 2 definitely wrong\".",
@@ -306,10 +296,10 @@ void ReportWriter::finding_pairs() {
          .title = fmt::format("Preetham T {:g} against CIE type {}: absolute level", p.t, p.type),
          .paper_statement = fmt::format(
              "Preetham T = {:g} resembles CIE type {} \"but with different absolute luminances "
-             "(with values from [KD06])\": Y_Pr / Y_CIE {} for 15 < theta_s < 70 (§6 table).",
+             "(with values from [KD06])\": Y_Pr / Y_CIE {} for 15 < θs < 70 (§6 table).",
              p.t, p.type, p.ratio),
          .paper_value_text = fmt::format("Y_Pr/Y_CIE {}", p.ratio),
-         .our_values = {{fmt::format("Y_Pr/Y_CIE, Kittler-Darula typical Lz, theta_s {} deg", zs),
+         .our_values = {{fmt::format("Y_Pr/Y_CIE, Kittler-Darula typical Lz, θs {} deg", zs),
                          r.typical},
                         {"the same with the CIE Lz at the band's low end", r.against_cie_low},
                         {"the same with the CIE Lz at the band's high end", r.against_cie_high}},
@@ -369,7 +359,7 @@ void ReportWriter::finding_low_sun(const HemisphereGrid& zone_grid) {
            "is not as steep as ... modelled by the CIE Clear-Sky models\" (§6).",
        .paper_value_text = "qualitative: weaker than CIE 12",
        .our_values = {{fmt::format("zenith-normalised Preetham/CIE 12, {:g}-{:g} deg from the "
-                                   "sun, T = {:.3g}, theta_s {} deg: min",
+                                   "sun, T = {:.3g}, θs {} deg: min",
                                    kRingInnerDeg, kRingOuterDeg, fit_t, zs),
                        cs_rel.lo()},
                       {"the same: max", cs_rel.hi()}},
@@ -384,10 +374,10 @@ void ReportWriter::finding_low_sun(const HemisphereGrid& zone_grid) {
        .title = "Horizon unnaturally bright for T > 2.4 at low sun",
        .paper_statement =
            "\"Even for T > 2.4 the horizon is shown unnaturally bright when the sun is low "
-           "(theta_s >~ 60)\" (§6).",
+           "(θs >~ 60)\" (§6).",
        .paper_value_text = "qualitative: horizon brighter than CIE 12",
        .our_values = {{fmt::format("zenith-normalised Preetham/CIE 12, view elevation below {:g} "
-                                   "deg, more than {:g} deg from the sun, T = {:g}, theta_s {} "
+                                   "deg, more than {:g} deg from the sun, T = {:g}, θs {} "
                                    "deg: min",
                                    kHorizonBandDeg, kHorizonSunDistanceDeg, kHorizonTurbidity, zs),
                        hz_rel.lo()},

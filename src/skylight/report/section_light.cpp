@@ -360,7 +360,7 @@ void ReportWriter::validity_map(const ValidityMap& map, const std::vector<double
   p.x = {0,
          110,
          false,
-         "sun zenith angle theta_s [deg] (> 90: sun below the horizon)",
+         "sun zenith angle θs [deg] (> 90: sun below the horizon)",
          {0, 10, 20, 30, 40, 50, 60, 70, 80, 90, 100, 110}};
   p.y = map.rows.empty() ? one_row_axis() : map.y;
   p.width = 760;
@@ -401,7 +401,7 @@ void ReportWriter::section_validity() {
   for (int i = 0; i < n; ++i)
     preetham_t.push_back(pt.min * std::pow(pt.max / pt.min, (i + 0.5) / n));
   validity_map({comparison_spec(PreethamModel::kName, 3),
-                "(theta_s, T)",
+                "(θs, T)",
                 preetham_t,
                 {pt.min, pt.max, true, "turbidity T", {1, 1.5, 2, 3, 5, 7, 10, 15, 20, 30, 50, 64}},
                 pt.min,
@@ -416,7 +416,7 @@ void ReportWriter::section_validity() {
   const double step = cfg_.validity_hosek_step;
   for (double T = ht.min; T <= ht.max + 1e-9; T += step) hosek_t.push_back(T);
   validity_map({comparison_spec(HosekWilkieModel::kName, 3),
-                "(theta_s, T)",
+                "(θs, T)",
                 hosek_t,
                 {ht.min, ht.max, false, "turbidity T", {}},
                 ht.min - 0.5 * step,
@@ -429,7 +429,7 @@ void ReportWriter::section_validity() {
   for (int t = 1; t <= kCieTypeCount; ++t) types.push_back(t);
   validity_map(
       {comparison_spec(CieSkyModel::kName, 12),
-       "(theta_s, type)",
+       "(θs, type)",
        types,
        {0.5, 16.5, false, "CIE type", {1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 16}},
        0.5,
@@ -438,7 +438,7 @@ void ReportWriter::section_validity() {
        "sun elevations 10-80 deg)."},
       zen_deg);
   validity_map({comparison_spec(NishitaModel::kName),
-                "theta_s (Earth defaults)",
+                "θs (Earth defaults)",
                 {},
                 {},
                 0.0,
@@ -447,7 +447,7 @@ void ReportWriter::section_validity() {
                 "the marked sun zenith angles (each cell spans halfway to its neighbours)."},
                cfg_.validity_nishita_deg);
   validity_map({comparison_spec(PerezModel::kName),
-                "theta_s (coefficients -1,-0.32,10,-3,0.45)",
+                "θs (coefficients -1,-0.32,10,-3,0.45)",
                 {},
                 {},
                 0.0,

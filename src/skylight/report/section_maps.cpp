@@ -22,8 +22,8 @@ constexpr double kTMin = 1.0, kTMax = 64.0;  // the turbidity range `preetham` a
 svg::Plot fig1_plot(const std::vector<ZenithRoot>& roots) {
   svg::Plot p;
   p.id = "fig1";
-  p.title = "Preetham zenith luminance Yz(theta_s, T) (Zotti et al. 2007, Fig. 1)";
-  p.x = {0, 90, false, "sun zenith angle theta_s [deg]", {0, 10, 20, 30, 40, 50, 60, 70, 80, 90}};
+  p.title = "Preetham zenith luminance Yz(θs, T) (Zotti et al. 2007, Fig. 1)";
+  p.x = {0, 90, false, "sun zenith angle θs [deg]", {0, 10, 20, 30, 40, 50, 60, 70, 80, 90}};
   p.y = {kTMin, kTMax, true, "turbidity T", {1, 1.5, 2, 3, 5, 7, 10, 15, 20, 30, 50, 64}};
   p.background_image = "fig1_preetham_zenith_luminance.png";
   p.width = 900;
@@ -78,7 +78,7 @@ void ReportWriter::section_zenith() {
   const double lt0 = cfg_.fig1_linear_t.front(), lt1 = cfg_.fig1_linear_t.back();
   const svg::Plot p = fig1_plot(roots);
   const svg::Plot q = fig1_linear_plot(p, lt0, lt1);
-  HtmlTable table({"theta_s [deg]", "T where Yz = 0", "Yz &lt; 0 for"});
+  HtmlTable table({"θs [deg]", "T where Yz = 0", "Yz &lt; 0 for"});
   for (const auto& r : roots) {
     const double d = rad_to_deg(r.sun_zenith);
     if (std::abs(std::remainder(d, 10.0)) > 1e-6 && std::abs(d - 85.0) > 1e-6) continue;
@@ -112,7 +112,7 @@ void ReportWriter::section_zenith() {
   json_["preetham_negative_zenith_details"] = {
       {"formula",
        "Yz = 1000 [(4.0453 T - 4.9710) tan chi - 0.2155 T + 2.4192] cd/m^2, chi = "
-       "(4/9 - T/120)(pi - 2 theta_s) (Preetham 1999 A.2)"},
+       "(4/9 - T/120)(pi - 2 θs) (Preetham 1999 A.2)"},
       {"turbidity_range", {kTMin, kTMax}},
       {"sun_zenith_step_deg", cfg_.root_step_deg},
       {"low_turbidity_branch",
@@ -256,7 +256,7 @@ void ReportWriter::mosaic_figures(const std::string& title, const std::string& w
     m.gap_px = cfg_.tile_gap;
     m.scale = cfg_.tile_px < 48 ? 2.0 : 0.75;
     m.row_header = row_header;
-    m.column_header = "sun zenith angle theta_s [deg]";
+    m.column_header = "sun zenith angle θs [deg]";
     m.row_labels = row_labels;
     m.column_labels = col_labels;
     m.colour_bar = which == 0
@@ -296,7 +296,7 @@ void ReportWriter::section_maps() {
   {
     // The Kittler-Darula zenith luminance band (cie_sky.h) at the maps' sun positions.
     std::string t = "<table><tr><th>type</th>";
-    for (double d : cfg_.map_sun_zeniths_deg) t += fmt::format("<th>theta_s {:g}</th>", d);
+    for (double d : cfg_.map_sun_zeniths_deg) t += fmt::format("<th>θs {:g}</th>", d);
     t += "</tr>\n";
     Json band = Json::array();
     for (int type = 1; type <= kCieTypeCount; ++type) {
@@ -323,7 +323,7 @@ void ReportWriter::section_maps() {
         "and 16 Dv/Ev over the range of the typical values of types 1-15. This band is our "
         "derivation from the published typical parameters (Kittler &amp; Darula's minimum and "
         "maximum values, drawn in Zotti's Fig. 5, are not available to us; docs/REPORT.md). "
-        "Kittler &amp; Darula recommend the formula for sun elevations 10-80 deg (theta_s "
+        "Kittler &amp; Darula recommend the formula for sun elevations 10-80 deg (θs "
         "10-80 deg); other columns are extrapolated.</p>\n{}",
         kKittlerDarulaBandTvMin, kKittlerDarulaBandTvMax, t);
   }

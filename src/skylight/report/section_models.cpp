@@ -64,13 +64,13 @@ void ReportWriter::section_matching() {
 std::string ReportWriter::matching_tables() {
   const auto& cs = cfg_.comparison;
   HtmlTable t({"Preetham T", "best CIE type", "RMS log10", "2nd best", "RMS log10",
-               "Y_Pr / Y_CIE (best type): mean [min, max over theta_s]", "Zotti 2007"});
+               "Y_Pr / Y_CIE (best type): mean [min, max over θs]", "Zotti 2007"});
   HtmlTable pt({"Preetham T", "CIE type", "RMS log10", "rank of this type",
                 "Y_Pr / Y_CIE mean [min, max]",
-                fmt::format("Y_Pr / Y_CIE at theta_s {} deg: Kittler-Darula typical [CIE at the "
+                fmt::format("Y_Pr / Y_CIE at θs {} deg: Kittler-Darula typical [CIE at the "
                             "band's high, low end]",
                             degrees_list(cfg_.pair_sun_zeniths_deg)),
-                "Zotti: Y_Pr/Y_CIE for 15 &lt; theta_s &lt; 70"});
+                "Zotti: Y_Pr/Y_CIE for 15 &lt; θs &lt; 70"});
   Json matches = Json::array(), pairs = Json::array();
   const HemisphereGrid grid = hemisphere_grid(cs.n_theta, cs.n_phi);
   for (const auto& m : summary_.cie_matches) {
@@ -180,8 +180,8 @@ std::string ReportWriter::antisolar_horizon_html() {
   summary_.antisolar_ratio = head.front().ratio;
   antisolar_relative_ = head.front().relative_ratio;
   antisolar_zenith_ratio_ = head.front().ratio / head.front().relative_ratio;
-  HtmlTable at({"theta_s [deg]", "view elevation [deg]", "Preetham [cd/m2]", "CIE 12 [cd/m2]",
-                "ratio", "ratio of zenith-normalised values"});
+  HtmlTable at({"θs [deg]", "view elevation [deg]", "Preetham [cd/m2]", "CIE 12 [cd/m2]", "ratio",
+                "ratio of zenith-normalised values"});
   Json rows = Json::array();
   for (const auto& r : antisolar_) {
     at.row({fmt::format("{:g}", rad_to_deg(r.sun_zenith)),
@@ -200,7 +200,7 @@ std::string ReportWriter::antisolar_horizon_html() {
           "opposite the sun, near the horizon, Preetham at T = {:.3f} (the best match to CIE 12 "
           "above) over CIE type 12 with the Kittler-Darula typical zenith luminance. Headline "
           "(report.json "
-          "<code>antisolar_horizon_ratio_preetham_vs_cie12</code>): theta_s = {:g} deg (sun "
+          "<code>antisolar_horizon_ratio_preetham_vs_cie12</code>): θs = {:g} deg (sun "
           "elevation "
           "{:g} deg, the lowest the Kittler-Darula formula is recommended for), view elevation "
           "{:g} "
@@ -285,7 +285,7 @@ void ReportWriter::vertical_case(int index, double T, double tsd) {
   }
   svg::Plot lum;
   lum.id = fmt::format("vert{}", index);
-  lum.title = fmt::format("Solar vertical, theta_s = {:g} deg, T = {:.3g}", tsd, T);
+  lum.title = fmt::format("Solar vertical, θs = {:g} deg, T = {:.3g}", tsd, T);
   std::vector<std::vector<double>> values;
   double lo = kInf, hi = 0.0;
   for (const auto& spec : specs) {
@@ -316,11 +316,11 @@ void ReportWriter::vertical_case(int index, double T, double tsd) {
   lum.legend_outside = true;
   svg::Plot ratio = vertical_ratio_plot(lum, specs, xs, values);
   ratio.id = fmt::format("vertratio{}", index);
-  ratio.title = fmt::format("Ratio to CIE type 12, theta_s = {:g} deg, T = {:.3g}", tsd, T);
+  ratio.title = fmt::format("Ratio to CIE type 12, θs = {:g} deg, T = {:.3g}", tsd, T);
   html_vertical_ +=
       figure(fmt::format("solar_vertical_{}.svg", index), svg::draw(lum),
              fmt::format("Sky luminance along the solar vertical (sky only, no solar disc) for "
-                         "theta_s = {:g} deg, T = {:.3g} (Zotti Fig. 3: theta_s = 72 deg, T = "
+                         "θs = {:g} deg, T = {:.3g} (Zotti Fig. 3: θs = 72 deg, T = "
                          "1.8). CIE 12 uses the Kittler-Darula typical zenith luminance (the "
                          "band of zenith luminances is tabulated with the absolute CIE maps).",
                          tsd, T));

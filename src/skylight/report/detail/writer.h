@@ -53,6 +53,23 @@ inline constexpr std::string_view kCie16Colour = "#9467bd";
 // decade (the uniform sky, type 5, at 100 %) between the two hues of the false-colour scale.
 inline constexpr double kDecadeSnap = 1e-6;
 
+// A band of sun elevations of "Which model to trust where" (section_trust.cpp).
+struct TrustBand {
+  std::string name;  // "low sun"
+  double elevation_lo_deg, elevation_hi_deg;
+  std::vector<double> sun_elevations_deg;  // where it is sampled
+};
+
+// The verdicts of "Which model to trust where" and their rule: a model's best RMS of log10 ratios
+// against a CIE class, as a fraction of the median RMS between neighbouring CIE types of the class
+// in the same band: at most kTrustUseFraction (closer to a standard sky than halfway to the next
+// one) is "use", at most kTrustCareFraction (no further than the next standard sky) "use with
+// care", beyond "avoid".
+enum class TrustVerdict { use, care, avoid, reference, not_judged };
+inline constexpr double kTrustUseFraction = 0.5, kTrustCareFraction = 1.0;
+TrustVerdict trust_verdict(double best_rms, double neighbour_rms);
+std::string trust_verdict_name(TrustVerdict v);
+
 // Everything that the quick (test) report reduces.
 struct Config {
   int yz_width, yz_height;
@@ -81,10 +98,16 @@ struct Config {
   std::vector<double> low_sun_zeniths_deg;      // circumsolar ring and horizon band
   int zone_n_theta, zone_n_phi;                 // hemisphere_grid for the regions
   std::vector<double> fig1_linear_t;            // T range of the linear Fig. 1 view
+  // Which model to trust where (section_trust.cpp).
+  std::vector<TrustBand> trust_bands;
+  int trust_n_theta, trust_n_phi;  // hemisphere_grid of the comparisons
+  int trust_axis_samples;          // values of a continuous report axis
 };
 Config make_config(bool quick);
 
 std::string g3(double v);  // 3 significant digits, "n/a" if not finite
+// Text for HTML: &, < and > as entities.
+std::string esc_html(std::string_view s);
 std::string f2(double v);  // 2 decimals, "n/a" if not finite
 // JSON numbers must be finite: non-finite values become null.
 Json num(double v);
@@ -154,6 +177,10 @@ class ReportWriter {
         caption, name);
   }
 
+  // Which model to trust where: the table, its rule and report.json's
+  // which_model_to_trust_where (section_trust.cpp).
+  void section_trust();
+  std::string trust_band_text() const;  // "low sun 7, 12, mid ..." (the sampled elevations)
   void section_zenith();
   void fig1_maps();        // the two PNG maps behind Fig. 1
   void zenith_branches();  // the branch summaries of the boundary Yz = 0 (closing note)
@@ -204,20 +231,21 @@ class ReportWriter {
                       const std::string& row_header, const std::string& key,
                       const std::vector<std::string>& row_labels);
 
-  static constexpr int kSteps = 17;
+  static constexpr int kSteps = 18;
   const ReportOptions& opt_;
   Config cfg_;
   int done_ = 0;
   ReportSummary summary_;
   Json json_;
   // HTML fragments by section.
-  std::string html_zenith_, html_rel_, html_abs_, html_match_, html_vertical_, html_illum_,
-      html_scan_, html_validity_, html_findings_;
+  std::string html_trust_, html_zenith_, html_rel_, html_abs_, html_match_, html_vertical_,
+      html_illum_, html_scan_, html_validity_, html_findings_;
   // Numbers for the closing note.
   double low_branch_max_sun_zenith_ = kNaN, low_branch_t_at_zenith_ = kNaN;
   double high_branch_t_at_horizon_ = kNaN, high_branch_t_at_zenith_ = kNaN;
   std::vector<AntisolarRow> antisolar_;
   std::string scan_best_;
+  std::vector<std::string> trust_summary_;  // one line per judged model (section_trust.cpp)
   std::map<double, RatioBand> pair_bands_;  // Zotti's pairs by Preetham T (section_matching)
   int scan_best_cie_type_ = 0;              // best CIE type for the scan (0: none)
   bool scan_synthetic_ = true;

@@ -1,0 +1,272 @@
+// "Which model to trust where": the report's answer to its title, generated from the registry
+// (docs/REPORT.md, "Which model to trust where"). For every registered model with a report policy,
+// and each regime of sun elevation and sky class, its best luminance distribution within its own
+// domain against the CIE standard skies of that class (CIE S 011/E:2003), with a verdict whose
+// rule is printed beside the table and whose thresholds are measured in the same run.
+#include <algorithm>
+#include <map>
+
+#include "skylight/core/error.h"
+#include "skylight/models/cie_sky.h"
+#include "skylight/report/detail/writer.h"
+
+namespace skylight::report::detail {
+namespace {
+
+// The CIE standard skies by class (CIE S 011/E:2003 Table 1: types 1-5 overcast, 6-10
+// intermediate, 11-15 clear); type 16, the traditional overcast sky, is not a class member.
+struct SkyClass {
+  const char* name;
+  int first_type, last_type;
+};
+constexpr std::array<SkyClass, 3> kSkyClasses = {
+    {{"overcast", 1, 5}, {"intermediate", 6, 10}, {"clear", 11, 15}}};
+
+// One number of a cell as the table prints it.
+std::string rms_text(double v) {
+  return std::isfinite(v) ? fmt::format("{:.3f}", v) : "n/a";
+}
+
+// The factor a RMS of log10 ratios stands for, as the page explains it ("0.05 ≈ ×1.12").
+std::string factor_text(double rms) {
+  return fmt::format("×{:.2f}", std::pow(10.0, rms));
+}
+
+}  // namespace
+
+std::string trust_verdict_name(TrustVerdict v) {
+  switch (v) {
+    case TrustVerdict::use:
+      return "use";
+    case TrustVerdict::care:
+      return "use with care";
+    case TrustVerdict::avoid:
+      return "avoid";
+    case TrustVerdict::reference:
+      return "reference";
+    case TrustVerdict::not_judged:
+      break;
+  }
+  return "not judged";
+}
+
+TrustVerdict trust_verdict(double best_rms, double neighbour_rms) {
+  if (!std::isfinite(best_rms) || !std::isfinite(neighbour_rms)) return TrustVerdict::avoid;
+  if (best_rms <= kTrustUseFraction * neighbour_rms) return TrustVerdict::use;
+  if (best_rms <= kTrustCareFraction * neighbour_rms) return TrustVerdict::care;
+  return TrustVerdict::avoid;
+}
+
+void ReportWriter::section_trust() {
+  const HemisphereGrid grid = hemisphere_grid(cfg_.trust_n_theta, cfg_.trust_n_phi);
+  auto settings_for = [&](const TrustBand& band) {
+    ComparisonSettings s = cfg_.comparison;
+    s.sun_zeniths.clear();
+    for (double e : band.sun_elevations_deg) s.sun_zeniths.push_back((90.0 - e) * kDegree);
+    s.n_theta = cfg_.trust_n_theta;
+    s.n_phi = cfg_.trust_n_phi;
+    return s;
+  };
+  const std::string reference(CieSkyModel::kName);
+
+  // The CIE skies per band and type, and the measured step between neighbouring types per class.
+  std::vector<std::vector<RelativeSamples>> cie(cfg_.trust_bands.size());
+  std::vector<std::array<double, kSkyClasses.size()>> neighbour(cfg_.trust_bands.size());
+  for (std::size_t b = 0; b < cfg_.trust_bands.size(); ++b) {
+    const ComparisonSettings s = settings_for(cfg_.trust_bands[b]);
+    for (int type = 1; type <= kCieTypeCount; ++type)
+      cie[b].push_back(relative_samples(comparison_spec(reference, type), s, grid));
+    for (std::size_t k = 0; k < kSkyClasses.size(); ++k) {
+      std::vector<double> steps;
+      for (int t = kSkyClasses[k].first_type; t < kSkyClasses[k].last_type; ++t)
+        steps.push_back(relative_log_rms(cie[b][t - 1], cie[b][t], grid));
+      std::sort(steps.begin(), steps.end());
+      neighbour[b][k] = steps[steps.size() / 2];  // median (4 steps: the upper middle)
+    }
+  }
+
+  Json models = Json::array();
+  std::vector<std::string> headers = {"model", "sky class"};
+  for (const TrustBand& band : cfg_.trust_bands)
+    headers.push_back(
+        fmt::format("{}<br/>{:g}–{:g}°", band.name, band.elevation_lo_deg, band.elevation_hi_deg));
+  HtmlTable table(headers, {true, true});
+  std::string not_judged;
+  std::vector<std::string> summary;  // the plain-language summary: one line per judged model
+  for (const ModelInfo& info : model_registry()) {
+    if (info.report.title.empty()) {
+      not_judged += fmt::format(
+          "<li><code>{}</code>: not judged here (no report policy: its sky "
+          "depends on a file it reads, {})</li>\n",
+          info.name, esc_html(info.description));
+      models.push_back({{"model", info.name}, {"judged", false}});
+      continue;
+    }
+    // The values of its report axis: every integer, or kTrustAxisSamples log-spaced over the
+    // range it accepts; only those within its domain (valid or extrapolated) at every sun
+    // elevation of a band count there.
+    std::vector<std::optional<double>> values;
+    if (info.report.axis.empty()) {
+      values.push_back(std::nullopt);
+    } else {
+      const ParameterSpec& p = *info.find_parameter(info.report.axis);
+      if (p.kind == ParameterKind::integer) {
+        for (double v = p.min; v <= p.max; v += 1.0) values.push_back(v);
+      } else {
+        const int n = cfg_.trust_axis_samples;
+        for (int i = 0; i < n; ++i) {
+          const double f = n == 1 ? 0.5 : static_cast<double>(i) / (n - 1);
+          values.push_back(p.min > 0.0 ? p.min * std::pow(p.max / p.min, f)
+                                       : p.min + f * (p.max - p.min));
+        }
+      }
+    }
+    Json model_json = {{"model", info.name}, {"judged", true}, {"regimes", Json::array()}};
+    std::map<TrustVerdict, std::vector<std::string>> by_verdict;  // "clear sky, low sun"
+    std::vector<std::vector<std::string>> rows(kSkyClasses.size());
+    for (std::size_t k = 0; k < kSkyClasses.size(); ++k)
+      rows[k] = {fmt::format("<code>{}</code>", info.name), kSkyClasses[k].name};
+    for (std::size_t b = 0; b < cfg_.trust_bands.size(); ++b) {
+      const TrustBand& band = cfg_.trust_bands[b];
+      const ComparisonSettings s = settings_for(band);
+      // The model's skies in this band that lie within its domain, each with its RMS against
+      // every standard type (1-15) and the class of its nearest type.
+      struct Sky {
+        ModelSpec spec;
+        std::array<double, 15> rms;
+        std::size_t nearest_class;
+      };
+      std::vector<Sky> skies;
+      for (const auto& v : values) {
+        const ModelSpec spec = comparison_spec(info.name, v);
+        bool inside = true;
+        for (double z : s.sun_zeniths) {
+          try {
+            const Validity w = make_model(spec, z, s.sun_azimuth)->domain().worst();
+            inside = inside && (w == Validity::valid || w == Validity::extrapolated);
+          } catch (const InvalidArgument&) {
+            inside = false;
+          }
+        }
+        if (!inside) continue;
+        const RelativeSamples samples = relative_samples(spec, s, grid);
+        Sky sky{spec, {}, 0};
+        int nearest = 1;
+        for (int t = 1; t <= 15; ++t) {
+          sky.rms[t - 1] = relative_log_rms(samples, cie[b][t - 1], grid);
+          if (sky.rms[t - 1] < sky.rms[nearest - 1]) nearest = t;
+        }
+        for (std::size_t k = 0; k < kSkyClasses.size(); ++k)
+          if (nearest >= kSkyClasses[k].first_type && nearest <= kSkyClasses[k].last_type)
+            sky.nearest_class = k;
+        skies.push_back(std::move(sky));
+      }
+      for (std::size_t k = 0; k < kSkyClasses.size(); ++k) {
+        const SkyClass& c = kSkyClasses[k];
+        // Only the skies whose nearest standard sky is of this class stand for it: a clear sky
+        // is not judged as an overcast one because the overcast types differ widely.
+        double best = kInf;
+        std::string best_label;
+        int best_type = 0;
+        std::size_t members = 0;
+        for (const Sky& sky : skies) {
+          if (sky.nearest_class != k) continue;
+          ++members;
+          for (int t = c.first_type; t <= c.last_type; ++t)
+            if (sky.rms[t - 1] < best) {
+              best = sky.rms[t - 1];
+              best_label = sky.spec.label;
+              best_type = t;
+            }
+        }
+        TrustVerdict verdict =
+            info.name == reference ? TrustVerdict::reference : trust_verdict(best, neighbour[b][k]);
+        std::string cell;
+        if (verdict == TrustVerdict::reference) {
+          cell = "reference";
+        } else if (skies.empty()) {
+          cell = "<span class=\"verdict-avoid\">avoid</span><br/><small>outside its domain</small>";
+        } else if (members == 0) {
+          cell = fmt::format(
+              "<span class=\"verdict-avoid\">avoid</span><br/><small>none of its "
+              "{} skies is nearest to a {} type</small>",
+              skies.size(), c.name);
+        } else {
+          cell = fmt::format(
+              "<span class=\"verdict-{}\">{}</span><br/><small>{} ({}) · {} vs CIE {}</small>",
+              verdict == TrustVerdict::use    ? "use"
+              : verdict == TrustVerdict::care ? "care"
+                                              : "avoid",
+              trust_verdict_name(verdict), rms_text(best), factor_text(best), best_label,
+              best_type);
+        }
+        rows[k].push_back(cell);
+        by_verdict[verdict].push_back(fmt::format("{} at {}", c.name, band.name));
+        model_json["regimes"].push_back(
+            {{"sun_elevation_deg", {band.elevation_lo_deg, band.elevation_hi_deg}},
+             {"sky_class", c.name},
+             {"cie_types", {c.first_type, c.last_type}},
+             {"best_rms_log10", num(best)},
+             {"best_sky", best_label},
+             {"best_cie_type", best_type},
+             {"neighbour_rms_log10", num(neighbour[b][k])},
+             {"skies_in_domain", skies.size()},
+             {"skies_nearest_to_this_class", members},
+             {"verdict", trust_verdict_name(verdict)}});
+      }
+    }
+    for (auto& r : rows) table.row(r);
+    models.push_back(model_json);
+    if (by_verdict.count(TrustVerdict::reference) == 0) {
+      auto list = [&](TrustVerdict v) {
+        std::string t;
+        for (const auto& regime : by_verdict[v]) t += (t.empty() ? "" : ", ") + regime;
+        return t.empty() ? std::string("none") : t;
+      };
+      summary.push_back(fmt::format("<b>{}</b>: use for {}; with care for {}; avoid for {}.",
+                                    info.name, list(TrustVerdict::use), list(TrustVerdict::care),
+                                    list(TrustVerdict::avoid)));
+    }
+  }
+  step("which model to trust where");
+
+  std::string neighbours;
+  for (std::size_t b = 0; b < cfg_.trust_bands.size(); ++b)
+    for (std::size_t k = 0; k < kSkyClasses.size(); ++k)
+      neighbours +=
+          fmt::format("{}{} {}: {}", neighbours.empty() ? "" : "; ", cfg_.trust_bands[b].name,
+                      kSkyClasses[k].name, rms_text(neighbour[b][k]));
+  html_trust_ = fmt::format(
+      "<p>Each cell: the model's sky closest to a CIE standard sky of the class (CIE S 011/E:2003: "
+      "types 1–5 overcast, 6–10 intermediate, 11–15 clear), over the values of its report "
+      "parameter that lie within its own domain (<code>domain()</code> valid or extrapolated at "
+      "every sun elevation of the band) and whose nearest standard sky of all 15 is of that "
+      "class (a model none of whose skies is nearest to a type of the class cannot make that "
+      "sky: <i>avoid</i>), measured as the RMS of log<sub>10</sub> of the "
+      "zenith-normalised luminance ratio (solid-angle weighted, {:g}° around the sun left out; "
+      "sun elevations {}). <b>Rule</b>: <i>use</i> when that RMS is at most {:g} × the median RMS "
+      "between neighbouring CIE types of the class in the same band (the model reproduces a "
+      "standard sky more closely than the standard skies differ from each other); <i>use with "
+      "care</i> up to {:g} ×; otherwise <i>avoid</i>. The neighbour steps of this run: {}. The "
+      "distribution only: absolute luminance, colour and twilight are judged in the sections "
+      "below.</p>\n{}{}",
+      cfg_.comparison.sun_exclusion / kDegree, trust_band_text(), kTrustUseFraction,
+      kTrustCareFraction, neighbours, table.html(),
+      not_judged.empty() ? "" : "<ul>\n" + not_judged + "</ul>\n");
+  trust_summary_ = summary;
+  json_["which_model_to_trust_where"] = {
+      {"rule",
+       fmt::format("use: best RMS <= {:g} x neighbour RMS; use with care: <= {:g} x; else avoid",
+                   kTrustUseFraction, kTrustCareFraction)},
+      {"models", models}};
+}
+
+std::string ReportWriter::trust_band_text() const {
+  std::string t;
+  for (const TrustBand& band : cfg_.trust_bands)
+    t += fmt::format("{}{} {}", t.empty() ? "" : ", ", band.name,
+                     degrees_list(band.sun_elevations_deg));
+  return t;
+}
+
+}  // namespace skylight::report::detail
