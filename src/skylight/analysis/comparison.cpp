@@ -106,6 +106,44 @@ double relative_log_rms(const RelativeSamples& a, const RelativeSamples& b,
   return sw > 0.0 ? std::sqrt(sd / sw) : kInf;
 }
 
+SourceError source_error(const std::vector<const RelativeSamples*>& a,
+                         const std::vector<const RelativeSamples*>& b, const HemisphereGrid& grid) {
+  SKYLIGHT_CHECK(a.size() == b.size(), "source_error: sample sets differ in number");
+  constexpr double kFloor = 1e-3;  // a is clamped to at least this fraction of b in the log
+  std::vector<std::pair<double, double>> errors;  // (|a/b - 1|, solid angle)
+  double sw = 0.0, sd = 0.0;
+  for (std::size_t s = 0; s < a.size(); ++s) {
+    SKYLIGHT_CHECK(a[s]->absolute.size() == b[s]->absolute.size(),
+                   "source_error: sample sets of different sun zeniths");
+    for (std::size_t k = 0; k < a[s]->absolute.size(); ++k)
+      for (std::size_t i = 0; i < grid.solid_angle.size(); ++i) {
+        const double x = a[s]->absolute[k][i], y = b[s]->absolute[k][i];
+        if (!(y > 0.0) || !std::isfinite(y) || !std::isfinite(x)) continue;
+        const double w = grid.solid_angle[i];
+        errors.emplace_back(std::abs(x / y - 1.0), w);
+        const double d = std::log10(std::max(x, kFloor * y) / y);
+        sw += w;
+        sd += w * d * d;
+      }
+  }
+  SourceError r;
+  r.directions = errors.size();
+  if (errors.empty()) return {kNaN, kNaN, kNaN, 0};
+  std::sort(errors.begin(), errors.end());
+  auto quantile = [&](double q) {
+    double acc = 0.0;
+    for (const auto& [e, w] : errors) {
+      acc += w;
+      if (acc >= q * sw) return e;
+    }
+    return errors.back().first;
+  };
+  r.median = quantile(0.5);
+  r.p95 = quantile(0.95);
+  r.rms_log10 = std::sqrt(sd / sw);
+  return r;
+}
+
 LuminanceRatio absolute_luminance_ratio(const RelativeSamples& a, const RelativeSamples& b,
                                         const HemisphereGrid& grid) {
   SKYLIGHT_CHECK(a.absolute.size() == b.absolute.size(), "sample sets of different sun zeniths");

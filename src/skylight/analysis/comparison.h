@@ -68,6 +68,18 @@ RelativeSamples relative_samples(const ModelSpec& spec, const ComparisonSettings
 // are finite and positive; +inf where none is.
 double relative_log_rms(const RelativeSamples& a, const RelativeSamples& b,
                         const HemisphereGrid& grid);
+// Absolute luminance of `a` against `b` (the model it approximates), pooled over sample sets
+// (e.g. a parameter's values) and their sun zeniths, solid-angle weighted over the directions
+// where b > 0 (those within the sun exclusion are left out): the median and 95th percentile of
+// |a / b - 1|, and the RMS of log10(a / b) with a clamped to at least 1e-3 b (a model that rings
+// below zero counts as 1000 times too dark there, not as undefined).
+struct SourceError {
+  double median = 0.0, p95 = 0.0, rms_log10 = 0.0;
+  std::size_t directions = 0;  // pooled
+};
+SourceError source_error(const std::vector<const RelativeSamples*>& a,
+                         const std::vector<const RelativeSamples*>& b, const HemisphereGrid& grid);
+
 // Ratio of absolute luminances a / b: per sun zenith the solid-angle-weighted geometric mean over
 // the directions; `mean` is the geometric mean over the sun zeniths.
 struct LuminanceRatio {

@@ -77,6 +77,41 @@ TEST(PreethamNegativeSky, BoundaryIsTheRootOfOnePlusAExpB) {
   EXPECT_GT(1.0 + c.A * std::exp(c.B), 0.0);
 }
 
+// Closed forms on planted samples: a uniform 10 % excess; half the sky 10 % and half 30 % too
+// bright (the median is where half the solid angle lies); a negative value counts as 1000x dark.
+TEST(SourceError, MedianP95AndRmsOfPlantedErrors) {
+  const HemisphereGrid grid = hemisphere_grid(4, 8);
+  const std::size_t n = grid.solid_angle.size();
+  RelativeSamples source, uniform, split, negative;
+  source.absolute = {std::vector<double>(n, 100.0)};
+  uniform.absolute = {std::vector<double>(n, 110.0)};
+  split.absolute = {std::vector<double>(n, 110.0)};
+  negative.absolute = {std::vector<double>(n, 100.0)};
+  // The two lower rings (equal in number of cells, more solid angle than the upper two).
+  for (std::size_t i = 0; i < n; ++i)
+    if (grid.directions[i].z < std::cos(kPi / 4)) split.absolute[0][i] = 130.0;
+  negative.absolute[0][0] = -5.0;
+  const SourceError u = source_error({&uniform}, {&source}, grid);
+  EXPECT_NEAR(u.median, 0.1, 1e-12);
+  EXPECT_NEAR(u.p95, 0.1, 1e-12);
+  EXPECT_NEAR(u.rms_log10, std::log10(1.1), 1e-12);
+  EXPECT_EQ(u.directions, n);
+  // The lower half holds cos(0) - cos(pi/4) = 0.71 of the hemisphere's solid angle: both
+  // quantiles fall in it.
+  const SourceError h = source_error({&split}, {&source}, grid);
+  EXPECT_NEAR(h.median, 0.3, 1e-12);
+  EXPECT_NEAR(h.p95, 0.3, 1e-12);
+  const SourceError g = source_error({&negative}, {&source}, grid);
+  EXPECT_NEAR(g.median, 0.0, 1e-12);
+  const double w0 = grid.solid_angle[0], total = 2.0 * kPi;
+  EXPECT_NEAR(g.rms_log10, std::sqrt(w0 / total * 9.0), 1e-9);  // log10(1e-3)^2 = 9
+  // Pooled sets: the mean of squares over both.
+  const SourceError both = source_error({&uniform, &negative}, {&source, &source}, grid);
+  EXPECT_NEAR(both.rms_log10,
+              std::sqrt((total * std::pow(std::log10(1.1), 2) + w0 * 9.0) / (2.0 * total)), 1e-9);
+  EXPECT_EQ(both.directions, 2 * n);
+}
+
 TEST(RegionRatio, AntisolarHalfMatchesADirectRecomputation) {
   const HemisphereGrid grid = hemisphere_grid(6, 24);
   const double ts = deg_to_rad(70.0), T = 2.4;

@@ -9,6 +9,7 @@
 #include "skylight/core/math.h"
 #include "skylight/io/file.h"
 #include "skylight/models/hosek_wilkie.h"
+#include "skylight/models/preetham.h"
 #include "skylight/nn/pietras.h"
 
 namespace skylight {
@@ -157,6 +158,14 @@ ModelInfo NeuralSkyModel::registry_entry() {
       .bench = BenchPolicy{.by_default = true,
                            .baseline = std::string(HosekWilkieModel::kName),
                            .label = "nn (6-12-3)"},
+      // The embedded 6-12-3 network: trained on preetham at T 2-6 (data/nn/PROVENANCE.md; its
+      // weights file's provenance.turbidities, checked by ReportPolicyMatchesTheEmbeddedData).
+      .report = ReportPolicy{.title = "nn 6-12-3",
+                             .axis = "turbidity",
+                             .axis_label = "T = ",
+                             .colour = "#e377c2",
+                             .axis_range = std::array<double, 2>{2.0, 6.0},
+                             .source = std::string(PreethamModel::kName)},
   };
 }
 

@@ -108,5 +108,20 @@ TEST(NeuralSky, WeightsFilesAreCheckedWhenLoaded) {
   EXPECT_THROW(nn_model(3.0, 30.0, 180.0, pietras), InvalidArgument);
 }
 
+// The report judges the embedded network against its source over its training range
+// (ReportPolicy beside the registry entry): both must be the weights file's own.
+TEST(NeuralSky, ReportPolicyMatchesTheEmbeddedNetwork) {
+  const auto model = make_sky_model(NeuralSkyModel::kName, {});
+  const auto& provenance = dynamic_cast<const NeuralSkyModel&>(*model).network().provenance;
+  const ReportPolicy& policy = find_model(NeuralSkyModel::kName)->report;
+  EXPECT_EQ(policy.source, provenance.source);
+  ASSERT_TRUE(policy.axis_range.has_value());
+  ASSERT_FALSE(provenance.turbidities.empty());
+  EXPECT_EQ((*policy.axis_range)[0],
+            *std::min_element(provenance.turbidities.begin(), provenance.turbidities.end()));
+  EXPECT_EQ((*policy.axis_range)[1],
+            *std::max_element(provenance.turbidities.begin(), provenance.turbidities.end()));
+}
+
 }  // namespace
 }  // namespace skylight

@@ -314,6 +314,10 @@ ModelInfo PietrasSkyModel::registry_entry() {
       // Pietras §III: the network replaces nishita's fast path.
       .bench = BenchPolicy{.baseline = std::string(NishitaModel::kName),
                            .extra = BenchPolicy::Extra::network_kinds},
+      // The embedded log3 network, trained on Earth's nishita (data/nn/log3.json), on the ground.
+      .report = ReportPolicy{.title = "pietras (log3)",
+                             .colour = "#bcbd22",
+                             .source = std::string(NishitaModel::kName)},
   };
 }
 

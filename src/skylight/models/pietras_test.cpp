@@ -121,5 +121,13 @@ TEST(PietrasModel, SurfaceColourMatchesNishitasAerialPerspective) {
   }
 }
 
+// The report judges the embedded network against its source (ReportPolicy beside the registry
+// entry): it must be the weights file's own.
+TEST(PietrasModel, ReportPolicyMatchesTheEmbeddedNetwork) {
+  const auto model = make_sky_model(PietrasSkyModel::kName, {});
+  EXPECT_EQ(find_model(PietrasSkyModel::kName)->report.source,
+            dynamic_cast<const PietrasSkyModel&>(*model).network().provenance.source);
+}
+
 }  // namespace
 }  // namespace skylight

@@ -50,6 +50,28 @@ TEST(Registry, EveryParameterHasAUsableSpec) {
   }
 }
 
+// A report policy's source is a registered model the report can draw at the same axis value, and
+// its axis range lies within the axis parameter's range.
+TEST(Registry, ReportSourcesAreComparableModels) {
+  for (const auto& info : model_registry()) {
+    SCOPED_TRACE(info.name);
+    const ReportPolicy& r = info.report;
+    if (r.axis_range) {
+      const ParameterSpec* p = info.find_parameter(r.axis);
+      ASSERT_NE(p, nullptr);
+      EXPECT_LE(p->min, (*r.axis_range)[0]);
+      EXPECT_LT((*r.axis_range)[0], (*r.axis_range)[1]);
+      EXPECT_LE((*r.axis_range)[1], p->max);
+    }
+    if (r.source.empty()) continue;
+    const ModelInfo* source = find_model(r.source);
+    ASSERT_NE(source, nullptr);
+    EXPECT_NE(source->name, info.name);
+    EXPECT_FALSE(source->report.title.empty());
+    EXPECT_EQ(source->report.axis, r.axis);
+  }
+}
+
 TEST(Registry, ModelsReportWhatTheyReadAsParameterValues) {
   for (const auto& info : model_registry()) {
     SkyParameters sp;

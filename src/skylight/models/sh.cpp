@@ -9,6 +9,7 @@
 #include "skylight/core/data.h"
 #include "skylight/core/parameters.h"
 #include "skylight/io/file.h"
+#include "skylight/models/preetham.h"
 #include "skylight/sh/basis.h"
 #include "skylight/sh/rotation.h"
 
@@ -171,6 +172,14 @@ ModelInfo ShSkyModel::registry_entry() {
       .neural = NeuralPolicy::over_turbidity(1.0, 10.0),
       // Habel 2008 §4: evaluating the table against projecting its model.
       .bench = BenchPolicy{.extra = BenchPolicy::Extra::sh_table},
+      // The embedded table: preetham's XYZ, 7 bands, fitted over T 2.5-6 (its tau_min, tau_max;
+      // checked by ReportPolicyMatchesTheEmbeddedData).
+      .report = ReportPolicy{.title = "sh (Preetham table)",
+                             .axis = "turbidity",
+                             .axis_label = "T = ",
+                             .colour = "#7f7f7f",
+                             .axis_range = std::array<double, 2>{2.5, 6.0},
+                             .source = std::string(PreethamModel::kName)},
   };
 }
 

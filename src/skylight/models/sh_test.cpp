@@ -116,5 +116,18 @@ TEST(ShModel, EmbeddedDefaultTableReproducesPreetham) {
   EXPECT_EQ(m->parameter_values().number("bands"), 7.0);
 }
 
+// The report judges the embedded table against the model it was fitted to over its fitted range
+// (ReportPolicy beside the registry entry): both must be the table's own.
+TEST(ShSky, ReportPolicyMatchesTheEmbeddedTable) {
+  const auto model = make_sky_model(ShSkyModel::kName, {});
+  const sh::PolynomialTable& table = dynamic_cast<const ShSkyModel&>(*model).table();
+  const ReportPolicy& policy = find_model(ShSkyModel::kName)->report;
+  EXPECT_EQ(policy.source, table.model);
+  EXPECT_EQ(policy.axis, table.parameter);
+  ASSERT_TRUE(policy.axis_range.has_value());
+  EXPECT_EQ((*policy.axis_range)[0], table.tau_min);
+  EXPECT_EQ((*policy.axis_range)[1], table.tau_max);
+}
+
 }  // namespace
 }  // namespace skylight

@@ -262,6 +262,13 @@ struct ReportPolicy {
   std::string axis_label{};  // before the value in labels: "T = ", "type "
   ParameterValues fixed{};   // values the report holds (e.g. Hosek's ground albedo 0.3)
   std::string colour{};      // of its curves and markers in the report's plots (#rrggbb)
+  // The values of `axis` the report samples, when narrower than the parameter's range (e.g. the
+  // fitted range of the embedded table); empty: the parameter's range.
+  std::optional<std::array<double, 2>> axis_range{};
+  // A model this one approximates with its default data (the registry name, e.g. the embedded
+  // network's training source): the report also judges it against that source, at the same
+  // sun and axis value. Empty: none.
+  std::string source{};
 };
 
 // Binds the generic values into the model's typed parameters (its schema applies defaults and

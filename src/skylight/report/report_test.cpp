@@ -131,6 +131,18 @@ TEST_F(ReportFiles, TrustTableJudgesEveryRegisteredModelByItsPrintedRule) {
     if (!m["judged"].get<bool>()) continue;
     ++judged;
     ASSERT_EQ(m["regimes"].size(), 9u);  // 3 sun-elevation bands x 3 sky classes (quick)
+    // Against its source (same rule, the band's smallest neighbour step).
+    ASSERT_EQ(m.contains("against_source"), !info.report.source.empty());
+    if (!info.report.source.empty()) {
+      ASSERT_EQ(m["against_source"].size(), 3u);
+      for (const auto& r : m["against_source"]) {
+        EXPECT_EQ(r["source"], info.report.source);
+        ASSERT_GT(r["skies_in_domain"].get<int>(), 0);
+        EXPECT_LE(r["relative_error_median"].get<double>(), r["relative_error_p95"].get<double>());
+        EXPECT_EQ(r["verdict"], detail::trust_verdict_name(detail::trust_verdict(
+                                    r["rms_log10"], r["smallest_neighbour_rms_log10"])));
+      }
+    }
     for (const auto& r : m["regimes"]) {
       const std::string verdict = r["verdict"];
       if (verdict == "reference") continue;

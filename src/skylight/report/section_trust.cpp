@@ -32,6 +32,11 @@ std::string factor_text(double rms) {
   return fmt::format("×{:.2f}", std::pow(10.0, rms));
 }
 
+// The CSS class of a verdict's word (report.cpp's style sheet).
+std::string verdict_class(TrustVerdict v) {
+  return v == TrustVerdict::use ? "use" : v == TrustVerdict::care ? "care" : "avoid";
+}
+
 }  // namespace
 
 std::string trust_verdict_name(TrustVerdict v) {
@@ -91,39 +96,46 @@ void ReportWriter::section_trust() {
     headers.push_back(
         fmt::format("{}<br/>{:g}–{:g}°", band.name, band.elevation_lo_deg, band.elevation_hi_deg));
   HtmlTable table(headers, {true, true});
+  std::vector<std::string> source_headers = {"model", "against"};
+  source_headers.insert(source_headers.end(), headers.begin() + 2, headers.end());
+  HtmlTable source_table(source_headers, {true, true});
   std::string not_judged;
   std::vector<std::string> summary;  // the plain-language summary: one line per judged model
   for (const ModelInfo& info : model_registry()) {
     if (info.report.title.empty()) {
       not_judged += fmt::format(
-          "<li><code>{}</code>: not judged here (no report policy: its sky "
-          "depends on a file it reads, {})</li>\n",
-          info.name, esc_html(info.description));
+          "<li><code>{}</code>: not judged (it has no report policy, ReportPolicy in its registry "
+          "entry)</li>\n",
+          info.name);
       models.push_back({{"model", info.name}, {"judged", false}});
       continue;
     }
     // The values of its report axis: every integer, or kTrustAxisSamples log-spaced over the
-    // range it accepts; only those within its domain (valid or extrapolated) at every sun
-    // elevation of a band count there.
+    // range it accepts (or the policy's axis_range); only those within its domain (valid or
+    // extrapolated) at every sun elevation of a band count there.
     std::vector<std::optional<double>> values;
     if (info.report.axis.empty()) {
       values.push_back(std::nullopt);
     } else {
       const ParameterSpec& p = *info.find_parameter(info.report.axis);
+      const auto [lo, hi] = info.report.axis_range.value_or(std::array<double, 2>{p.min, p.max});
       if (p.kind == ParameterKind::integer) {
-        for (double v = p.min; v <= p.max; v += 1.0) values.push_back(v);
+        for (double v = lo; v <= hi; v += 1.0) values.push_back(v);
       } else {
         const int n = cfg_.trust_axis_samples;
         for (int i = 0; i < n; ++i) {
           const double f = n == 1 ? 0.5 : static_cast<double>(i) / (n - 1);
-          values.push_back(p.min > 0.0 ? p.min * std::pow(p.max / p.min, f)
-                                       : p.min + f * (p.max - p.min));
+          values.push_back(lo > 0.0 ? lo * std::pow(hi / lo, f) : lo + f * (hi - lo));
         }
       }
     }
     Json model_json = {{"model", info.name}, {"judged", true}, {"regimes", Json::array()}};
     std::map<TrustVerdict, std::vector<std::string>> by_verdict;  // "clear sky, low sun"
     std::vector<std::vector<std::string>> rows(kSkyClasses.size());
+    std::vector<std::string> source_row;  // against its source, if it has one
+    if (!info.report.source.empty())
+      source_row = {fmt::format("<code>{}</code>", info.name),
+                    fmt::format("<code>{}</code>", info.report.source)};
     for (std::size_t k = 0; k < kSkyClasses.size(); ++k)
       rows[k] = {fmt::format("<code>{}</code>", info.name), kSkyClasses[k].name};
     for (std::size_t b = 0; b < cfg_.trust_bands.size(); ++b) {
@@ -137,6 +149,7 @@ void ReportWriter::section_trust() {
         std::size_t nearest_class;
       };
       std::vector<Sky> skies;
+      std::vector<RelativeSamples> own, source;  // for the comparison with its source
       for (const auto& v : values) {
         const ModelSpec spec = comparison_spec(info.name, v);
         bool inside = true;
@@ -149,7 +162,11 @@ void ReportWriter::section_trust() {
           }
         }
         if (!inside) continue;
-        const RelativeSamples samples = relative_samples(spec, s, grid);
+        RelativeSamples samples = relative_samples(spec, s, grid);
+        if (!info.report.source.empty()) {  // its source at the same sun and axis value
+          own.push_back(samples);
+          source.push_back(relative_samples(comparison_spec(info.report.source, v), s, grid));
+        }
         Sky sky{spec, {}, 0};
         int nearest = 1;
         for (int t = 1; t <= 15; ++t) {
@@ -214,7 +231,36 @@ void ReportWriter::section_trust() {
              {"skies_nearest_to_this_class", members},
              {"verdict", trust_verdict_name(verdict)}});
       }
+      if (!info.report.source.empty()) {
+        std::vector<const RelativeSamples*> a, r;
+        for (std::size_t i = 0; i < own.size(); ++i) {
+          a.push_back(&own[i]);
+          r.push_back(&source[i]);
+        }
+        const SourceError e = source_error(a, r, grid);
+        const double step = *std::min_element(neighbour[b].begin(), neighbour[b].end());
+        const TrustVerdict verdict =
+            own.empty() ? TrustVerdict::avoid : trust_verdict(e.rms_log10, step);
+        source_row.push_back(
+            own.empty()
+                ? "<span class=\"verdict-avoid\">avoid</span><br/><small>outside its "
+                  "domain</small>"
+                : fmt::format("<span class=\"verdict-{}\">{}</span><br/><small>median {:.1f} %, "
+                              "p95 {:.1f} %, RMS log<sub>10</sub> {} [{}]</small>",
+                              verdict_class(verdict), trust_verdict_name(verdict), 100.0 * e.median,
+                              100.0 * e.p95, rms_text(e.rms_log10), rms_text(step)));
+        model_json["against_source"].push_back(
+            {{"source", info.report.source},
+             {"sun_elevation_deg", {band.elevation_lo_deg, band.elevation_hi_deg}},
+             {"skies_in_domain", own.size()},
+             {"relative_error_median", num(e.median)},
+             {"relative_error_p95", num(e.p95)},
+             {"rms_log10", num(e.rms_log10)},
+             {"smallest_neighbour_rms_log10", num(step)},
+             {"verdict", trust_verdict_name(verdict)}});
+      }
     }
+    if (!source_row.empty()) source_table.row(source_row);
     for (auto& r : rows) table.row(r);
     models.push_back(model_json);
     if (by_verdict.count(TrustVerdict::reference) == 0) {
@@ -249,10 +295,19 @@ void ReportWriter::section_trust() {
       "standard sky more closely than the standard skies differ from each other); <i>use with "
       "care</i> up to {:g} ×; otherwise <i>avoid</i>. The neighbour steps of this run: {}. The "
       "distribution only: absolute luminance, colour and twilight are judged in the sections "
-      "below.</p>\n{}{}",
+      "below.</p>\n{}{}"
+      "<h3 id=\"trust-source\">Approximations against their source</h3>\n<p>A model that "
+      "approximates another with its default data (its report policy's <code>source</code>: a "
+      "trained network, a fitted table) against that model at the same sun and parameter "
+      "values, within its domain: the solid-angle-weighted median and 95th percentile of the "
+      "relative luminance error, and the RMS of log<sub>10</sub> of the ratio (not normalised; "
+      "negative values count as 1000 times too dark). <b>Rule</b>: the same fractions ({:g} ×, "
+      "{:g} ×) of the band's smallest neighbour step between CIE types [in brackets]: below "
+      "them the approximation inherits its source's verdicts above.</p>\n{}",
       cfg_.comparison.sun_exclusion / kDegree, trust_band_text(), kTrustUseFraction,
       kTrustCareFraction, neighbours, table.html(),
-      not_judged.empty() ? "" : "<ul>\n" + not_judged + "</ul>\n");
+      not_judged.empty() ? "" : "<ul>\n" + not_judged + "</ul>\n", kTrustUseFraction,
+      kTrustCareFraction, source_table.html());
   trust_summary_ = summary;
   json_["which_model_to_trust_where"] = {
       {"rule",
