@@ -342,16 +342,23 @@ RegionRatio region_ratio(const ModelSpec& a, const ModelSpec& b, double sun_zeni
   const auto ma = make_model(a, sun_zenith, kPi), mb = make_model(b, sun_zenith, kPi);
   const Vec3 sun = ma->sun().direction();
   std::vector<Vec3> dirs;
-  for (const Vec3& d : grid.directions)
-    if (in_region(d, sun)) dirs.push_back(d);
+  std::vector<double> weights;
+  for (std::size_t i = 0; i < grid.directions.size(); ++i)
+    if (in_region(grid.directions[i], sun)) {
+      dirs.push_back(grid.directions[i]);
+      weights.push_back(grid.solid_angle[i]);
+    }
+  double sum_w = 0.0, sum_log = 0.0;
   const std::vector<double> la = sky_luminance(*ma, dirs), lb = sky_luminance(*mb, dirs);
   const double za = ma->tristimulus({0, 0, 1}).Y, zb = mb->tristimulus({0, 0, 1}).Y;
-  RegionRatio r{sun_zenith, kInf, -kInf, kInf, -kInf, kNaN, kNaN, 0};
+  RegionRatio r{sun_zenith, kInf, -kInf, kInf, -kInf, kNaN, kNaN, 0, kNaN};
   for (std::size_t i = 0; i < dirs.size(); ++i) {
     if (!(la[i] > 0.0) || !(lb[i] > 0.0)) continue;
     const double elevation = kPi / 2 - std::acos(std::clamp(dirs[i].z, -1.0, 1.0));
     const double q = la[i] / lb[i];
     ++r.directions;
+    sum_w += weights[i];
+    sum_log += weights[i] * std::log(q);
     if (q < r.absolute_min) {
       r.absolute_min = q;
       r.absolute_min_elevation = elevation;
@@ -366,9 +373,86 @@ RegionRatio region_ratio(const ModelSpec& a, const ModelSpec& b, double sun_zeni
       r.relative_max = std::max(r.relative_max, rel);
     }
   }
-  if (r.directions == 0) return {sun_zenith, kNaN, kNaN, kNaN, kNaN, kNaN, kNaN, 0};
+  if (r.directions == 0) return {sun_zenith, kNaN, kNaN, kNaN, kNaN, kNaN, kNaN, 0, kNaN};
+  r.absolute_geomean = std::exp(sum_log / sum_w);
   if (!std::isfinite(r.relative_min)) r.relative_min = r.relative_max = kNaN;
   return r;
+}
+
+LuminanceReadings luminance_readings(const ModelSpec& a, const ModelSpec& b,
+                                     const ComparisonSettings& settings,
+                                     const HemisphereGrid& grid) {
+  const RelativeSamples sa = relative_samples(a, settings, grid),
+                        sb = relative_samples(b, settings, grid);
+  LuminanceReadings r;
+  r.geometric_mean = absolute_luminance_ratio(sa, sb, grid);
+  // min, max and geometric mean of per-sun ratios
+  auto summarise = [](const std::vector<double>& q) {
+    LuminanceRatio lr{kNaN, kInf, -kInf};
+    double sum_log = 0.0;
+    int n = 0;
+    for (double v : q) {
+      if (!(v > 0.0) || !std::isfinite(v)) continue;
+      lr.min = std::min(lr.min, v);
+      lr.max = std::max(lr.max, v);
+      sum_log += std::log(v);
+      ++n;
+    }
+    if (n == 0) return LuminanceRatio{kNaN, kNaN, kNaN};
+    lr.mean = std::exp(sum_log / n);
+    return lr;
+  };
+  std::vector<double> peak, zenith, diffuse;
+  for (std::size_t k = 0; k < settings.sun_zeniths.size(); ++k) {
+    double pa = 0.0, pb = 0.0, ea = 0.0, eb = 0.0;
+    for (std::size_t i = 0; i < grid.solid_angle.size(); ++i) {
+      const double x = sa.absolute[k][i], y = sb.absolute[k][i];
+      if (!std::isfinite(x) || !std::isfinite(y)) continue;  // the sun exclusion
+      pa = std::max(pa, x);
+      pb = std::max(pb, y);
+      ea += x * grid.directions[i].z * grid.solid_angle[i];
+      eb += y * grid.directions[i].z * grid.solid_angle[i];
+    }
+    peak.push_back(pa / pb);
+    diffuse.push_back(ea / eb);
+    const double ts = settings.sun_zeniths[k];
+    zenith.push_back(make_model(a, ts, settings.sun_azimuth)->tristimulus({0.0, 0.0, 1.0}).Y /
+                     make_model(b, ts, settings.sun_azimuth)->tristimulus({0.0, 0.0, 1.0}).Y);
+  }
+  r.peak = summarise(peak);
+  r.zenith = summarise(zenith);
+  r.diffuse = summarise(diffuse);
+  return r;
+}
+
+AntisolarDip antisolar_dip(const ModelSpec& spec, double sun_zenith, const HemisphereGrid& grid,
+                           double horizon_band) {
+  const auto model = make_model(spec, sun_zenith, kPi);
+  const Vec3 sun = model->sun().direction();
+  std::vector<Vec3> dirs;
+  std::vector<double> weights;
+  for (std::size_t i = 0; i < grid.directions.size(); ++i)
+    if (in_antisolar_half(grid.directions[i], sun)) {
+      dirs.push_back(grid.directions[i]);
+      weights.push_back(grid.solid_angle[i]);
+    }
+  const std::vector<double> l = sky_luminance(*model, dirs);
+  AntisolarDip d{model->tristimulus({0.0, 0.0, 1.0}).Y, kInf, kNaN, kNaN};
+  double hw = 0.0, hl = 0.0;
+  for (std::size_t i = 0; i < dirs.size(); ++i) {
+    const double elevation = kPi / 2 - std::acos(std::clamp(dirs[i].z, -1.0, 1.0));
+    if (l[i] < d.darkest) {
+      d.darkest = l[i];
+      d.darkest_elevation = elevation;
+    }
+    if (elevation < horizon_band) {
+      hw += weights[i];
+      hl += weights[i] * l[i];
+    }
+  }
+  if (hw > 0.0) d.horizon = hl / hw;
+  if (!std::isfinite(d.darkest)) d.darkest = kNaN;
+  return d;
 }
 
 RatioBand preetham_cie_ratio_band(double turbidity, int cie_type, const ComparisonSettings& s) {

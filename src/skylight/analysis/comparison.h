@@ -87,6 +87,32 @@ struct LuminanceRatio {
 };
 LuminanceRatio absolute_luminance_ratio(const RelativeSamples& a, const RelativeSamples& b,
                                         const HemisphereGrid& grid);
+// Four readings of "a is k times as bright as b" (Zotti's absolute comparisons), each per sun
+// zenith of the samples as a / b, then min, max and geometric mean over the sun zeniths:
+// `geometric_mean`: the solid-angle-weighted geometric mean over the directions
+// (absolute_luminance_ratio); `peak`: the brightest direction of each (outside the sun exclusion,
+// i.e. the sky's maximum, not the sun); `zenith`; `diffuse`: the horizontal illuminance of the
+// sky, sum of L cos(theta) dOmega over the grid (the excluded directions left out of both).
+struct LuminanceReadings {
+  LuminanceRatio geometric_mean, peak, zenith, diffuse;
+};
+LuminanceReadings luminance_readings(const ModelSpec& a, const ModelSpec& b,
+                                     const ComparisonSettings& settings,
+                                     const HemisphereGrid& grid);
+
+// The darkening opposite a low sun in one model's own terms: over the antisolar half (view azimuth
+// at least 90 deg from the sun's; sun azimuth pi), the darkest luminance and where it is, the mean
+// luminance of the cells below `horizon_band` elevation, and the zenith luminance [cd/m^2].
+// depth(): darkest / zenith; contrast(): horizon / darkest (how deep the dip is seen from the
+// horizon).
+struct AntisolarDip {
+  double zenith = 0.0, darkest = 0.0, horizon = 0.0;
+  double darkest_elevation = 0.0;  // [rad]
+  double depth() const { return darkest / zenith; }
+  double contrast() const { return horizon / darkest; }
+};
+AntisolarDip antisolar_dip(const ModelSpec& spec, double sun_zenith, const HemisphereGrid& grid,
+                           double horizon_band);
 
 // For one Preetham turbidity: the CIE types ranked by relative_log_rms, and the luminance ratio
 // Preetham / CIE (Kittler-Darula typical zenith luminance) for the best type.
@@ -144,6 +170,7 @@ struct RegionRatio {
   double absolute_min = 0.0, absolute_max = 0.0, relative_min = 0.0, relative_max = 0.0;
   double absolute_min_elevation = 0.0, relative_min_elevation = 0.0;  // [rad]
   int directions = 0;                                                 // in the region
+  double absolute_geomean = 0.0;  // solid-angle-weighted geometric mean of a / b over the region
 };
 // The region: directions d with in_region(d, sun direction); sun azimuth pi. Directions where
 // either model is not positive are left out; no direction: NaN everywhere.

@@ -112,6 +112,46 @@ TEST(SourceError, MedianP95AndRmsOfPlantedErrors) {
   EXPECT_EQ(both.directions, 2 * n);
 }
 
+// The uniform CIE sky (type 5) has no dip: darkest, horizon and zenith are one value; CIE 12 has
+// one (darker than its zenith somewhere opposite the sun, horizon brighter than the darkest).
+TEST(AntisolarDip, UniformSkyHasNoneAndTheClearSkyHasOne) {
+  const HemisphereGrid grid = hemisphere_grid(18, 72);
+  const AntisolarDip u =
+      antisolar_dip(comparison_spec(CieSkyModel::kName, 5), 70 * kDegree, grid, 5 * kDegree);
+  EXPECT_NEAR(u.depth(), 1.0, 1e-12);
+  EXPECT_NEAR(u.contrast(), 1.0, 1e-12);
+  const AntisolarDip c =
+      antisolar_dip(comparison_spec(CieSkyModel::kName, 12), 70 * kDegree, grid, 5 * kDegree);
+  EXPECT_LT(c.depth(), 1.0);
+  EXPECT_GT(c.contrast(), 1.0);
+  EXPECT_GT(c.darkest_elevation, 0.0);
+}
+
+// A sky against itself reads 1 in every reading; against the same sky of another level (CIE 12
+// with twice its zenith luminance) 2 in every reading.
+TEST(LuminanceReadings, EveryReadingOfAScaledSkyIsTheScale) {
+  const HemisphereGrid grid = hemisphere_grid(12, 48);
+  ComparisonSettings s;
+  s.sun_zeniths = {30 * kDegree, 60 * kDegree};
+  const ModelSpec a = comparison_spec(CieSkyModel::kName, 12);
+  const LuminanceReadings same = luminance_readings(a, a, s, grid);
+  for (const LuminanceRatio* r : {&same.geometric_mean, &same.peak, &same.zenith, &same.diffuse}) {
+    EXPECT_NEAR(r->min, 1.0, 1e-12);
+    EXPECT_NEAR(r->max, 1.0, 1e-12);
+  }
+  for (double sz : s.sun_zeniths) {
+    ModelSpec b = a;
+    const double lz = make_model(a, sz, s.sun_azimuth)->tristimulus({0, 0, 1}).Y;
+    b.params.values.set("zenith-luminance", 2.0 * lz);
+    ComparisonSettings one = s;
+    one.sun_zeniths = {sz};
+    const LuminanceReadings twice = luminance_readings(b, a, one, grid);
+    for (const LuminanceRatio* r :
+         {&twice.geometric_mean, &twice.peak, &twice.zenith, &twice.diffuse})
+      EXPECT_NEAR(r->mean, 2.0, 1e-9);
+  }
+}
+
 TEST(RegionRatio, AntisolarHalfMatchesADirectRecomputation) {
   const HemisphereGrid grid = hemisphere_grid(6, 24);
   const double ts = deg_to_rad(70.0), T = 2.4;

@@ -323,7 +323,7 @@ void ReportWriter::write_html_and_json() {
   std::string summary = "<ul>\n";
   for (const std::string& line : trust_summary_) summary += "<li>" + line + "</li>\n";
   int agree = 0;
-  for (const Finding& f : summary_.findings) agree += f.agrees ? 1 : 0;
+  for (const Finding& f : summary_.findings) agree += f.agrees() ? 1 : 0;
   summary += fmt::format(
       "<li>Distribution only (<a href=\"#trust\">table and rule</a>); of Zotti et al.'s {} "
       "findings on Preetham, {} agree with our numbers (<a href=\"#zotti\">in brief</a>).</li>\n"
@@ -352,8 +352,7 @@ void ReportWriter::write_html_and_json() {
   // The headline numbers first, then the details in the order they were computed.
   for (const char* key :
        {"which_model_to_trust_where", "zotti_findings", "preetham_negative_zenith",
-        "antisolar_horizon_ratio_preetham_vs_cie12", "best_preetham_turbidity_for_cie12",
-        "best_cie_type_per_preetham_turbidity"})
+        "best_preetham_turbidity_for_cie12", "best_cie_type_per_preetham_turbidity"})
     if (json_.contains(key)) j[key] = json_[key];
   for (auto it = json_.begin(); it != json_.end(); ++it)
     if (!j.contains(it.key())) j[it.key()] = it.value();

@@ -48,14 +48,23 @@ struct FindingValue {
   std::string name;  // what the number is, with its conditions
   double value = 0.0;
 };
+// How our numbers stand to a finding: all of its readings reproduced, some of them, none, or
+// a statement that is a declaration rather than something a number can test.
+enum class Agreement { agrees, partly, disagrees, not_tested };
+// "agrees", "partly", "disagrees", "not tested" (report.json's `agreement`).
+std::string agreement_name(Agreement a);
+// From the readings that hold and those tested: all -> agrees, some -> partly, none -> disagrees.
+Agreement agreement_of(int holding, int tested);
+
 struct Finding {
   std::string id;                // stable key, e.g. "negative_luminance_clear"
   std::string title;             // short heading
   std::string paper_statement;   // what Zotti et al. say (quoted or paraphrased, with the place)
   std::string paper_value_text;  // the paper's number(s) as text, e.g. "T < 1.6"
   std::vector<FindingValue> our_values;
-  bool agrees = false;  // whether our numbers reproduce the paper's statement
-  std::string cause;    // why (dis)agreement, generated from our_values where it cites numbers
+  Agreement agreement = Agreement::disagrees;  // whether our numbers reproduce the statement
+  std::string cause;  // why (dis)agreement, generated from our_values where it cites numbers
+  bool agrees() const { return agreement == Agreement::agrees; }
 };
 // How a finding's number is written in index.html (3 significant digits; "n/a" if not finite).
 std::string format_finding_value(double v);

@@ -160,6 +160,26 @@ TEST_F(ReportFiles, TrustTableJudgesEveryRegisteredModelByItsPrintedRule) {
   EXPECT_NE(html.find("<h2 id=\"trust\">Which model to trust where</h2>"), std::string::npos);
 }
 
+// The Zotti findings' pass rules on planted numbers: each fails on a counter-example.
+TEST(ReportFindings, PassRulesFailOnPlantedCounterExamples) {
+  EXPECT_EQ(agreement_of(2, 2), Agreement::agrees);
+  EXPECT_EQ(agreement_of(1, 2), Agreement::partly);
+  EXPECT_EQ(agreement_of(0, 2), Agreement::disagrees);
+  EXPECT_EQ(agreement_of(0, 0), Agreement::not_tested);
+  EXPECT_EQ(agreement_name(Agreement::not_tested), "not tested");
+  const detail::ZottiPair t10 = detail::kZottiPairs[0], t5 = detail::kZottiPairs[1];
+  ASSERT_EQ(t10.threshold, 2.0);
+  EXPECT_TRUE(detail::pair_reading_holds(t10, {2.1, 2.07, 2.24}));
+  // Above 2 on average but not at every sun position (T 10's zenith ratio, 1.83-2.13).
+  EXPECT_FALSE(detail::pair_reading_holds(t10, {2.0, 1.83, 2.13}));
+  EXPECT_TRUE(detail::pair_reading_holds(t5, {1.1, 0.86, 1.15}));
+  EXPECT_FALSE(detail::pair_reading_holds(t5, {1.1, 0.79, 1.15}));  // below 1 / 1.25
+  EXPECT_FALSE(detail::pair_reading_holds(t5, {1.1, 0.9, 1.26}));   // above 1.25
+  EXPECT_TRUE(detail::antisolar_factor_holds(2.2));
+  EXPECT_FALSE(detail::antisolar_factor_holds(1.99));
+  EXPECT_FALSE(detail::antisolar_factor_holds(5.07));
+}
+
 // The rule's planted counter-examples: a model as far from the class as its neighbouring types
 // are from each other is not "use"; no number is never "use".
 TEST(ReportTrust, VerdictRuleFailsOnPlantedCounterExamples) {
@@ -189,7 +209,8 @@ TEST_F(ReportFiles, ZottiFindingsInJsonMatchTheSummaryAndTheHtml) {
     ids.insert(f["id"].get<std::string>());
     EXPECT_EQ(f["id"], s.id);
     ASSERT_TRUE(f["agrees"].is_boolean());
-    EXPECT_EQ(f["agrees"].get<bool>(), s.agrees);
+    EXPECT_EQ(f["agrees"].get<bool>(), s.agrees());
+    EXPECT_EQ(f["agreement"], agreement_name(s.agreement));
     EXPECT_FALSE(f["paper_statement"].get<std::string>().empty());
     EXPECT_FALSE(f["paper_value"].get<std::string>().empty());
     EXPECT_FALSE(f["cause"].get<std::string>().empty());
@@ -204,18 +225,20 @@ TEST_F(ReportFiles, ZottiFindingsInJsonMatchTheSummaryAndTheHtml) {
                 std::string::npos)
           << s.our_values[k].name;
     }
-    EXPECT_NE(html.find(s.agrees ? "<i>agrees</i>" : "<i>does not agree</i>"), std::string::npos);
+    EXPECT_NE(html.find("<i>" + agreement_name(s.agreement) + "</i>"), std::string::npos);
   }
   for (const char* id :
        {"negative_luminance_clear", "negative_luminance_turbid", "best_turbidity_cie12",
         "antisolar_factor", "antisolar_shape", "pair_T10_cie6", "pair_T5_cie7", "pair_T2.9_cie10",
-        "circumsolar_brightening", "horizon_bright_t_above_2_4", "measurements"})
+        "circumsolar_brightening", "horizon_bright_t_above_2_4", "measurements",
+        "fig3_horizon_outshines_sun_vicinity", "only_clear_types_comparable", "pair_shapes",
+        "fitted_range_declared"})
     EXPECT_EQ(ids.count(id), 1u) << id;
   EXPECT_NE(html.find("partly reproduces"), std::string::npos);
   // The synthetic scan is never read as evidence.
   for (const Finding& f : summary_->findings)
     if (f.id == "measurements") {
-      EXPECT_FALSE(f.agrees);
+      EXPECT_EQ(f.agreement, Agreement::not_tested);
       EXPECT_NE(f.cause.find("synthetic"), std::string::npos);
     }
 }

@@ -40,6 +40,14 @@ svg::Plot fig1_plot(const std::vector<ZenithRoot>& roots) {
     s.y.push_back(r.turbidity);
   }
   p.series = {lo, hi};
+  // The whole-sky band (Zotti's 1.6, finding negative_luminance_clear): between these T the
+  // sky is negative somewhere at every sun position (preetham_negative_sky_range).
+  const NegativeSkyRange band = preetham_negative_sky_range();
+  p.series.push_back(svg::line_series(
+      fmt::format("sky < 0 somewhere, every θs: T {}-{}", g3(band.t_low), g3(band.t_high)),
+      {0.0, 90.0}, {band.t_low, band.t_low}, "#00bcd4", 1.8, "6 3"));
+  p.series.push_back(
+      svg::line_series("", {0.0, 90.0}, {band.t_high, band.t_high}, "#00bcd4", 1.8, "6 3"));
   p.swatches = {{"Yz < 0 (negative)", svg::hex_colour(kNegativeYzColour)}};
   return p;
 }

@@ -134,6 +134,12 @@ struct ZottiPair {
 };
 inline constexpr std::array<ZottiPair, 3> kZottiPairs = {
     {{10.0, 6, "> 2", 2.0, false}, {5.0, 7, "≈ 1", 1.0, true}, {2.9, 10, "> 1.25", 1.25, false}}};
+// A reading of a pair holds when Zotti's bound holds at every sun position (its min and max over
+// them; "≈ 1" within kAboutOneFactor either way).
+bool pair_reading_holds(const ZottiPair& pair, const LuminanceRatio& ratio);
+// Zotti's "about 2-5 times too high" at one sun position: the geometric mean over the antisolar
+// half lies in [2, 5].
+bool antisolar_factor_holds(double geomean);
 
 // One table of index.html: a header row, then rows of cells already formatted as text or HTML.
 class HtmlTable {
@@ -215,6 +221,10 @@ class ReportWriter {
   void finding_antisolar(const HemisphereGrid& zone_grid);
   void finding_pairs();
   void finding_low_sun(const HemisphereGrid& zone_grid);
+  void finding_fig3();
+  void finding_cie_classes();
+  void finding_pair_shapes();
+  void finding_fitted_range();
   void finding_measurements();
   // The summary (generated from summary_.findings) and the findings table.
   std::string findings_summary_html() const;
