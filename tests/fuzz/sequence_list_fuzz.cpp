@@ -1,6 +1,7 @@
 // libFuzzer target: the image list of `skylight nn train --images` (estimate/sky_sequence.h). An
-// accepted list has at least one row; each names a file inside the list's folder, gives the sun's
-// two angles together and in range or none, never angles and a time both, on ascending lines.
+// accepted list has at least one row; each names a file (not a folder, no control character; a
+// relative name inside the list's folder), gives the sun's two angles together and in range or
+// none, never angles and a time both, on ascending lines.
 #include <cstddef>
 #include <cstdint>
 #include <string>
@@ -19,9 +20,16 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     for (const auto& row : rows) {
       fuzz::require(row.line > line, "rows out of line order");
       line = row.line;
-      fuzz::require(row.file.has_parent_path() && !row.file.filename().empty() &&
-                        row.file.string().rfind("folder/", 0) == 0,
-                    "file outside the list's folder");
+      // A relative name lies in the list's folder; an absolute one is kept as written.
+      fuzz::require(row.file.is_absolute() || row.file.string().rfind("folder/", 0) == 0,
+                    "relative file outside the list's folder");
+      for (const auto* p : {&row.file, &row.mask}) {
+        if (p->empty()) continue;
+        const std::string last = p->filename().string();
+        fuzz::require(!last.empty() && last != "." && last != "..", "a folder accepted as a file");
+        for (const char ch : p->string())
+          fuzz::require(static_cast<unsigned char>(ch) >= 0x20, "control character in a name");
+      }
       fuzz::require(row.sun_zenith_deg.has_value() == row.sun_azimuth_deg.has_value(),
                     "one sun angle without the other");
       if (row.sun_zenith_deg) {

@@ -76,9 +76,23 @@ std::vector<SequenceEntry> parse_sequence_list(std::string_view text, const std:
           throw fail(fmt::format("{} '{}' is not a number in [{}, {}]", name, excerpt(c), lo, hi));
         return *v;
       };
+      // A file or mask cell names a file: not a folder (trailing '/', '.', '..'; found by the
+      // fuzz target sequence_list: "b.exr../" was a folder) and no control character (a NUL
+      // would cut the name the system sees).
+      auto file_cell = [&](std::string_view name) {
+        if (std::any_of(c.begin(), c.end(), [](char ch) {
+              return static_cast<unsigned char>(ch) < 0x20 || ch == 0x7f;
+            }))
+          throw fail(fmt::format("{} '{}' holds a control character", name, excerpt(c)));
+        const std::filesystem::path cell{std::string(c)};
+        const std::string last = cell.filename().string();
+        if (last.empty() || last == "." || last == "..")
+          throw fail(fmt::format("{} '{}' names a folder, not a file", name, excerpt(c)));
+        return folder / cell;
+      };
       switch (column[i]) {
         case 0:
-          e.file = folder / std::filesystem::path(std::string(c));
+          e.file = file_cell("file");
           break;
         case 1:
           e.sun_zenith_deg = angle("sun_zenith_deg", 0.0, 90.0);
@@ -90,7 +104,7 @@ std::vector<SequenceEntry> parse_sequence_list(std::string_view text, const std:
           e.time = std::string(c);
           break;
         default:
-          e.mask = folder / std::filesystem::path(std::string(c));
+          e.mask = file_cell("mask");
           break;
       }
     }

@@ -65,6 +65,11 @@ TEST(SkySequence, ListErrorsNameTheFileAndLine) {
   EXPECT_EQ(message("file,time\n\na.exr\n"), "seq.csv:3: 1 cells, the header has 2");
   EXPECT_EQ(message("time\n2024-01-01T00:00:00Z\n"), "seq.csv:1: the header has no 'file' column");
   EXPECT_EQ(message("file\n# nothing\n"), "seq.csv: no images listed");
+  // Found by the fuzz target sequence_list: a name ending in '/' (or '.', '..') is a folder.
+  EXPECT_EQ(message("file\nb.exr../\n"), "seq.csv:2: file 'b.exr../' names a folder, not a file");
+  EXPECT_EQ(message("file,mask\na.exr,..\n"), "seq.csv:2: mask '..' names a folder, not a file");
+  EXPECT_EQ(message(std::string("file\na\0b.exr\n", 13)),
+            "seq.csv:2: file 'a\\x00b.exr' holds a control character");
 }
 
 TEST(SkySequence, ClippedSunIsFoundAndExcludedAndTheOccluderMasked) {

@@ -737,6 +737,34 @@ TEST(ImageIo, ExrAttributeSizesThatDisagreeWithTheirTypeAreRefusedBeforeOpenExr)
   }
 }
 
+// Found by the fuzz target image_exr: OpenEXR allocates one tile's buffer before reading the
+// pixels, so a 3 x 3 image declaring 8192 x 8192 tiles asked for 268 MB. A tile may hold no more
+// pixels than the image or a 256 x 256 tile.
+TEST(ImageIo, ExrTilesLargerThanTheImageAndASmallTileAreRefused) {
+  ScratchDir dir;
+  const std::string tiled =
+      testing_support::source_file("tests/fuzz/corpus/image_exr/y_half_tiled_3x3.exr");
+  const std::size_t at = tiled.find(std::string("tiledesc\0", 9));
+  ASSERT_NE(at, std::string::npos);
+  spit(dir / "tiled.exr", tiled);
+  EXPECT_EQ(read_image(dir / "tiled.exr").data.size(), 9u);
+  std::string big = tiled;
+  for (std::size_t k : {at + 9 + 4, at + 9 + 8}) {  // after the size field: x size, y size
+    big[k] = 0;
+    big[k + 1] = 0x20;  // 8192
+    big[k + 2] = big[k + 3] = 0;
+  }
+  spit(dir / "big.exr", big);
+  try {
+    read_image(dir / "big.exr");
+    ADD_FAILURE() << "accepted";
+  } catch (const IoError& e) {
+    EXPECT_NE(std::string(e.what()).find("tiles of 67108864 pixels for an image of 9"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
 TEST(ImageIo, FormatFromPath) {
   EXPECT_EQ(format_from_path("a/b.exr"), ImageFormat::exr);
   EXPECT_EQ(format_from_path("b.HDR"), ImageFormat::hdr);

@@ -161,6 +161,11 @@ DateTime parse_iso8601(std::string_view text) {
   if (year_sign == '+' || year_sign == '-') in.skip();
   t.year = in.digits(4, "year");
   if (year_sign == '-') t.year = -t.year;
+  // The range of DateTime (Julian Day 0 on): -4712 .. 9999 (found by the fuzz target iso8601:
+  // -6025 was accepted, then refused by validate()).
+  if (t.year < kMinYear) {
+    in.fail("year", std::to_string(t.year) + " is out of range [-4712, 9999]");
+  }
   in.expect('-', "date separator after year");
   t.month = in.digits(2, "month");
   if (t.month < 1 || t.month > 12) {

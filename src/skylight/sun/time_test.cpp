@@ -128,6 +128,16 @@ TEST(Iso8601, FormatsRoundTripAndCarries) {
   EXPECT_EQ(parse_iso8601("+2003-10-17T12:30:30Z").year, 2003);
   EXPECT_EQ(format_iso8601(parse_iso8601("-2000-02-29T12:00:00Z")), "-2000-02-29T12:00:00Z");
   EXPECT_EQ(format_iso8601(parse_iso8601("0000-12-31T23:59:59.5Z")), "0001-01-01T00:00:00Z");
+  // Found by the fuzz target iso8601: an expanded year before -4712 (Julian Day 0) was accepted
+  // and then failed validate(); the parser refuses it, naming the field.
+  EXPECT_EQ(parse_iso8601("-4712-01-01T12:00:00Z").year, -4712);
+  try {
+    parse_iso8601("-6025-02-21T12:00:00Z");
+    ADD_FAILURE() << "accepted";
+  } catch (const InvalidArgument& e) {
+    EXPECT_NE(std::string(e.what()).find("year"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("[-4712, 9999]"), std::string::npos) << e.what();
+  }
   DateTime t;
   t.year = -10000;
   EXPECT_THROW(format_iso8601(t), InvalidArgument);
