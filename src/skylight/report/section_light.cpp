@@ -226,10 +226,11 @@ std::vector<ScanEntry> scan_entries(const Config& cfg, const SkyScan& scan) {
 
 // Measured against modelled luminance: the best CIE type, CIE 12 and the other families.
 svg::Plot scan_plot(const SkyScan& scan, const std::vector<ScanEntry>& entries,
-                    std::size_t best_cie, double excl) {
+                    std::size_t best_cie, double excl, bool synthetic) {
   svg::Plot p;
   p.id = "scan";
-  p.title = "Measured against modelled luminance";
+  p.title = synthetic ? "Synthetic scan (CIE 7 + noise, a self-test) against modelled luminance"
+                      : "Measured against modelled luminance";
   double lo = kInf, hi = 0.0;
   for (const auto& s : scan.samples) {
     lo = std::min(lo, s.luminance);
@@ -284,7 +285,7 @@ void ReportWriter::section_measurements() {
   scan_best_ = entries[best_all].label;
   scan_best_cie_type_ = static_cast<int>(best_cie) + 1;
   scan_synthetic_ = !opt_.measurements.has_value();
-  const svg::Plot p = scan_plot(scan, entries, best_cie, excl);
+  const svg::Plot p = scan_plot(scan, entries, best_cie, excl, scan_synthetic_);
 
   HtmlTable t({"model", "samples", "RMS log10, absolute", "bias log10, absolute",
                "RMS log10, zenith-normalised", "bias log10, zenith-normalised"});
@@ -305,6 +306,15 @@ void ReportWriter::section_measurements() {
                     {"bias_log10_zenith_normalised", num(e.bias_log10_relative)}});
   }
   html_scan_ =
+      (scan_synthetic_
+           ? std::string(
+                 "<p class=\"note\">No measured scan is included: we found no public sky-luminance "
+                 "scan whose licence lets us ship it. The shipped scan is <b>synthetic</b>, made "
+                 "from CIE type 7, so this section is a <b>self-test</b> of the comparison (CIE 7 "
+                 "must come first); it does <b>not rank the models</b>. Pass a measured scan with "
+                 "<code>--measurements FILE</code> (docs/REPORT.md, \"Sky-luminance "
+                 "scans\").</p>\n")
+           : std::string()) +
       fmt::format(
           "<p>Compared with {}: {} samples, sun azimuth {:.4g} deg, elevation {:.4g} deg; "
           "samples within {:g} deg of the sun are left out. For each sample d = log10(L_model / "
@@ -313,12 +323,17 @@ void ReportWriter::section_measurements() {
           "typical zenith luminance). <i>Zenith-normalised</i>: the model scaled to the "
           "measurement at the highest sample (the zenith patch of a Tregenza scan). Preetham and "
           "Hosek-Wilkie: the turbidity with the lowest zenith-normalised RMS on a {:g} grid. "
-          "Best overall (zenith-normalised): <b>{}</b>.</p>\n",
+          "{} (zenith-normalised): <b>{}</b>.</p>\n",
           origin, scan.samples.size(), rad_to_deg(az), rad_to_deg(*scan.sun_elevation),
-          rad_to_deg(excl), cfg_.scan_t_step, entries[best_all].label) +
+          rad_to_deg(excl), cfg_.scan_t_step,
+          scan_synthetic_ ? "Closest to the synthetic scan (the self-test's expected answer: CIE 7)"
+                          : "Best overall",
+          entries[best_all].label) +
       figure("measurements.svg", svg::draw(p),
-             "Each sample's measured luminance against the models' (best CIE type, CIE 12, and the "
-             "best-turbidity Preetham and Hosek-Wilkie skies, Nishita).") +
+             fmt::format("Each sample's {} luminance (x) against the models' (y): the best CIE "
+                         "type, CIE 12, the best-turbidity Preetham and Hosek-Wilkie skies and "
+                         "Nishita; the dashed line is 1:1.",
+                         scan_synthetic_ ? "synthetic" : "measured")) +
       t.html();
   json_["measurements"] = {{"source", scan.source},
                            {"synthetic", !opt_.measurements.has_value()},

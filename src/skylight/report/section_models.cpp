@@ -309,13 +309,16 @@ void ReportWriter::vertical_case(int index, double T, double tsd) {
            true,
            "luminance [cd/m2]",
            {}};
-  lum.series.push_back(
-      svg::marker_series("sun", {tsd}, {std::sqrt(lum.y.min * lum.y.max)}, "#ff9800", 5));
+  // The sun's direction: a vertical line across the plot (its luminance is not on this scale).
+  lum.series.push_back(svg::line_series(fmt::format("sun (view zenith {:g} deg)", tsd), {tsd, tsd},
+                                        {lum.y.min, lum.y.max}, "#ff9800", 1.5, "5 3"));
   lum.width = 900;
   lum.height = 400;
   lum.legend_outside = true;
   svg::Plot ratio = vertical_ratio_plot(lum, specs, xs, values);
   ratio.id = fmt::format("vertratio{}", index);
+  ratio.series.push_back(
+      svg::line_series("", {tsd, tsd}, {ratio.y.min, ratio.y.max}, "#ff9800", 1.5, "5 3"));
   ratio.title = fmt::format("Ratio to CIE type 12, θs = {:g} deg, T = {:.3g}", tsd, T);
   html_vertical_ +=
       figure(fmt::format("solar_vertical_{}.svg", index), svg::draw(lum),

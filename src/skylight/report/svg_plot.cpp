@@ -442,7 +442,10 @@ Canvas draw(const Mosaic& m) {
   for (const auto& l : m.row_labels) label_w = std::max(label_w, text_width(l, 12));
   const double left = label_w + 16, top = (m.title.empty() ? 12 : 34) + 30;
   const double bar_w = 90;
-  Canvas c(left + img_w + bar_w + 10, top + img_h + 12, m.id.empty() ? "mosaic" : m.id);
+  // The colour bar is at least kMinColourBarPx tall (readable decades) even beside a short image.
+  const double bar_h = std::max(kMinColourBarPx, img_h - 10);
+  Canvas c(left + img_w + bar_w + 10, std::max(top + img_h, top + 10 + bar_h + 20) + 12,
+           m.id.empty() ? "mosaic" : m.id);
   if (!m.title.empty()) c.text(8, 20, m.title, 13, "start", 0, "bold");
   c.text(left + img_w / 2, top - 24, m.column_header, 12, "middle");
   c.text(left - 8, top - 8, m.row_header, 12, "end", 0, "bold");
@@ -451,7 +454,7 @@ Canvas draw(const Mosaic& m) {
   for (int r = 0; r < m.rows; ++r)
     c.text(left - 8, top + r * cell + m.tile_px * m.scale / 2 + 4, m.row_labels[r], 11, "end");
   c.image(left, top, img_w, img_h, m.image);
-  draw_colour_bar(c, left + img_w + 14, top + 10, 14, std::max(40.0, img_h - 10), m.colour_bar);
+  draw_colour_bar(c, left + img_w + 14, top + 10, 14, bar_h, m.colour_bar);
   return c;
 }
 

@@ -108,6 +108,9 @@ struct Swatch {
   std::string colour;
 };
 
+// The shortest colour bar drawn [px]: a bar beside a plot or mosaic is at least this tall.
+inline constexpr double kMinColourBarPx = 200.0;
+
 // A vertical colour bar on the false-colour scale of render/image.h.
 struct ColourBar {
   double log10_min = 0.0, log10_max = 6.0;

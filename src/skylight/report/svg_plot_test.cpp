@@ -145,6 +145,16 @@ TEST(SvgMosaic, LabelsAndImage) {
   const auto check = check_xml(c.document());
   EXPECT_TRUE(check.ok) << check.error;
   EXPECT_EQ(c.images(), std::vector<std::string>{"tiles.png"});
+  // Two 10 px rows: the colour bar still gets kMinColourBarPx, and the canvas holds it.
+  EXPECT_GE(c.height(), kMinColourBarPx);
+  // The bar is the rectangle filled with the gradient.
+  const std::string doc = c.document();
+  const std::size_t fill = doc.find("fill=\"url(#");
+  ASSERT_NE(fill, std::string::npos);
+  const std::size_t rect = doc.rfind("<rect", fill);
+  const std::size_t h = doc.find("height=\"", rect);
+  ASSERT_LT(h, fill);
+  EXPECT_GE(std::stod(doc.substr(h + 8)), kMinColourBarPx);
   m.row_labels.pop_back();
   EXPECT_THROW(draw(m), InvalidArgument);
 }
