@@ -110,12 +110,14 @@ Config make_config(bool quick) {
     c.trust_n_theta = 24;
     c.trust_n_phi = 96;
     c.trust_axis_samples = 24;
+    c.trust_map_sun_zeniths_deg = {10, 15, 20, 25, 30, 35, 40, 45, 50, 55, 60, 65, 70, 75, 80, 85};
   } else {
     c.trust_bands = {
         {"low sun", 5, 15, {10}}, {"mid sun", 15, 45, {30}}, {"high sun", 45, 80, {60}}};
     c.trust_n_theta = 12;
     c.trust_n_phi = 48;
     c.trust_axis_samples = 8;
+    c.trust_map_sun_zeniths_deg = {30, 60, 80};
     c.fit_per_sun_zeniths_deg = {30, 80};
     c.zone_sun_zeniths_deg = {60, 85};
     c.pair_sun_zeniths_deg = {30, 60};
@@ -304,8 +306,14 @@ void ReportWriter::write_html_and_json() {
       {"illuminance", "6. Horizontal illuminance and irradiance", html_illum_},
       {"measurements", "7. Measurements", html_scan_},
       {"validity", "8. Where each model is valid",
-       "<p>Each model's <code>domain().worst()</code> (valid &lt; extrapolated &lt; unphysical "
-       "&lt; undefined) over the sun zenith angle and its main parameter; sun azimuth 180°.</p>\n" +
+       "<h3>Measured</h3>\n<p>From this report's own numbers: each cell judged by the rule of "
+       "<a href=\"#trust\">the trust table</a> at one sun position and one value of the "
+       "model's parameter. These maps can show a model failing where it declares itself "
+       "valid.</p>\n" +
+           html_validity_measured_ +
+           "<h3>Declared</h3>\n<p>Each model's <code>domain().worst()</code> (valid &lt; "
+           "extrapolated &lt; unphysical &lt; undefined) over the sun zenith angle and its main "
+           "parameter, as the model declares it; sun azimuth 180°.</p>\n" +
            html_validity_},
       {"closing", "Closing note: Zotti et al.'s findings, paper against ours",
        "<p>One row per finding (report.json <code>zotti_findings</code>; the summary above is "
@@ -396,6 +404,7 @@ ReportSummary ReportWriter::run() {
   section_illumination();
   step("illuminance and irradiance");
   section_validity();
+  measured_validity_maps();
   step("validity maps");
   section_findings();
   write_html_and_json();

@@ -157,6 +157,19 @@ TEST_F(ReportFiles, TrustTableJudgesEveryRegisteredModelByItsPrintedRule) {
     }
   }
   EXPECT_GE(judged, 5u);
+  // Section 8's measured maps: one per judged model but the reference, every cell counted.
+  ASSERT_TRUE(j.contains("validity_measured"));
+  for (const ModelInfo& info : model_registry()) {
+    if (info.report.title.empty() || info.name == CieSkyModel::kName) continue;
+    SCOPED_TRACE(info.name);
+    ASSERT_TRUE(j["validity_measured"].contains(info.name));
+    const auto& c = j["validity_measured"][info.name];
+    const int cells = c["use"].get<int>() + c["use_with_care"].get<int>() + c["avoid"].get<int>() +
+                      c["outside_domain"].get<int>();
+    // quick: 3 sun zeniths x (8 values of a continuous axis, or 1 sky)
+    EXPECT_EQ(cells, 3 * static_cast<int>(info.report.axis.empty() ? 1 : 8)) << c;
+    EXPECT_TRUE(fs::is_regular_file(*dir_ / ("measured_" + info.name + ".svg")));
+  }
   EXPECT_NE(html.find("<h2 id=\"trust\">Which model to trust where</h2>"), std::string::npos);
 }
 

@@ -37,6 +37,21 @@ std::string verdict_class(TrustVerdict v) {
   return v == TrustVerdict::use ? "use" : v == TrustVerdict::care ? "care" : "avoid";
 }
 
+// The spec's domain() is valid or extrapolated at every sun zenith (a value the model refuses is
+// outside).
+bool within_domain(const ModelSpec& spec, const std::vector<double>& sun_zeniths,
+                   double sun_azimuth) {
+  for (double z : sun_zeniths) {
+    try {
+      const Validity w = make_model(spec, z, sun_azimuth)->domain().worst();
+      if (w != Validity::valid && w != Validity::extrapolated) return false;
+    } catch (const InvalidArgument&) {
+      return false;
+    }
+  }
+  return true;
+}
+
 }  // namespace
 
 std::string trust_verdict_name(TrustVerdict v) {
@@ -110,25 +125,7 @@ void ReportWriter::section_trust() {
       models.push_back({{"model", info.name}, {"judged", false}});
       continue;
     }
-    // The values of its report axis: every integer, or kTrustAxisSamples log-spaced over the
-    // range it accepts (or the policy's axis_range); only those within its domain (valid or
-    // extrapolated) at every sun elevation of a band count there.
-    std::vector<std::optional<double>> values;
-    if (info.report.axis.empty()) {
-      values.push_back(std::nullopt);
-    } else {
-      const ParameterSpec& p = *info.find_parameter(info.report.axis);
-      const auto [lo, hi] = info.report.axis_range.value_or(std::array<double, 2>{p.min, p.max});
-      if (p.kind == ParameterKind::integer) {
-        for (double v = lo; v <= hi; v += 1.0) values.push_back(v);
-      } else {
-        const int n = cfg_.trust_axis_samples;
-        for (int i = 0; i < n; ++i) {
-          const double f = n == 1 ? 0.5 : static_cast<double>(i) / (n - 1);
-          values.push_back(lo > 0.0 ? lo * std::pow(hi / lo, f) : lo + f * (hi - lo));
-        }
-      }
-    }
+    const std::vector<std::optional<double>> values = trust_axis_values(info);
     Json model_json = {{"model", info.name}, {"judged", true}, {"regimes", Json::array()}};
     std::map<TrustVerdict, std::vector<std::string>> by_verdict;  // "clear sky, low sun"
     std::vector<std::vector<std::string>> rows(kSkyClasses.size());
@@ -152,16 +149,7 @@ void ReportWriter::section_trust() {
       std::vector<RelativeSamples> own, source;  // for the comparison with its source
       for (const auto& v : values) {
         const ModelSpec spec = comparison_spec(info.name, v);
-        bool inside = true;
-        for (double z : s.sun_zeniths) {
-          try {
-            const Validity w = make_model(spec, z, s.sun_azimuth)->domain().worst();
-            inside = inside && (w == Validity::valid || w == Validity::extrapolated);
-          } catch (const InvalidArgument&) {
-            inside = false;
-          }
-        }
-        if (!inside) continue;
+        if (!within_domain(spec, s.sun_zeniths, s.sun_azimuth)) continue;
         RelativeSamples samples = relative_samples(spec, s, grid);
         if (!info.report.source.empty()) {  // its source at the same sun and axis value
           own.push_back(samples);
@@ -314,6 +302,139 @@ void ReportWriter::section_trust() {
        fmt::format("use: best RMS <= {:g} x neighbour RMS; use with care: <= {:g} x; else avoid",
                    kTrustUseFraction, kTrustCareFraction)},
       {"models", models}};
+}
+
+std::vector<std::optional<double>> ReportWriter::trust_axis_values(const ModelInfo& info) const {
+  // Every integer, or trust_axis_samples log-spaced values over the range it accepts (or the
+  // policy's axis_range); one sky (no value) for a model the report does not vary.
+  std::vector<std::optional<double>> values;
+  if (info.report.axis.empty()) {
+    values.push_back(std::nullopt);
+    return values;
+  }
+  const ParameterSpec& p = *info.find_parameter(info.report.axis);
+  const auto [lo, hi] = info.report.axis_range.value_or(std::array<double, 2>{p.min, p.max});
+  if (p.kind == ParameterKind::integer) {
+    for (double v = lo; v <= hi; v += 1.0) values.push_back(v);
+    return values;
+  }
+  const int n = cfg_.trust_axis_samples;
+  for (int i = 0; i < n; ++i) {
+    const double f = n == 1 ? 0.5 : static_cast<double>(i) / (n - 1);
+    values.push_back(lo > 0.0 ? lo * std::pow(hi / lo, f) : lo + f * (hi - lo));
+  }
+  return values;
+}
+
+void ReportWriter::measured_validity_maps() {
+  const HemisphereGrid grid = hemisphere_grid(cfg_.trust_n_theta, cfg_.trust_n_phi);
+  const std::string reference(CieSkyModel::kName);
+  const std::vector<double>& zen_deg = cfg_.trust_map_sun_zeniths_deg;
+  // Per sun zenith: the 15 standard skies and the median neighbour step of each class.
+  std::vector<std::vector<RelativeSamples>> cie(zen_deg.size());
+  std::vector<std::array<double, kSkyClasses.size()>> neighbour(zen_deg.size());
+  auto one_sun = [&](double deg) {
+    ComparisonSettings s = cfg_.comparison;
+    s.sun_zeniths = {deg * kDegree};
+    s.n_theta = cfg_.trust_n_theta;
+    s.n_phi = cfg_.trust_n_phi;
+    return s;
+  };
+  for (std::size_t z = 0; z < zen_deg.size(); ++z) {
+    const ComparisonSettings s = one_sun(zen_deg[z]);
+    for (int type = 1; type <= 15; ++type)
+      cie[z].push_back(relative_samples(comparison_spec(reference, type), s, grid));
+    for (std::size_t k = 0; k < kSkyClasses.size(); ++k) {
+      std::vector<double> steps;
+      for (int t = kSkyClasses[k].first_type; t < kSkyClasses[k].last_type; ++t)
+        steps.push_back(relative_log_rms(cie[z][t - 1], cie[z][t], grid));
+      std::sort(steps.begin(), steps.end());
+      neighbour[z][k] = steps[steps.size() / 2];
+    }
+  }
+  // Cell edges halfway between samples.
+  auto edges = [](const std::vector<double>& v, double lo, double hi) {
+    std::vector<double> e{lo};
+    for (std::size_t i = 1; i < v.size(); ++i) e.push_back(0.5 * (v[i - 1] + v[i]));
+    e.push_back(hi);
+    return e;
+  };
+  const std::vector<double> xe = edges(zen_deg, 0.0, 90.0);
+  Json counts_json = Json::object();
+  for (const ModelInfo& info : model_registry()) {
+    if (info.report.title.empty() || info.name == reference) continue;
+    const std::vector<std::optional<double>> values = trust_axis_values(info);
+    std::vector<double> rows;
+    for (const auto& v : values) rows.push_back(v.value_or(0.0));
+    const bool has_axis = !info.report.axis.empty();
+    const bool log_axis = has_axis && rows.front() > 0.0 &&
+                          info.find_parameter(info.report.axis)->kind != ParameterKind::integer;
+    std::vector<double> ye;
+    if (!has_axis) {
+      ye = {0.0, 1.0};
+    } else if (log_axis) {
+      std::vector<double> logs;
+      for (double r : rows) logs.push_back(std::log10(r));
+      const double step = logs.size() > 1 ? logs[1] - logs[0] : 1.0;
+      for (double e : edges(logs, logs.front() - step / 2, logs.back() + step / 2))
+        ye.push_back(std::pow(10.0, e));
+    } else {
+      ye = edges(rows, rows.front() - 0.5, rows.back() + 0.5);
+    }
+    svg::Plot p;
+    p.id = "measured-" + info.name;
+    p.title = fmt::format("{}: measured against the CIE standard skies", info.name);
+    p.x = {0, 90, false, "sun zenith angle θs [deg]", {0, 10, 20, 30, 40, 50, 60, 70, 80, 90}};
+    p.y = has_axis ? svg::Axis{ye.front(), ye.back(), log_axis, info.report.axis, {}}
+                   : one_row_axis();
+    p.width = 760;
+    p.height = has_axis ? 300 : 200;
+    p.legend_outside = true;
+    std::array<int, 4> counts{};
+    static constexpr std::array<const char*, 4> kNames = {"use (≤ 0.5 × neighbour step)",
+                                                          "use with care (≤ 1 ×)", "avoid (> 1 ×)",
+                                                          "outside its domain"};
+    for (std::size_t r = 0; r < values.size(); ++r) {
+      const ModelSpec spec = comparison_spec(info.name, values[r]);
+      for (std::size_t z = 0; z < zen_deg.size(); ++z) {
+        const ComparisonSettings s = one_sun(zen_deg[z]);
+        int cls = 3;
+        if (within_domain(spec, s.sun_zeniths, s.sun_azimuth)) {
+          const RelativeSamples sky = relative_samples(spec, s, grid);
+          int nearest = 1;
+          double best = kInf;
+          for (int t = 1; t <= 15; ++t) {
+            const double rms = relative_log_rms(sky, cie[z][t - 1], grid);
+            if (rms < best) {
+              best = rms;
+              nearest = t;
+            }
+          }
+          std::size_t k = 0;
+          while (nearest > kSkyClasses[k].last_type) ++k;
+          cls = static_cast<int>(trust_verdict(best, neighbour[z][k]));  // use, care, avoid
+        }
+        ++counts[static_cast<std::size_t>(cls)];
+        p.regions.push_back(
+            {xe[z], xe[z + 1], ye[r], ye[r + 1], std::string(kValidityColours[cls])});
+      }
+    }
+    for (std::size_t c = 0; c < counts.size(); ++c)
+      if (counts[c] > 0) p.swatches.push_back({kNames[c], std::string(kValidityColours[c])});
+    html_validity_measured_ += figure(
+        "measured_" + info.name + ".svg", svg::draw(p),
+        fmt::format("{}: at each sun zenith (columns) and value of its {} (rows), the RMS of "
+                    "log<sub>10</sub> between its zenith-normalised sky and the nearest of the "
+                    "15 CIE standard skies, against the median step between neighbouring types "
+                    "of that sky's class at the same sun: the rule of the trust table, per cell. "
+                    "Grey: outside its own domain().",
+                    info.name, has_axis ? info.report.axis : std::string("single sky")));
+    counts_json[info.name] = {{"use", counts[0]},
+                              {"use_with_care", counts[1]},
+                              {"avoid", counts[2]},
+                              {"outside_domain", counts[3]}};
+  }
+  json_["validity_measured"] = counts_json;
 }
 
 std::string ReportWriter::trust_band_text() const {

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -100,8 +101,9 @@ struct Config {
   std::vector<double> fig1_linear_t;            // T range of the linear Fig. 1 view
   // Which model to trust where (section_trust.cpp).
   std::vector<TrustBand> trust_bands;
-  int trust_n_theta, trust_n_phi;  // hemisphere_grid of the comparisons
-  int trust_axis_samples;          // values of a continuous report axis
+  int trust_n_theta, trust_n_phi;                 // hemisphere_grid of the comparisons
+  int trust_axis_samples;                         // values of a continuous report axis
+  std::vector<double> trust_map_sun_zeniths_deg;  // columns of the measured validity maps
 };
 Config make_config(bool quick);
 
@@ -187,6 +189,10 @@ class ReportWriter {
   // which_model_to_trust_where (section_trust.cpp).
   void section_trust();
   std::string trust_band_text() const;  // "low sun 7, 12, mid ..." (the sampled elevations)
+  // The values of a model's report axis the trust table and the measured maps sample.
+  std::vector<std::optional<double>> trust_axis_values(const ModelInfo& info) const;
+  // Section 8's measured maps: the trust rule per (sun zenith, axis value) cell.
+  void measured_validity_maps();
   void section_zenith();
   void fig1_maps();        // the two PNG maps behind Fig. 1
   void zenith_branches();  // the branch summaries of the boundary Yz = 0 (closing note)
@@ -249,7 +255,7 @@ class ReportWriter {
   Json json_;
   // HTML fragments by section.
   std::string html_trust_, html_zenith_, html_rel_, html_abs_, html_match_, html_vertical_,
-      html_illum_, html_scan_, html_validity_, html_findings_;
+      html_illum_, html_scan_, html_validity_, html_validity_measured_, html_findings_;
   // Numbers for the closing note.
   double low_branch_max_sun_zenith_ = kNaN, low_branch_t_at_zenith_ = kNaN;
   double high_branch_t_at_horizon_ = kNaN, high_branch_t_at_zenith_ = kNaN;
