@@ -58,18 +58,19 @@ struct IlluminationFigures {
       gw.push_back(gwv);
       lx_max = std::max(lx_max, h.global_lx());
       if (std::isfinite(gwv)) wm_max = std::max(wm_max, gwv);
+      // A model without a direct sun has no direct and no global value: "n/a", null.
       table.row({m.spec.label, fmt::format("{:g}", e), fmt::format("{:.0f}", h.diffuse_lx),
-                 h.has_sun ? fmt::format("{:.0f}", h.direct_lx) : "no sun",
-                 fmt::format("{:.0f}", h.global_lx()), g3(dwv), h.has_sun ? g3(direct_w) : "no sun",
-                 g3(gwv)});
+                 h.has_sun ? fmt::format("{:.0f}", h.direct_lx) : "n/a",
+                 h.has_sun ? fmt::format("{:.0f}", h.global_lx()) : "n/a", g3(dwv),
+                 h.has_sun ? g3(direct_w) : "n/a", h.has_sun ? g3(gwv) : "n/a"});
       rows.push_back({{"model", m.spec.label},
                       {"sun_elevation_deg", e},
                       {"diffuse_lx", num(h.diffuse_lx)},
                       {"direct_lx", h.has_sun ? num(h.direct_lx) : Json(nullptr)},
-                      {"global_lx", num(h.global_lx())},
+                      {"global_lx", h.has_sun ? num(h.global_lx()) : Json(nullptr)},
                       {"diffuse_w_m2", num(dwv)},
                       {"direct_w_m2", h.has_sun ? num(direct_w) : Json(nullptr)},
-                      {"global_w_m2", num(gwv)}});
+                      {"global_w_m2", h.has_sun ? num(gwv) : Json(nullptr)}});
     }
     lx.series.push_back(svg::line_series(m.spec.label + " diffuse", el, d, m.colour, 1.6));
     if (has_sun)

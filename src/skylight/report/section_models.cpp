@@ -324,13 +324,15 @@ void ReportWriter::vertical_case(int index, double T, double tsd) {
       figure(fmt::format("solar_vertical_{}.svg", index), svg::draw(lum),
              fmt::format("Sky luminance along the solar vertical (sky only, no solar disc) for "
                          "θs = {:g} deg, T = {:.3g} (Zotti Fig. 3: θs = 72 deg, T = "
-                         "1.8). CIE 12 uses the Kittler-Darula typical zenith luminance (the "
-                         "band of zenith luminances is tabulated with the absolute CIE maps).",
+                         "1.8); view zenith angle across, negative on the side opposite the sun; "
+                         "the dashed orange line is the sun's direction. CIE 12 uses the "
+                         "Kittler-Darula typical zenith luminance.",
                          tsd, T));
   html_vertical_ +=
       figure(fmt::format("solar_vertical_{}_ratio.svg", index), svg::draw(ratio),
-             "The same, each model divided by CIE type 12 (Zotti: Preetham is 2-5x too "
-             "bright on the antisolar side at low sun).");
+             "The curves of the figure above, each divided by CIE type 12 (its Kittler-Darula "
+             "typical zenith luminance): 1 means equal, above 1 brighter than CIE 12; the dashed "
+             "orange line is the sun's direction.");
 }
 
 }  // namespace skylight::report::detail

@@ -246,6 +246,25 @@ std::string tick_label(double v) {
   return fmt::format("{:.3g}e{}", m, e);
 }
 
+std::vector<std::string> tick_labels(const std::vector<double>& ticks) {
+  // Fixed notation when every non-zero tick has it in tick_label(), else exponents for all.
+  bool fixed = true;
+  for (double v : ticks)
+    if (v != 0.0 && !(std::abs(v) >= 1e-3 && std::abs(v) < 1e6)) fixed = false;
+  std::vector<std::string> labels;
+  for (double v : ticks) {
+    if (fixed || v == 0.0) {
+      labels.push_back(tick_label(v));
+      continue;
+    }
+    const int e = static_cast<int>(std::floor(std::log10(std::abs(v)) + 1e-12));
+    const double m = v / std::pow(10.0, e);
+    labels.push_back(std::abs(std::abs(m) - 1.0) < 1e-9 ? fmt::format("{}1e{}", v < 0 ? "-" : "", e)
+                                                        : fmt::format("{:.3g}e{}", m, e));
+  }
+  return labels;
+}
+
 // ---- colour bar ------------------------------------------------------------------------------
 
 void draw_colour_bar(Canvas& c, double x, double y, double w, double h, const ColourBar& bar) {
@@ -305,22 +324,27 @@ struct PlotArea {
 // Grid, ticks and axis labels.
 void draw_axes(Canvas& c, const PlotArea& a) {
   const Plot& p = a.p;
-  const auto xt = p.x.ticks.empty() ? auto_ticks(p.x) : p.x.ticks;
-  const auto yt = p.y.ticks.empty() ? auto_ticks(p.y) : p.y.ticks;
+  // The ticks inside the range, labelled in one notation per axis (tick_labels).
+  auto shown = [](const Axis& axis) {
+    std::vector<double> v;
+    for (double t : axis.ticks.empty() ? auto_ticks(axis) : axis.ticks)
+      if (t >= axis.min && t <= axis.max) v.push_back(t);
+    return v;
+  };
+  const auto xt = shown(p.x), yt = shown(p.y);
+  const auto xl = tick_labels(xt), yl = tick_labels(yt);
   const bool grid = p.background_image.empty() && p.regions.empty();
-  for (double v : xt) {
-    if (v < p.x.min || v > p.x.max) continue;
-    const double X = a.px(v);
+  for (std::size_t i = 0; i < xt.size(); ++i) {
+    const double X = a.px(xt[i]);
     if (grid) c.line(X, a.top, X, a.top + a.ph, kGrid, 0.8);
     c.line(X, a.top + a.ph, X, a.top + a.ph + 5, kInk, 1.0);
-    c.text(X, a.top + a.ph + 18, tick_label(v), 11, "middle");
+    c.text(X, a.top + a.ph + 18, xl[i], 11, "middle");
   }
-  for (double v : yt) {
-    if (v < p.y.min || v > p.y.max) continue;
-    const double Y = a.py(v);
+  for (std::size_t i = 0; i < yt.size(); ++i) {
+    const double Y = a.py(yt[i]);
     if (grid) c.line(a.left, Y, a.left + a.pw, Y, kGrid, 0.8);
     c.line(a.left - 5, Y, a.left, Y, kInk, 1.0);
-    c.text(a.left - 8, Y + 4, tick_label(v), 11, "end");
+    c.text(a.left - 8, Y + 4, yl[i], 11, "end");
   }
   c.text(a.left + a.pw / 2, p.height - 8, p.x.label, 12, "middle");
   c.text(16, a.top + a.ph / 2, p.y.label, 12, "middle", -90);

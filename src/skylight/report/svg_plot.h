@@ -81,6 +81,9 @@ struct Axis {
 std::vector<double> auto_ticks(const Axis& axis, int target = 6);
 // Tick label: shortest of fixed or exponent notation that shows the value to 3 digits.
 std::string tick_label(double value);
+// The labels of one axis's ticks in one notation: tick_label() when every non-zero tick is shown
+// in fixed notation, else exponents for all ("1e2", "1e3", "1e4", "2.5e6"; 0 stays "0").
+std::vector<std::string> tick_labels(const std::vector<double>& ticks);
 
 enum class Marker { none, circle };
 

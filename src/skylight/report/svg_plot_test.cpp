@@ -67,6 +67,11 @@ TEST(SvgTicks, Labels) {
   EXPECT_EQ(tick_label(125000.0), "125000");
   EXPECT_EQ(tick_label(1e6), "1e6");
   EXPECT_EQ(tick_label(2e-5), "2e-5");
+  // One notation per axis: a decade axis reaching 1e6 writes every tick as an exponent.
+  EXPECT_EQ(tick_labels({100, 1000, 1e4, 1e5, 1e6}),
+            (std::vector<std::string>{"1e2", "1e3", "1e4", "1e5", "1e6"}));
+  EXPECT_EQ(tick_labels({0, 2.5e6, 5e6}), (std::vector<std::string>{"0", "2.5e6", "5e6"}));
+  EXPECT_EQ(tick_labels({0.5, 1, 2, 5}), (std::vector<std::string>{"0.5", "1", "2", "5"}));
 }
 
 TEST(SvgPlot, DocumentIsWellFormedAndListsItsImages) {
