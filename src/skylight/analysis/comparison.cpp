@@ -379,6 +379,51 @@ RegionRatio region_ratio(const ModelSpec& a, const ModelSpec& b, double sun_zeni
   return r;
 }
 
+ColourDifference colour_difference(const ModelSpec& a, const ModelSpec& b,
+                                   const ComparisonSettings& settings, const HemisphereGrid& grid) {
+  auto uv = [](const Xyz& c) {
+    const double d = c.X + 15.0 * c.Y + 3.0 * c.Z;
+    return std::array<double, 2>{4.0 * c.X / d, 9.0 * c.Y / d};
+  };
+  std::vector<std::pair<double, double>> duv;  // (distance, solid angle)
+  double sw = 0.0, sd = 0.0;
+  for (double ts : settings.sun_zeniths) {
+    const auto ma = make_model(a, ts, settings.sun_azimuth);
+    const auto mb = make_model(b, ts, settings.sun_azimuth);
+    const Vec3 sun = ma->sun().direction();
+    for (std::size_t i = 0; i < grid.directions.size(); ++i) {
+      const Vec3 v = grid.directions[i];
+      if (angle_between(v, sun) < settings.sun_exclusion) continue;
+      const Xyz ca = ma->tristimulus(v), cb = mb->tristimulus(v);
+      if (!(ca.Y > 0.0) || !(cb.Y > 0.0) || !std::isfinite(ca.Y) || !std::isfinite(cb.Y)) continue;
+      const auto pa = uv(ca), pb = uv(cb);
+      const double w = grid.solid_angle[i];
+      duv.emplace_back(std::hypot(pa[0] - pb[0], pa[1] - pb[1]), w);
+      const double d = std::log10(ca.Y / cb.Y);
+      sw += w;
+      sd += w * d * d;
+    }
+  }
+  if (duv.empty()) return {kNaN, kNaN, kNaN, 0};
+  ColourDifference r;
+  r.directions = duv.size();
+  double mean = 0.0;
+  for (const auto& [d, w] : duv) mean += w * d;
+  r.mean_duv = mean / sw;
+  std::sort(duv.begin(), duv.end());
+  double acc = 0.0;
+  r.p95_duv = duv.back().first;
+  for (const auto& [d, w] : duv) {
+    acc += w;
+    if (acc >= 0.95 * sw) {
+      r.p95_duv = d;
+      break;
+    }
+  }
+  r.rms_log10 = std::sqrt(sd / sw);
+  return r;
+}
+
 LuminanceReadings luminance_readings(const ModelSpec& a, const ModelSpec& b,
                                      const ComparisonSettings& settings,
                                      const HemisphereGrid& grid) {

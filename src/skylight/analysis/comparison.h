@@ -87,6 +87,18 @@ struct LuminanceRatio {
 };
 LuminanceRatio absolute_luminance_ratio(const RelativeSamples& a, const RelativeSamples& b,
                                         const HemisphereGrid& grid);
+// Colour and level of `a` against a reference `b` (the physical atmosphere) over the sky at the
+// sun zeniths of the settings (directions within the sun exclusion left out, and those where
+// either luminance is not positive): the solid-angle-weighted mean and 95th percentile of the
+// CIE 1976 chromaticity distance |(u', v')_a - (u', v')_b|, and the RMS of log10(Y_a / Y_b).
+// NaN everywhere when no direction counts.
+struct ColourDifference {
+  double mean_duv = 0.0, p95_duv = 0.0, rms_log10 = 0.0;
+  std::size_t directions = 0;
+};
+ColourDifference colour_difference(const ModelSpec& a, const ModelSpec& b,
+                                   const ComparisonSettings& settings, const HemisphereGrid& grid);
+
 // Four readings of "a is k times as bright as b" (Zotti's absolute comparisons), each per sun
 // zenith of the samples as a / b, then min, max and geometric mean over the sun zeniths:
 // `geometric_mean`: the solid-angle-weighted geometric mean over the directions

@@ -152,6 +152,30 @@ TEST(LuminanceReadings, EveryReadingOfAScaledSkyIsTheScale) {
   }
 }
 
+// A sky against itself differs by nothing; a grey sky (CIE, D65 white) against the same sky at
+// twice its zenith luminance by nothing in colour and log10(2) in level; a coloured sky against
+// a grey one by a positive distance.
+TEST(ColourDifference, IsZeroForTheSameSkyAndTheLevelForAScaledOne) {
+  const HemisphereGrid grid = hemisphere_grid(8, 32);
+  ComparisonSettings s;
+  s.sun_zeniths = {40 * kDegree};
+  const ModelSpec cie = comparison_spec(CieSkyModel::kName, 12);
+  const ColourDifference same = colour_difference(cie, cie, s, grid);
+  EXPECT_NEAR(same.mean_duv, 0.0, 1e-15);
+  EXPECT_NEAR(same.rms_log10, 0.0, 1e-15);
+  ModelSpec twice = cie;
+  twice.params.values.set(
+      "zenith-luminance",
+      2.0 * make_model(cie, s.sun_zeniths[0], s.sun_azimuth)->tristimulus({0, 0, 1}).Y);
+  const ColourDifference level = colour_difference(twice, cie, s, grid);
+  EXPECT_NEAR(level.mean_duv, 0.0, 1e-12);
+  EXPECT_NEAR(level.rms_log10, std::log10(2.0), 1e-12);
+  const ColourDifference coloured =
+      colour_difference(comparison_spec(PreethamModel::kName, 3), cie, s, grid);
+  EXPECT_GT(coloured.mean_duv, 0.001);
+  EXPECT_GE(coloured.p95_duv, coloured.mean_duv);
+}
+
 TEST(RegionRatio, AntisolarHalfMatchesADirectRecomputation) {
   const HemisphereGrid grid = hemisphere_grid(6, 24);
   const double ts = deg_to_rad(70.0), T = 2.4;

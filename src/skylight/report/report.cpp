@@ -111,6 +111,9 @@ Config make_config(bool quick) {
     c.trust_n_phi = 96;
     c.trust_axis_samples = 24;
     c.trust_map_sun_zeniths_deg = {10, 15, 20, 25, 30, 35, 40, 45, 50, 55, 60, 65, 70, 75, 80, 85};
+    c.twilight_band = {"twilight", -6, 0, {-1, -3, -5}};
+    c.colour_n_theta = 12;
+    c.colour_n_phi = 48;
   } else {
     c.trust_bands = {
         {"low sun", 5, 15, {10}}, {"mid sun", 15, 45, {30}}, {"high sun", 45, 80, {60}}};
@@ -118,6 +121,9 @@ Config make_config(bool quick) {
     c.trust_n_phi = 48;
     c.trust_axis_samples = 8;
     c.trust_map_sun_zeniths_deg = {30, 60, 80};
+    c.twilight_band = {"twilight", -6, 0, {-3}};
+    c.colour_n_theta = 6;
+    c.colour_n_phi = 24;
     c.fit_per_sun_zeniths_deg = {30, 80};
     c.zone_sun_zeniths_deg = {60, 85};
     c.pair_sun_zeniths_deg = {30, 60};
@@ -394,6 +400,7 @@ ReportSummary ReportWriter::run() {
   section_measurements();
   step("measurements");
   section_trust();
+  physical_atmosphere_table();
   section_zenith();
   step("Preetham zenith luminance (Fig. 1)");
   section_maps();

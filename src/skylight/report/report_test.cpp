@@ -157,6 +157,27 @@ TEST_F(ReportFiles, TrustTableJudgesEveryRegisteredModelByItsPrintedRule) {
     }
   }
   EXPECT_GE(judged, 5u);
+  // Colour and twilight against the physical atmosphere: every judged model a row of 4 bands
+  // (twilight first); luminance-only models not judged on colour; verdicts by the colour rule.
+  const auto& physical = j["which_model_to_trust_where"]["against_physical_atmosphere"];
+  for (const ModelInfo& info : model_registry()) {
+    if (info.report.title.empty()) continue;
+    SCOPED_TRACE(info.name);
+    const auto& cells = physical["models"][info.name];
+    ASSERT_EQ(cells.size(), 4u);
+    EXPECT_EQ(cells[0]["band"], "twilight");
+    for (std::size_t b = 1; b < cells.size(); ++b) {
+      const auto& c = cells[b];
+      if (c["verdict"] == "reference") continue;
+      if (info.luminance_only) {
+        EXPECT_EQ(c["verdict"], "not judged");
+        continue;
+      }
+      if (!c.contains("mean_duv")) continue;  // outside its domain
+      EXPECT_EQ(c["verdict"],
+                detail::trust_verdict_name(detail::colour_verdict(c["mean_duv"].get<double>())));
+    }
+  }
   // Section 8's measured maps: one per judged model but the reference, every cell counted.
   ASSERT_TRUE(j.contains("validity_measured"));
   for (const ModelInfo& info : model_registry()) {
@@ -205,6 +226,11 @@ TEST(ReportTrust, VerdictRuleFailsOnPlantedCounterExamples) {
   EXPECT_EQ(detail::trust_verdict(std::nan(""), 0.1), TrustVerdict::avoid);
   EXPECT_EQ(detail::trust_verdict(0.01, std::nan("")), TrustVerdict::avoid);
   EXPECT_EQ(detail::trust_verdict_name(TrustVerdict::care), "use with care");
+  EXPECT_EQ(detail::colour_verdict(0.005), TrustVerdict::use);
+  EXPECT_EQ(detail::colour_verdict(0.0051), TrustVerdict::care);
+  EXPECT_EQ(detail::colour_verdict(0.02), TrustVerdict::care);
+  EXPECT_EQ(detail::colour_verdict(0.0201), TrustVerdict::avoid);
+  EXPECT_EQ(detail::colour_verdict(std::nan("")), TrustVerdict::avoid);
 }
 
 TEST_F(ReportFiles, ZottiFindingsInJsonMatchTheSummaryAndTheHtml) {

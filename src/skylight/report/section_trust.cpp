@@ -8,6 +8,7 @@
 
 #include "skylight/core/error.h"
 #include "skylight/models/cie_sky.h"
+#include "skylight/models/nishita.h"
 #include "skylight/report/detail/writer.h"
 
 namespace skylight::report::detail {
@@ -70,6 +71,12 @@ std::string trust_verdict_name(TrustVerdict v) {
   return "not judged";
 }
 
+TrustVerdict colour_verdict(double mean_duv) {
+  if (!std::isfinite(mean_duv)) return TrustVerdict::avoid;
+  if (mean_duv <= kColourUseDuv) return TrustVerdict::use;
+  return mean_duv <= kColourCareDuv ? TrustVerdict::care : TrustVerdict::avoid;
+}
+
 TrustVerdict trust_verdict(double best_rms, double neighbour_rms) {
   if (!std::isfinite(best_rms) || !std::isfinite(neighbour_rms)) return TrustVerdict::avoid;
   if (best_rms <= kTrustUseFraction * neighbour_rms) return TrustVerdict::use;
@@ -105,6 +112,9 @@ void ReportWriter::section_trust() {
     }
   }
 
+  trust_min_neighbour_step_ = kInf;
+  for (const auto& n : neighbour)
+    for (double v : n) trust_min_neighbour_step_ = std::min(trust_min_neighbour_step_, v);
   Json models = Json::array();
   std::vector<std::string> headers = {"model", "sky class"};
   for (const TrustBand& band : cfg_.trust_bands)
@@ -302,6 +312,111 @@ void ReportWriter::section_trust() {
        fmt::format("use: best RMS <= {:g} x neighbour RMS; use with care: <= {:g} x; else avoid",
                    kTrustUseFraction, kTrustCareFraction)},
       {"models", models}};
+}
+
+void ReportWriter::physical_atmosphere_table() {
+  const std::string reference(NishitaModel::kName);
+  const HemisphereGrid grid = hemisphere_grid(cfg_.colour_n_theta, cfg_.colour_n_phi);
+  std::vector<TrustBand> bands = cfg_.trust_bands;
+  bands.insert(bands.begin(), cfg_.twilight_band);
+  // The luminance rule of the twilight cells: the smallest neighbour step between CIE types at
+  // the lowest band above the horizon (the CIE skies themselves end at the horizon).
+  const double step = trust_min_neighbour_step_;
+  std::vector<std::string> headers = {"model"};
+  for (const TrustBand& band : bands)
+    headers.push_back(
+        fmt::format("{}<br/>{:g}–{:g}°", band.name, band.elevation_lo_deg, band.elevation_hi_deg));
+  HtmlTable table(headers, {true});
+  Json out = Json::object();
+  for (const ModelInfo& info : model_registry()) {
+    if (info.report.title.empty()) continue;
+    std::vector<std::string> row = {fmt::format("<code>{}</code>", info.name)};
+    Json cells = Json::array();
+    for (std::size_t b = 0; b < bands.size(); ++b) {
+      const TrustBand& band = bands[b];
+      const bool twilight = b == 0;
+      ComparisonSettings s = cfg_.comparison;
+      s.sun_zeniths.clear();
+      for (double e : band.sun_elevations_deg) s.sun_zeniths.push_back((90.0 - e) * kDegree);
+      if (info.name == reference) {
+        row.push_back("reference");
+        cells.push_back({{"band", band.name}, {"verdict", "reference"}});
+        continue;
+      }
+      if (!twilight && info.luminance_only) {
+        row.push_back("n/a<br/><small>grey by design (luminance only)</small>");
+        cells.push_back(
+            {{"band", band.name}, {"verdict", "not judged"}, {"reason", "luminance only"}});
+        continue;
+      }
+      // The model's sky closest to the reference (in colour; at twilight in luminance).
+      ColourDifference best{kNaN, kNaN, kNaN, 0};
+      std::string best_label;
+      for (const auto& v : trust_axis_values(info)) {
+        const ModelSpec spec = comparison_spec(info.name, v);
+        if (!within_domain(spec, s.sun_zeniths, s.sun_azimuth)) continue;
+        const ColourDifference d = colour_difference(spec, comparison_spec(reference), s, grid);
+        const double key = twilight ? d.rms_log10 : d.mean_duv;
+        const double best_key = twilight ? best.rms_log10 : best.mean_duv;
+        if (std::isfinite(key) && !(key >= best_key)) {
+          best = d;
+          best_label = spec.label;
+        }
+      }
+      if (best_label.empty()) {
+        row.push_back(twilight ? "n/a<br/><small>undefined with the sun below the horizon</small>"
+                               : "<span class=\"verdict-avoid\">avoid</span><br/><small>outside "
+                                 "its domain</small>");
+        cells.push_back({{"band", band.name},
+                         {"verdict", twilight ? "not judged" : "avoid"},
+                         {"reason", twilight ? "undefined below the horizon" : "outside domain"}});
+        continue;
+      }
+      TrustVerdict verdict =
+          twilight ? trust_verdict(best.rms_log10, step) : colour_verdict(best.mean_duv);
+      if (twilight && !info.luminance_only)  // the worse of luminance and colour
+        verdict = std::max(verdict, colour_verdict(best.mean_duv));
+      row.push_back(
+          fmt::format("<span class=\"verdict-{}\">{}</span><br/><small>Δu′v′ {} (p95 {}), RMS "
+                      "log<sub>10</sub> Y {} · {}</small>",
+                      verdict_class(verdict), trust_verdict_name(verdict),
+                      info.luminance_only ? "n/a" : fmt::format("{:.4f}", best.mean_duv),
+                      info.luminance_only ? "n/a" : fmt::format("{:.4f}", best.p95_duv),
+                      rms_text(best.rms_log10), best_label));
+      cells.push_back({{"band", band.name},
+                       {"sun_elevation_deg", {band.elevation_lo_deg, band.elevation_hi_deg}},
+                       {"best_sky", best_label},
+                       {"mean_duv", info.luminance_only ? Json(nullptr) : num(best.mean_duv)},
+                       {"p95_duv", info.luminance_only ? Json(nullptr) : num(best.p95_duv)},
+                       {"rms_log10_luminance", num(best.rms_log10)},
+                       {"verdict", trust_verdict_name(verdict)}});
+    }
+    table.row(row);
+    out[info.name] = cells;
+  }
+  html_trust_ += fmt::format(
+      "<h3 id=\"trust-physical\">Colour and twilight against the physical atmosphere</h3>\n<p>"
+      "Each model's sky closest to <code>{}</code> (its report title: the physical atmosphere; "
+      "single scattering until multiple scattering lands) over its parameter values within its "
+      "domain, on a {} × {} grid, {:g}° around the sun left out. Colour: the solid-angle-weighted "
+      "mean CIE 1976 chromaticity distance Δu′v′; <b>rule</b>: <i>use</i> up to {:g} (about "
+      "the size of MacAdam's just-noticeable ellipses in u′v′), <i>use with care</i> up to {:g}, "
+      "else <i>avoid</i>; a model that gives luminance only is not judged on colour. Twilight "
+      "(sun {} deg): the RMS of log<sub>10</sub> of the luminance, with the rule of the tables "
+      "above against the smallest neighbour step between CIE types above the horizon ({}), and "
+      "the worse of that and the colour verdict; a model undefined below the horizon says "
+      "so.</p>\n{}",
+      reference, cfg_.colour_n_theta, cfg_.colour_n_phi, cfg_.comparison.sun_exclusion / kDegree,
+      kColourUseDuv, kColourCareDuv, degrees_list(cfg_.twilight_band.sun_elevations_deg),
+      rms_text(step), table.html());
+  json_["which_model_to_trust_where"]["against_physical_atmosphere"] = {
+      {"reference", reference},
+      {"colour_rule", fmt::format("use: mean du'v' <= {:g}; use with care: <= {:g}; else avoid",
+                                  kColourUseDuv, kColourCareDuv)},
+      {"twilight_rule",
+       fmt::format("luminance RMS log10 against {} x / {} x the smallest CIE neighbour step {}",
+                   kTrustUseFraction, kTrustCareFraction, rms_text(step))},
+      {"models", out}};
 }
 
 std::vector<std::optional<double>> ReportWriter::trust_axis_values(const ModelInfo& info) const {

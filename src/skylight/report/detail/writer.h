@@ -69,6 +69,11 @@ struct TrustBand {
 enum class TrustVerdict { use, care, avoid, reference, not_judged };
 inline constexpr double kTrustUseFraction = 0.5, kTrustCareFraction = 1.0;
 TrustVerdict trust_verdict(double best_rms, double neighbour_rms);
+// Colour against the physical atmosphere: the mean CIE 1976 chromaticity distance du'v' up to
+// kColourUseDuv (about the size of MacAdam's just-noticeable ellipses in u'v') is "use", up to
+// kColourCareDuv "use with care", beyond "avoid".
+inline constexpr double kColourUseDuv = 0.005, kColourCareDuv = 0.02;
+TrustVerdict colour_verdict(double mean_duv);
 std::string trust_verdict_name(TrustVerdict v);
 
 // Everything that the quick (test) report reduces.
@@ -104,6 +109,8 @@ struct Config {
   int trust_n_theta, trust_n_phi;                 // hemisphere_grid of the comparisons
   int trust_axis_samples;                         // values of a continuous report axis
   std::vector<double> trust_map_sun_zeniths_deg;  // columns of the measured validity maps
+  TrustBand twilight_band;                        // the sun below the horizon
+  int colour_n_theta, colour_n_phi;               // grid of the colour comparison
 };
 Config make_config(bool quick);
 
@@ -193,6 +200,8 @@ class ReportWriter {
   std::vector<std::optional<double>> trust_axis_values(const ModelInfo& info) const;
   // Section 8's measured maps: the trust rule per (sun zenith, axis value) cell.
   void measured_validity_maps();
+  // The trust table's second part: colour and twilight against the physical atmosphere.
+  void physical_atmosphere_table();
   void section_zenith();
   void fig1_maps();        // the two PNG maps behind Fig. 1
   void zenith_branches();  // the branch summaries of the boundary Yz = 0 (closing note)
@@ -262,6 +271,7 @@ class ReportWriter {
   std::vector<AntisolarRow> antisolar_;
   std::string scan_best_;
   std::vector<std::string> trust_summary_;  // one line per judged model (section_trust.cpp)
+  double trust_min_neighbour_step_ = kNaN;  // the smallest CIE neighbour step of any band
   std::map<double, RatioBand> pair_bands_;  // Zotti's pairs by Preetham T (section_matching)
   int scan_best_cie_type_ = 0;              // best CIE type for the scan (0: none)
   bool scan_synthetic_ = true;
