@@ -137,9 +137,16 @@ std::string ReportWriter::matching_tables() {
          "the sun positions (min and max over the sun positions in brackets).</p>\n"
          "<h3>Zotti's pairs</h3>\n" +
          pt.html() +
-         "<p>The band of the CIE zenith luminance is tabulated with the absolute CIE "
-         "maps (our derivation from Kittler &amp; Darula's typical parameters; docs/REPORT.md). "
-         "Whether each pair agrees, and why, is in the summary.</p>\n";
+         fmt::format(
+             "<p>Two ratios per pair, both the geometric mean over the sky: the first over "
+             "the sun positions of this section's fits (θs {} deg), the second over Zotti's "
+             "range 15 &lt; θs &lt; 70 (θs {} deg), which his table states and the findings "
+             "use, with the CIE zenith luminance also at the ends of the Kittler–Darula band "
+             "(tabulated with the absolute CIE maps; our derivation from Kittler &amp; Darula's "
+             "typical parameters, docs/REPORT.md). The findings read three more ratios per pair "
+             "(sky maxima, zenith, diffuse illuminance): see <a href=\"#zotti\">Zotti et al.'s "
+             "findings in brief</a>.</p>\n",
+             degrees_list(sun_zeniths_deg(cs)), degrees_list(cfg_.pair_sun_zeniths_deg));
 }
 
 std::string ReportWriter::cie12_fit_html() {
