@@ -63,6 +63,15 @@ TEST(Registry, ReportSourcesAreComparableModels) {
       EXPECT_LT((*r.axis_range)[0], (*r.axis_range)[1]);
       EXPECT_LE((*r.axis_range)[1], p->max);
     }
+    if (!r.truncation.empty()) {
+      EXPECT_FALSE(r.source.empty()) << "a truncation is measured against a source";
+      const ParameterSpec* t = info.find_parameter(r.truncation);
+      ASSERT_NE(t, nullptr);
+      EXPECT_EQ(t->kind, ParameterKind::integer);
+      EXPECT_LE(t->min, r.truncation_range[0]);
+      EXPECT_LE(r.truncation_range[0], r.truncation_range[1]);
+      EXPECT_LE(r.truncation_range[1], t->max);
+    }
     if (r.source.empty()) continue;
     const ModelInfo* source = find_model(r.source);
     ASSERT_NE(source, nullptr);

@@ -179,7 +179,10 @@ ModelInfo ShSkyModel::registry_entry() {
                              .axis_label = "T = ",
                              .colour = "#7f7f7f",
                              .axis_range = std::array<double, 2>{2.5, 6.0},
-                             .source = std::string(PreethamModel::kName)},
+                             .source = std::string(PreethamModel::kName),
+                             // the embedded table's 7 bands (its `bands`)
+                             .truncation = "bands",
+                             .truncation_range = {1, 7}},
   };
 }
 

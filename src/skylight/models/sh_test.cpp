@@ -127,6 +127,7 @@ TEST(ShSky, ReportPolicyMatchesTheEmbeddedTable) {
   ASSERT_TRUE(policy.axis_range.has_value());
   EXPECT_EQ((*policy.axis_range)[0], table.tau_min);
   EXPECT_EQ((*policy.axis_range)[1], table.tau_max);
+  EXPECT_EQ(policy.truncation_range[1], table.bands);
 }
 
 }  // namespace

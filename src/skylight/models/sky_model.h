@@ -269,6 +269,10 @@ struct ReportPolicy {
   // network's training source): the report also judges it against that source, at the same
   // sun and axis value. Empty: none.
   std::string source{};
+  // An integer parameter that truncates the approximation (e.g. SH bands): the report sweeps it
+  // over `truncation_range` against the source. Empty: none.
+  std::string truncation{};
+  std::array<int, 2> truncation_range{};
 };
 
 // Binds the generic values into the model's typed parameters (its schema applies defaults and

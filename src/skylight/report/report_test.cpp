@@ -157,6 +157,15 @@ TEST_F(ReportFiles, TrustTableJudgesEveryRegisteredModelByItsPrintedRule) {
     }
   }
   EXPECT_GE(judged, 5u);
+  // A truncated approximation (SH bands) against its source per truncation value: more bands,
+  // a closer sky (the RMS of the last below that of the first).
+  for (const ModelInfo& info : model_registry()) {
+    if (info.report.truncation.empty()) continue;
+    const auto& rows = j["which_model_to_trust_where"]["truncation"][info.name];
+    ASSERT_EQ(rows.size(), static_cast<std::size_t>(info.report.truncation_range[1] -
+                                                    info.report.truncation_range[0] + 1));
+    EXPECT_LT(rows.back()["rms_log10"].get<double>(), rows.front()["rms_log10"].get<double>());
+  }
   // Colour and twilight against the physical atmosphere: every judged model a row of 4 bands
   // (twilight first); luminance-only models not judged on colour; verdicts by the colour rule.
   const auto& physical = j["which_model_to_trust_where"]["against_physical_atmosphere"];

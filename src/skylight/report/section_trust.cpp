@@ -124,6 +124,7 @@ void ReportWriter::section_trust() {
   std::vector<std::string> source_headers = {"model", "against"};
   source_headers.insert(source_headers.end(), headers.begin() + 2, headers.end());
   HtmlTable source_table(source_headers, {true, true});
+  std::string truncation_html;
   std::string not_judged;
   std::vector<std::string> summary;  // the plain-language summary: one line per judged model
   for (const ModelInfo& info : model_registry()) {
@@ -259,6 +260,7 @@ void ReportWriter::section_trust() {
       }
     }
     if (!source_row.empty()) source_table.row(source_row);
+    if (!info.report.truncation.empty()) truncation_html += truncation_table(info);
     for (auto& r : rows) table.row(r);
     models.push_back(model_json);
     if (by_verdict.count(TrustVerdict::reference) == 0) {
@@ -305,13 +307,15 @@ void ReportWriter::section_trust() {
       cfg_.comparison.sun_exclusion / kDegree, trust_band_text(), kTrustUseFraction,
       kTrustCareFraction, neighbours, table.html(),
       not_judged.empty() ? "" : "<ul>\n" + not_judged + "</ul>\n", kTrustUseFraction,
-      kTrustCareFraction, source_table.html());
+      kTrustCareFraction, source_table.html() + truncation_html);
   trust_summary_ = summary;
   json_["which_model_to_trust_where"] = {
       {"rule",
        fmt::format("use: best RMS <= {:g} x neighbour RMS; use with care: <= {:g} x; else avoid",
                    kTrustUseFraction, kTrustCareFraction)},
       {"models", models}};
+  if (!truncation_json_.empty())
+    json_["which_model_to_trust_where"]["truncation"] = truncation_json_;
 }
 
 void ReportWriter::physical_atmosphere_table() {
@@ -550,6 +554,48 @@ void ReportWriter::measured_validity_maps() {
                               {"outside_domain", counts[3]}};
   }
   json_["validity_measured"] = counts_json;
+}
+
+std::string ReportWriter::truncation_table(const ModelInfo& info) {
+  const HemisphereGrid grid = hemisphere_grid(cfg_.trust_n_theta, cfg_.trust_n_phi);
+  HtmlTable t({info.report.truncation, "median", "p95", "RMS log<sub>10</sub>"});
+  Json rows = Json::array();
+  ComparisonSettings s = cfg_.comparison;
+  s.sun_zeniths.clear();
+  for (const TrustBand& band : cfg_.trust_bands)
+    for (double e : band.sun_elevations_deg) s.sun_zeniths.push_back((90.0 - e) * kDegree);
+  s.n_theta = cfg_.trust_n_theta;
+  s.n_phi = cfg_.trust_n_phi;
+  const auto [first, last] = info.report.truncation_range;
+  for (int n = first; n <= last; ++n) {
+    std::vector<RelativeSamples> own, source;
+    for (const auto& v : trust_axis_values(info)) {
+      ModelSpec spec = comparison_spec(info.name, v);
+      spec.params.values.set(info.report.truncation, static_cast<double>(n));
+      if (!within_domain(spec, s.sun_zeniths, s.sun_azimuth)) continue;
+      own.push_back(relative_samples(spec, s, grid));
+      source.push_back(relative_samples(comparison_spec(info.report.source, v), s, grid));
+    }
+    std::vector<const RelativeSamples*> a, b;
+    for (std::size_t i = 0; i < own.size(); ++i) {
+      a.push_back(&own[i]);
+      b.push_back(&source[i]);
+    }
+    const SourceError e = source_error(a, b, grid);
+    t.row({fmt::format("{}", n), fmt::format("{:.1f} %", 100.0 * e.median),
+           fmt::format("{:.1f} %", 100.0 * e.p95), rms_text(e.rms_log10)});
+    rows.push_back({{info.report.truncation, n},
+                    {"skies", own.size()},
+                    {"relative_error_median", num(e.median)},
+                    {"relative_error_p95", num(e.p95)},
+                    {"rms_log10", num(e.rms_log10)}});
+  }
+  truncation_json_[info.name] = rows;
+  return fmt::format(
+      "<p><code>{}</code> against <code>{}</code> by its {} (the sun elevations of all bands, its "
+      "parameter values within its domain; the measures of the table above): how much of the "
+      "error is the truncation.</p>\n{}",
+      info.name, info.report.source, info.report.truncation, t.html());
 }
 
 std::string ReportWriter::trust_band_text() const {

@@ -202,6 +202,8 @@ class ReportWriter {
   void measured_validity_maps();
   // The trust table's second part: colour and twilight against the physical atmosphere.
   void physical_atmosphere_table();
+  // A model's error against its source for each value of its truncation parameter (SH bands).
+  std::string truncation_table(const ModelInfo& info);
   void section_zenith();
   void fig1_maps();        // the two PNG maps behind Fig. 1
   void zenith_branches();  // the branch summaries of the boundary Yz = 0 (closing note)
@@ -271,7 +273,9 @@ class ReportWriter {
   std::vector<AntisolarRow> antisolar_;
   std::string scan_best_;
   std::vector<std::string> trust_summary_;  // one line per judged model (section_trust.cpp)
-  double trust_min_neighbour_step_ = kNaN;  // the smallest CIE neighbour step of any band
+  double trust_min_neighbour_step_ = kNaN;
+  Json truncation_json_ = Json::object();  // report.json's which_model_to_trust_where.truncation //
+                                           // the smallest CIE neighbour step of any band
   std::map<double, RatioBand> pair_bands_;  // Zotti's pairs by Preetham T (section_matching)
   int scan_best_cie_type_ = 0;              // best CIE type for the scan (0: none)
   bool scan_synthetic_ = true;
