@@ -269,9 +269,8 @@ void ReportWriter::section_trust() {
         for (const auto& regime : by_verdict[v]) t += (t.empty() ? "" : ", ") + regime;
         return t.empty() ? std::string("none") : t;
       };
-      summary.push_back(fmt::format("<b>{}</b>: use for {}; with care for {}; avoid for {}.",
-                                    info.name, list(TrustVerdict::use), list(TrustVerdict::care),
-                                    list(TrustVerdict::avoid)));
+      summary.push_back(fmt::format("<b>{}</b>: use for {}; with care for {}; avoid elsewhere.",
+                                    info.name, list(TrustVerdict::use), list(TrustVerdict::care)));
     }
   }
   step("which model to trust where");
@@ -294,8 +293,9 @@ void ReportWriter::section_trust() {
       "between neighbouring CIE types of the class in the same band (the model reproduces a "
       "standard sky more closely than the standard skies differ from each other); <i>use with "
       "care</i> up to {:g} ×; otherwise <i>avoid</i>. The neighbour steps of this run: {}. The "
-      "distribution only: absolute luminance, colour and twilight are judged in the sections "
-      "below.</p>\n{}{}"
+      "distribution only: colour and twilight are judged in the tables below; absolute luminance "
+      "is compared in sections 3 and 6 without a verdict (the CIE absolute level itself spans "
+      "the Kittler–Darula band).</p>\n{}{}"
       "<h3 id=\"trust-source\">Approximations against their source</h3>\n<p>A model that "
       "approximates another with its default data (its report policy's <code>source</code>: a "
       "trained network, a fitted table) against that model at the same sun and parameter "
