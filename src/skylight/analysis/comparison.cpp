@@ -106,6 +106,17 @@ double relative_log_rms(const RelativeSamples& a, const RelativeSamples& b,
   return sw > 0.0 ? std::sqrt(sd / sw) : kInf;
 }
 
+// The q-quantile of (value, weight) pairs sorted by value, whose weights sum to `total`.
+static double weighted_quantile(const std::vector<std::pair<double, double>>& sorted, double total,
+                                double q) {
+  double acc = 0.0;
+  for (const auto& [v, w] : sorted) {
+    acc += w;
+    if (acc >= q * total) return v;
+  }
+  return sorted.back().first;
+}
+
 SourceError source_error(const std::vector<const RelativeSamples*>& a,
                          const std::vector<const RelativeSamples*>& b, const HemisphereGrid& grid) {
   SKYLIGHT_CHECK(a.size() == b.size(), "source_error: sample sets differ in number");
@@ -130,16 +141,8 @@ SourceError source_error(const std::vector<const RelativeSamples*>& a,
   r.directions = errors.size();
   if (errors.empty()) return {kNaN, kNaN, kNaN, 0};
   std::sort(errors.begin(), errors.end());
-  auto quantile = [&](double q) {
-    double acc = 0.0;
-    for (const auto& [e, w] : errors) {
-      acc += w;
-      if (acc >= q * sw) return e;
-    }
-    return errors.back().first;
-  };
-  r.median = quantile(0.5);
-  r.p95 = quantile(0.95);
+  r.median = weighted_quantile(errors, sw, 0.5);
+  r.p95 = weighted_quantile(errors, sw, 0.95);
   r.rms_log10 = std::sqrt(sd / sw);
   return r;
 }
@@ -411,15 +414,7 @@ ColourDifference colour_difference(const ModelSpec& a, const ModelSpec& b,
   for (const auto& [d, w] : duv) mean += w * d;
   r.mean_duv = mean / sw;
   std::sort(duv.begin(), duv.end());
-  double acc = 0.0;
-  r.p95_duv = duv.back().first;
-  for (const auto& [d, w] : duv) {
-    acc += w;
-    if (acc >= 0.95 * sw) {
-      r.p95_duv = d;
-      break;
-    }
-  }
+  r.p95_duv = weighted_quantile(duv, sw, 0.95);
   r.rms_log10 = std::sqrt(sd / sw);
   return r;
 }

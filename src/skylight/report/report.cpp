@@ -307,7 +307,7 @@ void ReportWriter::write_html_and_json() {
       {"zenith", "1. Preetham's zenith luminance", html_zenith_},
       {"relative-maps", "2. Relative luminance maps (Zotti Figs. 4, 6)", html_rel_},
       {"absolute-maps", "3. Absolute luminance maps (Zotti Figs. 5, 7)", html_abs_},
-      {"cie", "4. Preetham against the CIE general sky", html_match_},
+      {"matching", "4. Preetham against the CIE general sky", html_match_},
       {"vertical", "5. The solar vertical (Zotti Fig. 3)", html_vertical_},
       {"illuminance", "6. Horizontal illuminance and irradiance", html_illum_},
       {"measurements", "7. Measurements", html_scan_},

@@ -53,6 +53,27 @@ bool within_domain(const ModelSpec& spec, const std::vector<double>& sun_zeniths
   return true;
 }
 
+// The standard skies of `settings` (types 1..count) and, per class, the median RMS between
+// neighbouring types (4 steps per class: the upper middle), the rule's yardstick.
+struct StandardSkies {
+  std::vector<RelativeSamples> types;
+  std::array<double, kSkyClasses.size()> neighbour{};
+};
+StandardSkies standard_skies(const ComparisonSettings& settings, const HemisphereGrid& grid,
+                             int count) {
+  StandardSkies r;
+  for (int type = 1; type <= count; ++type)
+    r.types.push_back(relative_samples(comparison_spec(CieSkyModel::kName, type), settings, grid));
+  for (std::size_t k = 0; k < kSkyClasses.size(); ++k) {
+    std::vector<double> steps;
+    for (int t = kSkyClasses[k].first_type; t < kSkyClasses[k].last_type; ++t)
+      steps.push_back(relative_log_rms(r.types[t - 1], r.types[t], grid));
+    std::sort(steps.begin(), steps.end());
+    r.neighbour[k] = steps[steps.size() / 2];
+  }
+  return r;
+}
+
 }  // namespace
 
 std::string trust_verdict_name(TrustVerdict v) {
@@ -100,16 +121,9 @@ void ReportWriter::section_trust() {
   std::vector<std::vector<RelativeSamples>> cie(cfg_.trust_bands.size());
   std::vector<std::array<double, kSkyClasses.size()>> neighbour(cfg_.trust_bands.size());
   for (std::size_t b = 0; b < cfg_.trust_bands.size(); ++b) {
-    const ComparisonSettings s = settings_for(cfg_.trust_bands[b]);
-    for (int type = 1; type <= kCieTypeCount; ++type)
-      cie[b].push_back(relative_samples(comparison_spec(reference, type), s, grid));
-    for (std::size_t k = 0; k < kSkyClasses.size(); ++k) {
-      std::vector<double> steps;
-      for (int t = kSkyClasses[k].first_type; t < kSkyClasses[k].last_type; ++t)
-        steps.push_back(relative_log_rms(cie[b][t - 1], cie[b][t], grid));
-      std::sort(steps.begin(), steps.end());
-      neighbour[b][k] = steps[steps.size() / 2];  // median (4 steps: the upper middle)
-    }
+    StandardSkies sky = standard_skies(settings_for(cfg_.trust_bands[b]), grid, kCieTypeCount);
+    cie[b] = std::move(sky.types);
+    neighbour[b] = sky.neighbour;
   }
 
   trust_min_neighbour_step_ = kInf;
@@ -460,16 +474,9 @@ void ReportWriter::measured_validity_maps() {
     return s;
   };
   for (std::size_t z = 0; z < zen_deg.size(); ++z) {
-    const ComparisonSettings s = one_sun(zen_deg[z]);
-    for (int type = 1; type <= 15; ++type)
-      cie[z].push_back(relative_samples(comparison_spec(reference, type), s, grid));
-    for (std::size_t k = 0; k < kSkyClasses.size(); ++k) {
-      std::vector<double> steps;
-      for (int t = kSkyClasses[k].first_type; t < kSkyClasses[k].last_type; ++t)
-        steps.push_back(relative_log_rms(cie[z][t - 1], cie[z][t], grid));
-      std::sort(steps.begin(), steps.end());
-      neighbour[z][k] = steps[steps.size() / 2];
-    }
+    StandardSkies sky = standard_skies(one_sun(zen_deg[z]), grid, 15);
+    cie[z] = std::move(sky.types);
+    neighbour[z] = sky.neighbour;
   }
   // Cell edges halfway between samples.
   auto edges = [](const std::vector<double>& v, double lo, double hi) {
