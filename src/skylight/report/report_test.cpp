@@ -166,6 +166,15 @@ TEST_F(ReportFiles, TrustTableJudgesEveryRegisteredModelByItsPrintedRule) {
                                                     info.report.truncation_range[0] + 1));
     EXPECT_LT(rows.back()["rms_log10"].get<double>(), rows.front()["rms_log10"].get<double>());
   }
+  // The quantities the table asks for that the report cannot judge say so, with a
+  // reason, in report.json and on the page (a gap is a statement, not a silence).
+  std::vector<std::string> without;
+  for (const auto& q : j["which_model_to_trust_where"]["quantities_without_verdict"]) {
+    without.push_back(q["quantity"]);
+    EXPECT_FALSE(q["reason"].get<std::string>().empty());
+  }
+  EXPECT_EQ(without, (std::vector<std::string>{"absolute illuminance", "spectrum"}));
+  EXPECT_NE(html.find("id=\"trust-not-judged\""), std::string::npos);
   // Colour and twilight against the physical atmosphere: every judged model a row of 4 bands
   // (twilight first); luminance-only models not judged on colour; verdicts by the colour rule.
   const auto& physical = j["which_model_to_trust_where"]["against_physical_atmosphere"];

@@ -308,8 +308,7 @@ void ReportWriter::section_trust() {
       "standard sky more closely than the standard skies differ from each other); <i>use with "
       "care</i> up to {:g} ×; otherwise <i>avoid</i>. The neighbour steps of this run: {}. The "
       "distribution only: colour and twilight are judged in the tables below; absolute luminance "
-      "is compared in sections 3 and 6 without a verdict (the CIE absolute level itself spans "
-      "the Kittler–Darula band).</p>\n{}{}"
+      "and spectrum have no verdict (<a href=\"#trust-not-judged\">why</a>).</p>\n{}{}"
       "<h3 id=\"trust-source\">Approximations against their source</h3>\n<p>A model that "
       "approximates another with its default data (its report policy's <code>source</code>: a "
       "trained network, a fitted table) against that model at the same sun and parameter "
@@ -435,6 +434,29 @@ void ReportWriter::physical_atmosphere_table() {
        fmt::format("luminance RMS log10 against {} x / {} x the smallest CIE neighbour step {}",
                    kTrustUseFraction, kTrustCareFraction, rms_text(step))},
       {"models", out}};
+  // What the tables above cannot judge, and why: printed, and in report.json, so that a
+  // missing verdict is a statement and not a gap.
+  const std::vector<std::pair<std::string, std::string>> without_verdict = {
+      {"absolute illuminance",
+       "no reference the report trusts: the CIE absolute level is the Kittler-Darula typical "
+       "zenith luminance, whose own band spans a factor 3-4 (section 3), and the physical "
+       "atmosphere is single scattering (its diffuse horizontal illuminance is compared with the "
+       "others in section 6); compared without a verdict until a multiple-scattering atmosphere "
+       "is registered"},
+      {"spectrum",
+       "no spectral reference: the CIE standard skies give luminance only and the single-"
+       "scattering atmosphere misses the multiply scattered blue; spectral irradiance is "
+       "compared in section 6 without a verdict, and colour (above) is the spectrum's judged "
+       "projection"}};
+  std::string items;
+  Json json_items = Json::array();
+  for (const auto& [quantity, reason] : without_verdict) {
+    items += fmt::format("<li><b>{}</b>: {}.</li>\n", quantity, reason);
+    json_items.push_back({{"quantity", quantity}, {"reason", reason}});
+  }
+  html_trust_ += fmt::format(
+      "<h3 id=\"trust-not-judged\">Quantities without a verdict</h3>\n<ul>\n{}</ul>\n", items);
+  json_["which_model_to_trust_where"]["quantities_without_verdict"] = std::move(json_items);
 }
 
 std::vector<std::optional<double>> ReportWriter::trust_axis_values(const ModelInfo& info) const {
