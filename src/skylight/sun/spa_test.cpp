@@ -1,5 +1,6 @@
 #include "skylight/sun/spa.h"
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -253,9 +254,9 @@ TEST(Spa, PaperTableA51) {
       {"sunrise", 86400.0 * rts.sunrise.value()},
       {"sunset", 86400.0 * rts.sunset.value()},
   };
-  for (int i = 0; i < 6; ++i) computed["L" + std::to_string(i)] = t.L_terms[i];
-  for (int i = 0; i < 2; ++i) computed["B" + std::to_string(i)] = t.B_terms[i];
-  for (int i = 0; i < 5; ++i) computed["R" + std::to_string(i)] = t.R_terms[i];
+  for (int i = 0; i < 6; ++i) computed[fmt::format("L{}", i)] = t.L_terms[i];
+  for (int i = 0; i < 2; ++i) computed[fmt::format("B{}", i)] = t.B_terms[i];
+  for (int i = 0; i < 5; ++i) computed[fmt::format("R{}", i)] = t.R_terms[i];
   const std::map<std::string, double> special_tol = {{"H", kPaperHTol},
                                                      {"H_prime", kPaperHPrimeTol},
                                                      {"E", kPaperETol},
