@@ -332,6 +332,7 @@ SkyParameters ModelOptions::parameters() const {
     // zenith_deg and azimuth_deg given as flags build the identical sky.
     const sun::SpaResult r = sun::solar_position(*spa);
     p.sun = sun_from_degrees(rad_to_deg(r.zenith), rad_to_deg(r.azimuth));
+    p.day_of_year = sun::day_of_year(spa->time);
   } else {
     const double zenith_deg = given.has("sun-zenith")      ? *given.number("sun-zenith")
                               : given.has("sun-elevation") ? 90.0 - *given.number("sun-elevation")

@@ -1,5 +1,6 @@
 // End-to-end tests of the command line as a whole (exit statuses, global options): real processes,
 // real files.
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -215,8 +216,8 @@ TEST_F(Cli, EveryModelWarnsOfAModelFlagItDoesNotRead) {
             std::holds_alternative<ParameterValue>(spec.default_value))
           foreign = &spec;
     ASSERT_NE(foreign, nullptr) << m.name;
-    args += " " + foreign->flag() + " " +
-            foreign->format(std::get<ParameterValue>(foreign->default_value));
+    args += fmt::format(" {} {}", foreign->flag(),
+                        foreign->format(std::get<ParameterValue>(foreign->default_value)));
     const auto r = run(args, csv);
     EXPECT_EQ(r.status, 0) << args << ": " << r.err;
     EXPECT_NE(r.err.find("skylight: warning: " + foreign->flag() +

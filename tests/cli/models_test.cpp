@@ -1,7 +1,9 @@
 // End-to-end tests of `skylight models`: real processes, real files.
 #include <gtest/gtest.h>
+
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -60,9 +62,13 @@ TEST_F(Cli, ModelsJsonHasTypedDefaultsFromTheSchema) {
       } else if (p["default"].is_null()) {
         EXPECT_TRUE(p["when_absent"].is_string());
       } else {
-        // A flag's default is a boolean (sh's --no-ringing-filter: false).
+        // A flag's default is a boolean (sh's --no-ringing-filter: false); a choice's is one of
+        // its choices (perez's --compat: papers).
+        const bool choice =
+            p.contains("choices") && p["default"].is_string() &&
+            std::find(p["choices"].begin(), p["choices"].end(), p["default"]) != p["choices"].end();
         EXPECT_TRUE(p["default"].is_number() || p["default"].is_array() ||
-                    (p["kind"] == "flag" && p["default"].is_boolean()))
+                    (p["kind"] == "flag" && p["default"].is_boolean()) || choice)
             << p.dump();
       }
     }

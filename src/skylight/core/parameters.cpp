@@ -75,6 +75,10 @@ std::string ParameterSpec::metadata_key() const {
   if (unit == "DU") return key + "_DU";
   if (unit == "nm") return key + "_nm";
   if (unit == "px") return key + "_px";
+  if (unit == "W/m^2") return key + "_W_m2";
+  if (unit == "lx") return key + "_lx";
+  if (unit == "degC") return key + "_degC";
+  if (unit == "cm") return key + "_cm";
   return key;  // "1" (dimensionless) and text
 }
 

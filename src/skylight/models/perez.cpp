@@ -21,7 +21,7 @@ const ParameterSchema<PerezParameters>& PerezParameters::schema() {
          .min = -kPerezCoefficientLimit,
          .max = kPerezCoefficientLimit,
          .count = 5,
-         .default_value = Required{},
+         .default_value = Absent{"from --dni/--dhi (or their illuminances)"},
          .description = "coefficients A,B,C,D,E of F = (1 + A e^{B/cos theta})(1 + C e^{D gamma} "
                         "+ E cos^2 gamma)"});
     s.optional_number(&PerezParameters::zenith_luminance,
@@ -29,24 +29,120 @@ const ParameterSchema<PerezParameters>& PerezParameters::schema() {
                        .unit = "cd/m^2",
                        .min = kMinZenithLuminance,
                        .max = kMaxZenithLuminance,
-                       .default_value = Required{},
+                       .default_value = Absent{"required with --perez; from irradiance the diffuse "
+                                               "horizontal illuminance sets the level"},
                        .description = "absolute zenith luminance Lz"});
+    const auto light = [&](std::optional<double> PerezParameters::*field, const char* name,
+                           const char* unit, double max, const char* what) {
+      s.optional_number(field, {.name = name,
+                                .unit = unit,
+                                .min = 0.0,
+                                .max = max,
+                                .default_value = Absent{"the sky from --perez"},
+                                .description = what});
+    };
+    light(
+        &PerezParameters::dni, "dni", "W/m^2", kMaxIrradianceInput,
+        "direct normal irradiance: the all-weather sky from irradiance (Perez et al. 1990, 1993)");
+    light(&PerezParameters::dhi, "dhi", "W/m^2", kMaxIrradianceInput,
+          "diffuse horizontal irradiance (with --dni)");
+    light(&PerezParameters::dni_illuminance, "dni-illuminance", "lx", kMaxIlluminanceInput,
+          "direct normal illuminance: the all-weather sky from illuminance");
+    light(&PerezParameters::dhi_illuminance, "dhi-illuminance", "lx", kMaxIlluminanceInput,
+          "diffuse horizontal illuminance (with --dni-illuminance)");
+    s.optional_integer(&PerezParameters::day_of_year,
+                       {.name = "day-of-year",
+                        .unit = "1",
+                        .min = 1,
+                        .max = 366,
+                        .default_value = Absent{"the date of --time"},
+                        .description = "day of the year (extraterrestrial irradiance) of a sky "
+                                       "from irradiance"});
+    s.optional_number(&PerezParameters::dew_point,
+                      {.name = "dew-point",
+                       .unit = "degC",
+                       .min = -70.0,
+                       .max = 70.0,
+                       .default_value = Absent{"precipitable water 2 cm"},
+                       .description = "surface dew point: the precipitable water of the efficacy "
+                                      "models (Perez et al. 1990 eq. 3)"});
+    s.optional_number(&PerezParameters::precipitable_water,
+                      {.name = "precipitable-water",
+                       .unit = "cm",
+                       .min = 0.0,
+                       .max = 20.0,
+                       .default_value = Absent{"from --dew-point, else 2 cm"},
+                       .description = "precipitable water of the efficacy models"});
+    s.choice(&PerezParameters::compat,
+             {.name = "compat",
+              .default_value = ParameterValue(std::string("papers")),
+              .description = "a sky from irradiance as the papers define it, or as Radiance's "
+                             "gendaylit computes it (docs/DAYLIGHT.md)"},
+             {{"papers", PerezCompat::papers}, {"radiance", PerezCompat::radiance}});
     return s;
   }();
   return s;
 }
 
+namespace {
+
+// The all-weather sky of irradiance parameters (models/perez_allweather.h).
+PerezSky irradiance_sky_of(const PerezParameters& p) {
+  if (p.coefficients || p.zenith_luminance)
+    throw InvalidArgument(
+        fmt::format("{} / {} and {} / {} are two ways to give the Perez sky: give one",
+                    spelled("perez"), spelled("zenith-luminance"), spelled("dni"), spelled("dhi")));
+  if (!p.day_of_year)
+    throw InvalidArgument(fmt::format("a Perez sky from irradiance needs the date: {} or --time",
+                                      spelled("day-of-year")));
+  PerezIrradianceInput in;
+  in.sun = p.sun;
+  in.dni_w_m2 = p.dni;
+  in.dhi_w_m2 = p.dhi;
+  in.dni_lux = p.dni_illuminance;
+  in.dhi_lux = p.dhi_illuminance;
+  in.day_of_year = *p.day_of_year;
+  in.dew_point_c = p.dew_point;
+  in.precipitable_water_cm = p.precipitable_water;
+  in.compat = p.compat;
+  return perez_sky_from_irradiance(in);
+}
+
+}  // namespace
+
 PerezModel::PerezModel(const PerezParameters& p) : SkyModel(p.sun), params_(p) {
   PerezParameters::schema().validate(p, model_context(kName));
-  const auto& k = *p.coefficients;
   sun_up_ = p.sun.zenith <= 0.5 * kPi;
+  std::array<double, 5> k{};
+  double zenith_luminance = 0.0;
+  SunPosition sky_sun = p.sun;
+  if (p.from_irradiance()) {
+    sky_ = irradiance_sky_of(p);
+    sky_sun = sky_->sun;
+    k = sky_->coefficients;
+    zenith_luminance = sky_->zenith_luminance_cd_m2;
+    if (sky_->dark) {
+      sun_up_ = false;
+      k = {0.0, 0.0, 0.0, 0.0, 0.0};
+    }
+  } else {
+    if (!p.coefficients)
+      throw InvalidArgument(fmt::format(
+          "model 'perez' needs {} A,B,C,D,E with {}, or {} and {} (or their illuminances)",
+          spelled("perez"), spelled("zenith-luminance"), spelled("dni"), spelled("dhi")));
+    if (!p.zenith_luminance)
+      throw InvalidArgument(
+          fmt::format("model 'perez': {} needs {}", spelled("perez"), spelled("zenith-luminance")));
+    k = *p.coefficients;
+    zenith_luminance = *p.zenith_luminance;
+  }
   const PerezCoefficients c{k[0], k[1], k[2], k[3], k[4], 1.0};
-  const double f0 = perez_function(c, 1.0, p.sun.zenith);
+  const double f0 = perez_function(c, 1.0, sky_sun.zenith);
   if (sun_up_ && !(f0 > 0.0)) {
     throw InvalidArgument(fmt::format(
         "perez coefficients {},{},{},{},{} give F(zenith) = {} <= 0 at sun zenith {} deg: the "
         "relative distribution cannot be normalised",
-        k[0], k[1], k[2], k[3], k[4], f0, rad_to_deg(p.sun.zenith)));
+        k[0], k[1], k[2], k[3], k[4], f0, rad_to_deg(sky_sun.zenith)));
   }
   // Bounds of |F|'s two factors over the sky (with the kernel's clamps): the float batch path
   // multiplies them, so each must stay far inside the float range, and so must Lz F / F(0, ts).
@@ -58,23 +154,31 @@ PerezModel::PerezModel(const PerezParameters& p) : SkyModel(p.sun), params_(p) {
       std::abs(c.C) *
           std::max(1.0, std::exp(std::clamp(c.D * kPi, -kPerezMaxExponent, kPerezMaxExponent))) +
       std::abs(c.E);
-  const double max_luminance = sun_up_ ? *p.zenith_luminance / f0 * grad_bound * ind_bound : 0.0;
+  const double max_luminance = sun_up_ ? zenith_luminance / f0 * grad_bound * ind_bound : 0.0;
   if (grad_bound > kPerezMaxFactor || ind_bound > kPerezMaxFactor ||
       !(max_luminance <= kPerezMaxLuminance))
     throw InvalidArgument(fmt::format(
         "{} {},{},{},{},{} with {} {} overflows: F's factors reach {:.3g} (gradation) and {:.3g} "
         "(indicatrix), the luminance up to {:.3g} cd/m^2 (limits {:g} and {:g})",
         spelled("perez"), k[0], k[1], k[2], k[3], k[4], spelled("zenith-luminance"),
-        *p.zenith_luminance, grad_bound, ind_bound, max_luminance, kPerezMaxFactor,
+        zenith_luminance, grad_bound, ind_bound, max_luminance, kPerezMaxFactor,
         kPerezMaxLuminance));
   distribution_.mode = PerezDistribution::Mode::luminance;
   distribution_.coefficients[0] = c;
-  distribution_.sun = p.sun.direction();
-  distribution_.scale[0] = sun_up_ ? *p.zenith_luminance / f0 : 0.0;
+  distribution_.sun = sky_sun.direction();
+  distribution_.scale[0] = sun_up_ ? zenith_luminance / f0 : 0.0;
 }
 
 ParameterValues PerezModel::parameter_values() const {
-  return PerezParameters::schema().values_of(params_);
+  ParameterValues v = PerezParameters::schema().values_of(params_);
+  // What this sky does not read is left out (the CLI warns about a flag given but not read).
+  if (!params_.from_irradiance()) {
+    for (const char* name : {"day-of-year", "dew-point", "precipitable-water", "compat"})
+      v.erase(name);
+  } else if (params_.precipitable_water) {
+    v.erase("dew-point");
+  }
+  return v;
 }
 
 Xyz PerezModel::tristimulus(Vec3 view) const {
@@ -87,15 +191,37 @@ void PerezModel::tristimulus_batch(const DirectionsSoA& dirs, const XyzSoA& out)
 
 Domain PerezModel::domain() const {
   Domain d;
+  if (sky_) {
+    // compat radiance's adjustments, and why a sky from irradiance is dark.
+    for (const std::string& note : sky_->notes)
+      d.issues.push_back({params_.compat == PerezCompat::radiance ? "compat" : "dhi",
+                          sky_->dark ? Validity::undefined : Validity::extrapolated, note});
+    if (sky_->dark) return d;
+    const double horizontal = sky_->extraterrestrial_w_m2 * std::cos(sky_->sun.zenith);
+    if (sky_->dhi_w_m2 > horizontal)
+      d.issues.push_back({"dhi", Validity::unphysical,
+                          fmt::format("the diffuse horizontal irradiance {:.4g} W/m^2 exceeds the "
+                                      "extraterrestrial horizontal irradiance {:.4g} W/m^2",
+                                      sky_->dhi_w_m2, horizontal)});
+    if (params_.compat == PerezCompat::papers &&
+        (sky_->epsilon >= kRadianceClearnessMax || sky_->delta < kRadianceBrightnessMin ||
+         sky_->delta > kRadianceBrightnessMax))
+      d.issues.push_back(
+          {"dhi", Validity::extrapolated,
+           fmt::format("epsilon {:.4g}, delta {:.4g}: outside the range the 1993 coefficients "
+                       "were fitted over (epsilon < 12, delta 0.01 .. 0.6)",
+                       sky_->epsilon, sky_->delta)});
+  }
   if (!sun_up_) {
-    d.issues.push_back(
-        {"sun_zenith", Validity::undefined,
-         "sun below the horizon: the Perez distribution describes daylight; sky is 0"});
+    if (!sky_)
+      d.issues.push_back(
+          {"sun_zenith", Validity::undefined,
+           "sun below the horizon: the Perez distribution describes daylight; sky is 0"});
     return d;
   }
   // F's sign is set by (1 + A e^{B/cos}) at the horizon and (1 + C e^{D gamma} + E cos^2) across
   // gamma; check both factors over their ranges.
-  const auto& k = *params_.coefficients;
+  const auto k = sky_ ? sky_->coefficients : *params_.coefficients;
   const PerezCoefficients c{k[0], k[1], k[2], k[3], k[4], 1.0};
   double min_grad = 1e300, min_ind = 1e300;
   for (int i = 0; i <= 90; ++i) {
@@ -116,12 +242,20 @@ ModelInfo PerezModel::registry_entry() {
   return ModelInfo{
       .name = std::string(kName),
       .description =
-          "Perez all-weather relative luminance (Perez et al. 1993) with user coefficients A..E",
+          "Perez all-weather sky (Perez et al. 1993): user coefficients A..E, or from "
+          "direct and diffuse irradiance (Perez et al. 1990)",
       .output = "luminance Y [cd/m^2] = Lz F(theta,gamma)/F(0,theta_s); XYZ at D65 chromaticity",
       .parameters = PerezParameters::schema().specs(),
-      .domain = "any coefficients that keep F > 0; sun above the horizon (below: 0)",
+      .domain =
+          "any coefficients that keep F > 0; from irradiance: epsilon < 12, delta 0.01 .. "
+          "0.6 (the 1993 fit); sun above the horizon (below: 0)",
       .luminance_only = true,
-      .make = model_factory<PerezModel, PerezParameters>(),
+      // The date of --time gives the day of the year when --day-of-year is not given.
+      .make = [](const SkyParameters& sp) -> std::unique_ptr<SkyModel> {
+        PerezParameters p = bind_parameters<PerezParameters>(sp, kName);
+        if (!p.day_of_year && sp.day_of_year) p.day_of_year = sp.day_of_year;
+        return std::make_unique<PerezModel>(p);
+      },
       // A clear sky: the CIE S 011 type 12 gradation and indicatrix coefficients as A..E.
       .example = ParameterValues()
                      .set("perez", std::vector<double>{-1.0, -0.32, 10.0, -3.0, 0.45})

@@ -7,6 +7,7 @@
 #include <array>
 #include <optional>
 
+#include "skylight/models/perez_allweather.h"
 #include "skylight/models/perez_kernel.h"
 #include "skylight/models/sky_model.h"
 
@@ -20,21 +21,39 @@ inline constexpr double kPerezCoefficientLimit = 50.0;
 // (1e18^2 = 1e36 < FLT_MAX = 3.4e38) and outputs must stay finite.
 inline constexpr double kPerezMaxFactor = 1e18;
 inline constexpr double kPerezMaxLuminance = 1e30;
+// Accepted irradiance [W/m^2] and illuminance [lx] inputs; the physical bounds (the
+// extraterrestrial irradiance of the day) are checked by the sky (models/perez_allweather.h).
+inline constexpr double kMaxIrradianceInput = 2000.0;
+inline constexpr double kMaxIlluminanceInput = 250000.0;
 
-// Parameters of the `perez` model (both required).
+// Parameters of the `perez` model: either the coefficients and the zenith luminance (direct use),
+// or the irradiance (or illuminance) from which the all-weather sky follows
+// (models/perez_allweather.h).
 struct PerezParameters {
   SunPosition sun;
   // --perez A,B,C,D,E: the coefficients [1], each in [-kPerezCoefficientLimit, +limit].
   std::optional<std::array<double, 5>> coefficients;
   // --zenith-luminance: absolute zenith luminance Lz [cd/m^2], [kMinZenithLuminance, kMax...].
   std::optional<double> zenith_luminance;
+  // --dni, --dhi [W/m^2] or --dni-illuminance, --dhi-illuminance [lx].
+  std::optional<double> dni, dhi, dni_illuminance, dhi_illuminance;
+  // --day-of-year (1..366), or the date of --time.
+  std::optional<int> day_of_year;
+  // --dew-point [degC] or --precipitable-water [cm] (the efficacy models' water).
+  std::optional<double> dew_point, precipitable_water;
+  // --compat papers|radiance.
+  PerezCompat compat = PerezCompat::papers;
 
+  // The sky is given by irradiance or illuminance (not by coefficients).
+  bool from_irradiance() const { return dni || dhi || dni_illuminance || dhi_illuminance; }
   static const ParameterSchema<PerezParameters>& schema();
 };
 
 // The `perez` model: luminance only; XYZ with the D65 chromaticity (0.3127, 0.3290), so rgb() is
-// neutral. Views below the horizon and a sun below the horizon: 0. Negative F (possible with
-// arbitrary coefficients) is returned as 0 and reported by domain().
+// neutral. From irradiance, the sky is the all-weather distribution normalised to the diffuse
+// horizontal illuminance (L = normalisation * lv). Views below the horizon and a sun below the
+// horizon: 0. Negative F (possible with arbitrary coefficients) is returned as 0 and reported by
+// domain().
 class PerezModel final : public SkyModel {
  public:
   explicit PerezModel(const PerezParameters& params);
@@ -44,6 +63,8 @@ class PerezModel final : public SkyModel {
 
   std::string_view name() const override { return kName; }
   const PerezParameters& parameters() const { return params_; }
+  // The all-weather sky when the parameters give irradiance or illuminance (else nullopt).
+  const std::optional<PerezSky>& irradiance_sky() const { return sky_; }
   ParameterValues parameter_values() const override;
   Xyz tristimulus(Vec3 view) const override;
   void tristimulus_batch(const DirectionsSoA& dirs, const XyzSoA& out) const override;
@@ -51,6 +72,7 @@ class PerezModel final : public SkyModel {
 
  private:
   PerezParameters params_;
+  std::optional<PerezSky> sky_;
   bool sun_up_ = true;
   PerezDistribution distribution_;
 };

@@ -51,6 +51,10 @@ inline constexpr double kMaxZenithLuminance = 1e9;
 struct SkyParameters {
   SunPosition sun{kDefaultSunZenithDeg * kDegree, kDefaultSunAzimuthDeg* kDegree};
   ParameterValues values;
+  // The day of the year (1..366) of the date the sun was computed for, when it came from a time
+  // (`--time`): models that depend on the date (the Perez sky from irradiance: the
+  // extraterrestrial irradiance) read it when their own day-of-year parameter is not given.
+  std::optional<int> day_of_year;
 };
 
 // Where a model's result stands for given parameters.

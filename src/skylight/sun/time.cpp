@@ -127,6 +127,14 @@ int days_in_month(int year, int month) {
   return kDays[month - 1];
 }
 
+int day_of_year(const DateTime& t) {
+  int n = t.day;
+  for (int m = 1; m < t.month; ++m) n += days_in_month(t.year, m);
+  // October 1582 lost 10 days in the switch to the Gregorian calendar (days_in_month counts 31).
+  if (t.year == 1582 && (t.month > 10 || (t.month == 10 && t.day >= 15))) n -= 10;
+  return n;
+}
+
 void validate(const DateTime& t, std::string_view name) {
   if (t.year < kMinYear || t.year > kMaxYear) {
     out_of_range(name, "year", std::to_string(t.year), "[-4712, 9999]");

@@ -29,6 +29,9 @@ bool is_leap_year(int year);
 // Days in the month in the calendar in use; 31 for October 1582 (days 5..14 do not exist).
 int days_in_month(int year, int month);
 
+// The day of the year (1 .. 366) of the date as written (local civil date, not UTC's).
+int day_of_year(const DateTime& t);
+
 // Throws InvalidArgument naming the first field that is NaN or out of range (message:
 // "<name>.<field> = <value> is out of range ...").
 void validate(const DateTime& t, std::string_view name = "time");

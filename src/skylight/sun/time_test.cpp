@@ -218,3 +218,21 @@ TEST(DateTimeFields, ValidateNamesTheField) {
 
 }  // namespace
 }  // namespace skylight::sun
+
+namespace skylight::sun {
+namespace {
+
+TEST(DayOfYear, CountsTheLocalDateInTheCalendarInUse) {
+  EXPECT_EQ(day_of_year(parse_iso8601("2023-01-01T00:00:00Z")), 1);
+  EXPECT_EQ(day_of_year(parse_iso8601("2023-12-31T23:59:59Z")), 365);
+  EXPECT_EQ(day_of_year(parse_iso8601("2024-12-31T12:00:00Z")), 366);      // leap year
+  EXPECT_EQ(day_of_year(parse_iso8601("2024-03-01T00:30:00+02:00")), 61);  // the local date
+  EXPECT_EQ(day_of_year(parse_iso8601("1900-03-01T00:00:00Z")), 60);       // not a leap year
+  // 1582: October 5-14 do not exist, so October 15 is day 278, not 288.
+  EXPECT_EQ(day_of_year(parse_iso8601("1582-10-04T00:00:00Z")), 277);
+  EXPECT_EQ(day_of_year(parse_iso8601("1582-10-15T00:00:00Z")), 278);
+  EXPECT_EQ(day_of_year(parse_iso8601("1582-12-31T00:00:00Z")), 355);
+}
+
+}  // namespace
+}  // namespace skylight::sun
