@@ -45,6 +45,7 @@ void add_eval_command(CLI::App& app, Commands& commands);
 void add_bench_command(CLI::App& app, Commands& commands);
 void add_report_command(CLI::App& app, Commands& commands);
 void add_sun_command(CLI::App& app, Commands& commands);
+void add_daylight_command(CLI::App& app, Commands& commands);
 void add_nn_command(CLI::App& app, Commands& commands);
 void add_estimate_command(CLI::App& app, Commands& commands);
 void add_sh_command(CLI::App& app, Commands& commands);

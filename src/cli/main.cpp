@@ -50,6 +50,7 @@ int main(int argc, char** argv) {
   cli::add_bench_command(app, commands);
   cli::add_report_command(app, commands);
   cli::add_sun_command(app, commands);
+  cli::add_daylight_command(app, commands);
   cli::add_nn_command(app, commands);
   cli::add_estimate_command(app, commands);
   cli::add_sh_command(app, commands);

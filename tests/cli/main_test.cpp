@@ -96,10 +96,10 @@ TEST_F(Cli, TyposAreNamedWithTheNearestName) {
        "skylight: error: unknown option '--frobnicate' for 'render'"},
       {"--threads 2 rendr",
        "skylight: error: unknown subcommand 'rendr'; did you mean 'render'? (subcommands: models, "
-       "operations, render, eval, bench, report, sun, nn, estimate, sh, haze)"},
+       "operations, render, eval, bench, report, sun, daylight, nn, estimate, sh, haze)"},
       {"frobnicate",
        "skylight: error: unknown subcommand 'frobnicate' (subcommands: models, "
-       "operations, render, eval, bench, report, sun, nn, estimate, sh, haze)"},
+       "operations, render, eval, bench, report, sun, daylight, nn, estimate, sh, haze)"},
       {"nn trian --samples 10",
        "skylight: error: unknown subcommand 'trian' for 'nn'; did you mean 'train'? (subcommands: "
        "train, validate, export, animate, study, planet)"},

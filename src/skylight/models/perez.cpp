@@ -10,6 +10,60 @@
 
 namespace skylight {
 
+namespace {
+
+// The parameters of a sky from irradiance (shared by the model and `skylight daylight`).
+void add_irradiance_entries(ParameterSchema<PerezParameters>& s) {
+  const auto light = [&](std::optional<double> PerezParameters::*field, const char* name,
+                         const char* unit, double max, const char* what) {
+    s.optional_number(field, {.name = name,
+                              .unit = unit,
+                              .min = 0.0,
+                              .max = max,
+                              .default_value = Absent{"the sky from --perez"},
+                              .description = what});
+  };
+  light(&PerezParameters::dni, "dni", "W/m^2", kMaxIrradianceInput,
+        "direct normal irradiance: the all-weather sky from irradiance (Perez et al. 1990, 1993)");
+  light(&PerezParameters::dhi, "dhi", "W/m^2", kMaxIrradianceInput,
+        "diffuse horizontal irradiance (with --dni)");
+  light(&PerezParameters::dni_illuminance, "dni-illuminance", "lx", kMaxIlluminanceInput,
+        "direct normal illuminance: the all-weather sky from illuminance");
+  light(&PerezParameters::dhi_illuminance, "dhi-illuminance", "lx", kMaxIlluminanceInput,
+        "diffuse horizontal illuminance (with --dni-illuminance)");
+  s.optional_integer(&PerezParameters::day_of_year,
+                     {.name = "day-of-year",
+                      .unit = "1",
+                      .min = 1,
+                      .max = 366,
+                      .default_value = Absent{"the date of --time"},
+                      .description = "day of the year (extraterrestrial irradiance) of a sky "
+                                     "from irradiance"});
+  s.optional_number(&PerezParameters::dew_point,
+                    {.name = "dew-point",
+                     .unit = "degC",
+                     .min = -70.0,
+                     .max = 70.0,
+                     .default_value = Absent{"precipitable water 2 cm"},
+                     .description = "surface dew point: the precipitable water of the efficacy "
+                                    "models (Perez et al. 1990 eq. 3)"});
+  s.optional_number(&PerezParameters::precipitable_water,
+                    {.name = "precipitable-water",
+                     .unit = "cm",
+                     .min = 0.0,
+                     .max = 20.0,
+                     .default_value = Absent{"from --dew-point, else 2 cm"},
+                     .description = "precipitable water of the efficacy models"});
+  s.choice(&PerezParameters::compat,
+           {.name = "compat",
+            .default_value = ParameterValue(std::string("papers")),
+            .description = "a sky from irradiance as the papers define it, or as Radiance's "
+                           "gendaylit computes it (docs/DAYLIGHT.md)"},
+           {{"papers", PerezCompat::papers}, {"radiance", PerezCompat::radiance}});
+}
+
+}  // namespace
+
 const ParameterSchema<PerezParameters>& PerezParameters::schema() {
   static const auto s = [] {
     ParameterSchema<PerezParameters> s;
@@ -32,53 +86,16 @@ const ParameterSchema<PerezParameters>& PerezParameters::schema() {
                        .default_value = Absent{"required with --perez; from irradiance the diffuse "
                                                "horizontal illuminance sets the level"},
                        .description = "absolute zenith luminance Lz"});
-    const auto light = [&](std::optional<double> PerezParameters::*field, const char* name,
-                           const char* unit, double max, const char* what) {
-      s.optional_number(field, {.name = name,
-                                .unit = unit,
-                                .min = 0.0,
-                                .max = max,
-                                .default_value = Absent{"the sky from --perez"},
-                                .description = what});
-    };
-    light(
-        &PerezParameters::dni, "dni", "W/m^2", kMaxIrradianceInput,
-        "direct normal irradiance: the all-weather sky from irradiance (Perez et al. 1990, 1993)");
-    light(&PerezParameters::dhi, "dhi", "W/m^2", kMaxIrradianceInput,
-          "diffuse horizontal irradiance (with --dni)");
-    light(&PerezParameters::dni_illuminance, "dni-illuminance", "lx", kMaxIlluminanceInput,
-          "direct normal illuminance: the all-weather sky from illuminance");
-    light(&PerezParameters::dhi_illuminance, "dhi-illuminance", "lx", kMaxIlluminanceInput,
-          "diffuse horizontal illuminance (with --dni-illuminance)");
-    s.optional_integer(&PerezParameters::day_of_year,
-                       {.name = "day-of-year",
-                        .unit = "1",
-                        .min = 1,
-                        .max = 366,
-                        .default_value = Absent{"the date of --time"},
-                        .description = "day of the year (extraterrestrial irradiance) of a sky "
-                                       "from irradiance"});
-    s.optional_number(&PerezParameters::dew_point,
-                      {.name = "dew-point",
-                       .unit = "degC",
-                       .min = -70.0,
-                       .max = 70.0,
-                       .default_value = Absent{"precipitable water 2 cm"},
-                       .description = "surface dew point: the precipitable water of the efficacy "
-                                      "models (Perez et al. 1990 eq. 3)"});
-    s.optional_number(&PerezParameters::precipitable_water,
-                      {.name = "precipitable-water",
-                       .unit = "cm",
-                       .min = 0.0,
-                       .max = 20.0,
-                       .default_value = Absent{"from --dew-point, else 2 cm"},
-                       .description = "precipitable water of the efficacy models"});
-    s.choice(&PerezParameters::compat,
-             {.name = "compat",
-              .default_value = ParameterValue(std::string("papers")),
-              .description = "a sky from irradiance as the papers define it, or as Radiance's "
-                             "gendaylit computes it (docs/DAYLIGHT.md)"},
-             {{"papers", PerezCompat::papers}, {"radiance", PerezCompat::radiance}});
+    add_irradiance_entries(s);
+    return s;
+  }();
+  return s;
+}
+
+const ParameterSchema<PerezParameters>& PerezParameters::irradiance_schema() {
+  static const auto s = [] {
+    ParameterSchema<PerezParameters> s;
+    add_irradiance_entries(s);
     return s;
   }();
   return s;

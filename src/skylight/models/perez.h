@@ -47,6 +47,9 @@ struct PerezParameters {
   // The sky is given by irradiance or illuminance (not by coefficients).
   bool from_irradiance() const { return dni || dhi || dni_illuminance || dhi_illuminance; }
   static const ParameterSchema<PerezParameters>& schema();
+  // The irradiance parameters only (--dni .. --compat), for operations that make the sky from
+  // measured light (`skylight daylight`).
+  static const ParameterSchema<PerezParameters>& irradiance_schema();
 };
 
 // The `perez` model: luminance only; XYZ with the D65 chromaticity (0.3127, 0.3290), so rgb() is

@@ -393,6 +393,7 @@ PerezSky perez_sky_from_irradiance(const PerezIrradianceInput& in) {
   s.coefficients = allweather_coefficients(s.bin, zenith, delta_lum, in.compat);
   if (radiance && s.coefficients[1] > 0.0)
     return dark(fmt::format("positive Perez b = {:.4g} (gendaylit: error sky)", s.coefficients[1]));
+  if (!in.normalise) return s;
   s.sky_integral = allweather_sky_integral(s.coefficients, zenith, in.compat);
   if (!(s.sky_integral > 0.0))
     throw InvalidArgument(fmt::format(

@@ -89,6 +89,9 @@ struct PerezIrradianceInput {
   std::optional<double> dew_point_c;            // precipitable water from eq. 3
   std::optional<double> precipitable_water_cm;  // or given
   PerezCompat compat = PerezCompat::papers;
+  // false: stop after the coefficients (sky_integral, normalisation and the zenith luminances
+  // stay 0), for callers that normalise on their own samples (daylight/sky_matrix.h).
+  bool normalise = true;
 };
 
 // The sky the inputs give: L(theta, gamma) = normalisation * lv(theta, gamma) [cd/m^2] above

@@ -6,6 +6,7 @@
 
 #include "skylight/core/camera.h"
 #include "skylight/core/error.h"
+#include "skylight/daylight/daylight.h"
 #include "skylight/estimate/capture.h"
 #include "skylight/estimate/photo.h"
 #include "skylight/fit/luminance_fit.h"
@@ -225,6 +226,15 @@ const std::vector<OperationInfo>& registry() {
                    "the solar position of the NREL SPA (Reda & Andreas 2004) for a time and "
                    "place: topocentric zenith and azimuth, and the day's sunrise, transit, sunset",
                    spa, "sun::SpaResult and sun::SunEvents"});
+    ops.push_back(
+        {"daylight",
+         "the Perez all-weather sky from measured direct and diffuse light (Perez et al. 1990, "
+         "1993): epsilon, delta, the bin, a..e, the zenith luminance and the illuminances; with "
+         "--epw, the annual sky matrix of a weather file (docs/DAYLIGHT.md)",
+         concat({sun_specs("from --time (one sky); from each record (--epw)"),
+                 solar_position_specs("the sun from the angles"),
+                 daylight::DaylightRequest::schema().specs()}),
+         "models::PerezSky, or daylight::SkyMatrix"});
     ops.push_back({"bench",
                    "each model's batch path timed against its scalar loop, with the comparisons "
                    "and workloads its registry entry declares; --estimate, --haze",

@@ -1,0 +1,296 @@
+#include "skylight/daylight/sky_matrix.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <cstring>
+#include <numeric>
+
+#include "skylight/core/error.h"
+#include "skylight/core/math.h"
+#include "skylight/core/numbers.h"
+#include "skylight/sun/spa.h"
+#include "skylight/sun/time.h"
+
+namespace skylight::daylight {
+namespace {
+
+static_assert(std::endian::native == std::endian::little, "the .npy writer writes '<f8'");
+
+// The record range of --hours ("FIRST-LAST", 1-based, inclusive) within `count` records.
+std::pair<std::size_t, std::size_t> hour_range(const std::string& text, std::size_t count) {
+  if (text.empty()) return {1, count};
+  const auto dash = text.find('-');
+  const auto first = dash == std::string::npos
+                         ? std::nullopt
+                         : parse_integer(std::string_view(text).substr(0, dash));
+  const auto last = dash == std::string::npos
+                        ? std::nullopt
+                        : parse_integer(std::string_view(text).substr(dash + 1));
+  if (!first || !last || *first < 1 || *last < *first)
+    throw InvalidArgument(fmt::format("{} '{}' must be FIRST-LAST with 1 <= FIRST <= LAST",
+                                      spelled("hours"), excerpt(text)));
+  if (static_cast<std::size_t>(*last) > count)
+    throw InvalidArgument(fmt::format("{} '{}' goes beyond the file's {} records", spelled("hours"),
+                                      excerpt(text), count));
+  return {static_cast<std::size_t>(*first), static_cast<std::size_t>(*last)};
+}
+
+// The midpoint of an hour-ending record in local standard time (the header's time zone).
+sun::DateTime midpoint(const io::EpwRecord& r, double time_zone_h) {
+  sun::DateTime t;
+  t.year = r.year;
+  t.month = r.month;
+  t.day = r.day;
+  t.hour = r.hour - 1;
+  t.minute = 30;
+  t.utc_offset_minutes = static_cast<int>(std::lround(time_zone_h * 60.0));
+  return t;
+}
+
+}  // namespace
+
+const ParameterSchema<MatrixSettings>& MatrixSettings::schema() {
+  static const auto s = [] {
+    ParameterSchema<MatrixSettings> s;
+    s.text(&MatrixSettings::patches,
+           {.name = "patches",
+            .default_value = ParameterValue(std::string("tregenza")),
+            .description = "sky subdivision: Tregenza's 145 patches or Reinhart's 577 / 2305 "
+                           "(plus the ground)",
+            .choices = {"tregenza", "reinhart2", "reinhart4"}});
+    s.integer(&MatrixSettings::sun_patches,
+              {.name = "sun-patches",
+               .min = 0,
+               .max = 16,
+               .default_value = ParameterValue(4.0),
+               .description = "patches that receive the sun's direct light (the one holding the "
+                              "sun and the next nearest); 0: the sun stays in its own columns"});
+    s.text(&MatrixSettings::hours, {.name = "hours",
+                                    .default_value = Absent{"every record"},
+                                    .description = "records FIRST-LAST of the file (1-based)"});
+    s.optional_number(&MatrixSettings::ground_albedo,
+                      {.name = "ground-albedo",
+                       .unit = "1",
+                       .min = 0.0,
+                       .max = 1.0,
+                       .default_value = Absent{"the record's albedo, else 0.2"},
+                       .description = "reflectance of the ground patch"});
+    s.text(&MatrixSettings::quantity,
+           {.name = "quantity",
+            .default_value = ParameterValue(std::string("radiance")),
+            .description = "patch values: radiance [W m^-2 sr^-1] or luminance [cd/m^2]",
+            .choices = {"radiance", "luminance"}});
+    return s;
+  }();
+  return s;
+}
+
+SkyMatrix sky_matrix(const io::EpwFile& epw, const MatrixSettings& settings,
+                     const std::string& source,
+                     const std::function<void(std::size_t, std::size_t)>& progress) {
+  MatrixSettings::schema().validate(settings, "daylight");
+  auto patches = PatchSet::named(settings.patches);
+  if (!patches)
+    throw InvalidArgument(fmt::format("{} '{}' is not tregenza, reinhart2 or reinhart4",
+                                      spelled("patches"), excerpt(settings.patches)));
+  SkyMatrix m;
+  m.patches = std::move(*patches);
+  m.settings = settings;
+  const std::vector<SkyPatch>& ps = m.patches.patches();
+  const std::size_t n = ps.size();
+  const auto [first, last] = hour_range(settings.hours, epw.records.size());
+  const io::EpwLocation& loc = epw.location;
+  std::vector<double> lv(n, 0.0);
+  for (std::size_t k = first; k <= last; ++k) {
+    const io::EpwRecord& r = epw.records[k - 1];
+    auto fail = [&](const std::string& what) -> InvalidArgument {
+      return InvalidArgument(fmt::format("{} line {}: {}", source, r.line, what));
+    };
+    sun::SpaInput spa;
+    spa.time = midpoint(r, loc.time_zone_h);
+    spa.latitude = deg_to_rad(loc.latitude_deg);
+    spa.longitude = deg_to_rad(loc.longitude_deg);
+    spa.elevation = loc.elevation_m;
+    if (r.pressure_pa) spa.pressure = *r.pressure_pa / 100.0;
+    if (r.dry_bulb_c) spa.temperature = *r.dry_bulb_c;
+    sun::SpaResult sp;
+    try {
+      sun::validate(spa.time, "date");
+      sp = sun::solar_position(spa);
+    } catch (const InvalidArgument& e) {
+      throw fail(e.what());
+    }
+    if (progress) progress(k - first + 1, last - first + 1);
+    if (sp.zenith >= 0.5 * kPi) {
+      ++m.skipped_sun_down;
+      continue;
+    }
+    if (!r.direct_normal_wh_m2 || !r.diffuse_horizontal_wh_m2)
+      throw fail(fmt::format("the sun is up ({:.2f} deg) and the {} radiation is missing",
+                             90.0 - rad_to_deg(sp.zenith),
+                             !r.direct_normal_wh_m2 ? "direct normal" : "diffuse horizontal"));
+    PerezIrradianceInput in;
+    in.sun = {sp.zenith, sp.azimuth};
+    in.dni_w_m2 = *r.direct_normal_wh_m2;
+    in.dhi_w_m2 = *r.diffuse_horizontal_wh_m2;
+    in.day_of_year = sun::day_of_year(spa.time);
+    in.dew_point_c = r.dew_point_c;
+    in.compat = settings.compat;
+    in.normalise = false;
+    PerezSky sky;
+    try {
+      sky = perez_sky_from_irradiance(in);
+    } catch (const InvalidArgument& e) {
+      throw fail(e.what());
+    }
+    MatrixHour h;
+    h.record = k;
+    h.line = r.line;
+    h.month = r.month;
+    h.day = r.day;
+    h.hour = r.hour;
+    h.sun_zenith_deg = rad_to_deg(sp.zenith);
+    h.sun_azimuth_deg = rad_to_deg(sp.azimuth);
+    h.dni_w_m2 = sky.dni_w_m2;
+    h.dhi_w_m2 = sky.dhi_w_m2;
+    h.direct_normal_lux = sky.direct_normal_lux;
+    h.diffuse_horizontal_lux = sky.diffuse_horizontal_lux;
+    h.epsilon = sky.epsilon;
+    h.delta = sky.delta;
+    h.bin = sky.bin;
+    h.measured_diffuse_lux = r.diffuse_horizontal_lux;
+    m.hours.push_back(h);
+    const std::size_t row = m.radiance.size();
+    m.radiance.resize(row + n, 0.0);
+    m.luminance.resize(row + n, 0.0);
+    if (sky.dark) {
+      ++m.dark_hours;
+      continue;
+    }
+    // The sky at the patch centres, normalised on the patches (gendaymtx's normalisation).
+    const Vec3 sun_dir = sky.sun.direction();
+    double sum = 0.0;
+    for (std::size_t i = 1; i < n; ++i) {
+      const Vec3 c = ps[i].centre;
+      lv[i] = std::max(0.0, allweather_relative_luminance(sky.coefficients, std::acos(c.z),
+                                                          angle_between(c, sun_dir)));
+      sum += lv[i] * ps[i].solid_angle * c.z;
+    }
+    if (sum > 0.0) {
+      for (std::size_t i = 1; i < n; ++i) {
+        m.radiance[row + i] = sky.dhi_w_m2 * lv[i] / sum;
+        m.luminance[row + i] = sky.diffuse_horizontal_lux * lv[i] / sum;
+      }
+    }
+    // The ground: a Lambertian reflector of the global horizontal light.
+    const double albedo = settings.ground_albedo.value_or(r.albedo.value_or(kDefaultGroundAlbedo));
+    const double cos_z = std::cos(sp.zenith);
+    m.radiance[row] = albedo * (sky.dhi_w_m2 + sky.dni_w_m2 * cos_z) / kPi;
+    m.luminance[row] = albedo * (sky.diffuse_horizontal_lux + sky.direct_normal_lux * cos_z) / kPi;
+    // The sun in the patch that holds it and the next nearest (weights 1 / (1.002 - cos)).
+    if (settings.sun_patches > 0 && sky.dni_w_m2 > 0.0) {
+      const Vec3 s = SunPosition{sp.zenith, sp.azimuth}.direction();
+      const std::size_t holder = m.patches.find(s);
+      std::vector<std::size_t> order(n - 1);
+      std::iota(order.begin(), order.end(), std::size_t{1});
+      const auto k_sun =
+          std::min<std::size_t>(static_cast<std::size_t>(settings.sun_patches), n - 1);
+      std::partial_sort(order.begin(), order.begin() + static_cast<std::ptrdiff_t>(k_sun),
+                        order.end(), [&](std::size_t a, std::size_t b) {
+                          if ((a == holder) != (b == holder)) return a == holder;
+                          return dot(ps[a].centre, s) > dot(ps[b].centre, s);
+                        });
+      double wsum = 0.0;
+      std::vector<double> w(k_sun);
+      for (std::size_t j = 0; j < k_sun; ++j)
+        wsum += w[j] = 1.0 / (kSunWeightOffset - dot(ps[order[j]].centre, s));
+      for (std::size_t j = 0; j < k_sun; ++j) {
+        const std::size_t i = order[j];
+        m.radiance[row + i] += sky.dni_w_m2 * w[j] / wsum / ps[i].solid_angle;
+        m.luminance[row + i] += sky.direct_normal_lux * w[j] / wsum / ps[i].solid_angle;
+      }
+    }
+  }
+  return m;
+}
+
+const std::vector<std::string>& matrix_hour_columns() {
+  static const std::vector<std::string> c = {"record",
+                                             "month",
+                                             "day",
+                                             "hour",
+                                             "sun_zenith_deg",
+                                             "sun_azimuth_deg",
+                                             "dni_w_m2",
+                                             "dhi_w_m2",
+                                             "direct_normal_lux",
+                                             "diffuse_horizontal_lux",
+                                             "epsilon",
+                                             "delta",
+                                             "bin"};
+  return c;
+}
+
+namespace {
+
+std::vector<double> hour_values(const MatrixHour& h) {
+  return {static_cast<double>(h.record),
+          static_cast<double>(h.month),
+          static_cast<double>(h.day),
+          static_cast<double>(h.hour),
+          h.sun_zenith_deg,
+          h.sun_azimuth_deg,
+          h.dni_w_m2,
+          h.dhi_w_m2,
+          h.direct_normal_lux,
+          h.diffuse_horizontal_lux,
+          h.epsilon,
+          h.delta,
+          static_cast<double>(h.bin)};
+}
+
+}  // namespace
+
+std::string matrix_csv(const SkyMatrix& m) {
+  const bool lum = m.settings.quantity == "luminance";
+  std::string out;
+  for (const auto& c : matrix_hour_columns()) out += c + ",";
+  for (std::size_t i = 0; i < m.patches.size(); ++i)
+    out += fmt::format("p{}{}", i, i + 1 < m.patches.size() ? "," : "\n");
+  for (std::size_t h = 0; h < m.hours.size(); ++h) {
+    for (double v : hour_values(m.hours[h])) out += fmt::format("{},", v);
+    for (std::size_t i = 0; i < m.patches.size(); ++i)
+      out += fmt::format("{:.7g}{}", m.value(h, i, lum), i + 1 < m.patches.size() ? ',' : '\n');
+  }
+  return out;
+}
+
+std::string matrix_npy(const SkyMatrix& m) {
+  const bool lum = m.settings.quantity == "luminance";
+  const std::size_t cols = matrix_hour_columns().size() + m.patches.size();
+  std::string header = fmt::format(
+      "{{'descr': '<f8', 'fortran_order': False, 'shape': ({}, {}), }}", m.hours.size(), cols);
+  // Magic (6) + version (2) + length (2) + header + '\n', padded with spaces to 64 bytes.
+  const std::size_t unpadded = 10 + header.size() + 1;
+  header.append((64 - unpadded % 64) % 64, ' ');
+  header += '\n';
+  std::string out("\x93NUMPY\x01\x00", 8);
+  out += static_cast<char>(header.size() & 0xff);
+  out += static_cast<char>((header.size() >> 8) & 0xff);
+  out += header;
+  auto put = [&](double v) {
+    unsigned char b[8];
+    std::memcpy(b, &v, 8);  // little-endian hosts (the static_assert above)
+    out.append(reinterpret_cast<const char*>(b), 8);
+  };
+  for (std::size_t h = 0; h < m.hours.size(); ++h) {
+    for (double v : hour_values(m.hours[h])) put(v);
+    for (std::size_t i = 0; i < m.patches.size(); ++i) put(m.value(h, i, lum));
+  }
+  return out;
+}
+
+}  // namespace skylight::daylight
