@@ -13,12 +13,15 @@
 // 54, one thread (x 20 for a frame). HazeRetarget1080pPerPixel: the same with a per-pixel airlight
 // at both turbidities (eqs. 12-13 through a 60 deg pinhole, haze/airlight_field.h; built once).
 // `skylight bench --haze` prints frames/s and the ratio.
+// SkyMatrixYear/*: `skylight daylight --epw`'s matrix of the sample year (Tregenza, Reinhart 2305).
 #include <benchmark/benchmark.h>
 
 #include <chrono>
+#include <string>
 #include <vector>
 
 #include "skylight/core/parallel.h"
+#include "skylight/daylight/sky_matrix.h"
 #include "skylight/haze/image_haze.h"
 #include "skylight/models/nishita.h"
 #include "skylight/models/sh.h"
@@ -248,6 +251,20 @@ void HazeRetarget1080pPerPixel(benchmark::State& state) {
       benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
 }
 
+// The annual sky matrix of the sample EPW year (4440 hours with the sun up; daylight/), one
+// thread, file reading and writing left out.
+void SkyMatrixYear(benchmark::State& state, const char* patches) {
+  static const io::EpwFile epw =
+      io::read_epw(std::string(SKYLIGHT_SOURCE_DATA_DIR) + "/weather/synthetic_munich.epw");
+  daylight::MatrixSettings s;
+  s.patches = patches;
+  for (auto _ : state) benchmark::DoNotOptimize(daylight::sky_matrix(epw, s, "sample"));
+  state.counters["hours"] =
+      static_cast<double>(daylight::sky_matrix(epw, s, "sample").hours.size());
+}
+
+BENCHMARK_CAPTURE(SkyMatrixYear, Tregenza, "tregenza")->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(SkyMatrixYear, Reinhart2305, "reinhart4")->Unit(benchmark::kMillisecond);
 BENCHMARK(HazeRetarget1080p)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(HazeRetargetExact)->Unit(benchmark::kMillisecond);
 BENCHMARK(HazeRetarget1080pPerPixel)->Unit(benchmark::kMillisecond)->UseRealTime();

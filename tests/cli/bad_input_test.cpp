@@ -53,6 +53,19 @@ std::string long_channel_list_exr() {
 
 const std::string kDirs = "zenith_deg,azimuth_deg\n0,0\n45,180\n";
 
+// The 8 header lines of an EPW at 48 N, 11 E, UTC+1, and one record (month,day,hour; direct
+// normal and diffuse horizontal radiation as written).
+std::string epw_header() {
+  return "LOCATION,X,,,,0,48,11,1,500\nDESIGN CONDITIONS,0\nTYPICAL/EXTREME PERIODS,0\nGROUND "
+         "TEMPERATURES,0\nHOLIDAYS/DAYLIGHT SAVINGS,No,0,0,0\nCOMMENTS 1,\nCOMMENTS 2,\nDATA "
+         "PERIODS,1,1,Data,Sunday, 1/ 1,12/31\n";
+}
+std::string epw_record(const std::string& date_hour, const std::string& dni,
+                       const std::string& dhi) {
+  return "2019," + date_hour + ",60,x,10,5,60,95000,9999,9999,9999,500," + dni + "," + dhi +
+         ",999999,999999,999999,9999,0,0,0,0,0,0,9,x,999,.999,999,99,999,999,99\n";
+}
+
 std::vector<Case> cases() {
   const std::string e = "skylight: error: ";
   const std::string huge_line = "zenith_deg,azimuth_deg\n" + std::string(1 << 20, '7') + ",0\n";
@@ -115,6 +128,19 @@ std::vector<Case> cases() {
       {"estimate --image IN", "", 1,
        e + "cannot read 'IN': not a valid OpenEXR file: channel list 'channels' does not fill its",
        "y.exr", long_channel_list_exr()},
+      // EPW weather files (issue 32): a bad field, a truncated header, and a record the sky
+      // cannot use; nothing written.
+      {"daylight --epw IN -o OUT.csv", "", 2,
+       e + "IN line 9: field 15 (direct normal radiation) 'x' is not a number", "w.epw",
+       epw_header() + epw_record("6,21,13", "x", "100")},
+      {"daylight --epw IN -o OUT.csv", "", 2,
+       e + "IN line 3: header line 3 must start with 'TYPICAL/EXTREME PERIODS', got 'DATA PERIODS'",
+       "h.epw", "LOCATION,X,,,,0,48,11,1,500\nDESIGN CONDITIONS,0\nDATA PERIODS,1\n"},
+      {"daylight --epw IN -o OUT.npy", "", 2,
+       e + "IN line 9: the sun is up (65.32 deg) and the diffuse horizontal radiation is missing",
+       "m.epw", epw_header() + epw_record("6,21,13", "500", "9999")},
+      {"daylight --dni 1500 --dhi 100 --sun-zenith 30 --day-of-year 1", "", 2,
+       e + "--dni = 1500 W/m^2 exceeds the extraterrestrial irradiance 1414.9 W/m^2 of day 1"},
       // A file name with a newline stays on the message's one line.
       {"haze attenuation --turbidity 3 --distance 5000 --camera-csv IN", "", 2,
        e + "IN line 1: the header must be 'nm,r,g,b'", "cam\nera.csv", "nm,r,g\n380,1,1\n"},

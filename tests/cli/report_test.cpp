@@ -46,6 +46,41 @@ TEST_F(ReportCli, QuickReportWithAScanFile) {
   EXPECT_DOUBLE_EQ(j["measurements"]["sun_elevation_deg"].get<double>(), 40.0);
 }
 
+// A weather file of the user's, with measured diffuse illuminance: section 9 compares with it.
+TEST_F(ReportCli, QuickReportWithAWeatherFile) {
+  const fs::path epw = dir_ / "station.epw";
+  std::ofstream f(epw);
+  f << "LOCATION,X,,,,0,48,11,1,500\nDESIGN CONDITIONS,0\nTYPICAL/EXTREME PERIODS,0\nGROUND "
+       "TEMPERATURES,0\nHOLIDAYS/DAYLIGHT SAVINGS,No,0,0,0\nCOMMENTS 1,\nCOMMENTS 2,\nDATA "
+       "PERIODS,1,1,Data,Sunday, 1/ 1,12/31\n";
+  // June 21, 13:00 (sun up), measured diffuse illuminance 20000 lx.
+  f << "2019,6,21,13,60,x,20,10,60,95000,9999,9999,9999,700,500,150,80000,50000,20000,9999,0,0,0,"
+       "0,0,0,9,x,999,.999,999,99,999,999,99\n";
+  f.close();
+  const fs::path out = dir_ / "report";
+  const Result r =
+      run("report --quick --threads 1 -o '" + out.string() + "' --epw '" + epw.string() + "'");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto j = nlohmann::json::parse(slurp(out / "report.json"));
+  const auto& w = j["daylight_from_weather"];
+  EXPECT_FALSE(w["synthetic"].get<bool>());
+  EXPECT_EQ(w["records"].get<int>(), 1);
+  ASSERT_FALSE(w["sky_vs_measured"].is_null());
+  EXPECT_EQ(w["sky_vs_measured"]["hours"].get<int>(), 1);
+  // The hour's sky gives the efficacy model's illuminance (150 W/m^2 x about 120 lm/W), not the
+  // file's 20000 lx: |sky / measured - 1| is what the section reports.
+  const double rel = w["sky_vs_measured"]["median"].get<double>();
+  EXPECT_GT(rel, 0.0);
+  EXPECT_LT(rel, 0.5);
+  // A bad weather file is a one-line error naming its line, and nothing is written.
+  std::ofstream(epw) << "LOCATION,X\n";
+  const Result bad =
+      run("report --quick -o '" + (dir_ / "r2").string() + "' --epw '" + epw.string() + "'");
+  EXPECT_EQ(bad.status, 2);
+  EXPECT_NE(bad.err.find("line 1: LOCATION needs 10 fields"), std::string::npos) << bad.err;
+  EXPECT_FALSE(fs::exists(dir_ / "r2"));
+}
+
 TEST_F(ReportCli, BadScanIsAUsageErrorNamingLineAndColumn) {
   const fs::path scan = dir_ / "bad.csv";
   std::ofstream(scan) << "# sun_azimuth_deg = 180\n# sun_elevation_deg = 30\n"

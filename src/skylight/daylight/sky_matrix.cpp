@@ -152,6 +152,8 @@ SkyMatrix sky_matrix(const io::EpwFile& epw, const MatrixSettings& settings,
     h.month = r.month;
     h.day = r.day;
     h.hour = r.hour;
+    h.day_of_year = in.day_of_year;
+    h.dew_point_c = r.dew_point_c;
     h.sun_zenith_deg = rad_to_deg(sp.zenith);
     h.sun_azimuth_deg = rad_to_deg(sp.azimuth);
     h.dni_w_m2 = sky.dni_w_m2;

@@ -44,6 +44,8 @@ struct MatrixHour {
   std::size_t record = 0;  // 1-based record of the file
   std::size_t line = 0;    // its line in the file
   int month = 1, day = 1, hour = 1;
+  int day_of_year = 1;
+  std::optional<double> dew_point_c;                   // the record's, when present
   double sun_zenith_deg = 0.0, sun_azimuth_deg = 0.0;  // at the hour's midpoint (SPA)
   double dni_w_m2 = 0.0, dhi_w_m2 = 0.0;
   double direct_normal_lux = 0.0, diffuse_horizontal_lux = 0.0;  // Perez 1990 efficacies

@@ -154,7 +154,10 @@ PerezModel::PerezModel(const PerezParameters& p) : SkyModel(p.sun), params_(p) {
     zenith_luminance = *p.zenith_luminance;
   }
   const PerezCoefficients c{k[0], k[1], k[2], k[3], k[4], 1.0};
-  const double f0 = perez_function(c, 1.0, sky_sun.zenith);
+  // From irradiance the scale is the normalisation itself (F(0, theta_s) may be <= 0 for a low
+  // sun: the fitted coefficients make the zenith dark, and the kernel returns 0 there).
+  const double f0 = sky_ ? 1.0 : perez_function(c, 1.0, sky_sun.zenith);
+  if (sky_) zenith_luminance = sky_->normalisation;
   if (sun_up_ && !(f0 > 0.0)) {
     throw InvalidArgument(fmt::format(
         "perez coefficients {},{},{},{},{} give F(zenith) = {} <= 0 at sun zenith {} deg: the "

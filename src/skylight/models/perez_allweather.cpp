@@ -401,8 +401,10 @@ PerezSky perez_sky_from_irradiance(const PerezIrradianceInput& in) {
         "it cannot be normalised",
         s.epsilon, s.delta, s.sky_integral));
   s.normalisation = s.diffuse_horizontal_lux / s.sky_integral;
+  // Luminance is not negative: where the fitted coefficients make lv < 0 (the zenith with a low
+  // sun in some bins) the sky is 0, as the model evaluates it.
   s.zenith_luminance_cd_m2 =
-      s.normalisation * allweather_relative_luminance(s.coefficients, 0.0, zenith);
+      s.normalisation * std::max(0.0, allweather_relative_luminance(s.coefficients, 0.0, zenith));
   s.zenith_luminance_model_cd_m2 = zenith_luminance_model(s.bin, s.dhi_w_m2, zenith, s.delta);
   return s;
 }

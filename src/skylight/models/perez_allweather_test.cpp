@@ -2,7 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
+#include <optional>
 #include <random>
 
 #include "skylight/core/error.h"
@@ -135,6 +137,27 @@ TEST(PerezAllWeather, SkyIntegratesToTheDiffuseIlluminanceOverRandomInputs) {
   }
 }
 
+TEST(PerezAllWeather, ALowSunWhoseFittedZenithIsDarkStillMakesANormalisedSky) {
+  // With the sun near the horizon some bins' coefficients make lv < 0 at the zenith (found by
+  // the report on the sample year at 88.3 deg): the sky is 0 there, normalised all the same.
+  std::optional<PerezIrradianceInput> found;
+  for (double z = 84.0; z < 89.8 && !found; z += 0.25)
+    for (double dhi = 10.0; dhi <= 200.0 && !found; dhi += 10.0)
+      for (double dni = 0.0; dni <= 600.0 && !found; dni += 25.0) {
+        const auto in = irradiance_input(z, dni, dhi);
+        const PerezSky s = perez_sky_from_irradiance(in);
+        if (!s.dark && allweather_relative_luminance(s.coefficients, 0.0, deg_to_rad(z)) < 0.0)
+          found = in;
+      }
+  ASSERT_TRUE(found.has_value());
+  const PerezModel sky = model_of(*found);
+  const PerezSky& s = *sky.irradiance_sky();
+  EXPECT_EQ(s.zenith_luminance_cd_m2, 0.0);
+  EXPECT_EQ(sky.tristimulus({0.0, 0.0, 1.0}).Y, 0.0);
+  EXPECT_NEAR(horizontal_illuminance(sky) / s.diffuse_horizontal_lux, 1.0, kIntegralTol);
+  EXPECT_EQ(sky.domain().worst(), Validity::unphysical);  // F < 0 somewhere, reported
+}
+
 TEST(PerezAllWeather, ThePapersQuadratureHasConverged) {
   // The normalisation's integral against a midpoint rule 4x finer in both angles.
   for (double z : {5.0, 40.0, 80.0}) {
@@ -214,6 +237,66 @@ TEST(PerezAllWeather, RadianceCompatClampsAndCorrections) {
   const PerezSky over =
       perez_sky_from_irradiance(irradiance_input(40.0, 1400.0, 50.0, 5, PerezCompat::radiance));
   EXPECT_TRUE(over.dark);  // above the 1367 W/m^2 constant
+}
+
+// Published outputs of Radiance's gendaylit with their inputs (the sun from its printed
+// direction, so no solar-position algorithm is involved): a..e are printed with 6 decimals and
+// the normalisation with 4 significant digits.
+struct GendaylitCase {
+  const char* source;
+  double sun_x, sun_y, sun_z;  // the printed sun direction (x east, y north, z up)
+  double dni, dhi;             // -W
+  int day_of_year;
+  std::array<double, 5> abcde;
+  double dhi_over_integral;  // the printed normalisation with -O 1 (0: not checked)
+};
+// Each coefficient printed with %lf (6 decimals) from a sun direction printed with %f.
+constexpr double kGendaylitCoefficientTol = 2e-6;
+// The normalisation printed as %.3e: half a unit of its 4th digit.
+constexpr double kGendaylitNormalisationTol = 5e-4;
+
+TEST(PerezAllWeather, RadianceCompatReproducesPublishedGendaylitOutputs) {
+  const GendaylitCase cases[] = {
+      // PearCoding/Ignis src/tests/units/perez.cpp ("gendaylit 11 18 13 -y 2022 -a +49.235422 -o
+      // -6.9965744 -m 15 -s -W 0.38999998569488525 57.029998779296875 -O 1"): bin 1, eqs. 7-8.
+      {"Ignis test",
+       -0.615494,
+       -0.757725,
+       0.216842,
+       0.38999998569488525,
+       57.029998779296875,
+       322,
+       {0.597123, -0.562370, 0.828195, -0.625727, 0.009207},
+       10.64},
+      // Radiance discourse thread 3454 ("gendaylit 6 1 16 -s -a 44.05 -o -5.05 -m -15 -g 0.2 -W
+      // 76 16"), an older gendaylit: the coefficients only.
+      {"discourse 3454",
+       -0.717104,
+       -0.140157,
+       0.682729,
+       76.0,
+       16.0,
+       152,
+       {-1.278262, -0.168132, 13.163915, -3.484597, 0.260157},
+       0.0},
+  };
+  for (const GendaylitCase& c : cases) {
+    SCOPED_TRACE(c.source);
+    PerezIrradianceInput in;
+    const ZenithAzimuth a = angles_from_direction({c.sun_x, c.sun_y, c.sun_z});
+    in.sun = {a.zenith, a.azimuth};
+    in.dni_w_m2 = c.dni;
+    in.dhi_w_m2 = c.dhi;
+    in.day_of_year = c.day_of_year;
+    in.compat = PerezCompat::radiance;
+    const PerezSky s = perez_sky_from_irradiance(in);
+    ASSERT_FALSE(s.dark);
+    for (int i = 0; i < 5; ++i)
+      EXPECT_NEAR(s.coefficients[i], c.abcde[i], kGendaylitCoefficientTol);
+    if (c.dhi_over_integral > 0.0) {
+      EXPECT_NEAR(c.dhi / s.sky_integral / c.dhi_over_integral, 1.0, kGendaylitNormalisationTol);
+    }
+  }
 }
 
 TEST(PerezAllWeather, InconsistentInputsAreOneLineErrors) {

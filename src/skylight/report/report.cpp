@@ -28,6 +28,16 @@ const ParameterSchema<ReportOptions>& ReportOptions::schema() {
            return o.measurements->string();
          })
         .custom(
+            {.name = "epw",
+             .kind = ParameterKind::text,
+             .default_value = Absent{"the shipped synthetic year"},
+             .description = "EnergyPlus weather file for section 9 (daylight from weather data)"},
+            [](O& o, const ParameterValue& v) { o.epw = std::get<std::string>(v); },
+            [](const O& o) -> std::optional<ParameterValue> {
+              if (!o.epw) return std::nullopt;
+              return o.epw->string();
+            })
+        .custom(
             {.name = "sun-azimuth",
              .unit = "deg",
              .min = -360.0,
@@ -114,6 +124,9 @@ Config make_config(bool quick) {
     c.twilight_band = {"twilight", -6, 0, {-1, -3, -5}};
     c.colour_n_theta = 12;
     c.colour_n_phi = 48;
+    c.weather_stride = 16;
+    c.weather_n_theta = 90;
+    c.weather_n_phi = 180;
   } else {
     c.trust_bands = {
         {"low sun", 5, 15, {10}}, {"mid sun", 15, 45, {30}}, {"high sun", 45, 80, {60}}};
@@ -124,6 +137,9 @@ Config make_config(bool quick) {
     c.twilight_band = {"twilight", -6, 0, {-3}};
     c.colour_n_theta = 6;
     c.colour_n_phi = 24;
+    c.weather_stride = 60;
+    c.weather_n_theta = 45;
+    c.weather_n_phi = 90;
     c.fit_per_sun_zeniths_deg = {30, 80};
     c.zone_sun_zeniths_deg = {60, 85};
     c.pair_sun_zeniths_deg = {30, 60};
@@ -321,6 +337,7 @@ void ReportWriter::write_html_and_json() {
            "extrapolated &lt; unphysical &lt; undefined) over the sun zenith angle and its main "
            "parameter, as the model declares it; sun azimuth 180°.</p>\n" +
            html_validity_},
+      {"weather", "9. Daylight from weather data", html_weather_},
       {"closing", "Closing note: Zotti et al.'s findings, paper against ours",
        "<p>One row per finding (report.json <code>zotti_findings</code>; the summary above is "
        "generated from the same records).</p>\n" +
@@ -378,6 +395,8 @@ ReportSummary ReportWriter::run() {
   if (opt_.measurement_sun_azimuth.has_value() != opt_.measurement_sun_elevation.has_value())
     throw InvalidArgument(
         "report: give both the sun azimuth and elevation of the scan, or neither");
+  // The weather file before anything is written: a bad file fails fast.
+  load_weather();
   // All or nothing: every file goes to a temporary and is renamed into place only when the whole
   // report has been written; a directory this call created is removed again on failure.
   std::error_code ec;
@@ -398,7 +417,8 @@ ReportSummary ReportWriter::run() {
   if (!OutputTransaction::current()) own.emplace();
   // The measurements first: a bad file fails fast, before any work.
   section_measurements();
-  step("measurements");
+  section_daylight();
+  step("measurements and weather file");
   section_trust();
   physical_atmosphere_table();
   section_zenith();

@@ -33,12 +33,14 @@ struct ReportOptions {
   std::optional<std::filesystem::path> measurements;
   // Override the scan's sun position (both or neither), [rad].
   std::optional<double> measurement_sun_azimuth, measurement_sun_elevation;
+  // An EnergyPlus weather file for the daylight section; nullopt: the shipped synthetic year.
+  std::optional<std::filesystem::path> epw;
   // Reduced resolution and fewer sun positions: for tests (a few seconds instead of ~20 s).
   bool quick = false;
   // Progress: step `done` of `total` finished (called on the calling thread).
   std::function<void(int done, int total, std::string_view step)> progress;
 
-  // --measurements, --sun-azimuth, --sun-elevation (degrees; both or neither), --quick.
+  // --measurements, --sun-azimuth, --sun-elevation (degrees; both or neither), --epw, --quick.
   static const ParameterSchema<ReportOptions>& schema();
 };
 

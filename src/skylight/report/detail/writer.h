@@ -9,6 +9,7 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -17,6 +18,8 @@
 #include "skylight/analysis/comparison.h"
 #include "skylight/analysis/illumination.h"
 #include "skylight/analysis/scan.h"
+#include "skylight/daylight/sky_matrix.h"
+#include "skylight/io/epw.h"
 #include "skylight/io/file.h"
 #include "skylight/io/image.h"
 #include "skylight/render/false_colour.h"
@@ -111,6 +114,9 @@ struct Config {
   std::vector<double> trust_map_sun_zeniths_deg;  // columns of the measured validity maps
   TrustBand twilight_band;                        // the sun below the horizon
   int colour_n_theta, colour_n_phi;               // grid of the colour comparison
+  // Daylight from weather data (section_daylight.cpp): every weather_stride-th hour with the sun
+  // up, each sky integrated on a weather_n_theta x weather_n_phi hemisphere grid.
+  int weather_stride, weather_n_theta, weather_n_phi;
 };
 Config make_config(bool quick);
 
@@ -217,6 +223,10 @@ class ReportWriter {
   void vertical_case(int index, double turbidity, double sun_zenith_deg);  // one pair of plots
   void section_illumination();
   void section_measurements();
+  // Section 9: each hour's sky from a weather file against the file's illuminance
+  // (section_daylight.cpp); load_weather reads the file first (weather_, weather_name_).
+  void load_weather();
+  void section_daylight();
   void section_validity();
   // A validity map of one model over the sun zenith (columns) and, with rows, the values of its
   // report axis (ReportPolicy::axis): its rows' y axis and the range the cells span.
@@ -258,7 +268,7 @@ class ReportWriter {
                       const std::string& row_header, const std::string& key,
                       const std::vector<std::string>& row_labels);
 
-  static constexpr int kSteps = 18;
+  static constexpr int kSteps = 18;  // the step() calls of run()
   const ReportOptions& opt_;
   Config cfg_;
   int done_ = 0;
@@ -266,7 +276,8 @@ class ReportWriter {
   Json json_;
   // HTML fragments by section.
   std::string html_trust_, html_zenith_, html_rel_, html_abs_, html_match_, html_vertical_,
-      html_illum_, html_scan_, html_validity_, html_validity_measured_, html_findings_;
+      html_illum_, html_scan_, html_validity_, html_validity_measured_, html_findings_,
+      html_weather_;
   // Numbers for the closing note.
   double low_branch_max_sun_zenith_ = kNaN, low_branch_t_at_zenith_ = kNaN;
   double high_branch_t_at_horizon_ = kNaN, high_branch_t_at_zenith_ = kNaN;
@@ -278,6 +289,9 @@ class ReportWriter {
                                            // the smallest CIE neighbour step of any band
   std::map<double, RatioBand> pair_bands_;  // Zotti's pairs by Preetham T (section_matching)
   int scan_best_cie_type_ = 0;              // best CIE type for the scan (0: none)
+  io::EpwFile weather_;                     // section 9's weather file (load_weather)
+  std::string weather_name_;
+  std::shared_ptr<const daylight::SkyMatrix> weather_matrix_;  // its hours' skies
   bool scan_synthetic_ = true;
   double antisolar_relative_ = kNaN;      // the headline ratio of zenith-normalised values
   double antisolar_zenith_ratio_ = kNaN;  // Preetham Yz / CIE 12 Lz at the headline theta_s
