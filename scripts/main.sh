@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # The main job (README): installs what is missing, builds, and renders the default sky of every
 # model into out/ — float EXR (with metadata), a tone-mapped PNG preview, and a log-luminance
-# false-colour map with legend — as a full-sphere equirect map and an upward fisheye; then writes
-# the validation and comparison report to out/report/ (docs/REPORT.md).
+# false-colour map with legend — as a full-sphere equirect map and an upward fisheye (the Perez
+# sky also from measured irradiance); the annual Tregenza sky matrix of the sample weather year
+# (docs/DAYLIGHT.md); then the validation and comparison report to out/report/ (docs/REPORT.md).
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "$root"
@@ -22,6 +23,7 @@ skies=(
   "hosek_T3|--model hosek --turbidity 3 --albedo 0.3"
   "nishita_earth|--model nishita"
   "perez_clear|--model perez --perez -1,-0.32,10,-3,0.45 --zenith-luminance 5000"
+  "perez_measured|--model perez --dni 600 --dhi 120 --day-of-year 172"
 )
 n=${#skies[@]}; i=0
 for entry in "${skies[@]}"; do
@@ -33,6 +35,8 @@ for entry in "${skies[@]}"; do
   "$sk" render "${flags[@]}" "${sun[@]}" --projection fisheye --width 512 --height 512 \
     -o "$out/${name}_fisheye.exr" --false-colour "$out/${name}_fisheye_false_colour.png"
 done
+echo "[daylight] $out/sky_matrix_tregenza.csv"
+"$sk" daylight --epw data/weather/synthetic_munich.epw --patches tregenza -o "$out/sky_matrix_tregenza.csv"
 echo "[report] $out/report"
 "$sk" report -o "$out/report"
 echo "wrote $(ls "$out" | wc -l) entries to $out; the report: $out/report/index.html"
