@@ -219,13 +219,7 @@ ParameterValues SchemaFlags::values() const {
 }
 
 std::optional<sun::SpaInput> solar_position_input(const ParameterValues& given) {
-  const ParameterValue* time = given.find("time");
-  if (!time) return std::nullopt;
-  sun::SpaInput in;
-  in.time = sun::parse_iso8601(std::get<std::string>(*time));
-  sun::spa_input_schema().bind(given.only(sun::spa_parameter_specs()), in, "--time");
-  sun::validate(in);
-  return in;
+  return operations::solar_position_input(given);
 }
 
 void warn_unread_layout(const ImageOptions& layout, const ParameterValues& given) {
@@ -325,21 +319,7 @@ const ModelInfo& ModelOptions::info() const {
 
 SkyParameters ModelOptions::parameters() const {
   const ModelInfo& m = info();
-  const ParameterValues given = flags_.values();
-  SkyParameters p;
-  if (const auto spa = solar_position_input(given)) {
-    // Through the same degrees as --sun-zenith/--sun-azimuth, so that `skylight sun --json`'s
-    // zenith_deg and azimuth_deg given as flags build the identical sky.
-    const sun::SpaResult r = sun::solar_position(*spa);
-    p.sun = sun_from_degrees(rad_to_deg(r.zenith), rad_to_deg(r.azimuth));
-    p.day_of_year = sun::day_of_year(spa->time);
-  } else {
-    const double zenith_deg = given.has("sun-zenith")      ? *given.number("sun-zenith")
-                              : given.has("sun-elevation") ? 90.0 - *given.number("sun-elevation")
-                                                           : kDefaultSunZenithDeg;
-    p.sun =
-        sun_from_degrees(zenith_deg, given.number("sun-azimuth").value_or(kDefaultSunAzimuthDeg));
-  }
+  ParameterValues given = flags_.values();
   for (const auto& [name, text] : raw_) {
     if (!text) continue;
     const ParameterSpec* spec = m.find_parameter(name);
@@ -347,9 +327,9 @@ SkyParameters ModelOptions::parameters() const {
       warn(fmt::format("--{} is not a parameter of model '{}'; ignored", name, m.name));
       continue;
     }
-    p.values.set(name, spec->parse(*text));
+    given.set(name, spec->parse(*text));
   }
-  return p;
+  return operations::sky_request(m, given).parameters;
 }
 
 std::unique_ptr<SkyModel> ModelOptions::make() const {

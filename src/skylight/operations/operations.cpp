@@ -6,6 +6,7 @@
 
 #include "skylight/core/camera.h"
 #include "skylight/core/error.h"
+#include "skylight/core/math.h"
 #include "skylight/daylight/daylight.h"
 #include "skylight/estimate/capture.h"
 #include "skylight/estimate/photo.h"
@@ -24,6 +25,7 @@
 #include "skylight/report/report.h"
 #include "skylight/sh/irradiance.h"
 #include "skylight/sun/spa.h"
+#include "skylight/sun/time.h"
 
 namespace skylight::operations {
 namespace {
@@ -272,6 +274,65 @@ std::vector<ParameterSpec> select(const OperationInfo& op, const std::vector<std
 std::string markdown(const OperationInfo& op) {
   return fmt::format("<!-- operation {0} -->\n{1}<!-- end operation {0} -->\n", op.name,
                      markdown_table(op.parameters));
+}
+
+std::optional<sun::SpaInput> solar_position_input(const ParameterValues& given) {
+  const ParameterValue* time = given.find("time");
+  if (!time) return std::nullopt;
+  sun::SpaInput in;
+  in.time = sun::parse_iso8601(std::get<std::string>(*time));
+  sun::spa_input_schema().bind(given.only(sun::spa_parameter_specs()), in, spelled("time"));
+  sun::validate(in);
+  return in;
+}
+
+std::vector<std::string> foreign_parameters(const ModelInfo& model, const ParameterValues& given) {
+  const Specs common = model_specs();
+  std::vector<std::string> out;
+  for (const auto& [name, value] : given.all())
+    if (!model.find_parameter(name) &&
+        std::none_of(common.begin(), common.end(),
+                     [&, n = name](const ParameterSpec& s) { return s.name == n; }))
+      out.push_back(name);
+  return out;
+}
+
+SkyRequest sky_request(const ModelInfo& model, const ParameterValues& given) {
+  const std::vector<std::string> foreign = foreign_parameters(model, given);
+  if (!foreign.empty())
+    throw InvalidArgument(
+        fmt::format("{} is not a parameter of model '{}'", spelled(foreign[0]), model.name));
+  SkyRequest r;
+  if (given.has("sun-zenith") && given.has("sun-elevation"))
+    throw InvalidArgument(fmt::format("{} and {} are two ways to give the sun: give one",
+                                      spelled("sun-zenith"), spelled("sun-elevation")));
+  if (given.has("time") &&
+      (given.has("sun-zenith") || given.has("sun-elevation") || given.has("sun-azimuth")))
+    throw InvalidArgument(
+        fmt::format("{} gives the sun: leave out the sun's angles", spelled("time")));
+  r.solar_position = solar_position_input(given);
+  if (r.solar_position) {
+    // Through the same degrees as sun-zenith / sun-azimuth, so that `skylight sun --json`'s
+    // zenith_deg and azimuth_deg given as angles build the identical sky.
+    const sun::SpaResult spa = sun::solar_position(*r.solar_position);
+    r.parameters.sun = sun_from_degrees(rad_to_deg(spa.zenith), rad_to_deg(spa.azimuth));
+    r.parameters.day_of_year = sun::day_of_year(r.solar_position->time);
+  } else {
+    for (const auto& spec : sun::spa_parameter_specs())
+      if (given.has(spec.name))
+        throw InvalidArgument(fmt::format("{} needs {}", spelled(spec.name), spelled("time")));
+    const double zenith_deg = given.has("sun-zenith")      ? *given.number("sun-zenith")
+                              : given.has("sun-elevation") ? 90.0 - *given.number("sun-elevation")
+                                                           : kDefaultSunZenithDeg;
+    r.parameters.sun =
+        sun_from_degrees(zenith_deg, given.number("sun-azimuth").value_or(kDefaultSunAzimuthDeg));
+  }
+  for (const ParameterSpec& spec : model.parameters)
+    if (const ParameterValue* v = given.find(spec.name)) r.parameters.values.set(spec.name, *v);
+  SolarDisc disc;
+  SolarDisc::schema().bind(given.only(SolarDisc::schema().specs()), disc, "solar disc");
+  r.sun_mode = disc.mode;
+  return r;
 }
 
 }  // namespace skylight::operations

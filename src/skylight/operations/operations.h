@@ -6,11 +6,15 @@
 // (models/sky_model.h, `skylight models --json`).
 #pragma once
 
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include "skylight/core/parameters.h"
+#include "skylight/models/evaluation.h"
+#include "skylight/models/sky_model.h"
+#include "skylight/sun/spa.h"
 
 namespace skylight::operations {
 
@@ -40,5 +44,23 @@ ParameterSpec gpu_spec(const std::string& what);
 
 // The operation's parameters as a Markdown table (docs), one table per operation.
 std::string markdown(const OperationInfo& op);
+
+// The SPA input of `time` and the SPA's parameters among `given` (sun::spa_input_schema() binds
+// them; a missing lat/lon throws), nullopt without `time`.
+std::optional<sun::SpaInput> solar_position_input(const ParameterValues& given);
+
+// One sky as a front end asks for it (`render`, `eval`, the Python package's Sky).
+struct SkyRequest {
+  SkyParameters parameters;  // the sun, the model's own values and the day of the year of `time`
+  std::optional<sun::SpaInput> solar_position;  // when the sun came from `time`
+  SunMode sun_mode = SunMode::sky;
+};
+// From named values: model_specs()'s (the sun as `sun-zenith` or `sun-elevation` and
+// `sun-azimuth`, or `time` with the SPA's parameters; `include-sun`, `sun-only`) and the model's
+// own parameters. Names the model does not declare are refused (InvalidArgument naming them), so
+// a front end that only warns removes them first (foreign_parameters).
+SkyRequest sky_request(const ModelInfo& model, const ParameterValues& given);
+// The given names that are neither model_specs()'s nor the model's own.
+std::vector<std::string> foreign_parameters(const ModelInfo& model, const ParameterValues& given);
 
 }  // namespace skylight::operations
