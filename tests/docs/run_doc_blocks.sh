@@ -33,6 +33,8 @@ scratch="$(mktemp -d "${TMPDIR:-/tmp}/skylight_docs.XXXXXX")"
 trap 'rm -rf "$scratch"' EXIT
 mkdir -p "$scratch/build" "$scratch/tmp" "$scratch/parsed"
 ln -s "$cli" "$scratch/build/skylight"
+# The Python package built beside the CLI (SKYLIGHT_PYTHON), for `PYTHONPATH=build/python` blocks.
+[ -d "$(dirname "$cli")/python" ] && ln -s "$(dirname "$cli")/python" "$scratch/build/python"
 # The repository's data/ (committed weights files, tables), read-only for the commands, as in a
 # checkout.
 ln -s "$src/data" "$scratch/data"

@@ -45,6 +45,13 @@ ParameterSpec gpu_spec(const std::string& what);
 // The operation's parameters as a Markdown table (docs), one table per operation.
 std::string markdown(const OperationInfo& op);
 
+// `skylight models --json` and `skylight operations --json` (the Python package's models() and
+// operations()): every model (name, description, output, parameters with unit, kind, range,
+// typed default or `when_absent`, description, choices; domain, spectral, sun, luminance_only,
+// colour) and every operation (name, description, parameters, result), as JSON text.
+std::string models_json();
+std::string operations_json();
+
 // The SPA input of `time` and the SPA's parameters among `given` (sun::spa_input_schema() binds
 // them; a missing lat/lon throws), nullopt without `time`.
 std::optional<sun::SpaInput> solar_position_input(const ParameterValues& given);

@@ -397,6 +397,7 @@ ReportSummary ReportWriter::run() {
         "report: give both the sun azimuth and elevation of the scan, or neither");
   // The weather file before anything is written: a bad file fails fast.
   load_weather();
+  step("weather file");
   // All or nothing: every file goes to a temporary and is renamed into place only when the whole
   // report has been written; a directory this call created is removed again on failure.
   std::error_code ec;

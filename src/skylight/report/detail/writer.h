@@ -268,7 +268,7 @@ class ReportWriter {
                       const std::string& row_header, const std::string& key,
                       const std::vector<std::string>& row_labels);
 
-  static constexpr int kSteps = 18;  // the step() calls of run()
+  static constexpr int kSteps = 19;  // the step() calls of run()
   const ReportOptions& opt_;
   Config cfg_;
   int done_ = 0;

@@ -1,0 +1,194 @@
+"""skylight: daylight sky models, the physical atmosphere and the sky tools of the C++ library.
+
+Every parameter comes from the library's schemas: names, units, ranges and defaults are those of
+``skylight models --json`` (``skylight.models()``), with ``-`` spelled ``_``. A bad value raises
+``skylight.InvalidArgument`` (a ``ValueError``) with the library's message naming the parameter;
+I/O errors raise ``OSError``. docs/PYTHON.md in the repository has the guide.
+"""
+
+import datetime as _dt
+import json as _json
+
+import numpy as _np
+
+from ._skylight import InvalidArgument, __version__
+from . import _skylight
+
+__all__ = ["InvalidArgument", "Sky", "models", "operations", "sun_position", "__version__"]
+
+QUANTITIES = ("rgb", "xyz", "luminance", "spectral")
+
+
+def models():
+    """The registry's models: the same records as ``skylight models --json``."""
+    return _json.loads(_skylight.models_json())
+
+
+def operations():
+    """The library's operations with their parameters: ``skylight operations --json``."""
+    return _json.loads(_skylight.operations_json())
+
+
+def _iso8601(t):
+    """A time as the library parses it: ISO 8601 text, or a timezone-aware datetime."""
+    if isinstance(t, str):
+        return t
+    if isinstance(t, _dt.datetime):
+        if t.tzinfo is None or t.utcoffset() is None:
+            raise InvalidArgument("time: a datetime needs a timezone (tzinfo), e.g. datetime.timezone.utc")
+        return t.isoformat(timespec="microseconds" if t.microsecond else "seconds")
+    raise InvalidArgument(f"time must be ISO 8601 text or a timezone-aware datetime, got {type(t).__name__}")
+
+
+def _parameter_doc(p):
+    unit = f" [{p['unit']}]" if p["unit"] not in ("", "1") else ""
+    if p["kind"] in ("number", "integer", "numbers"):
+        rng = f", {p['min']:g} .. {p['max']:g}"
+    elif p.get("choices"):
+        rng = ", " + "|".join(p["choices"])
+    else:
+        rng = ""
+    if p["required"]:
+        default = "required"
+    elif p["default"] is None:
+        default = f"none ({p['when_absent']})"
+    else:
+        default = repr(p["default"])
+    return f"    {p['name'].replace('-', '_')}{unit}{rng}; default {default}: {p['description']}"
+
+
+def _sky_doc():
+    lines = [
+        "A sky of one registered model.",
+        "",
+        "Sky(model, **parameters): the keyword names are the schema's (``skylight.models()``).",
+        "Common to every model: sun_zenith or sun_elevation, sun_azimuth [deg]; or time (ISO 8601",
+        "text or an aware datetime) with lat, lon [deg] and the SPA's elevation, pressure,",
+        "temperature, delta_t; include_sun / sun_only (models with a solar disc).",
+        "",
+    ]
+    for m in models():
+        lines.append(f"{m['name']}: {m['description']}")
+        for p in m["parameters"]:
+            if p["name"] in ("sun-zenith", "sun-azimuth"):
+                continue
+            lines.append(_parameter_doc(p))
+        lines.append("")
+    return "\n".join(lines)
+
+
+class Sky:
+    __doc__ = _sky_doc()
+
+    def __init__(self, model, **parameters):
+        if "time" in parameters and parameters["time"] is not None:
+            parameters["time"] = _iso8601(parameters["time"])
+        self._sky = _skylight._Sky(model, parameters)
+
+    @property
+    def model(self):
+        """The model's name."""
+        return self._sky.name
+
+    @property
+    def sun_zenith(self):
+        """The sun's zenith angle [deg] the sky was built for."""
+        return self._sky.sun_zenith
+
+    @property
+    def sun_azimuth(self):
+        """The sun's azimuth [deg] from north towards east."""
+        return self._sky.sun_azimuth
+
+    def parameters(self):
+        """The parameters the model read (defaults applied), as ``skylight render`` records them."""
+        return self._sky.parameters()
+
+    def domain(self):
+        """Where the model stands for these parameters: a list of issues (parameter, validity,
+        message, spectral_only); empty when valid."""
+        return self._sky.domain()
+
+    def columns(self, quantity="rgb", wavelengths=None):
+        """The names of the last axis of evaluate()'s result for the quantity."""
+        return self._sky.columns(quantity, _wavelengths(quantity, wavelengths))
+
+    def evaluate(self, zenith_deg, azimuth_deg, quantity="rgb", wavelengths=None, exact=False,
+                 threads=None):
+        """The quantity in the directions given by zenith and azimuth angles [deg] (arrays of any
+        shape, broadcast together): float64 with the quantity's values on the last axis (rgb:
+        linear sRGB; xyz: CIE 1931 XYZ, Y in cd/m^2; luminance: one value; spectral: one per
+        wavelength [nm] of ``wavelengths``, W m^-2 sr^-1 nm^-1). ``exact=True`` takes the
+        per-direction double-precision path of ``skylight eval`` (bit-equal to it); otherwise
+        xyz and luminance of the sky take the batch path (single precision, the models' SIMD
+        kernels; each model's documented error bound). ``threads``: worker threads (default the
+        library's: SKYLIGHT_THREADS or all cores)."""
+        z, a = _np.broadcast_arrays(_np.asarray(zenith_deg, dtype=_np.float64),
+                                    _np.asarray(azimuth_deg, dtype=_np.float64))
+        shape = z.shape
+        out = self._sky.evaluate_angles(_np.ascontiguousarray(z).reshape(-1),
+                                        _np.ascontiguousarray(a).reshape(-1), quantity,
+                                        _wavelengths(quantity, wavelengths), bool(exact),
+                                        _threads(threads))
+        return out.reshape(shape + (out.shape[1],))
+
+    def evaluate_directions(self, v, quantity="rgb", wavelengths=None, exact=False, threads=None):
+        """The quantity in the directions ``v`` of shape (..., 3): x east, y north, z up (any
+        length; normalised), as evaluate()."""
+        v = _np.asarray(v, dtype=_np.float64)
+        if v.ndim < 1 or v.shape[-1] != 3:
+            raise InvalidArgument(f"directions must have shape (..., 3), got {v.shape}")
+        shape = v.shape[:-1]
+        out = self._sky.evaluate_directions(_np.ascontiguousarray(v).reshape(-1, 3), quantity,
+                                            _wavelengths(quantity, wavelengths), bool(exact),
+                                            _threads(threads))
+        return out.reshape(shape + (out.shape[1],))
+
+    def __repr__(self):
+        return (f"skylight.Sky({self.model!r}, sun_zenith={self.sun_zenith:g}, "
+                f"sun_azimuth={self.sun_azimuth:g}, parameters={self.parameters()!r})")
+
+
+def _wavelengths(quantity, wavelengths):
+    if wavelengths is None:
+        return []
+    return [float(w) for w in _np.atleast_1d(_np.asarray(wavelengths, dtype=_np.float64))]
+
+
+def _threads(threads):
+    if threads is None:
+        return 0
+    if isinstance(threads, bool) or int(threads) != threads or not 1 <= int(threads) <= 1024:
+        raise InvalidArgument(f"threads = {threads!r} is not an integer in [1, 1024]")
+    return int(threads)
+
+
+def _epoch_ns(times):
+    """Nanoseconds since 1970-01-01T00:00:00Z of datetime64 values, aware datetimes or ISO text."""
+    a = _np.asarray(times)
+    if a.dtype.kind == "M":
+        return a.astype("datetime64[ns]").astype(_np.int64), a.shape
+    flat = []
+    for t in a.reshape(-1):
+        t = t.item() if hasattr(t, "item") and not isinstance(t, _dt.datetime) else t
+        if isinstance(t, str):
+            t = _dt.datetime.fromisoformat(t.replace("Z", "+00:00"))
+        if not isinstance(t, _dt.datetime) or t.tzinfo is None or t.utcoffset() is None:
+            raise InvalidArgument("times: each time must be numpy datetime64 (UTC), an aware "
+                                  "datetime or ISO 8601 text with an offset")
+        u = t.astimezone(_dt.timezone.utc).replace(tzinfo=None)
+        flat.append(_np.datetime64(u, "ns").astype(_np.int64))
+    return _np.asarray(flat, dtype=_np.int64), a.shape
+
+
+def sun_position(times, lat, lon, **spa):
+    """The NREL SPA (Reda & Andreas 2004) for each time: (zenith, azimuth) [deg], arrays of the
+    times' shape (topocentric, with refraction; azimuth from north towards east).
+
+    ``times``: numpy datetime64 (taken as UTC), timezone-aware datetimes or ISO 8601 text with an
+    offset; ``lat``, ``lon`` [deg]; ``spa``: elevation [m], pressure [mbar], temperature [degC],
+    delta_t [s] and the other parameters of ``skylight sun`` (``skylight.operations()``)."""
+    ns, shape = _epoch_ns(times)
+    out = _skylight.sun_position(_np.ascontiguousarray(ns.reshape(-1)),
+                                 dict(spa, lat=lat, lon=lon))
+    return out[:, 0].reshape(shape), out[:, 1].reshape(shape)

@@ -1,0 +1,392 @@
+// The Python extension `skylight._skylight` (pybind11): a thin adapter over the library's
+// operations. Parameter names, units, ranges and defaults come from the schemas
+// (operations::models_json(), operations::sky_request); messages name parameters as Python spells
+// them (`sun_zenith`, set_parameter_spelling). The pure-Python layer (python/skylight/) adds
+// broadcasting, datetime handling and the docstrings generated from the same schemas.
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "skylight/core/error.h"
+#include "skylight/core/frame.h"
+#include "skylight/core/math.h"
+#include "skylight/core/parallel.h"
+#include "skylight/core/parameters.h"
+#include "skylight/core/text.h"
+#include "skylight/models/evaluation.h"
+#include "skylight/models/sky_model.h"
+#include "skylight/operations/operations.h"
+#include "skylight/sun/spa.h"
+#include "skylight/sun/time.h"
+#include "skylight/version.h"
+
+namespace py = pybind11;
+namespace sl = skylight;
+
+namespace {
+
+// Directions evaluated per parallel_for chunk.
+constexpr std::size_t kChunk = 4096;
+
+std::string python_spelling(std::string_view name) {
+  std::string s(name);
+  for (char& c : s)
+    if (c == '-') c = '_';
+  return s;
+}
+
+std::string schema_name(const std::string& python_name) {
+  std::string s = python_name;
+  for (char& c : s)
+    if (c == '_') c = '-';
+  return s;
+}
+
+double number_of(const sl::ParameterSpec& spec, py::handle v) {
+  if (py::isinstance<py::bool_>(v) ||
+      !(py::isinstance<py::int_>(v) || py::isinstance<py::float_>(v) ||
+        py::hasattr(v, "__float__")) ||
+      py::isinstance<py::str>(v))
+    throw sl::InvalidArgument(
+        fmt::format("{} must be a number, got {}", sl::spelled(spec.name),
+                    py::str(py::type::of(v).attr("__name__")).cast<std::string>()));
+  return py::float_(py::reinterpret_borrow<py::object>(v)).cast<double>();
+}
+
+// A Python value as the spec's kind (the schema then checks the range).
+sl::ParameterValue to_value(const sl::ParameterSpec& spec, py::handle v) {
+  switch (spec.kind) {
+    case sl::ParameterKind::flag:
+      if (!py::isinstance<py::bool_>(v))
+        throw sl::InvalidArgument(fmt::format("{} must be True or False", sl::spelled(spec.name)));
+      return v.cast<bool>();
+    case sl::ParameterKind::text:
+      if (!py::isinstance<py::str>(v))
+        throw sl::InvalidArgument(fmt::format("{} must be a str", sl::spelled(spec.name)));
+      return v.cast<std::string>();
+    case sl::ParameterKind::numbers: {
+      std::vector<double> out;
+      for (py::handle item : py::iter(v)) out.push_back(number_of(spec, item));
+      return out;
+    }
+    case sl::ParameterKind::integer: {
+      const double d = number_of(spec, v);
+      if (d != std::floor(d))
+        throw sl::InvalidArgument(
+            fmt::format("{} must be a whole number, got {}", sl::spelled(spec.name), d));
+      return d;
+    }
+    case sl::ParameterKind::number:
+      break;
+  }
+  return number_of(spec, v);
+}
+
+// The keyword arguments of a sky as named values (the operation's sun and solar-disc specs and
+// the model's own); a name neither declares is an error naming it.
+sl::ParameterValues sky_values(const sl::ModelInfo& info, const py::dict& kwargs) {
+  std::vector<sl::ParameterSpec> specs = sl::operations::model_specs();
+  for (const auto& p : info.parameters) specs.push_back(p);
+  sl::ParameterValues values;
+  for (const auto& [key, value] : kwargs) {
+    const std::string name = schema_name(key.cast<std::string>());
+    const sl::ParameterSpec* spec = nullptr;
+    for (const auto& s : specs)
+      if (s.name == name && s.name != "model") spec = &s;
+    if (spec == nullptr) {
+      std::vector<std::string> known;
+      for (const auto& s : specs)
+        if (s.name != "model") known.push_back(python_spelling(s.name));
+      throw sl::InvalidArgument(fmt::format("{} is not a parameter of model '{}'{}",
+                                            key.cast<std::string>(), info.name,
+                                            sl::did_you_mean(key.cast<std::string>(), known)));
+    }
+    if (value.is_none()) continue;
+    const sl::ParameterValue v = to_value(*spec, value);
+    spec->check(v);
+    values.set(name, v);
+  }
+  return values;
+}
+
+sl::Quantity quantity_of(const std::string& q) {
+  if (q == "rgb") return sl::Quantity::rgb;
+  if (q == "xyz") return sl::Quantity::xyz;
+  if (q == "luminance") return sl::Quantity::luminance;
+  if (q == "spectral") return sl::Quantity::spectral;
+  throw sl::InvalidArgument(
+      fmt::format("quantity = '{}' is not one of rgb|xyz|luminance|spectral", q));
+}
+
+// Runs fn(begin, end) over [0, n) in chunks on `threads` threads (0: the library's count), the
+// GIL released.
+template <class F>
+void parallel_chunks(std::size_t n, int threads, F&& fn) {
+  py::gil_scoped_release release;
+  if (threads > 0) sl::set_thread_count(threads);
+  try {
+    sl::parallel_for(n, kChunk, [&](std::size_t b, std::size_t e) { fn(b, e); });
+  } catch (...) {
+    if (threads > 0) sl::set_thread_count(0);
+    throw;
+  }
+  if (threads > 0) sl::set_thread_count(0);  // the default again
+}
+
+class Sky {
+ public:
+  Sky(const std::string& model, const py::dict& kwargs)
+      : info_(&sl::require_model(model, "model")) {
+    const sl::operations::SkyRequest r =
+        sl::operations::sky_request(*info_, sky_values(*info_, kwargs));
+    model_ = sl::make_sky_model(info_->name, r.parameters);
+    mode_ = r.sun_mode;
+    sl::check_sun_mode(*model_, mode_);
+  }
+
+  std::string name() const { return info_->name; }
+  double sun_zenith_deg() const { return sl::rad_to_deg(model_->sun().zenith); }
+  double sun_azimuth_deg() const { return sl::rad_to_deg(model_->sun().azimuth); }
+  std::string sun_mode() const { return std::string(sl::to_string(mode_)); }
+
+  py::dict parameters() const {
+    py::dict d;
+    const sl::ParameterValues values = model_->parameter_values();
+    for (const auto& [name, v] : values.all()) {
+      const std::string key = python_spelling(name);
+      std::visit([&](const auto& x) { d[py::str(key)] = py::cast(x); }, v);
+    }
+    return d;
+  }
+
+  py::list domain() const {
+    py::list out;
+    for (const auto& issue : model_->domain().issues) {
+      py::dict d;
+      d["parameter"] = issue.parameter;
+      d["validity"] = std::string(sl::to_string(issue.validity));
+      d["message"] = issue.message;
+      d["spectral_only"] = issue.spectral_only;
+      out.append(d);
+    }
+    return out;
+  }
+
+  std::vector<std::string> columns(const std::string& quantity,
+                                   const std::vector<double>& wavelengths) const {
+    return sl::quantity_columns(options(quantity, wavelengths));
+  }
+
+  // (N, 3) unit-or-not direction vectors -> (N, C) values.
+  py::array_t<double> evaluate_directions(
+      py::array_t<double, py::array::c_style | py::array::forcecast> v, const std::string& quantity,
+      const std::vector<double>& wavelengths, bool exact, int threads) const {
+    if (v.ndim() != 2 || v.shape(1) != 3)
+      throw sl::InvalidArgument("directions must have shape (..., 3)");
+    const auto n = static_cast<std::size_t>(v.shape(0));
+    const double* p = v.data();
+    std::vector<sl::Vec3> dirs(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      const sl::Vec3 d{p[3 * i], p[3 * i + 1], p[3 * i + 2]};
+      const double len = sl::length(d);
+      if (!(len > 0.0) || !std::isfinite(len))
+        throw sl::InvalidArgument(fmt::format(
+            "direction {} = ({}, {}, {}) is not a finite non-zero vector", i, d.x, d.y, d.z));
+      dirs[i] = (1.0 / len) * d;
+    }
+    return evaluate(dirs, quantity, wavelengths, exact, threads);
+  }
+
+  // Zenith and azimuth angles [deg] (flat arrays of one length) -> (N, C) values, the directions
+  // made as `skylight eval` makes them from its CSV.
+  py::array_t<double> evaluate_angles(
+      py::array_t<double, py::array::c_style | py::array::forcecast> zenith_deg,
+      py::array_t<double, py::array::c_style | py::array::forcecast> azimuth_deg,
+      const std::string& quantity, const std::vector<double>& wavelengths, bool exact,
+      int threads) const {
+    const auto n = static_cast<std::size_t>(zenith_deg.size());
+    if (static_cast<std::size_t>(azimuth_deg.size()) != n)
+      throw sl::InvalidArgument("zenith_deg and azimuth_deg must have one length");
+    const double* z = zenith_deg.data();
+    const double* a = azimuth_deg.data();
+    std::vector<sl::Vec3> dirs(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      if (!(z[i] >= 0.0 && z[i] <= 180.0))
+        throw sl::InvalidArgument(fmt::format("zenith_deg[{}] = {} is outside [0, 180]", i, z[i]));
+      if (!(a[i] >= -360.0 && a[i] <= 360.0))
+        throw sl::InvalidArgument(
+            fmt::format("azimuth_deg[{}] = {} is outside [-360, 360]", i, a[i]));
+      dirs[i] =
+          sl::direction_from_angles(sl::deg_to_rad(z[i]), sl::wrap_azimuth(sl::deg_to_rad(a[i])));
+    }
+    return evaluate(dirs, quantity, wavelengths, exact, threads);
+  }
+
+ private:
+  sl::EvaluationOptions options(const std::string& quantity,
+                                const std::vector<double>& wavelengths) const {
+    sl::EvaluationOptions o;
+    o.quantity = quantity_of(quantity);
+    o.wavelengths_nm = wavelengths;
+    o.sun = mode_;
+    sl::validate(o);
+    sl::validate(o, *model_);
+    return o;
+  }
+
+  py::array_t<double> evaluate(const std::vector<sl::Vec3>& dirs, const std::string& quantity,
+                               const std::vector<double>& wavelengths, bool exact,
+                               int threads) const {
+    const sl::EvaluationOptions o = options(quantity, wavelengths);
+    const std::size_t n = dirs.size(), cols = sl::quantity_columns(o).size();
+    py::array_t<double> out({n, cols});
+    double* dst = out.mutable_data();
+    // The batch path (single precision, the models' SIMD kernels) for the sky's XYZ or
+    // luminance; the double per-direction path (`skylight eval`'s) otherwise or when exact.
+    const bool batch = !exact && o.sun == sl::SunMode::sky &&
+                       (o.quantity == sl::Quantity::xyz || o.quantity == sl::Quantity::luminance);
+    parallel_chunks(n, threads, [&](std::size_t b, std::size_t e) {
+      if (batch) {
+        const std::size_t m = e - b;
+        std::vector<float> x(m), y(m), z(m), X(m), Y(m), Z(m);
+        for (std::size_t i = 0; i < m; ++i) {
+          x[i] = static_cast<float>(dirs[b + i].x);
+          y[i] = static_cast<float>(dirs[b + i].y);
+          z[i] = static_cast<float>(dirs[b + i].z);
+        }
+        model_->tristimulus_batch({x, y, z}, {X, Y, Z});
+        for (std::size_t i = 0; i < m; ++i) {
+          if (cols == 1) {
+            dst[b + i] = Y[i];
+          } else {
+            dst[3 * (b + i)] = X[i];
+            dst[3 * (b + i) + 1] = Y[i];
+            dst[3 * (b + i) + 2] = Z[i];
+          }
+        }
+      } else {
+        for (std::size_t i = b; i < e; ++i) {
+          const std::vector<double> v = sl::evaluate(*model_, dirs[i], o);
+          std::copy(v.begin(), v.end(), dst + i * cols);
+        }
+      }
+    });
+    for (std::size_t i = 0; i < n * cols; ++i)
+      if (!std::isfinite(dst[i]))
+        throw sl::InvalidArgument(fmt::format(
+            "model '{}' gives a non-finite value in direction {}: its parameters overflow",
+            info_->name, i / cols));
+    return out;
+  }
+
+  const sl::ModelInfo* info_;
+  std::unique_ptr<sl::SkyModel> model_;
+  sl::SunMode mode_ = sl::SunMode::sky;
+};
+
+// Civil date-time (UTC) of nanoseconds since 1970-01-01T00:00:00Z (H. Hinnant's days-to-civil).
+sl::sun::DateTime civil_utc(std::int64_t ns) {
+  constexpr std::int64_t kDay = 86'400'000'000'000;
+  std::int64_t days = ns / kDay, rem = ns % kDay;
+  if (rem < 0) {
+    rem += kDay;
+    --days;
+  }
+  const std::int64_t zd = days + 719468;
+  const std::int64_t era = (zd >= 0 ? zd : zd - 146096) / 146097;
+  const std::int64_t doe = zd - era * 146097;
+  const std::int64_t yoe = (doe - doe / 1460 + doe / 36524 - doe / 146096) / 365;
+  const std::int64_t doy = doe - (365 * yoe + yoe / 4 - yoe / 100);
+  const std::int64_t mp = (5 * doy + 2) / 153;
+  sl::sun::DateTime t;
+  t.day = static_cast<int>(doy - (153 * mp + 2) / 5 + 1);
+  t.month = static_cast<int>(mp < 10 ? mp + 3 : mp - 9);
+  t.year = static_cast<int>(yoe + era * 400 + (t.month <= 2 ? 1 : 0));
+  const std::int64_t s = rem / 1'000'000'000;
+  t.hour = static_cast<int>(s / 3600);
+  t.minute = static_cast<int>((s / 60) % 60);
+  t.second = static_cast<double>(s % 60) + static_cast<double>(rem % 1'000'000'000) * 1e-9;
+  return t;
+}
+
+// The SPA for each time (ns since the epoch, UTC): (N, 2) zenith and azimuth [deg].
+py::array_t<double> sun_position(
+    py::array_t<std::int64_t, py::array::c_style | py::array::forcecast> ns,
+    const py::dict& kwargs) {
+  sl::ParameterValues values;
+  for (const auto& [key, value] : kwargs) {
+    const std::string name = schema_name(key.cast<std::string>());
+    const auto& specs = sl::sun::spa_parameter_specs();
+    if (std::none_of(specs.begin(), specs.end(),
+                     [&](const sl::ParameterSpec& s) { return s.name == name; }))
+      throw sl::InvalidArgument(
+          fmt::format("{} is not a parameter of sun_position", key.cast<std::string>()));
+    const sl::ParameterSpec& spec = sl::sun::spa_parameter_spec(name);
+    if (value.is_none()) continue;
+    const sl::ParameterValue v = to_value(spec, value);
+    spec.check(v);
+    values.set(name, v);
+  }
+  sl::sun::SpaInput base;
+  sl::sun::spa_input_schema().bind(values, base, "sun_position");
+  const auto n = static_cast<std::size_t>(ns.size());
+  py::array_t<double> out({n, std::size_t{2}});
+  double* dst = out.mutable_data();
+  const std::int64_t* t = ns.data();
+  std::vector<sl::sun::DateTime> times(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    times[i] = civil_utc(t[i]);
+    sl::sun::validate(times[i], fmt::format("times[{}]", i));
+  }
+  parallel_chunks(n, 0, [&](std::size_t b, std::size_t e) {
+    for (std::size_t i = b; i < e; ++i) {
+      sl::sun::SpaInput in = base;
+      in.time = times[i];
+      const sl::sun::SpaResult r = sl::sun::solar_position(in);
+      dst[2 * i] = sl::rad_to_deg(r.zenith);
+      dst[2 * i + 1] = sl::rad_to_deg(r.azimuth);
+    }
+  });
+  return out;
+}
+
+}  // namespace
+
+PYBIND11_MODULE(_skylight, m) {
+  m.doc() = "skylight: daylight sky models (the C++ library's Python binding)";
+  sl::set_parameter_spelling(+[](std::string_view name) { return python_spelling(name); });
+  static py::exception<sl::InvalidArgument> invalid(m, "InvalidArgument", PyExc_ValueError);
+  py::register_exception_translator([](std::exception_ptr p) {
+    try {
+      if (p) std::rethrow_exception(p);
+    } catch (const sl::InvalidArgument& e) {
+      invalid(e.what());
+    } catch (const sl::IoError& e) {
+      PyErr_SetString(PyExc_OSError, e.what());
+    }
+  });
+  m.attr("__version__") = sl::kVersion;
+  m.def("models_json", &sl::operations::models_json);
+  m.def("operations_json", &sl::operations::operations_json);
+  m.def("sun_position", &sun_position, py::arg("ns"), py::arg("kwargs"));
+  py::class_<Sky>(m, "_Sky")
+      .def(py::init<const std::string&, const py::dict&>(), py::arg("model"), py::arg("kwargs"))
+      .def_property_readonly("name", &Sky::name)
+      .def_property_readonly("sun_zenith", &Sky::sun_zenith_deg)
+      .def_property_readonly("sun_azimuth", &Sky::sun_azimuth_deg)
+      .def_property_readonly("sun_mode", &Sky::sun_mode)
+      .def("parameters", &Sky::parameters)
+      .def("domain", &Sky::domain)
+      .def("columns", &Sky::columns)
+      .def("evaluate_directions", &Sky::evaluate_directions)
+      .def("evaluate_angles", &Sky::evaluate_angles);
+}
