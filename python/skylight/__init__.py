@@ -13,8 +13,9 @@ import numpy as _np
 
 from ._skylight import InvalidArgument, __version__
 from . import _skylight
+from . import io
 
-__all__ = ["InvalidArgument", "Sky", "models", "operations", "sun_position", "__version__"]
+__all__ = ["InvalidArgument", "Sky", "io", "models", "operations", "sun_position", "__version__"]
 
 QUANTITIES = ("rgb", "xyz", "luminance", "spectral")
 
@@ -143,6 +144,17 @@ class Sky:
                                             _wavelengths(quantity, wavelengths), bool(exact),
                                             _threads(threads))
         return out.reshape(shape + (out.shape[1],))
+
+    def render(self, width=None, height=None, projection="equirect", quantity="rgb",
+               return_mask=False, threads=None, **image):
+        """The sky drawn as ``skylight render`` draws it (CPU): an (H, W, 3) float32 array of
+        linear sRGB (``quantity="rgb"``; Y = luminance in cd/m^2) or XYZ, row 0 at the top.
+        ``image``: the image options of the render operation (lens, fov, north_angle,
+        look_elevation, look_azimuth; ``skylight.operations()``). ``return_mask=True`` also
+        returns the (H, W) bool mask of pixels without a direction (outside a fisheye circle)."""
+        image = dict(image, projection=projection, width=width, height=height)
+        pixels, mask = self._sky.render(image, quantity, _threads(threads))
+        return (pixels, mask) if return_mask else pixels
 
     def __repr__(self):
         return (f"skylight.Sky({self.model!r}, sun_zenith={self.sun_zenith:g}, "

@@ -16,15 +16,18 @@
 #include <string>
 #include <vector>
 
+#include "skylight/core/camera.h"
 #include "skylight/core/error.h"
 #include "skylight/core/frame.h"
 #include "skylight/core/math.h"
 #include "skylight/core/parallel.h"
 #include "skylight/core/parameters.h"
 #include "skylight/core/text.h"
+#include "skylight/io/image.h"
 #include "skylight/models/evaluation.h"
 #include "skylight/models/sky_model.h"
 #include "skylight/operations/operations.h"
+#include "skylight/render/sky_render.h"
 #include "skylight/sun/spa.h"
 #include "skylight/sun/time.h"
 #include "skylight/version.h"
@@ -91,23 +94,21 @@ sl::ParameterValue to_value(const sl::ParameterSpec& spec, py::handle v) {
   return number_of(spec, v);
 }
 
-// The keyword arguments of a sky as named values (the operation's sun and solar-disc specs and
-// the model's own); a name neither declares is an error naming it.
-sl::ParameterValues sky_values(const sl::ModelInfo& info, const py::dict& kwargs) {
-  std::vector<sl::ParameterSpec> specs = sl::operations::model_specs();
-  for (const auto& p : info.parameters) specs.push_back(p);
+// Keyword arguments as named values of `specs` (an operation's schema); a name it does not
+// declare is an error naming it and `what`.
+sl::ParameterValues schema_values(const std::vector<sl::ParameterSpec>& specs,
+                                  const py::dict& kwargs, const std::string& what) {
   sl::ParameterValues values;
   for (const auto& [key, value] : kwargs) {
     const std::string name = schema_name(key.cast<std::string>());
     const sl::ParameterSpec* spec = nullptr;
     for (const auto& s : specs)
-      if (s.name == name && s.name != "model") spec = &s;
+      if (s.name == name) spec = &s;
     if (spec == nullptr) {
       std::vector<std::string> known;
-      for (const auto& s : specs)
-        if (s.name != "model") known.push_back(python_spelling(s.name));
-      throw sl::InvalidArgument(fmt::format("{} is not a parameter of model '{}'{}",
-                                            key.cast<std::string>(), info.name,
+      for (const auto& s : specs) known.push_back(python_spelling(s.name));
+      throw sl::InvalidArgument(fmt::format("{} is not a parameter of {}{}",
+                                            key.cast<std::string>(), what,
                                             sl::did_you_mean(key.cast<std::string>(), known)));
     }
     if (value.is_none()) continue;
@@ -116,6 +117,15 @@ sl::ParameterValues sky_values(const sl::ModelInfo& info, const py::dict& kwargs
     values.set(name, v);
   }
   return values;
+}
+
+// The keyword arguments of a sky: the operation's sun and solar-disc specs and the model's own.
+sl::ParameterValues sky_values(const sl::ModelInfo& info, const py::dict& kwargs) {
+  std::vector<sl::ParameterSpec> specs;
+  for (const auto& s : sl::operations::model_specs())
+    if (s.name != "model") specs.push_back(s);
+  for (const auto& p : info.parameters) specs.push_back(p);
+  return schema_values(specs, kwargs, fmt::format("model '{}'", info.name));
 }
 
 sl::Quantity quantity_of(const std::string& q) {
@@ -179,6 +189,46 @@ class Sky {
       out.append(d);
     }
     return out;
+  }
+
+  // The sky drawn into an image (render::render_sky, `skylight render`'s CPU path): (H, W, 3)
+  // float32 of linear sRGB or XYZ, and the mask of pixels without a direction.
+  std::pair<py::array_t<float>, py::array_t<bool>> render(const py::dict& image_kwargs,
+                                                          const std::string& quantity,
+                                                          int threads) const {
+    if (quantity != "rgb" && quantity != "xyz")
+      throw sl::InvalidArgument(fmt::format("quantity = '{}': an image is rgb or xyz", quantity));
+    const sl::ImageSchemaOptions kind{};
+    const auto schema = sl::image_schema(kind);
+    sl::ImageOptions image = kind.defaults();
+    schema.bind(schema_values(schema.specs(), image_kwargs, "render"), image, "render");
+    sl::render::RenderSettings settings;
+    static_cast<sl::Camera&>(settings) = image.camera();
+    settings.sun = mode_;
+    sl::render::SkyImage img;
+    {
+      py::gil_scoped_release release;
+      if (threads > 0) sl::set_thread_count(threads);
+      try {
+        img = sl::render::render_sky(*model_, settings);
+      } catch (...) {
+        if (threads > 0) sl::set_thread_count(0);
+        throw;
+      }
+      if (threads > 0) sl::set_thread_count(0);
+    }
+    const sl::io::ImageF& src = quantity == "rgb" ? img.rgb : img.xyz;
+    for (const float v : src.data)
+      if (!std::isfinite(v))
+        throw sl::InvalidArgument(fmt::format(
+            "model '{}' gives non-finite pixels: its parameters overflow", info_->name));
+    const auto h = static_cast<std::size_t>(src.height), w = static_cast<std::size_t>(src.width);
+    py::array_t<float> out({h, w, std::size_t{3}});
+    std::copy(src.data.begin(), src.data.end(), out.mutable_data());
+    py::array_t<bool> mask({h, w});
+    bool* m = mask.mutable_data();
+    for (std::size_t i = 0; i < h * w; ++i) m[i] = img.mask[i] != 0;
+    return {out, mask};
   }
 
   std::vector<std::string> columns(const std::string& quantity,
@@ -359,6 +409,68 @@ py::array_t<double> sun_position(
   return out;
 }
 
+// io: images as numpy arrays (io/image.h). Float formats as (H, W, C) float32, PNG as (H, W, 3)
+// uint8; the metadata of an EXR as a dict.
+py::tuple read_image(const std::string& path) {
+  const auto format = sl::io::format_from_path(path);
+  if (format == sl::io::ImageFormat::png) {
+    sl::io::Image8 img;
+    {
+      py::gil_scoped_release release;
+      img = sl::io::read_png(path);
+    }
+    py::array_t<std::uint8_t> out({static_cast<std::size_t>(img.height),
+                                   static_cast<std::size_t>(img.width), std::size_t{3}});
+    std::copy(img.data.begin(), img.data.end(), out.mutable_data());
+    return py::make_tuple(out, py::dict());
+  }
+  sl::io::ImageF img;
+  sl::io::Metadata meta;
+  {
+    py::gil_scoped_release release;
+    img = sl::io::read_image(path);
+    if (format == sl::io::ImageFormat::exr) meta = sl::io::read_exr_metadata(path);
+  }
+  py::array_t<float> out({static_cast<std::size_t>(img.height), static_cast<std::size_t>(img.width),
+                          static_cast<std::size_t>(img.channels)});
+  std::copy(img.data.begin(), img.data.end(), out.mutable_data());
+  py::dict d;
+  for (const auto& [k, v] : meta) d[py::str(k)] = v;
+  return py::make_tuple(out, d);
+}
+
+void write_image(const std::string& path, py::array image, const py::dict& metadata) {
+  sl::io::Metadata meta;
+  for (const auto& [k, v] : metadata) meta.emplace_back(py::str(k), py::str(v));
+  const auto format = sl::io::format_from_path(path);
+  if (image.ndim() != 2 && image.ndim() != 3)
+    throw sl::InvalidArgument(
+        fmt::format("an image has shape (H, W) or (H, W, C), got {} axes", image.ndim()));
+  const auto h = static_cast<int>(image.shape(0)), w = static_cast<int>(image.shape(1));
+  const int c = image.ndim() == 3 ? static_cast<int>(image.shape(2)) : 1;
+  if (format == sl::io::ImageFormat::png) {
+    if (!py::isinstance<py::array_t<std::uint8_t>>(image) || c != 3)
+      throw sl::InvalidArgument(fmt::format(
+          "'{}': a PNG holds (H, W, 3) uint8 pixels (tone-map float images first)", path));
+    const auto a = py::array_t<std::uint8_t, py::array::c_style | py::array::forcecast>(image);
+    sl::io::Image8 img(w, h);
+    std::copy(a.data(), a.data() + a.size(), img.data.begin());
+    py::gil_scoped_release release;
+    sl::io::write_png(path, img, meta);
+    return;
+  }
+  if (c != 1 && c != 3)
+    throw sl::InvalidArgument(fmt::format("an image has 1 or 3 channels, got {}", c));
+  const auto a = py::array_t<float, py::array::c_style | py::array::forcecast>(image);
+  sl::io::ImageF img(w, h, c);
+  std::copy(a.data(), a.data() + a.size(), img.data.begin());
+  for (const float v : img.data)
+    if (!std::isfinite(v))
+      throw sl::InvalidArgument(fmt::format("'{}': the image holds NaN or Inf", path));
+  py::gil_scoped_release release;
+  sl::io::write_image(path, img, meta);
+}
+
 }  // namespace
 
 PYBIND11_MODULE(_skylight, m) {
@@ -378,6 +490,8 @@ PYBIND11_MODULE(_skylight, m) {
   m.def("models_json", &sl::operations::models_json);
   m.def("operations_json", &sl::operations::operations_json);
   m.def("sun_position", &sun_position, py::arg("ns"), py::arg("kwargs"));
+  m.def("read_image", &read_image, py::arg("path"));
+  m.def("write_image", &write_image, py::arg("path"), py::arg("image"), py::arg("metadata"));
   py::class_<Sky>(m, "_Sky")
       .def(py::init<const std::string&, const py::dict&>(), py::arg("model"), py::arg("kwargs"))
       .def_property_readonly("name", &Sky::name)
@@ -388,5 +502,6 @@ PYBIND11_MODULE(_skylight, m) {
       .def("domain", &Sky::domain)
       .def("columns", &Sky::columns)
       .def("evaluate_directions", &Sky::evaluate_directions)
-      .def("evaluate_angles", &Sky::evaluate_angles);
+      .def("evaluate_angles", &Sky::evaluate_angles)
+      .def("render", &Sky::render);
 }
