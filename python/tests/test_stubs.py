@@ -1,0 +1,30 @@
+"""The committed type stubs are what python/generate_stubs.py writes from the schemas: a model or
+parameter added to the library without regenerating them fails here."""
+
+import ast
+import os
+import pathlib
+import subprocess
+import sys
+
+ROOT = pathlib.Path(__file__).resolve().parents[2]
+
+
+def test_stubs_match_the_schemas(tmp_path):
+    out = tmp_path / "stub.pyi"
+    subprocess.run([sys.executable, str(ROOT / "python" / "generate_stubs.py"), str(out)],
+                   check=True, env=dict(os.environ))
+    committed = (ROOT / "python" / "skylight" / "__init__.pyi").read_text()
+    assert out.read_text() == committed, (
+        "python/skylight/__init__.pyi is stale: regenerate it with "
+        "`PYTHONPATH=build/python /usr/bin/python3 python/generate_stubs.py`")
+    tree = ast.parse(committed)
+    sky = next(n for n in tree.body if isinstance(n, ast.ClassDef) and n.name == "Sky")
+    inits = [f for f in sky.body if isinstance(f, ast.FunctionDef) and f.name == "__init__"]
+    import skylight
+    assert len(inits) == len(skylight.models())
+    # Every model's own parameters are keywords of its overload.
+    for m, f in zip(skylight.models(), inits):
+        names = {a.arg for a in f.args.kwonlyargs}
+        for p in m["parameters"]:
+            assert p["name"].replace("-", "_") in names, (m["name"], p["name"])
