@@ -13,6 +13,7 @@
 #include <cmath>
 #include <cstdint>
 #include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -244,16 +245,22 @@ class Sky {
       throw sl::InvalidArgument("directions must have shape (..., 3)");
     const auto n = static_cast<std::size_t>(v.shape(0));
     const double* p = v.data();
-    std::vector<sl::Vec3> dirs(n);
+    // Checked up front (one pass), normalised where each chunk reads them.
     for (std::size_t i = 0; i < n; ++i) {
-      const sl::Vec3 d{p[3 * i], p[3 * i + 1], p[3 * i + 2]};
-      const double len = sl::length(d);
-      if (!(len > 0.0) || !std::isfinite(len))
-        throw sl::InvalidArgument(fmt::format(
-            "direction {} = ({}, {}, {}) is not a finite non-zero vector", i, d.x, d.y, d.z));
-      dirs[i] = (1.0 / len) * d;
+      const double l2 =
+          p[3 * i] * p[3 * i] + p[3 * i + 1] * p[3 * i + 1] + p[3 * i + 2] * p[3 * i + 2];
+      if (!(l2 > 0.0) || !std::isfinite(l2))
+        throw sl::InvalidArgument(
+            fmt::format("direction {} = ({}, {}, {}) is not a finite non-zero vector", i, p[3 * i],
+                        p[3 * i + 1], p[3 * i + 2]));
     }
-    return evaluate(dirs, quantity, wavelengths, exact, threads);
+    return evaluate(
+        n,
+        [p](std::size_t i) {
+          const sl::Vec3 d{p[3 * i], p[3 * i + 1], p[3 * i + 2]};
+          return (1.0 / sl::length(d)) * d;
+        },
+        quantity, wavelengths, exact, threads);
   }
 
   // Zenith and azimuth angles [deg] (flat arrays of one length) -> (N, C) values, the directions
@@ -268,17 +275,20 @@ class Sky {
       throw sl::InvalidArgument("zenith_deg and azimuth_deg must have one length");
     const double* z = zenith_deg.data();
     const double* a = azimuth_deg.data();
-    std::vector<sl::Vec3> dirs(n);
     for (std::size_t i = 0; i < n; ++i) {
       if (!(z[i] >= 0.0 && z[i] <= 180.0))
         throw sl::InvalidArgument(fmt::format("zenith_deg[{}] = {} is outside [0, 180]", i, z[i]));
       if (!(a[i] >= -360.0 && a[i] <= 360.0))
         throw sl::InvalidArgument(
             fmt::format("azimuth_deg[{}] = {} is outside [-360, 360]", i, a[i]));
-      dirs[i] =
-          sl::direction_from_angles(sl::deg_to_rad(z[i]), sl::wrap_azimuth(sl::deg_to_rad(a[i])));
     }
-    return evaluate(dirs, quantity, wavelengths, exact, threads);
+    return evaluate(
+        n,
+        [z, a](std::size_t i) {
+          return sl::direction_from_angles(sl::deg_to_rad(z[i]),
+                                           sl::wrap_azimuth(sl::deg_to_rad(a[i])));
+        },
+        quantity, wavelengths, exact, threads);
   }
 
  private:
@@ -293,11 +303,13 @@ class Sky {
     return o;
   }
 
-  py::array_t<double> evaluate(const std::vector<sl::Vec3>& dirs, const std::string& quantity,
+  // n directions, direction(i) the unit vector of the i-th (called from the worker threads).
+  template <class Direction>
+  py::array_t<double> evaluate(std::size_t n, Direction direction, const std::string& quantity,
                                const std::vector<double>& wavelengths, bool exact,
                                int threads) const {
     const sl::EvaluationOptions o = options(quantity, wavelengths);
-    const std::size_t n = dirs.size(), cols = sl::quantity_columns(o).size();
+    const std::size_t cols = sl::quantity_columns(o).size();
     py::array_t<double> out({n, cols});
     double* dst = out.mutable_data();
     // The batch path (single precision, the models' SIMD kernels) for the sky's XYZ or
@@ -307,11 +319,15 @@ class Sky {
     parallel_chunks(n, threads, [&](std::size_t b, std::size_t e) {
       if (batch) {
         const std::size_t m = e - b;
-        std::vector<float> x(m), y(m), z(m), X(m), Y(m), Z(m);
+        std::vector<float> buffer(6 * m);
+        const std::span<float> x(buffer.data(), m), y(buffer.data() + m, m),
+            z(buffer.data() + 2 * m, m), X(buffer.data() + 3 * m, m), Y(buffer.data() + 4 * m, m),
+            Z(buffer.data() + 5 * m, m);
         for (std::size_t i = 0; i < m; ++i) {
-          x[i] = static_cast<float>(dirs[b + i].x);
-          y[i] = static_cast<float>(dirs[b + i].y);
-          z[i] = static_cast<float>(dirs[b + i].z);
+          const sl::Vec3 d = direction(b + i);
+          x[i] = static_cast<float>(d.x);
+          y[i] = static_cast<float>(d.y);
+          z[i] = static_cast<float>(d.z);
         }
         model_->tristimulus_batch({x, y, z}, {X, Y, Z});
         for (std::size_t i = 0; i < m; ++i) {
@@ -325,16 +341,17 @@ class Sky {
         }
       } else {
         for (std::size_t i = b; i < e; ++i) {
-          const std::vector<double> v = sl::evaluate(*model_, dirs[i], o);
+          const std::vector<double> v = sl::evaluate(*model_, direction(i), o);
           std::copy(v.begin(), v.end(), dst + i * cols);
         }
       }
+      // No output holds NaN or Inf (the first chunk's error is rethrown by parallel_for).
+      for (std::size_t i = b * cols; i < e * cols; ++i)
+        if (!std::isfinite(dst[i]))
+          throw sl::InvalidArgument(fmt::format(
+              "model '{}' gives a non-finite value in direction {}: its parameters overflow",
+              info_->name, i / cols));
     });
-    for (std::size_t i = 0; i < n * cols; ++i)
-      if (!std::isfinite(dst[i]))
-        throw sl::InvalidArgument(fmt::format(
-            "model '{}' gives a non-finite value in direction {}: its parameters overflow",
-            info_->name, i / cols));
     return out;
   }
 
