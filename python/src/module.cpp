@@ -12,6 +12,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <ctime>
+#include <limits>
 #include <memory>
 #include <span>
 #include <string>
@@ -40,6 +42,14 @@ namespace {
 
 // Directions evaluated per parallel_for chunk.
 constexpr std::size_t kChunk = 4096;
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+// The error of a direction that is not a finite non-zero vector (out of line: the loops that
+// check stay tight).
+[[noreturn, gnu::noinline, gnu::cold]] void bad_direction(std::size_t i, const sl::Vec3& d) {
+  throw sl::InvalidArgument(
+      fmt::format("direction {} = ({}, {}, {}) is not a finite non-zero vector", i, d.x, d.y, d.z));
+}
 
 std::string python_spelling(std::string_view name) {
   std::string s(name);
@@ -143,14 +153,16 @@ sl::Quantity quantity_of(const std::string& q) {
 template <class F>
 void parallel_chunks(std::size_t n, int threads, F&& fn) {
   py::gil_scoped_release release;
-  if (threads > 0) sl::set_thread_count(threads);
+  // A count other than the library's for this call only (the pool is resized when it changes).
+  const bool own = threads > 0 && threads != sl::thread_count();
+  if (own) sl::set_thread_count(threads);
   try {
     sl::parallel_for(n, kChunk, [&](std::size_t b, std::size_t e) { fn(b, e); });
   } catch (...) {
-    if (threads > 0) sl::set_thread_count(0);
+    if (own) sl::set_thread_count(0);
     throw;
   }
-  if (threads > 0) sl::set_thread_count(0);  // the default again
+  if (own) sl::set_thread_count(0);  // the default again
 }
 
 class Sky {
@@ -245,20 +257,15 @@ class Sky {
       throw sl::InvalidArgument("directions must have shape (..., 3)");
     const auto n = static_cast<std::size_t>(v.shape(0));
     const double* p = v.data();
-    // Checked up front (one pass), normalised where each chunk reads them.
-    for (std::size_t i = 0; i < n; ++i) {
-      const double l2 =
-          p[3 * i] * p[3 * i] + p[3 * i + 1] * p[3 * i + 1] + p[3 * i + 2] * p[3 * i + 2];
-      if (!(l2 > 0.0) || !std::isfinite(l2))
-        throw sl::InvalidArgument(
-            fmt::format("direction {} = ({}, {}, {}) is not a finite non-zero vector", i, p[3 * i],
-                        p[3 * i + 1], p[3 * i + 2]));
-    }
+    // Checked and normalised where each chunk reads them (an error names the first bad one).
     return evaluate(
         n,
         [p](std::size_t i) {
           const sl::Vec3 d{p[3 * i], p[3 * i + 1], p[3 * i + 2]};
-          return (1.0 / sl::length(d)) * d;
+          const double l2 = sl::dot(d, d);
+          if (!(l2 > 0.0) || !(l2 < kInf)) [[unlikely]]
+            bad_direction(i, d);
+          return (1.0 / std::sqrt(l2)) * d;
         },
         quantity, wavelengths, exact, threads);
   }
@@ -291,6 +298,28 @@ class Sky {
         quantity, wavelengths, exact, threads);
   }
 
+  // The in-process baseline of python/tools/bench_overhead.py: the seconds of CPU time one thread
+  // takes for tristimulus_batch over float directions already in structure-of-arrays form (x, y, z
+  // of shape (n,)), in chunks as evaluate() takes them; the C++ batch path without the binding.
+  double batch_cpu_seconds(py::array_t<float, py::array::c_style> x,
+                           py::array_t<float, py::array::c_style> y,
+                           py::array_t<float, py::array::c_style> z) const {
+    const auto n = static_cast<std::size_t>(x.size());
+    std::vector<float> X(n), Y(n), Z(n);
+    const float *px = x.data(), *py_ = y.data(), *pz = z.data();
+    py::gil_scoped_release release;
+    timespec t0{}, t1{};
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t0);
+    for (std::size_t b = 0; b < n; b += kChunk) {
+      const std::size_t m = std::min(kChunk, n - b);
+      model_->tristimulus_batch({{px + b, m}, {py_ + b, m}, {pz + b, m}},
+                                {{X.data() + b, m}, {Y.data() + b, m}, {Z.data() + b, m}});
+    }
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t1);
+    return static_cast<double>(t1.tv_sec - t0.tv_sec) +
+           1e-9 * static_cast<double>(t1.tv_nsec - t0.tv_nsec);
+  }
+
  private:
   sl::EvaluationOptions options(const std::string& quantity,
                                 const std::vector<double>& wavelengths) const {
@@ -319,7 +348,9 @@ class Sky {
     parallel_chunks(n, threads, [&](std::size_t b, std::size_t e) {
       if (batch) {
         const std::size_t m = e - b;
-        std::vector<float> buffer(6 * m);
+        // One buffer per worker thread, kept between calls (no allocation per chunk).
+        thread_local std::vector<float> buffer;
+        if (buffer.size() < 6 * m) buffer.resize(6 * kChunk);
         const std::span<float> x(buffer.data(), m), y(buffer.data() + m, m),
             z(buffer.data() + 2 * m, m), X(buffer.data() + 3 * m, m), Y(buffer.data() + 4 * m, m),
             Z(buffer.data() + 5 * m, m);
@@ -520,5 +551,6 @@ PYBIND11_MODULE(_skylight, m) {
       .def("columns", &Sky::columns)
       .def("evaluate_directions", &Sky::evaluate_directions)
       .def("evaluate_angles", &Sky::evaluate_angles)
-      .def("render", &Sky::render);
+      .def("render", &Sky::render)
+      .def("batch_cpu_seconds", &Sky::batch_cpu_seconds);
 }

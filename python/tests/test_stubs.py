@@ -1,4 +1,4 @@
-"""The committed type stubs are what python/generate_stubs.py writes from the schemas: a model or
+"""The committed type stubs are what python/tools/generate_stubs.py writes from the schemas: a model or
 parameter added to the library without regenerating them fails here."""
 
 import ast
@@ -12,12 +12,12 @@ ROOT = pathlib.Path(__file__).resolve().parents[2]
 
 def test_stubs_match_the_schemas(tmp_path):
     out = tmp_path / "stub.pyi"
-    subprocess.run([sys.executable, str(ROOT / "python" / "generate_stubs.py"), str(out)],
+    subprocess.run([sys.executable, str(ROOT / "python" / "tools" / "generate_stubs.py"), str(out)],
                    check=True, env=dict(os.environ))
     committed = (ROOT / "python" / "skylight" / "__init__.pyi").read_text()
     assert out.read_text() == committed, (
         "python/skylight/__init__.pyi is stale: regenerate it with "
-        "`PYTHONPATH=build/python /usr/bin/python3 python/generate_stubs.py`")
+        "`PYTHONPATH=build/python /usr/bin/python3 python/tools/generate_stubs.py`")
     tree = ast.parse(committed)
     sky = next(n for n in tree.body if isinstance(n, ast.ClassDef) and n.name == "Sky")
     inits = [f for f in sky.body if isinstance(f, ast.FunctionDef) and f.name == "__init__"]
