@@ -115,7 +115,7 @@ class Sky:
         return self._sky.columns(quantity, _wavelengths(quantity, wavelengths))
 
     def evaluate(self, zenith_deg, azimuth_deg, quantity="rgb", wavelengths=None, exact=False,
-                 threads=None):
+                 threads=None, out=None):
         """The quantity in the directions given by zenith and azimuth angles [deg] (arrays of any
         shape, broadcast together): float64 with the quantity's values on the last axis (rgb:
         linear sRGB; xyz: CIE 1931 XYZ, Y in cd/m^2; luminance: one value; spectral: one per
@@ -123,27 +123,29 @@ class Sky:
         per-direction double-precision path of ``skylight eval`` (bit-equal to it); otherwise
         xyz and luminance of the sky take the batch path (single precision, the models' SIMD
         kernels; each model's documented error bound). ``threads``: worker threads (default the
-        library's: SKYLIGHT_THREADS or all cores)."""
+        library's: SKYLIGHT_THREADS or all cores). ``out``: a C-contiguous float64 array of the
+        result's shape to write into (no allocation per call)."""
         z, a = _np.broadcast_arrays(_np.asarray(zenith_deg, dtype=_np.float64),
                                     _np.asarray(azimuth_deg, dtype=_np.float64))
         shape = z.shape
-        out = self._sky.evaluate_angles(_np.ascontiguousarray(z).reshape(-1),
+        res = self._sky.evaluate_angles(_np.ascontiguousarray(z).reshape(-1),
                                         _np.ascontiguousarray(a).reshape(-1), quantity,
                                         _wavelengths(quantity, wavelengths), bool(exact),
-                                        _threads(threads))
-        return out.reshape(shape + (out.shape[1],))
+                                        _threads(threads), out)
+        return out if out is not None else res.reshape(shape + (res.shape[1],))
 
-    def evaluate_directions(self, v, quantity="rgb", wavelengths=None, exact=False, threads=None):
+    def evaluate_directions(self, v, quantity="rgb", wavelengths=None, exact=False, threads=None,
+                            out=None):
         """The quantity in the directions ``v`` of shape (..., 3): x east, y north, z up (any
-        length; normalised), as evaluate()."""
+        length; normalised), as evaluate() (``out`` likewise)."""
         v = _np.asarray(v, dtype=_np.float64)
         if v.ndim < 1 or v.shape[-1] != 3:
             raise InvalidArgument(f"directions must have shape (..., 3), got {v.shape}")
         shape = v.shape[:-1]
-        out = self._sky.evaluate_directions(_np.ascontiguousarray(v).reshape(-1, 3), quantity,
+        res = self._sky.evaluate_directions(_np.ascontiguousarray(v).reshape(-1, 3), quantity,
                                             _wavelengths(quantity, wavelengths), bool(exact),
-                                            _threads(threads))
-        return out.reshape(shape + (out.shape[1],))
+                                            _threads(threads), out)
+        return out if out is not None else res.reshape(shape + (res.shape[1],))
 
     def render(self, width=None, height=None, projection="equirect", quantity="rgb",
                return_mask=False, threads=None, **image):

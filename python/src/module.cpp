@@ -43,6 +43,9 @@ namespace {
 // Directions evaluated per parallel_for chunk.
 constexpr std::size_t kChunk = 4096;
 constexpr double kInf = std::numeric_limits<double>::infinity();
+// |v|^2 within this of 1: a unit vector as float64 arithmetic makes them (v / |v| has |v|^2 within
+// a few 1e-16 of 1); its float conversion is exact to float precision without the division.
+constexpr double kUnitTolerance = 1e-14;
 
 // The error of a direction that is not a finite non-zero vector (out of line: the loops that
 // check stay tight).
@@ -252,22 +255,36 @@ class Sky {
   // (N, 3) unit-or-not direction vectors -> (N, C) values.
   py::array_t<double> evaluate_directions(
       py::array_t<double, py::array::c_style | py::array::forcecast> v, const std::string& quantity,
-      const std::vector<double>& wavelengths, bool exact, int threads) const {
+      const std::vector<double>& wavelengths, bool exact, int threads, py::object out) const {
     if (v.ndim() != 2 || v.shape(1) != 3)
       throw sl::InvalidArgument("directions must have shape (..., 3)");
     const auto n = static_cast<std::size_t>(v.shape(0));
     const double* p = v.data();
     // Checked and normalised where each chunk reads them (an error names the first bad one).
-    return evaluate(
-        n,
-        [p](std::size_t i) {
-          const sl::Vec3 d{p[3 * i], p[3 * i + 1], p[3 * i + 2]};
-          const double l2 = sl::dot(d, d);
-          if (!(l2 > 0.0) || !(l2 < kInf)) [[unlikely]]
-            bad_direction(i, d);
-          return (1.0 / std::sqrt(l2)) * d;
-        },
-        quantity, wavelengths, exact, threads);
+    const auto direction = [p](std::size_t i) {
+      const sl::Vec3 d{p[3 * i], p[3 * i + 1], p[3 * i + 2]};
+      const double l2 = sl::dot(d, d);
+      if (!(l2 > 0.0) || !(l2 < kInf)) [[unlikely]]
+        bad_direction(i, d);
+      return (1.0 / std::sqrt(l2)) * d;
+    };
+    // The batch path's input in one tight loop; false when a direction is bad (direction() then
+    // names it).
+    const auto fill = [p](std::size_t b, std::size_t m, float* x, float* y, float* z) {
+      bool ok = true;
+      for (std::size_t i = 0; i < m; ++i) {
+        const double* q = p + 3 * (b + i);
+        const double l2 = q[0] * q[0] + q[1] * q[1] + q[2] * q[2];
+        ok &= (l2 > 0.0) & (l2 < kInf);
+        // Unit vectors (to the last bits of a float64 normalisation) are taken as they are.
+        const double inv = std::abs(l2 - 1.0) <= kUnitTolerance ? 1.0 : 1.0 / std::sqrt(l2);
+        x[i] = static_cast<float>(q[0] * inv);
+        y[i] = static_cast<float>(q[1] * inv);
+        z[i] = static_cast<float>(q[2] * inv);
+      }
+      return ok;
+    };
+    return evaluate(n, direction, fill, quantity, wavelengths, exact, threads, out);
   }
 
   // Zenith and azimuth angles [deg] (flat arrays of one length) -> (N, C) values, the directions
@@ -275,8 +292,8 @@ class Sky {
   py::array_t<double> evaluate_angles(
       py::array_t<double, py::array::c_style | py::array::forcecast> zenith_deg,
       py::array_t<double, py::array::c_style | py::array::forcecast> azimuth_deg,
-      const std::string& quantity, const std::vector<double>& wavelengths, bool exact,
-      int threads) const {
+      const std::string& quantity, const std::vector<double>& wavelengths, bool exact, int threads,
+      py::object out) const {
     const auto n = static_cast<std::size_t>(zenith_deg.size());
     if (static_cast<std::size_t>(azimuth_deg.size()) != n)
       throw sl::InvalidArgument("zenith_deg and azimuth_deg must have one length");
@@ -289,13 +306,20 @@ class Sky {
         throw sl::InvalidArgument(
             fmt::format("azimuth_deg[{}] = {} is outside [-360, 360]", i, a[i]));
     }
-    return evaluate(
-        n,
-        [z, a](std::size_t i) {
-          return sl::direction_from_angles(sl::deg_to_rad(z[i]),
-                                           sl::wrap_azimuth(sl::deg_to_rad(a[i])));
-        },
-        quantity, wavelengths, exact, threads);
+    const auto direction = [z, a](std::size_t i) {
+      return sl::direction_from_angles(sl::deg_to_rad(z[i]),
+                                       sl::wrap_azimuth(sl::deg_to_rad(a[i])));
+    };
+    const auto fill = [&direction](std::size_t b, std::size_t m, float* x, float* y, float* zz) {
+      for (std::size_t i = 0; i < m; ++i) {
+        const sl::Vec3 d = direction(b + i);
+        x[i] = static_cast<float>(d.x);
+        y[i] = static_cast<float>(d.y);
+        zz[i] = static_cast<float>(d.z);
+      }
+      return true;
+    };
+    return evaluate(n, direction, fill, quantity, wavelengths, exact, threads, out);
   }
 
   // The in-process baseline of python/tools/bench_overhead.py: the seconds of CPU time one thread
@@ -333,13 +357,26 @@ class Sky {
   }
 
   // n directions, direction(i) the unit vector of the i-th (called from the worker threads).
-  template <class Direction>
-  py::array_t<double> evaluate(std::size_t n, Direction direction, const std::string& quantity,
-                               const std::vector<double>& wavelengths, bool exact,
-                               int threads) const {
+  // fill(b, m, x, y, z): the batch path's float input of directions [b, b + m); false if one is
+  // bad. `out`: None, or a C-contiguous float64 array of n * columns values to write into.
+  template <class Direction, class Fill>
+  py::array_t<double> evaluate(std::size_t n, Direction direction, Fill fill,
+                               const std::string& quantity, const std::vector<double>& wavelengths,
+                               bool exact, int threads, py::object out_arg) const {
     const sl::EvaluationOptions o = options(quantity, wavelengths);
     const std::size_t cols = sl::quantity_columns(o).size();
-    py::array_t<double> out({n, cols});
+    py::array_t<double> out;
+    if (out_arg.is_none()) {
+      out = py::array_t<double>({n, cols});
+    } else {
+      if (!py::isinstance<py::array_t<double>>(out_arg))
+        throw sl::InvalidArgument("out must be a float64 numpy array");
+      out = py::reinterpret_borrow<py::array_t<double>>(out_arg);
+      if (!(out.flags() & py::array::c_style) || !out.writeable() ||
+          static_cast<std::size_t>(out.size()) != n * cols)
+        throw sl::InvalidArgument(fmt::format(
+            "out must be a writable C-contiguous float64 array of {} x {} values", n, cols));
+    }
     double* dst = out.mutable_data();
     // The batch path (single precision, the models' SIMD kernels) for the sky's XYZ or
     // luminance; the double per-direction path (`skylight eval`'s) otherwise or when exact.
@@ -354,36 +391,48 @@ class Sky {
         const std::span<float> x(buffer.data(), m), y(buffer.data() + m, m),
             z(buffer.data() + 2 * m, m), X(buffer.data() + 3 * m, m), Y(buffer.data() + 4 * m, m),
             Z(buffer.data() + 5 * m, m);
-        for (std::size_t i = 0; i < m; ++i) {
-          const sl::Vec3 d = direction(b + i);
-          x[i] = static_cast<float>(d.x);
-          y[i] = static_cast<float>(d.y);
-          z[i] = static_cast<float>(d.z);
-        }
+        if (!fill(b, m, x.data(), y.data(), z.data()))
+          for (std::size_t i = b; i < e; ++i) direction(i);  // throws for the first bad one
         model_->tristimulus_batch({x, y, z}, {X, Y, Z});
-        for (std::size_t i = 0; i < m; ++i) {
-          if (cols == 1) {
+        // Widened into the output; |v| <= FLT_MAX is false for NaN and Inf (branch-free, so the
+        // loops vectorise).
+        bool finite = true;
+        if (cols == 1) {
+          for (std::size_t i = 0; i < m; ++i) {
+            finite &= std::abs(Y[i]) <= std::numeric_limits<float>::max();
             dst[b + i] = Y[i];
-          } else {
-            dst[3 * (b + i)] = X[i];
-            dst[3 * (b + i) + 1] = Y[i];
-            dst[3 * (b + i) + 2] = Z[i];
+          }
+        } else {
+          double* row = dst + 3 * b;
+          for (std::size_t i = 0; i < m; ++i) {
+            finite &= (std::abs(X[i]) <= std::numeric_limits<float>::max()) &
+                      (std::abs(Y[i]) <= std::numeric_limits<float>::max()) &
+                      (std::abs(Z[i]) <= std::numeric_limits<float>::max());
+            row[3 * i] = X[i];
+            row[3 * i + 1] = Y[i];
+            row[3 * i + 2] = Z[i];
           }
         }
+        if (!finite) non_finite(b, e, cols, dst);
       } else {
         for (std::size_t i = b; i < e; ++i) {
           const std::vector<double> v = sl::evaluate(*model_, direction(i), o);
           std::copy(v.begin(), v.end(), dst + i * cols);
         }
+        non_finite(b, e, cols, dst);
       }
-      // No output holds NaN or Inf (the first chunk's error is rethrown by parallel_for).
-      for (std::size_t i = b * cols; i < e * cols; ++i)
-        if (!std::isfinite(dst[i]))
-          throw sl::InvalidArgument(fmt::format(
-              "model '{}' gives a non-finite value in direction {}: its parameters overflow",
-              info_->name, i / cols));
     });
     return out;
+  }
+
+  // Throws for the first non-finite value of directions [b, e) (no output holds NaN or Inf; the
+  // first chunk's error is rethrown by parallel_for).
+  void non_finite(std::size_t b, std::size_t e, std::size_t cols, const double* dst) const {
+    for (std::size_t i = b * cols; i < e * cols; ++i)
+      if (!std::isfinite(dst[i]))
+        throw sl::InvalidArgument(fmt::format(
+            "model '{}' gives a non-finite value in direction {}: its parameters overflow",
+            info_->name, i / cols));
   }
 
   const sl::ModelInfo* info_;
