@@ -14,8 +14,9 @@ import numpy as _np
 from ._skylight import InvalidArgument, __version__
 from . import _skylight
 from . import io
+from . import sh
 
-__all__ = ["InvalidArgument", "Sky", "io", "models", "operations", "sun_position", "__version__"]
+__all__ = ["InvalidArgument", "Sky", "io", "sh", "models", "operations", "sun_position", "__version__"]
 
 QUANTITIES = ("rgb", "xyz", "luminance", "spectral")
 

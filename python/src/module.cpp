@@ -15,6 +15,7 @@
 #include <ctime>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -26,11 +27,16 @@
 #include "skylight/core/parallel.h"
 #include "skylight/core/parameters.h"
 #include "skylight/core/text.h"
+#include "skylight/fit/sh_fit.h"
 #include "skylight/io/image.h"
 #include "skylight/models/evaluation.h"
 #include "skylight/models/sky_model.h"
 #include "skylight/operations/operations.h"
 #include "skylight/render/sky_render.h"
+#include "skylight/sh/basis.h"
+#include "skylight/sh/irradiance.h"
+#include "skylight/sh/projection.h"
+#include "skylight/sh/rotation.h"
 #include "skylight/sun/spa.h"
 #include "skylight/sun/time.h"
 #include "skylight/version.h"
@@ -180,6 +186,7 @@ class Sky {
   }
 
   std::string name() const { return info_->name; }
+  const sl::SkyModel& model() const { return *model_; }
   double sun_zenith_deg() const { return sl::rad_to_deg(model_->sun().zenith); }
   double sun_azimuth_deg() const { return sl::rad_to_deg(model_->sun().azimuth); }
   std::string sun_mode() const { return std::string(sl::to_string(mode_)); }
@@ -568,6 +575,114 @@ void write_image(const std::string& path, py::array image, const py::dict& metad
   sl::io::write_image(path, img, meta);
 }
 
+// sh: coefficients as (bands^2, 3) float64 arrays (sh/projection.h's order: index(l, m)).
+sl::sh::Coefficients coefficients_of(
+    py::array_t<double, py::array::c_style | py::array::forcecast> a) {
+  if (a.ndim() != 2 || a.shape(1) != 3)
+    throw sl::InvalidArgument("SH coefficients must have shape (bands^2, 3)");
+  const auto n = static_cast<int>(a.shape(0));
+  const int bands = static_cast<int>(std::lround(std::sqrt(static_cast<double>(n))));
+  if (bands * bands != n || bands < 1)
+    throw sl::InvalidArgument(fmt::format("SH coefficients must have bands^2 rows, got {}", n));
+  sl::sh::check_bands(bands);
+  sl::sh::Coefficients c;
+  c.bands = bands;
+  c.c.resize(static_cast<std::size_t>(n));
+  for (int i = 0; i < n; ++i)
+    for (int k = 0; k < 3; ++k)
+      c.c[static_cast<std::size_t>(i)][static_cast<std::size_t>(k)] = a.at(i, k);
+  return c;
+}
+
+py::array_t<double> array_of(const sl::sh::Coefficients& c) {
+  py::array_t<double> out({c.c.size(), std::size_t{3}});
+  double* d = out.mutable_data();
+  for (std::size_t i = 0; i < c.c.size(); ++i)
+    for (std::size_t k = 0; k < 3; ++k) d[3 * i + k] = c.c[i][k];
+  return out;
+}
+
+sl::sh::Channels channels_of(const std::string& name) {
+  if (name == "rgb") return sl::sh::Channels::linear_srgb;
+  if (name == "xyz") return sl::sh::Channels::xyz;
+  throw sl::InvalidArgument(fmt::format("channels = '{}' is not rgb or xyz", name));
+}
+
+py::tuple sh_project(const Sky& sky, int bands, const std::string& channels,
+                     std::optional<double> ground_albedo, double tolerance) {
+  sl::sh::check_bands(bands);
+  sl::sh::ProjectionOptions o;
+  o.ground_albedo = ground_albedo;
+  o.tolerance = tolerance;
+  if (ground_albedo && !(*ground_albedo >= 0.0 && *ground_albedo <= 1.0))
+    throw sl::InvalidArgument(fmt::format("ground_albedo = {} is outside [0, 1]", *ground_albedo));
+  if (!(tolerance > 0.0 && tolerance < 1.0))
+    throw sl::InvalidArgument(fmt::format("tolerance = {} is outside (0, 1)", tolerance));
+  sl::sh::Projection p;
+  {
+    py::gil_scoped_release release;
+    p = sl::fit::project_model(sky.model(), channels_of(channels), bands, o);
+  }
+  return py::make_tuple(array_of(p.coefficients), p.converged, p.nodes);
+}
+
+// Per direction (N, 3) -> (N, 3): the reconstruction (sh::reconstruct) or the irradiance for a
+// surface normal (sh::irradiance).
+py::array_t<double> sh_per_direction(
+    py::array_t<double, py::array::c_style | py::array::forcecast> coeffs,
+    py::array_t<double, py::array::c_style | py::array::forcecast> v, bool irradiance) {
+  const sl::sh::Coefficients c = coefficients_of(coeffs);
+  if (v.ndim() != 2 || v.shape(1) != 3)
+    throw sl::InvalidArgument("directions must have shape (..., 3)");
+  const auto n = static_cast<std::size_t>(v.shape(0));
+  const double* p = v.data();
+  py::array_t<double> out({n, std::size_t{3}});
+  double* d = out.mutable_data();
+  const sl::sh::Coefficients e = irradiance ? sl::sh::irradiance_coefficients(c) : c;
+  parallel_chunks(n, 0, [&](std::size_t b, std::size_t end) {
+    for (std::size_t i = b; i < end; ++i) {
+      const sl::Vec3 q{p[3 * i], p[3 * i + 1], p[3 * i + 2]};
+      const double l2 = sl::dot(q, q);
+      if (!(l2 > 0.0) || !(l2 < kInf)) bad_direction(i, q);
+      const sl::sh::Triple t = sl::sh::reconstruct(e, (1.0 / std::sqrt(l2)) * q);
+      for (std::size_t k = 0; k < 3; ++k) d[3 * i + k] = t[k];
+    }
+  });
+  return out;
+}
+
+py::array_t<double> sh_rotate(py::array_t<double, py::array::c_style | py::array::forcecast> coeffs,
+                              py::array_t<double, py::array::c_style | py::array::forcecast> r) {
+  const sl::sh::Coefficients c = coefficients_of(coeffs);
+  if (r.ndim() != 2 || r.shape(0) != 3 || r.shape(1) != 3)
+    throw sl::InvalidArgument("a rotation is a 3 x 3 matrix");
+  sl::sh::RotationMatrix m{};
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      m[static_cast<std::size_t>(i)][static_cast<std::size_t>(j)] = r.at(i, j);
+  // Orthogonal with det +1, to 1e-9 (sh::rotate assumes it).
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) {
+      double dot = 0.0;
+      for (int k = 0; k < 3; ++k)
+        dot += m[static_cast<std::size_t>(k)][static_cast<std::size_t>(i)] *
+               m[static_cast<std::size_t>(k)][static_cast<std::size_t>(j)];
+      if (std::abs(dot - (i == j ? 1.0 : 0.0)) > 1e-9)
+        throw sl::InvalidArgument("the rotation matrix is not orthogonal (R^T R != I to 1e-9)");
+    }
+  const double det = m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) -
+                     m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0]) +
+                     m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
+  if (!(det > 0.0)) throw sl::InvalidArgument("the rotation matrix has det -1 (a reflection)");
+  return array_of(sl::sh::rotate(c, m));
+}
+
+py::array_t<double> sh_rotate_about_zenith(
+    py::array_t<double, py::array::c_style | py::array::forcecast> coeffs, double degrees) {
+  if (!std::isfinite(degrees)) throw sl::InvalidArgument("the angle must be finite");
+  return array_of(sl::sh::rotate_about_zenith(coefficients_of(coeffs), sl::deg_to_rad(degrees)));
+}
+
 }  // namespace
 
 PYBIND11_MODULE(_skylight, m) {
@@ -588,6 +703,13 @@ PYBIND11_MODULE(_skylight, m) {
   m.def("operations_json", &sl::operations::operations_json);
   m.def("sun_position", &sun_position, py::arg("ns"), py::arg("kwargs"));
   m.def("read_image", &read_image, py::arg("path"));
+  m.def("sh_project", &sh_project);
+  m.def("sh_per_direction", &sh_per_direction);
+  m.def("sh_rotate", &sh_rotate);
+  m.def("sh_rotate_about_zenith", &sh_rotate_about_zenith);
+  m.def("sh_ringing_filter", [](py::array_t<double, py::array::c_style | py::array::forcecast> c) {
+    return array_of(sl::sh::ringing_filter(coefficients_of(c)));
+  });
   m.def("write_image", &write_image, py::arg("path"), py::arg("image"), py::arg("metadata"));
   py::class_<Sky>(m, "_Sky")
       .def(py::init<const std::string&, const py::dict&>(), py::arg("model"), py::arg("kwargs"))
