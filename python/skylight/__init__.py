@@ -16,7 +16,7 @@ from . import _skylight
 from . import io
 from . import sh
 
-__all__ = ["InvalidArgument", "Sky", "io", "sh", "models", "operations", "sun_position", "__version__"]
+__all__ = ["InvalidArgument", "Sky", "io", "sh", "models", "operations", "report", "sun_position", "__version__"]
 
 QUANTITIES = ("rgb", "xyz", "luminance", "spectral")
 
@@ -29,6 +29,15 @@ def models():
 def operations():
     """The library's operations with their parameters: ``skylight operations --json``."""
     return _json.loads(_skylight.operations_json())
+
+
+def report(output_dir, **options):
+    """Writes the validation and comparison report (``skylight report``: index.html, figures,
+    report.json) into ``output_dir`` (created if needed; all files or none) and returns the
+    names of the files written. ``options``: the report operation's (measurements, epw,
+    sun_azimuth, sun_elevation, quick; ``skylight.operations()``)."""
+    import os
+    return _skylight.write_report(os.fspath(output_dir), options)
 
 
 def _iso8601(t):

@@ -33,6 +33,7 @@
 #include "skylight/models/sky_model.h"
 #include "skylight/operations/operations.h"
 #include "skylight/render/sky_render.h"
+#include "skylight/report/report.h"
 #include "skylight/sh/basis.h"
 #include "skylight/sh/irradiance.h"
 #include "skylight/sh/projection.h"
@@ -683,6 +684,20 @@ py::array_t<double> sh_rotate_about_zenith(
   return array_of(sl::sh::rotate_about_zenith(coefficients_of(coeffs), sl::deg_to_rad(degrees)));
 }
 
+// The report (report/report.h) into `output_dir`, its options from the schema; the files written.
+std::vector<std::string> write_report(const std::string& output_dir, const py::dict& kwargs) {
+  const auto& schema = sl::report::ReportOptions::schema();
+  sl::report::ReportOptions o;
+  schema.bind(schema_values(schema.specs(), kwargs, "report"), o, "report");
+  o.output_dir = output_dir;
+  sl::report::ReportSummary summary;
+  {
+    py::gil_scoped_release release;
+    summary = sl::report::write_report(o);  // its own transaction: all files or none
+  }
+  return summary.files;
+}
+
 }  // namespace
 
 PYBIND11_MODULE(_skylight, m) {
@@ -704,6 +719,7 @@ PYBIND11_MODULE(_skylight, m) {
   m.def("sun_position", &sun_position, py::arg("ns"), py::arg("kwargs"));
   m.def("read_image", &read_image, py::arg("path"));
   m.def("sh_project", &sh_project);
+  m.def("write_report", &write_report);
   m.def("sh_per_direction", &sh_per_direction);
   m.def("sh_rotate", &sh_rotate);
   m.def("sh_rotate_about_zenith", &sh_rotate_about_zenith);
