@@ -7,6 +7,7 @@ import numpy as np
 import numpy.typing as npt
 
 from . import io as io
+from . import nn as nn
 from . import sh as sh
 
 __version__: str

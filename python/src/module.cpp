@@ -27,10 +27,14 @@
 #include "skylight/core/parallel.h"
 #include "skylight/core/parameters.h"
 #include "skylight/core/text.h"
+#include "skylight/fit/network_training.h"
+#include "skylight/fit/neural_training.h"
 #include "skylight/fit/sh_fit.h"
+#include "skylight/io/file.h"
 #include "skylight/io/image.h"
 #include "skylight/models/evaluation.h"
 #include "skylight/models/sky_model.h"
+#include "skylight/nn/sky_network.h"
 #include "skylight/operations/operations.h"
 #include "skylight/render/sky_render.h"
 #include "skylight/report/report.h"
@@ -698,6 +702,64 @@ std::vector<std::string> write_report(const std::string& output_dir, const py::d
   return summary.files;
 }
 
+// nn train of a sky network on a registered model (fit/neural_training.h), written to `output`
+// (atomically); the request's options from the schema. Ctrl-C stops between iterations: the
+// progress callback checks Python's signals with the GIL taken, and KeyboardInterrupt is raised
+// (nothing written). Returns the summary as a dict.
+py::dict nn_train(const std::string& output, const py::dict& kwargs, py::object progress) {
+  const auto& schema = sl::fit::NetworkTrainingRequest::schema();
+  const sl::ParameterValues values = schema_values(schema.specs(), kwargs, "nn.train");
+  sl::fit::NetworkTrainingRequest req;
+  schema.bind(values, req, "nn.train");
+  for (const std::string& name :
+       sl::fit::NetworkTrainingRequest::unread(values, sl::fit::NetworkTrainingRequest::Kind::sky))
+    PyErr_WarnEx(
+        PyExc_UserWarning,
+        fmt::format("{} is not read by a sky network's training; ignored", python_spelling(name))
+            .c_str(),
+        1);
+  if (req.network)
+    throw sl::InvalidArgument(
+        "nn.train trains a sky network on a model (source=...); images and the Pietras "
+        "networks are not in the Python package yet");
+  sl::fit::NeuralTraining t = req.sky_training();
+  bool interrupted = false;
+  t.options.progress = [&](const sl::nn::TrainLogEntry& e) {
+    py::gil_scoped_acquire gil;
+    if (PyErr_CheckSignals() != 0) {
+      interrupted = true;
+      return false;
+    }
+    if (!progress.is_none()) progress(e.iteration, e.mse);
+    return true;
+  };
+  sl::fit::NeuralTrainingResult r;
+  {
+    py::gil_scoped_release release;
+    r = sl::fit::train_neural_sky(t);
+  }
+  if (interrupted) throw py::error_already_set();
+  r.network.provenance.software = fmt::format("skylight {} (Python)", sl::kVersion);
+  sl::io::write_text_file(output, sl::nn::to_json(r.network));
+  py::dict d;
+  const auto& pv = r.network.provenance;
+  d["layout"] = r.network.net.layout().describe();
+  d["source"] = pv.source;
+  d["trainer"] = pv.trainer;
+  d["seed"] = pv.seed;
+  d["iterations"] = pv.iterations;
+  d["stop"] = pv.stop;
+  d["training_rmse"] = std::sqrt(pv.training_mse);
+  if (r.validation) {
+    d["validation_rmse"] = r.validation->errors.rmse;
+    d["validation_relative_median"] = r.validation->errors.relative_median;
+    d["validation_relative_p95"] = r.validation->errors.relative_p95;
+  }
+  if (r.check) d["check"] = r.check->summary();
+  d["output"] = output;
+  return d;
+}
+
 }  // namespace
 
 PYBIND11_MODULE(_skylight, m) {
@@ -720,6 +782,7 @@ PYBIND11_MODULE(_skylight, m) {
   m.def("read_image", &read_image, py::arg("path"));
   m.def("sh_project", &sh_project);
   m.def("write_report", &write_report);
+  m.def("nn_train", &nn_train);
   m.def("sh_per_direction", &sh_per_direction);
   m.def("sh_rotate", &sh_rotate);
   m.def("sh_rotate_about_zenith", &sh_rotate_about_zenith);

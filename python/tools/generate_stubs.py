@@ -37,6 +37,7 @@ def stub():
         "import numpy.typing as npt",
         "",
         "from . import io as io",
+        "from . import nn as nn",
         "from . import sh as sh",
         "",
         "__version__: str",
