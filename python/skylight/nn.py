@@ -21,3 +21,10 @@ def load(path, **parameters):
     """The network in the weights file ``path`` as a sky: ``Sky("nn", weights=path, ...)``."""
     from . import Sky
     return Sky("nn", weights=_os.fspath(path), **parameters)
+
+
+def glsl(path=None):
+    """The network of the weights file ``path`` (a sky network or a Pietras network; None: the
+    embedded 6-12-3 network) as a GLSL compilation unit with its weights baked in, as
+    ``skylight nn export --glsl`` writes it (docs/GPU.md)."""
+    return _skylight.nn_glsl("" if path is None else _os.fspath(path))

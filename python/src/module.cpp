@@ -33,7 +33,10 @@
 #include "skylight/io/file.h"
 #include "skylight/io/image.h"
 #include "skylight/models/evaluation.h"
+#include "skylight/models/neural_sky.h"
 #include "skylight/models/sky_model.h"
+#include "skylight/nn/glsl.h"
+#include "skylight/nn/pietras.h"
 #include "skylight/nn/sky_network.h"
 #include "skylight/operations/operations.h"
 #include "skylight/render/sky_render.h"
@@ -760,6 +763,16 @@ py::dict nn_train(const std::string& output, const py::dict& kwargs, py::object 
   return d;
 }
 
+// `skylight nn export --glsl`: the GLSL compilation unit of a weights file (a sky network or a
+// Pietras network), or of the embedded network when `path` is empty.
+std::string nn_glsl(const std::string& path) {
+  if (path.empty()) return sl::nn::glsl_sky_network_file(sl::embedded_sky_network());
+  const std::string text = sl::io::read_text_file(path);
+  return sl::nn::is_pietras_json(text)
+             ? sl::nn::glsl_pietras_network_file(sl::nn::pietras_from_json(text, path))
+             : sl::nn::glsl_sky_network_file(sl::nn::sky_network_from_json(text, path));
+}
+
 }  // namespace
 
 PYBIND11_MODULE(_skylight, m) {
@@ -783,6 +796,7 @@ PYBIND11_MODULE(_skylight, m) {
   m.def("sh_project", &sh_project);
   m.def("write_report", &write_report);
   m.def("nn_train", &nn_train);
+  m.def("nn_glsl", &nn_glsl);
   m.def("sh_per_direction", &sh_per_direction);
   m.def("sh_rotate", &sh_rotate);
   m.def("sh_rotate_about_zenith", &sh_rotate_about_zenith);

@@ -57,3 +57,12 @@ def test_bad_options_and_interrupt(tmp_path):
                           **dict(SMALL, iterations=2000, time_limit=600))
     assert len(calls) <= 5  # stopped between iterations
     assert not (tmp_path / "y.json").exists()
+
+
+def test_glsl_is_the_clis_export(tmp_path):
+    out = tmp_path / "sky.glsl"
+    subprocess.run([CLI, "nn", "export", "--glsl", str(out)], check=True, capture_output=True)
+    assert skylight.nn.glsl() == out.read_text()
+    assert "#version 330 core" in skylight.nn.glsl()
+    with pytest.raises(OSError, match="cannot read"):
+        skylight.nn.glsl(tmp_path / "missing.json")
