@@ -22,3 +22,23 @@ def test_cmake_install_into_a_prefix(tmp_path):
     out = subprocess.run([sys.executable, "-c", code, str(site)], env=env, check=True,
                          capture_output=True, text=True, cwd=tmp_path)
     assert out.stdout.strip() == "True"
+
+
+def test_pip_install_builds_with_cmake(tmp_path):
+    """`pip install --no-build-isolation .` (here `--target`, reusing the build directory of the
+    tests through SKYLIGHT_BUILD_DIR so that it only copies the extension)."""
+    build = os.environ.get("SKYLIGHT_BUILD_DIR")
+    if not build:
+        pytest.skip("run by ctest (SKYLIGHT_BUILD_DIR)")
+    root = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+    target = tmp_path / "site"
+    subprocess.run([sys.executable, "-m", "pip", "install", "--no-build-isolation", "--no-deps",
+                    "--no-cache-dir", "--quiet", "--target", str(target), root], check=True,
+                   capture_output=True, env=dict(os.environ, SKYLIGHT_BUILD_DIR=build))
+    names = sorted(p.name for p in (target / "skylight").iterdir())
+    assert "py.typed" in names and "__init__.pyi" in names
+    assert any(n.startswith("_skylight") and n.endswith(".so") for n in names)
+    code = "import skylight, sys; assert skylight.__file__.startswith(sys.argv[1]); print(len(skylight.models()))"
+    out = subprocess.run([sys.executable, "-c", code, str(target)], check=True, capture_output=True,
+                         text=True, cwd=tmp_path, env=dict(os.environ, PYTHONPATH=str(target)))
+    assert int(out.stdout) >= 7
