@@ -35,6 +35,8 @@ mkdir -p "$scratch/build" "$scratch/tmp" "$scratch/parsed"
 ln -s "$cli" "$scratch/build/skylight"
 # The Python package built beside the CLI (SKYLIGHT_PYTHON), for `PYTHONPATH=build/python` blocks.
 [ -d "$(dirname "$cli")/python" ] && ln -s "$(dirname "$cli")/python" "$scratch/build/python"
+# The package's example scripts (python/examples), read-only like data/.
+mkdir -p "$scratch/python" && ln -s "$src/python/examples" "$scratch/python/examples"
 # The repository's data/ (committed weights files, tables), read-only for the commands, as in a
 # checkout.
 ln -s "$src/data" "$scratch/data"
