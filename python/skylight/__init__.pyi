@@ -6,6 +6,7 @@ from typing import Any, Literal, overload
 import numpy as np
 import numpy.typing as npt
 
+from . import estimate as estimate
 from . import io as io
 from . import nn as nn
 from . import sh as sh

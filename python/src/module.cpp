@@ -27,9 +27,12 @@
 #include "skylight/core/parallel.h"
 #include "skylight/core/parameters.h"
 #include "skylight/core/text.h"
+#include "skylight/estimate/photo.h"
+#include "skylight/fit/luminance_fit.h"
 #include "skylight/fit/network_training.h"
 #include "skylight/fit/neural_training.h"
 #include "skylight/fit/sh_fit.h"
+#include "skylight/io/camera_calibration.h"
 #include "skylight/io/file.h"
 #include "skylight/io/image.h"
 #include "skylight/models/evaluation.h"
@@ -773,6 +776,82 @@ std::string nn_glsl(const std::string& path) {
              : sl::nn::glsl_sky_network_file(sl::nn::sky_network_from_json(text, path));
 }
 
+// A float (H, W, C) array as an image (C = 1 or 3).
+sl::io::ImageF image_of(py::array_t<float, py::array::c_style | py::array::forcecast> a,
+                        const char* what) {
+  if (a.ndim() != 3 || (a.shape(2) != 1 && a.shape(2) != 3))
+    throw sl::InvalidArgument(fmt::format("{} must have shape (H, W, 3) or (H, W, 1)", what));
+  sl::io::ImageF img(static_cast<int>(a.shape(1)), static_cast<int>(a.shape(0)),
+                     static_cast<int>(a.shape(2)));
+  std::copy(a.data(), a.data() + a.size(), img.data.begin());
+  for (const float v : img.data)
+    if (!std::isfinite(v)) throw sl::InvalidArgument(fmt::format("{} holds NaN or Inf", what));
+  return img;
+}
+
+// `skylight estimate` on an image array (the photo's layout, the sun given, from a time or found,
+// the mask and fit settings from the estimate operation's schema): the fit as a dict.
+py::dict estimate_fit(py::array_t<float, py::array::c_style | py::array::forcecast> photo,
+                      py::object mask, const py::dict& kwargs) {
+  const sl::OperationInfo& op = sl::operations::find("estimate");
+  std::vector<sl::ParameterSpec> specs;
+  for (const auto& s : op.parameters)  // the file options of the CLI are the arrays here
+    if (s.name != "exif" && s.name != "utc-offset") specs.push_back(s);
+  const sl::ParameterValues given = schema_values(specs, kwargs, "estimate");
+  if (given.has("sun-zenith") != given.has("sun-azimuth"))
+    throw sl::InvalidArgument("sun_zenith and sun_azimuth go together");
+  const sl::io::ImageF image = image_of(photo, "the photo");
+  std::optional<sl::io::ImageF> user_mask;
+  if (!mask.is_none())
+    user_mask = image_of(mask.cast<py::array_t<float, py::array::c_style | py::array::forcecast>>(),
+                         "the mask");
+  const sl::ImageSchemaOptions kind = sl::estimate::photo_image_options();
+  const auto layout_schema = sl::image_schema(kind);
+  sl::ImageOptions layout = kind.defaults();
+  layout_schema.bind(given.only(layout_schema.specs()), layout, "estimate");
+  const sl::Camera camera = sl::io::photo_camera(layout, image.width, image.height);
+  std::optional<sl::SunPosition> sun;
+  if (given.has("sun-zenith")) {
+    sun = sl::sun_from_degrees(*given.number("sun-zenith"), *given.number("sun-azimuth"));
+  } else if (const auto spa = sl::operations::solar_position_input(given)) {
+    const sl::sun::SpaResult r = sl::sun::solar_position(*spa);
+    sun = sl::sun_from_degrees(sl::rad_to_deg(r.zenith), sl::rad_to_deg(r.azimuth));
+  }
+  sl::estimate::MaskSettings ms;
+  sl::estimate::MaskSettings::schema().bind(
+      given.only(sl::estimate::MaskSettings::schema().specs()), ms, "estimate");
+  sl::fit::EstimateSettings es;
+  sl::fit::EstimateSettings::schema().bind(given.only(sl::fit::EstimateSettings::schema().specs()),
+                                           es, "estimate");
+  const std::string model = given.has("model") ? std::get<std::string>(*given.find("model"))
+                                               : sl::fit::default_estimated_model();
+  sl::estimate::PhotoSamples ps;
+  sl::fit::LuminanceFit fit;
+  {
+    py::gil_scoped_release release;
+    ps = sl::estimate::sample_photo(image, camera, sun, ms, es.samples, es.seed,
+                                    user_mask ? &*user_mask : nullptr);
+    fit = sl::fit::fit_luminance(model, ps.samples, ps.sun, es);
+  }
+  py::dict d;
+  d["model"] = model;
+  for (const auto& p : fit.parameters) {
+    d[py::str(python_spelling(p.name))] = p.value;
+    d[py::str(python_spelling(p.name) + "_sigma")] = p.sigma;
+  }
+  d["inlier_fraction"] = fit.inlier_fraction;
+  d["residual"] = fit.residual;
+  d["inliers"] = fit.inliers;
+  d["method"] = fit.method;
+  d["luminance_scale"] = std::exp(fit.log_scale);
+  d["sun_zenith_deg"] = sl::rad_to_deg(ps.sun.zenith);
+  d["sun_azimuth_deg"] = sl::rad_to_deg(ps.sun.azimuth);
+  d["sun_source"] = ps.sun_detected ? "image" : (given.has("time") ? "time" : "given");
+  d["samples"] = ps.samples.size();
+  d["sky_pixels"] = ps.sky_pixels;
+  return d;
+}
+
 }  // namespace
 
 PYBIND11_MODULE(_skylight, m) {
@@ -797,6 +876,7 @@ PYBIND11_MODULE(_skylight, m) {
   m.def("write_report", &write_report);
   m.def("nn_train", &nn_train);
   m.def("nn_glsl", &nn_glsl);
+  m.def("estimate_fit", &estimate_fit);
   m.def("sh_per_direction", &sh_per_direction);
   m.def("sh_rotate", &sh_rotate);
   m.def("sh_rotate_about_zenith", &sh_rotate_about_zenith);

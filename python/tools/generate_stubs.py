@@ -36,6 +36,7 @@ def stub():
         "import numpy as np",
         "import numpy.typing as npt",
         "",
+        "from . import estimate as estimate",
         "from . import io as io",
         "from . import nn as nn",
         "from . import sh as sh",

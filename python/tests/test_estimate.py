@@ -1,0 +1,59 @@
+"""skylight.estimate.turbidity on numpy images: the CLI's fit (same code path: equal numbers),
+the truth of a rendered sky over seeds and noise, errors."""
+
+import json
+import os
+import subprocess
+
+import numpy as np
+import pytest
+
+import skylight
+
+CLI = os.environ.get("SKYLIGHT_CLI", "skylight")
+
+# A noiseless rendered Preetham sky: the fit recovers T to the LM tolerance.
+EXACT_T_TOL = 1e-6
+# 5 % multiplicative noise per pixel: the bootstrap's spread times a few, and no more than 2 %.
+NOISY_T_TOL = 0.06
+
+
+@pytest.fixture(scope="module")
+def photo(tmp_path_factory):
+    path = tmp_path_factory.mktemp("est") / "sky.exr"
+    subprocess.run([CLI, "render", "--model", "preetham", "--turbidity", "3", "--sun-zenith", "50",
+                    "--sun-azimuth", "200", "--projection", "fisheye", "--width", "256",
+                    "--height", "256", "-o", str(path)], check=True, capture_output=True)
+    return path
+
+
+def test_equals_the_cli(photo):
+    out = subprocess.run([CLI, "estimate", "--image", str(photo), "--sun-zenith", "50",
+                          "--sun-azimuth", "200", "--seed", "7", "--json"], check=True,
+                         capture_output=True, text=True).stdout
+    cli = json.loads(out)
+    py = skylight.estimate.turbidity(skylight.io.read(photo), sun_zenith=50, sun_azimuth=200, seed=7)
+    for key in ("turbidity", "turbidity_sigma", "inlier_fraction", "residual", "luminance_scale",
+                "samples", "sky_pixels", "sun_zenith_deg", "sun_azimuth_deg", "method"):
+        assert py[key] == cli[key], key
+    assert abs(py["turbidity"] - 3.0) < EXACT_T_TOL
+
+
+def test_seeds_and_noise(photo):
+    img = skylight.io.read(photo)
+    rng = np.random.default_rng(5)
+    for seed in (1, 2, 3):
+        noisy = img * rng.lognormal(0.0, 0.05, img.shape[:2])[:, :, None].astype(np.float32)
+        fit = skylight.estimate.turbidity(noisy, sun_zenith=50, sun_azimuth=200, seed=seed)
+        assert abs(fit["turbidity"] - 3.0) < NOISY_T_TOL, (seed, fit)
+
+
+def test_errors(photo):
+    img = skylight.io.read(photo)
+    with pytest.raises(skylight.InvalidArgument, match="sun_zenith and sun_azimuth go together"):
+        skylight.estimate.turbidity(img, sun_zenith=50)
+    with pytest.raises(skylight.InvalidArgument, match="sampels is not a parameter of estimate; "
+                                                       "did you mean 'samples'"):
+        skylight.estimate.turbidity(img, sampels=100)
+    with pytest.raises(skylight.InvalidArgument, match="shape"):
+        skylight.estimate.turbidity(img[:, :, 0])
