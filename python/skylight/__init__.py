@@ -14,11 +14,12 @@ import numpy as _np
 from ._skylight import InvalidArgument, __version__
 from . import _skylight
 from . import estimate
+from . import haze
 from . import io
 from . import nn
 from . import sh
 
-__all__ = ["InvalidArgument", "Sky", "estimate", "io", "nn", "sh", "models", "operations", "report", "sun_position", "__version__"]
+__all__ = ["InvalidArgument", "Sky", "estimate", "haze", "io", "nn", "sh", "models", "operations", "report", "sun_position", "__version__"]
 
 QUANTITIES = ("rgb", "xyz", "luminance", "spectral")
 

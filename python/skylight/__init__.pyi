@@ -7,6 +7,7 @@ import numpy as np
 import numpy.typing as npt
 
 from . import estimate as estimate
+from . import haze as haze
 from . import io as io
 from . import nn as nn
 from . import sh as sh

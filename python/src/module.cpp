@@ -32,6 +32,7 @@
 #include "skylight/fit/network_training.h"
 #include "skylight/fit/neural_training.h"
 #include "skylight/fit/sh_fit.h"
+#include "skylight/haze/request.h"
 #include "skylight/io/camera_calibration.h"
 #include "skylight/io/file.h"
 #include "skylight/io/image.h"
@@ -852,6 +853,62 @@ py::dict estimate_fit(py::array_t<float, py::array::c_style | py::array::forceca
   return d;
 }
 
+// `skylight haze add|retarget|remove` on arrays (Morales et al. 2017; haze/request.h): the image
+// (H, W, 3), its depth (H, W[, 1]; metres, or normalised with near/far), the operation's options
+// from its schema. The result (H, W, 3) float32.
+py::array_t<float> haze_apply(const std::string& name,
+                              py::array_t<float, py::array::c_style | py::array::forcecast> image,
+                              py::array_t<float, py::array::c_style | py::array::forcecast> depth,
+                              const py::dict& kwargs) {
+  sl::haze::HazeOperation op{};
+  if (name == "add")
+    op = sl::haze::HazeOperation::add;
+  else if (name == "retarget")
+    op = sl::haze::HazeOperation::retarget;
+  else if (name == "remove")
+    op = sl::haze::HazeOperation::remove;
+  else
+    throw sl::InvalidArgument(fmt::format("no haze operation '{}'", name));
+  std::vector<sl::ParameterSpec> specs;
+  for (const auto& s : sl::operations::find("haze " + name).parameters)
+    if (s.name != "gpu") specs.push_back(s);
+  const sl::ParameterValues given = schema_values(specs, kwargs, "haze." + name);
+  const auto bound = [&](const auto& schema, auto value) {
+    schema.bind(given.only(schema.specs()), value, "haze");
+    return value;
+  };
+  const sl::haze::Atmosphere air = bound(sl::haze::atmosphere_schema(), sl::haze::Atmosphere{});
+  sl::haze::validate(air);
+  const sl::haze::CameraSensitivity cam =
+      bound(sl::haze::SensitivityOptions::schema(), sl::haze::SensitivityOptions{}).sensitivity();
+  const auto airlight = bound(sl::haze::AirlightOptions::schema(), sl::haze::AirlightOptions{});
+  const auto options = bound(sl::haze::HazeOptions::schema(), sl::haze::HazeOptions{});
+  const auto image_camera =
+      bound(sl::haze::ImageCameraOptions::schema(), sl::haze::ImageCameraOptions{});
+  const sl::io::ImageF img = image_of(image, "the image");
+  if (img.channels != 3) throw sl::InvalidArgument("the image must have R, G, B");
+  if (depth.ndim() == 2) depth = depth.reshape({depth.shape(0), depth.shape(1), py::ssize_t{1}});
+  const sl::io::ImageF d = image_of(depth, "the depth");
+  if (d.channels != 1) throw sl::InvalidArgument("the depth must have one channel");
+  const sl::haze::HazeSettings settings =
+      sl::haze::haze_settings(op, air, options, cam, sl::haze::AirlightSource(airlight),
+                              image_camera, img.width, img.height);
+  const sl::io::ImageF depth_m = sl::haze::depth_in_metres(d, {options.near_m, options.far_m},
+                                                           img.width, img.height, "the depth");
+  sl::io::ImageF out;
+  {
+    py::gil_scoped_release release;
+    out = sl::haze::apply_haze(img, depth_m, cam, settings, nullptr);
+  }
+  for (const float v : out.data)
+    if (!std::isfinite(v))
+      throw sl::InvalidArgument("the result holds NaN or Inf (raise min_transmission)");
+  py::array_t<float> result(
+      {static_cast<std::size_t>(out.height), static_cast<std::size_t>(out.width), std::size_t{3}});
+  std::copy(out.data.begin(), out.data.end(), result.mutable_data());
+  return result;
+}
+
 }  // namespace
 
 PYBIND11_MODULE(_skylight, m) {
@@ -877,6 +934,7 @@ PYBIND11_MODULE(_skylight, m) {
   m.def("nn_train", &nn_train);
   m.def("nn_glsl", &nn_glsl);
   m.def("estimate_fit", &estimate_fit);
+  m.def("haze_apply", &haze_apply);
   m.def("sh_per_direction", &sh_per_direction);
   m.def("sh_rotate", &sh_rotate);
   m.def("sh_rotate_about_zenith", &sh_rotate_about_zenith);

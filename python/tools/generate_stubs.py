@@ -37,6 +37,7 @@ def stub():
         "import numpy.typing as npt",
         "",
         "from . import estimate as estimate",
+        "from . import haze as haze",
         "from . import io as io",
         "from . import nn as nn",
         "from . import sh as sh",
