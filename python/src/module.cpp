@@ -290,18 +290,33 @@ class Sky {
     // The batch path's input in one tight loop; false when a direction is bad (direction() then
     // names it).
     const auto fill = [p](std::size_t b, std::size_t m, float* x, float* y, float* z) {
-      bool ok = true;
+      // Two passes the compiler vectorises: the squared lengths (checked, and whether all are
+      // unit to float64's last bits), then the conversion, scaled only when some are not unit.
+      const double* q = p + 3 * b;
+      bool ok = true, unit = true;
       for (std::size_t i = 0; i < m; ++i) {
-        const double* q = p + 3 * (b + i);
-        const double l2 = q[0] * q[0] + q[1] * q[1] + q[2] * q[2];
+        const double l2 =
+            q[3 * i] * q[3 * i] + q[3 * i + 1] * q[3 * i + 1] + q[3 * i + 2] * q[3 * i + 2];
         ok &= (l2 > 0.0) & (l2 < kInf);
-        // Unit vectors (to the last bits of a float64 normalisation) are taken as they are.
-        const double inv = std::abs(l2 - 1.0) <= kUnitTolerance ? 1.0 : 1.0 / std::sqrt(l2);
-        x[i] = static_cast<float>(q[0] * inv);
-        y[i] = static_cast<float>(q[1] * inv);
-        z[i] = static_cast<float>(q[2] * inv);
+        unit &= std::abs(l2 - 1.0) <= kUnitTolerance;
       }
-      return ok;
+      if (!ok) return false;
+      if (unit) {
+        for (std::size_t i = 0; i < m; ++i) {
+          x[i] = static_cast<float>(q[3 * i]);
+          y[i] = static_cast<float>(q[3 * i + 1]);
+          z[i] = static_cast<float>(q[3 * i + 2]);
+        }
+      } else {
+        for (std::size_t i = 0; i < m; ++i) {
+          const double inv = 1.0 / std::sqrt(q[3 * i] * q[3 * i] + q[3 * i + 1] * q[3 * i + 1] +
+                                             q[3 * i + 2] * q[3 * i + 2]);
+          x[i] = static_cast<float>(q[3 * i] * inv);
+          y[i] = static_cast<float>(q[3 * i + 1] * inv);
+          z[i] = static_cast<float>(q[3 * i + 2] * inv);
+        }
+      }
+      return true;
     };
     return evaluate(n, direction, fill, quantity, wavelengths, exact, threads, out);
   }
