@@ -79,18 +79,16 @@ int run_daylight(const DaylightCommand& f) {
     throw InvalidArgument(
         "daylight needs --dni and --dhi (or --dni-illuminance and --dhi-illuminance), or --epw "
         "FILE");
-  if (const auto spa = solar_position_input(given)) {
-    const sun::SpaResult r = sun::solar_position(*spa);
-    req.sky.sun = sun_from_degrees(rad_to_deg(r.zenith), rad_to_deg(r.azimuth));
-    if (!req.sky.day_of_year) req.sky.day_of_year = sun::day_of_year(spa->time);
-  } else if (given.has("sun-zenith")) {
-    req.sky.sun = sun_from_degrees(*given.number("sun-zenith"),
-                                   given.number("sun-azimuth").value_or(kDefaultSunAzimuthDeg));
-  } else {
+  if (!given.has("sun-zenith") && !given.has("time"))
     throw InvalidArgument(
         "daylight needs the sun: --sun-zenith [--sun-azimuth], or --time --lat "
         "--lon");
-  }
+  // The sun (and the date of --time) as every sky gets it (operations::sky_request).
+  const SkyParameters sky = operations::sky_request(require_model(PerezModel::kName),
+                                                    given.only(operations::model_specs()))
+                                .parameters;
+  req.sky.sun = sky.sun;
+  if (!req.sky.day_of_year) req.sky.day_of_year = sky.day_of_year;
   const PerezModel model(req.sky);
   warn_domain(model);
   const PerezSky& s = *model.irradiance_sky();

@@ -86,7 +86,8 @@ constexpr int kRadianceRowPoints[kRadianceRows] = {30, 30, 24, 24, 18, 12, 6, 1}
 constexpr int kRadiancePoints = 145;
 // The papers' normalisation: a midpoint rule in view zenith (exact cos-weighted ring areas) and
 // in azimuth from the sun's (the sky is symmetric about the sun's vertical), fine enough that the
-// quadrature's error is far below the 0.5 % the issue asks (PerezAllWeather.NormalisationIs...).
+// quadrature's error is far below the 0.5 % bound of docs/DAYLIGHT.md
+// (PerezAllWeather.ThePapersQuadratureHasConverged).
 constexpr int kIntegralRings = 360;
 constexpr int kIntegralSectors = 360;
 

@@ -74,8 +74,8 @@ TEST_F(ReportFiles, ProgressReachesTheEnd) {
 }
 
 // Section 9: each sampled hour's sky of the shipped (synthetic) weather year integrates to the
-// diffuse horizontal illuminance of the efficacy model within the 0.5 %; the synthetic
-// year has no measured illuminance, and the page says so.
+// diffuse horizontal illuminance of the efficacy model within 0.5 % (docs/DAYLIGHT.md's bound on
+// the sky's integral); the synthetic year has no measured illuminance, and the page says so.
 constexpr double kWeatherIntegralTol = 0.005;
 
 TEST_F(ReportFiles, WeatherSectionComparesEachHoursSkyWithItsIlluminance) {
@@ -188,7 +188,7 @@ TEST_F(ReportFiles, TrustTableJudgesEveryRegisteredModelByItsPrintedRule) {
                                                     info.report.truncation_range[0] + 1));
     EXPECT_LT(rows.back()["rms_log10"].get<double>(), rows.front()["rms_log10"].get<double>());
   }
-  // The quantities the table asks for that the report cannot judge say so, with a
+  // The quantities docs/REPORT.md lists that the report cannot judge say so, with a
   // reason, in report.json and on the page (a gap is a statement, not a silence).
   std::vector<std::string> without;
   for (const auto& q : j["which_model_to_trust_where"]["quantities_without_verdict"]) {
