@@ -814,41 +814,19 @@ py::dict estimate_fit(py::array_t<float, py::array::c_style | py::array::forceca
   for (const auto& s : op.parameters)  // the file options of the CLI are the arrays here
     if (s.name != "exif" && s.name != "utc-offset") specs.push_back(s);
   const sl::ParameterValues given = schema_values(specs, kwargs, "estimate");
-  if (given.has("sun-zenith") != given.has("sun-azimuth"))
-    throw sl::InvalidArgument("sun_zenith and sun_azimuth go together");
   const sl::io::ImageF image = image_of(photo, "the photo");
   std::optional<sl::io::ImageF> user_mask;
   if (!mask.is_none())
     user_mask = image_of(mask.cast<py::array_t<float, py::array::c_style | py::array::forcecast>>(),
                          "the mask");
-  const sl::ImageSchemaOptions kind = sl::estimate::photo_image_options();
-  const auto layout_schema = sl::image_schema(kind);
-  sl::ImageOptions layout = kind.defaults();
-  layout_schema.bind(given.only(layout_schema.specs()), layout, "estimate");
-  const sl::Camera camera = sl::io::photo_camera(layout, image.width, image.height);
-  std::optional<sl::SunPosition> sun;
-  if (given.has("sun-zenith")) {
-    sun = sl::sun_from_degrees(*given.number("sun-zenith"), *given.number("sun-azimuth"));
-  } else if (const auto spa = sl::operations::solar_position_input(given)) {
-    const sl::sun::SpaResult r = sl::sun::solar_position(*spa);
-    sun = sl::sun_from_degrees(sl::rad_to_deg(r.zenith), sl::rad_to_deg(r.azimuth));
-  }
-  sl::estimate::MaskSettings ms;
-  sl::estimate::MaskSettings::schema().bind(
-      given.only(sl::estimate::MaskSettings::schema().specs()), ms, "estimate");
-  sl::fit::EstimateSettings es;
-  sl::fit::EstimateSettings::schema().bind(given.only(sl::fit::EstimateSettings::schema().specs()),
-                                           es, "estimate");
-  const std::string model = given.has("model") ? std::get<std::string>(*given.find("model"))
-                                               : sl::fit::default_estimated_model();
-  sl::estimate::PhotoSamples ps;
-  sl::fit::LuminanceFit fit;
+  sl::operations::PhotoEstimate pe;
   {
     py::gil_scoped_release release;
-    ps = sl::estimate::sample_photo(image, camera, sun, ms, es.samples, es.seed,
-                                    user_mask ? &*user_mask : nullptr);
-    fit = sl::fit::fit_luminance(model, ps.samples, ps.sun, es);
+    pe = sl::operations::estimate_photo(image, given, user_mask ? &*user_mask : nullptr);
   }
+  const std::string& model = pe.model;
+  const sl::fit::LuminanceFit& fit = pe.fit;
+  const sl::estimate::PhotoSamples& ps = pe.samples;
   py::dict d;
   d["model"] = model;
   for (const auto& p : fit.parameters) {
@@ -862,7 +840,7 @@ py::dict estimate_fit(py::array_t<float, py::array::c_style | py::array::forceca
   d["luminance_scale"] = std::exp(fit.log_scale);
   d["sun_zenith_deg"] = sl::rad_to_deg(ps.sun.zenith);
   d["sun_azimuth_deg"] = sl::rad_to_deg(ps.sun.azimuth);
-  d["sun_source"] = ps.sun_detected ? "image" : (given.has("time") ? "time" : "given");
+  d["sun_source"] = pe.sun_source;
   d["samples"] = ps.samples.size();
   d["sky_pixels"] = ps.sky_pixels;
   return d;

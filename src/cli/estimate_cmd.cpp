@@ -66,34 +66,6 @@ struct EstimateCommand {
   SchemaFlags flags;  // the operation's parameters (operations::find("estimate"))
 };
 
-// The sun: given angles, the solar position of --time/--lat/--lon or of the EXIF time (--exif),
-// or (none) found in the image; source: "given", "time", "exif" or "image".
-std::optional<SunPosition> sun_from_options(const ParameterValues& given,
-                                            const std::optional<estimate::Capture>& capture,
-                                            const estimate::CaptureOptions& co,
-                                            std::string& source) {
-  source = "image";
-  if (given.has("sun-zenith")) {
-    source = "given";
-    return sun_from_degrees(*given.number("sun-zenith"), *given.number("sun-azimuth"));
-  }
-  std::optional<sun::SpaInput> spa = solar_position_input(given);
-  if (spa) {
-    source = "time";
-  } else if (capture && capture->exif.date_time) {
-    spa = estimate::capture_solar_input(*capture, co, given);
-    source = "exif";
-  } else {
-    for (const auto& spec : sun::spa_parameter_specs())
-      if (given.has(spec.name))
-        throw InvalidArgument(
-            fmt::format("{} needs --time, or --exif with an EXIF time", spec.flag()));
-    return std::nullopt;
-  }
-  const sun::SpaResult r = sun::solar_position(*spa);
-  return sun_from_degrees(rad_to_deg(r.zenith), rad_to_deg(r.azimuth));
-}
-
 // The fitted values, their fit's quality and (ranking) the ranking, into JSON and text.
 void describe_fit(const std::string& model, const EstimationPolicy& policy,
                   const fit::LuminanceFit& fit, const fit::EstimateSettings& es,
@@ -148,8 +120,6 @@ void describe_fit(const std::string& model, const EstimationPolicy& policy,
 int run_estimate(const EstimateCommand& c) {
   const SchemaFlags& f = c.flags;
   const ParameterValues given = f.values();
-  if (given.has("sun-zenith") != given.has("sun-azimuth"))
-    throw InvalidArgument("--sun-zenith and --sun-azimuth go together");
   const io::ImageF image = io::read_image(c.image);
   const ImageSchemaOptions photo = estimate::photo_image_options();
   const ImageOptions layout = f.bind(image_schema(photo), photo.defaults(), "estimate");
@@ -160,30 +130,25 @@ int run_estimate(const EstimateCommand& c) {
     capture = estimate::read_capture(co, image.width);
   else if (!co.utc_offset.empty())
     warn("--utc-offset is not read without --exif; ignored");
-  const Camera camera = io::photo_camera(layout, image.width, image.height,
-                                         capture ? capture->focal_length_px : std::nullopt);
   std::optional<io::ImageF> user_mask;
   if (!c.mask.empty()) user_mask = estimate::load_mask(c.mask);
   if (!c.compare.empty() && io::format_from_path(c.compare) != io::ImageFormat::png)
     throw InvalidArgument(fmt::format("--compare '{}' must be a .png file", excerpt(c.compare)));
-
-  std::string sun_source;
-  const std::optional<SunPosition> given_sun = sun_from_options(given, capture, co, sun_source);
-  const auto ms = f.bind(estimate::MaskSettings::schema(), {}, "estimate");
-  const auto es = f.bind(fit::EstimateSettings::schema(), {}, "estimate");
-  const std::string model = given.has("model") ? std::get<std::string>(*given.find("model"))
-                                               : fit::default_estimated_model();
+  // The pipeline is the library's (operations::estimate_photo), shared with the Python package.
+  const operations::PhotoEstimate pe =
+      operations::estimate_photo(image, given, user_mask ? &*user_mask : nullptr, capture);
+  const estimate::PhotoSamples& ps = pe.samples;
+  const fit::LuminanceFit& fit = pe.fit;
+  const fit::EstimateSettings& es = pe.settings;
+  const std::string& model = pe.model;
   const EstimationPolicy& policy = fit::estimation_policy(model);
-  const estimate::PhotoSamples ps = estimate::sample_photo(
-      image, camera, given_sun, ms, es.samples, es.seed, user_mask ? &*user_mask : nullptr);
-  const fit::LuminanceFit fit = fit::fit_luminance(model, ps.samples, ps.sun, es);
   const double zenith_deg = rad_to_deg(ps.sun.zenith), azimuth_deg = rad_to_deg(ps.sun.azimuth);
   nlohmann::ordered_json j;
   std::string text;
   describe_fit(model, policy, fit, es, j, text);
   if (!c.compare.empty())
-    write_comparison(c.compare, image, ps.mask, fit::fitted_luminance_image(fit, camera));
-  const char* sun_text = ps.sun_detected ? "image" : sun_source.c_str();
+    write_comparison(c.compare, image, ps.mask, fit::fitted_luminance_image(fit, pe.camera));
+  const char* sun_text = pe.sun_source.c_str();
   j["sun_zenith_deg"] = zenith_deg;
   j["sun_azimuth_deg"] = azimuth_deg;
   j["sun_source"] = sun_text;

@@ -15,6 +15,7 @@
 #include "skylight/fit/network_training.h"
 #include "skylight/fit/sh_fit.h"
 #include "skylight/haze/request.h"
+#include "skylight/io/camera_calibration.h"
 #include "skylight/models/evaluation.h"
 #include "skylight/models/neural_sky.h"
 #include "skylight/models/pietras.h"
@@ -399,6 +400,54 @@ SkyRequest sky_request(const ModelInfo& model, const ParameterValues& given) {
   SolarDisc disc;
   SolarDisc::schema().bind(given.only(SolarDisc::schema().specs()), disc, "solar disc");
   r.sun_mode = disc.mode;
+  return r;
+}
+
+PhotoEstimate estimate_photo(const io::ImageF& image, const ParameterValues& given,
+                             const io::ImageF* user_mask,
+                             const std::optional<estimate::Capture>& capture) {
+  if (given.has("sun-zenith") != given.has("sun-azimuth"))
+    throw InvalidArgument(
+        fmt::format("{} and {} go together", spelled("sun-zenith"), spelled("sun-azimuth")));
+  const auto bound = [&](const auto& schema, auto value) {
+    schema.bind(given.only(schema.specs()), value, "estimate");
+    return value;
+  };
+  const ImageSchemaOptions photo = estimate::photo_image_options();
+  const ImageOptions layout = bound(image_schema(photo), photo.defaults());
+  const auto co = bound(estimate::CaptureOptions::schema(), estimate::CaptureOptions{});
+  PhotoEstimate r;
+  r.camera = io::photo_camera(layout, image.width, image.height,
+                              capture ? capture->focal_length_px : std::nullopt);
+  std::optional<SunPosition> sun;
+  std::optional<sun::SpaInput> spa;
+  r.sun_source = "image";
+  if (given.has("sun-zenith")) {
+    r.sun_source = "given";
+    sun = sun_from_degrees(*given.number("sun-zenith"), *given.number("sun-azimuth"));
+  } else if ((spa = solar_position_input(given))) {
+    r.sun_source = "time";
+  } else if (capture && capture->exif.date_time) {
+    spa = estimate::capture_solar_input(*capture, co, given);
+    r.sun_source = "exif";
+  } else {
+    for (const auto& spec : sun::spa_parameter_specs())
+      if (given.has(spec.name))
+        throw InvalidArgument(fmt::format("{} needs {}, or {} with an EXIF time",
+                                          spelled(spec.name), spelled("time"), spelled("exif")));
+  }
+  if (spa) {
+    const sun::SpaResult p = sun::solar_position(*spa);
+    sun = sun_from_degrees(rad_to_deg(p.zenith), rad_to_deg(p.azimuth));
+  }
+  const auto ms = bound(estimate::MaskSettings::schema(), estimate::MaskSettings{});
+  r.settings = bound(fit::EstimateSettings::schema(), fit::EstimateSettings{});
+  r.model = given.has("model") ? std::get<std::string>(*given.find("model"))
+                               : fit::default_estimated_model();
+  r.samples = estimate::sample_photo(image, r.camera, sun, ms, r.settings.samples, r.settings.seed,
+                                     user_mask);
+  r.fit = fit::fit_luminance(r.model, r.samples.samples, r.samples.sun, r.settings);
+  if (r.samples.sun_detected) r.sun_source = "image";
   return r;
 }
 

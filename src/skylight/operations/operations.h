@@ -11,7 +11,12 @@
 #include <string_view>
 #include <vector>
 
+#include "skylight/core/camera.h"
 #include "skylight/core/parameters.h"
+#include "skylight/estimate/capture.h"
+#include "skylight/estimate/photo.h"
+#include "skylight/fit/luminance_fit.h"
+#include "skylight/io/image.h"
 #include "skylight/models/evaluation.h"
 #include "skylight/models/sky_model.h"
 #include "skylight/sun/spa.h"
@@ -69,5 +74,21 @@ struct SkyRequest {
 SkyRequest sky_request(const ModelInfo& model, const ParameterValues& given);
 // The given names that are neither model_specs()'s nor the model's own.
 std::vector<std::string> foreign_parameters(const ModelInfo& model, const ParameterValues& given);
+
+// `skylight estimate` on a photo already in memory (the CLI reads the file and the EXIF; the
+// Python package passes arrays): the layout, mask and fit settings bound from `given` (the
+// estimate operation's values), the sun from the given angles, from `time` with the SPA's
+// parameters, from the capture's EXIF time, or found in the image; then the samples and the fit.
+struct PhotoEstimate {
+  std::string model;
+  Camera camera;
+  estimate::PhotoSamples samples;
+  fit::EstimateSettings settings;
+  fit::LuminanceFit fit;
+  std::string sun_source;  // "given", "time", "exif" or "image"
+};
+PhotoEstimate estimate_photo(const io::ImageF& image, const ParameterValues& given,
+                             const io::ImageF* user_mask,
+                             const std::optional<estimate::Capture>& capture = std::nullopt);
 
 }  // namespace skylight::operations
