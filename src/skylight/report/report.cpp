@@ -398,6 +398,8 @@ ReportSummary ReportWriter::run() {
   // The weather file before anything is written: a bad file fails fast.
   load_weather();
   step("weather file");
+  weather_hours();
+  step("weather hours");
   // All or nothing: every file goes to a temporary and is renamed into place only when the whole
   // report has been written; a directory this call created is removed again on failure.
   std::error_code ec;

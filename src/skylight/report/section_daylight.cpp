@@ -48,7 +48,10 @@ void ReportWriter::load_weather() {
   weather_name_ = opt_.epw ? io::shown_path(*opt_.epw) : "data/" + std::string(kSampleEpw);
   weather_ = opt_.epw ? io::read_epw(*opt_.epw)
                       : io::parse_epw(data::embedded_file(kSampleEpw), weather_name_);
-  // The hours' skies too: a record the sky cannot use fails here, before any file is written.
+}
+
+void ReportWriter::weather_hours() {
+  // The hours' skies: a record the sky cannot use fails here, before any file is written.
   daylight::MatrixSettings settings;
   settings.sun_patches = 0;
   weather_matrix_ = std::make_shared<daylight::SkyMatrix>(

@@ -224,8 +224,10 @@ class ReportWriter {
   void section_illumination();
   void section_measurements();
   // Section 9: each hour's sky from a weather file against the file's illuminance
-  // (section_daylight.cpp); load_weather reads the file first (weather_, weather_name_).
+  // (section_daylight.cpp); load_weather reads the file first (weather_, weather_name_),
+  // weather_hours makes its hours' skies (weather_matrix_), both before anything is written.
   void load_weather();
+  void weather_hours();
   void section_daylight();
   void section_validity();
   // A validity map of one model over the sun zenith (columns) and, with rows, the values of its
@@ -268,7 +270,7 @@ class ReportWriter {
                       const std::string& row_header, const std::string& key,
                       const std::vector<std::string>& row_labels);
 
-  static constexpr int kSteps = 19;  // the step() calls of run()
+  static constexpr int kSteps = 20;  // the step() calls of run()
   const ReportOptions& opt_;
   Config cfg_;
   int done_ = 0;
