@@ -13,6 +13,7 @@
 // 54, one thread (x 20 for a frame). HazeRetarget1080pPerPixel: the same with a per-pixel airlight
 // at both turbidities (eqs. 12-13 through a 60 deg pinhole, haze/airlight_field.h; built once).
 // `skylight bench --haze` prints frames/s and the ratio.
+// RowsBaseline/*, Rows/*: 2^20 directions as float SoA and as float64 rows (the Python layout).
 // SkyMatrixYear/*: `skylight daylight --epw`'s matrix of the sample year (Tregenza, Reinhart 2305).
 #include <benchmark/benchmark.h>
 
@@ -23,6 +24,7 @@
 #include "skylight/core/parallel.h"
 #include "skylight/daylight/sky_matrix.h"
 #include "skylight/haze/image_haze.h"
+#include "skylight/models/evaluation.h"
 #include "skylight/models/nishita.h"
 #include "skylight/models/sh.h"
 #include "skylight/perf/workloads.h"
@@ -103,12 +105,59 @@ void EstimateFisheye1Mpx(benchmark::State& state) {
   }
 }
 
+// 2^20 directions (a 2048 x 512 equirect grid) as the SIMD float batch takes them (RowsBaseline,
+// one thread, directions already float SoA) and as float64 rows in and out (Rows: evaluate_rows,
+// models/evaluation.h, one thread: the Python package's Sky.evaluate_directions without the
+// binding). Their ratio is the cost of the float64 row layout (docs/PYTHON.md).
+perf::DirectionGrid& grid_2m() {
+  static perf::DirectionGrid g(2048, 512);
+  return g;
+}
+
+void RowsBaseline(benchmark::State& state, const char* name) {
+  const auto m = perf::bench_model(name);
+  perf::DirectionGrid& g = grid_2m();
+  for (auto _ : state) {
+    g.batch(*m);
+    benchmark::DoNotOptimize(g.Y.data());
+  }
+  state.SetItemsProcessed(state.iterations() * static_cast<int64_t>(g.size()));
+}
+
+void Rows(benchmark::State& state, const char* name) {
+  const auto m = perf::bench_model(name);
+  const perf::DirectionGrid& g = grid_2m();
+  std::vector<double> rows(3 * g.size()), out(3 * g.size());
+  // Unit vectors in float64 (as numpy normalises them: no scaling pass).
+  for (std::size_t i = 0; i < g.size(); ++i) {
+    const Vec3 v = normalize(Vec3{g.d.x[i], g.d.y[i], g.d.z[i]});
+    rows[3 * i] = v.x;
+    rows[3 * i + 1] = v.y;
+    rows[3 * i + 2] = v.z;
+  }
+  EvaluationOptions o;
+  o.quantity = Quantity::xyz;
+  set_thread_count(1);
+  for (auto _ : state) {
+    evaluate_rows(*m, rows, o, out);
+    benchmark::DoNotOptimize(out.data());
+  }
+  set_thread_count(0);
+  state.SetItemsProcessed(state.iterations() * static_cast<int64_t>(g.size()));
+}
+
 void SetUp(benchmark::State& state, const char* name) {
   for (auto _ : state) benchmark::DoNotOptimize(perf::bench_model(name));
 }
 
 }  // namespace
 
+BENCHMARK_CAPTURE(RowsBaseline, preetham, "preetham")->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(Rows, preetham, "preetham")->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(RowsBaseline, hosek, "hosek")->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(Rows, hosek, "hosek")->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(RowsBaseline, nn, "nn")->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(Rows, nn, "nn")->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(Scalar, preetham, "preetham")->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(Batch, preetham, "preetham")->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(Threads, preetham, "preetham")->Unit(benchmark::kMillisecond)->UseRealTime();

@@ -160,6 +160,15 @@ class Sky:
                                             _threads(threads), out)
         return out if out is not None else res.reshape(shape + (res.shape[1],))
 
+    def evaluate_soa(self, x, y, z, threads=None, out=None):
+        """The sky's CIE 1931 XYZ (Y in cd/m^2) on the models' single-precision batch path, with
+        no conversion of the input: ``x``, ``y``, ``z`` are 1-D C-contiguous float32 arrays of
+        one length holding unit vectors (|v|^2 within 1e-5 of 1; x east, y north, z up).
+        Returns a (3, N) float32 array (rows X, Y, Z), or writes into ``out`` of that shape.
+        The fastest way to evaluate many directions (docs/PYTHON.md: the float64 arrays of
+        evaluate_directions cost the conversion)."""
+        return self._sky.evaluate_soa(x, y, z, _threads(threads), out)
+
     def render(self, width=None, height=None, projection="equirect", quantity="rgb",
                return_mask=False, threads=None, **image):
         """The sky drawn as ``skylight render`` draws it (CPU): an (H, W, 3) float32 array of

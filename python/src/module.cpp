@@ -23,6 +23,7 @@
 #include "skylight/core/camera.h"
 #include "skylight/core/error.h"
 #include "skylight/core/frame.h"
+#include "skylight/core/interleave.h"
 #include "skylight/core/math.h"
 #include "skylight/core/parallel.h"
 #include "skylight/core/parameters.h"
@@ -57,20 +58,6 @@ namespace py = pybind11;
 namespace sl = skylight;
 
 namespace {
-
-// Directions evaluated per parallel_for chunk.
-constexpr std::size_t kChunk = 4096;
-constexpr double kInf = std::numeric_limits<double>::infinity();
-// |v|^2 within this of 1: a unit vector as float64 arithmetic makes them (v / |v| has |v|^2 within
-// a few 1e-16 of 1); its float conversion is exact to float precision without the division.
-constexpr double kUnitTolerance = 1e-14;
-
-// The error of a direction that is not a finite non-zero vector (out of line: the loops that
-// check stay tight).
-[[noreturn, gnu::noinline, gnu::cold]] void bad_direction(std::size_t i, const sl::Vec3& d) {
-  throw sl::InvalidArgument(
-      fmt::format("direction {} = ({}, {}, {}) is not a finite non-zero vector", i, d.x, d.y, d.z));
-}
 
 std::string python_spelling(std::string_view name) {
   std::string s(name);
@@ -169,21 +156,37 @@ sl::Quantity quantity_of(const std::string& q) {
       fmt::format("quantity = '{}' is not one of rgb|xyz|luminance|spectral", q));
 }
 
-// Runs fn(begin, end) over [0, n) in chunks on `threads` threads (0: the library's count), the
-// GIL released.
+// Runs fn() with the GIL released and the library's batch helpers on `threads` threads (0: the
+// library's count) for this call only.
+template <class F>
+void with_threads(int threads, F&& fn) {
+  py::gil_scoped_release release;
+  const sl::ScopedThreadCount count(threads);
+  fn();
+}
+
+// Runs fn(begin, end) over [0, n) in chunks on `threads` threads, the GIL released.
 template <class F>
 void parallel_chunks(std::size_t n, int threads, F&& fn) {
-  py::gil_scoped_release release;
-  // A count other than the library's for this call only (the pool is resized when it changes).
-  const bool own = threads > 0 && threads != sl::thread_count();
-  if (own) sl::set_thread_count(threads);
-  try {
-    sl::parallel_for(n, kChunk, [&](std::size_t b, std::size_t e) { fn(b, e); });
-  } catch (...) {
-    if (own) sl::set_thread_count(0);
-    throw;
-  }
-  if (own) sl::set_thread_count(0);  // the default again
+  with_threads(threads, [&] {
+    sl::parallel_for(n, sl::kBatchChunk, [&](std::size_t b, std::size_t e) { fn(b, e); });
+  });
+}
+
+// The CPU time [s] fn() takes on the calling thread (one thread: the library's batch helpers
+// set to one), the GIL released.
+template <class F>
+double thread_cpu_seconds(F&& fn) {
+  double seconds = 0.0;
+  with_threads(1, [&] {
+    timespec t0{}, t1{};
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t0);
+    fn();
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t1);
+    seconds = static_cast<double>(t1.tv_sec - t0.tv_sec) +
+              1e-9 * static_cast<double>(t1.tv_nsec - t0.tv_nsec);
+  });
+  return seconds;
 }
 
 class Sky {
@@ -241,17 +244,7 @@ class Sky {
     static_cast<sl::Camera&>(settings) = image.camera();
     settings.sun = mode_;
     sl::render::SkyImage img;
-    {
-      py::gil_scoped_release release;
-      if (threads > 0) sl::set_thread_count(threads);
-      try {
-        img = sl::render::render_sky(*model_, settings);
-      } catch (...) {
-        if (threads > 0) sl::set_thread_count(0);
-        throw;
-      }
-      if (threads > 0) sl::set_thread_count(0);
-    }
+    with_threads(threads, [&] { img = sl::render::render_sky(*model_, settings); });
     const sl::io::ImageF& src = quantity == "rgb" ? img.rgb : img.xyz;
     for (const float v : src.data)
       if (!std::isfinite(v))
@@ -271,111 +264,105 @@ class Sky {
     return sl::quantity_columns(options(quantity, wavelengths));
   }
 
-  // (N, 3) unit-or-not direction vectors -> (N, C) values.
+  // (N, 3) unit-or-not direction vectors -> (N, C) values (sl::evaluate_rows).
   py::array_t<double> evaluate_directions(
       py::array_t<double, py::array::c_style | py::array::forcecast> v, const std::string& quantity,
       const std::vector<double>& wavelengths, bool exact, int threads, py::object out) const {
     if (v.ndim() != 2 || v.shape(1) != 3)
       throw sl::InvalidArgument("directions must have shape (..., 3)");
-    const auto n = static_cast<std::size_t>(v.shape(0));
-    const double* p = v.data();
-    // Checked and normalised where each chunk reads them (an error names the first bad one).
-    const auto direction = [p](std::size_t i) {
-      const sl::Vec3 d{p[3 * i], p[3 * i + 1], p[3 * i + 2]};
-      const double l2 = sl::dot(d, d);
-      if (!(l2 > 0.0) || !(l2 < kInf)) [[unlikely]]
-        bad_direction(i, d);
-      return (1.0 / std::sqrt(l2)) * d;
-    };
-    // The batch path's input in one tight loop; false when a direction is bad (direction() then
-    // names it).
-    const auto fill = [p](std::size_t b, std::size_t m, float* x, float* y, float* z) {
-      // Two passes the compiler vectorises: the squared lengths (checked, and whether all are
-      // unit to float64's last bits), then the conversion, scaled only when some are not unit.
-      const double* q = p + 3 * b;
-      bool ok = true, unit = true;
-      for (std::size_t i = 0; i < m; ++i) {
-        const double l2 =
-            q[3 * i] * q[3 * i] + q[3 * i + 1] * q[3 * i + 1] + q[3 * i + 2] * q[3 * i + 2];
-        ok &= (l2 > 0.0) & (l2 < kInf);
-        unit &= std::abs(l2 - 1.0) <= kUnitTolerance;
-      }
-      if (!ok) return false;
-      if (unit) {
-        for (std::size_t i = 0; i < m; ++i) {
-          x[i] = static_cast<float>(q[3 * i]);
-          y[i] = static_cast<float>(q[3 * i + 1]);
-          z[i] = static_cast<float>(q[3 * i + 2]);
-        }
-      } else {
-        for (std::size_t i = 0; i < m; ++i) {
-          const double inv = 1.0 / std::sqrt(q[3 * i] * q[3 * i] + q[3 * i + 1] * q[3 * i + 1] +
-                                             q[3 * i + 2] * q[3 * i + 2]);
-          x[i] = static_cast<float>(q[3 * i] * inv);
-          y[i] = static_cast<float>(q[3 * i + 1] * inv);
-          z[i] = static_cast<float>(q[3 * i + 2] * inv);
-        }
-      }
-      return true;
-    };
-    return evaluate(n, direction, fill, quantity, wavelengths, exact, threads, out);
+    const std::span<const double> rows(v.data(), static_cast<std::size_t>(v.size()));
+    return evaluate(rows.size() / 3, quantity, wavelengths, threads, out,
+                    [&](const sl::EvaluationOptions& o, std::span<double> dst) {
+                      sl::evaluate_rows(*model_, rows, o, dst, exact);
+                    });
   }
 
-  // Zenith and azimuth angles [deg] (flat arrays of one length) -> (N, C) values, the directions
-  // made as `skylight eval` makes them from its CSV.
+  // float32 x, y, z of shape (N,) -> (3, N) float32 X, Y, Z (sl::evaluate_soa): the batch path
+  // on the caller's arrays, no conversion.
+  py::array_t<float> evaluate_soa(const py::array& x, const py::array& y, const py::array& z,
+                                  int threads, py::object out_arg) const {
+    const auto flat = [](const py::array& a, const char* name) {
+      if (!py::isinstance<py::array_t<float>>(a) || !(a.flags() & py::array::c_style) ||
+          a.ndim() != 1)
+        throw sl::InvalidArgument(fmt::format(
+            "{} must be a 1-D C-contiguous float32 array (evaluate_directions takes others)",
+            name));
+      return std::span<const float>(static_cast<const float*>(a.data()),
+                                    static_cast<std::size_t>(a.size()));
+    };
+    const std::span<const float> sx = flat(x, "x"), sy = flat(y, "y"), sz = flat(z, "z");
+    const std::size_t n = sx.size();
+    py::array_t<float> out;
+    if (out_arg.is_none()) {
+      out = py::array_t<float>({std::size_t{3}, n});
+    } else {
+      if (!py::isinstance<py::array_t<float>>(out_arg))
+        throw sl::InvalidArgument("out must be a float32 numpy array");
+      out = py::reinterpret_borrow<py::array_t<float>>(out_arg);
+      if (!(out.flags() & py::array::c_style) || !out.writeable() || out.ndim() != 2 ||
+          out.shape(0) != 3 || static_cast<std::size_t>(out.shape(1)) != n)
+        throw sl::InvalidArgument(
+            fmt::format("out must be a writable C-contiguous float32 array of shape (3, {})", n));
+    }
+    float* dst = out.mutable_data();
+    with_threads(threads, [&] {
+      sl::evaluate_soa(*model_, {sx, sy, sz}, {{dst, n}, {dst + n, n}, {dst + 2 * n, n}});
+    });
+    return out;
+  }
+
+  // Zenith and azimuth angles [deg] (flat arrays of one length) -> (N, C) values
+  // (sl::evaluate_angles).
   py::array_t<double> evaluate_angles(
       py::array_t<double, py::array::c_style | py::array::forcecast> zenith_deg,
       py::array_t<double, py::array::c_style | py::array::forcecast> azimuth_deg,
       const std::string& quantity, const std::vector<double>& wavelengths, bool exact, int threads,
       py::object out) const {
-    const auto n = static_cast<std::size_t>(zenith_deg.size());
-    if (static_cast<std::size_t>(azimuth_deg.size()) != n)
-      throw sl::InvalidArgument("zenith_deg and azimuth_deg must have one length");
-    const double* z = zenith_deg.data();
-    const double* a = azimuth_deg.data();
-    for (std::size_t i = 0; i < n; ++i) {
-      if (!(z[i] >= 0.0 && z[i] <= 180.0))
-        throw sl::InvalidArgument(fmt::format("zenith_deg[{}] = {} is outside [0, 180]", i, z[i]));
-      if (!(a[i] >= -360.0 && a[i] <= 360.0))
-        throw sl::InvalidArgument(
-            fmt::format("azimuth_deg[{}] = {} is outside [-360, 360]", i, a[i]));
-    }
-    const auto direction = [z, a](std::size_t i) {
-      return sl::direction_from_angles(sl::deg_to_rad(z[i]),
-                                       sl::wrap_azimuth(sl::deg_to_rad(a[i])));
-    };
-    const auto fill = [&direction](std::size_t b, std::size_t m, float* x, float* y, float* zz) {
-      for (std::size_t i = 0; i < m; ++i) {
-        const sl::Vec3 d = direction(b + i);
-        x[i] = static_cast<float>(d.x);
-        y[i] = static_cast<float>(d.y);
-        zz[i] = static_cast<float>(d.z);
-      }
-      return true;
-    };
-    return evaluate(n, direction, fill, quantity, wavelengths, exact, threads, out);
+    const std::span<const double> z(zenith_deg.data(), static_cast<std::size_t>(zenith_deg.size()));
+    const std::span<const double> a(azimuth_deg.data(),
+                                    static_cast<std::size_t>(azimuth_deg.size()));
+    return evaluate(z.size(), quantity, wavelengths, threads, out,
+                    [&](const sl::EvaluationOptions& o, std::span<double> dst) {
+                      sl::evaluate_angles(*model_, z, a, o, dst, exact);
+                    });
   }
 
-  // The in-process baseline of python/tools/bench_overhead.py: the seconds of CPU time one thread
-  // takes for tristimulus_batch over float directions already in structure-of-arrays form (x, y, z
-  // of shape (n,)), in chunks as evaluate() takes them; the C++ batch path without the binding.
+  // The in-process baselines of python/tools/bench_overhead.py: the seconds of CPU time one
+  // thread takes for the C++ batch path without the binding. batch_cpu_seconds: tristimulus_batch
+  // over float directions already in structure-of-arrays form (x, y, z of shape (n,)) in
+  // kBatchChunk chunks, or with `checked` sl::evaluate_soa (the same with its checks), into `out`
+  // (3, n); rows_cpu_seconds: sl::evaluate_rows (xyz) over float64 rows (n, 3) into `out` (n, 3).
+  // The caller's output arrays: the same memory as the Python call it is compared with.
   double batch_cpu_seconds(py::array_t<float, py::array::c_style> x,
                            py::array_t<float, py::array::c_style> y,
-                           py::array_t<float, py::array::c_style> z) const {
+                           py::array_t<float, py::array::c_style> z,
+                           py::array_t<float, py::array::c_style> out, bool checked) const {
     const auto n = static_cast<std::size_t>(x.size());
-    std::vector<float> X(n), Y(n), Z(n);
+    if (static_cast<std::size_t>(out.size()) != 3 * n)
+      throw sl::InvalidArgument("out must hold 3 x n values");
     const float *px = x.data(), *py_ = y.data(), *pz = z.data();
-    py::gil_scoped_release release;
-    timespec t0{}, t1{};
-    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t0);
-    for (std::size_t b = 0; b < n; b += kChunk) {
-      const std::size_t m = std::min(kChunk, n - b);
-      model_->tristimulus_batch({{px + b, m}, {py_ + b, m}, {pz + b, m}},
-                                {{X.data() + b, m}, {Y.data() + b, m}, {Z.data() + b, m}});
-    }
-    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t1);
-    return static_cast<double>(t1.tv_sec - t0.tv_sec) +
-           1e-9 * static_cast<double>(t1.tv_nsec - t0.tv_nsec);
+    float* X = out.mutable_data();
+    float *Y = X + n, *Z = Y + n;
+    if (checked)
+      return thread_cpu_seconds([&] {
+        sl::evaluate_soa(*model_, {{px, n}, {py_, n}, {pz, n}}, {{X, n}, {Y, n}, {Z, n}});
+      });
+    return thread_cpu_seconds([&] {
+      for (std::size_t b = 0; b < n; b += sl::kBatchChunk) {
+        const std::size_t m = std::min(sl::kBatchChunk, n - b);
+        model_->tristimulus_batch({{px + b, m}, {py_ + b, m}, {pz + b, m}},
+                                  {{X + b, m}, {Y + b, m}, {Z + b, m}});
+      }
+    });
+  }
+
+  double rows_cpu_seconds(py::array_t<double, py::array::c_style> v,
+                          py::array_t<double, py::array::c_style> out) const {
+    const std::span<const double> rows(v.data(), static_cast<std::size_t>(v.size()));
+    const std::span<double> dst(out.mutable_data(), static_cast<std::size_t>(out.size()));
+    sl::EvaluationOptions o;
+    o.quantity = sl::Quantity::xyz;
+    return thread_cpu_seconds([&] { sl::evaluate_rows(*model_, rows, o, dst); });
   }
 
  private:
@@ -390,13 +377,12 @@ class Sky {
     return o;
   }
 
-  // n directions, direction(i) the unit vector of the i-th (called from the worker threads).
-  // fill(b, m, x, y, z): the batch path's float input of directions [b, b + m); false if one is
-  // bad. `out`: None, or a C-contiguous float64 array of n * columns values to write into.
-  template <class Direction, class Fill>
-  py::array_t<double> evaluate(std::size_t n, Direction direction, Fill fill,
-                               const std::string& quantity, const std::vector<double>& wavelengths,
-                               bool exact, int threads, py::object out_arg) const {
+  // n directions evaluated by run(options, out) with the GIL released on `threads` threads.
+  // `out`: None, or a C-contiguous float64 array of n * columns values to write into.
+  template <class Run>
+  py::array_t<double> evaluate(std::size_t n, const std::string& quantity,
+                               const std::vector<double>& wavelengths, int threads,
+                               py::object out_arg, Run run) const {
     const sl::EvaluationOptions o = options(quantity, wavelengths);
     const std::size_t cols = sl::quantity_columns(o).size();
     py::array_t<double> out;
@@ -411,62 +397,9 @@ class Sky {
         throw sl::InvalidArgument(fmt::format(
             "out must be a writable C-contiguous float64 array of {} x {} values", n, cols));
     }
-    double* dst = out.mutable_data();
-    // The batch path (single precision, the models' SIMD kernels) for the sky's XYZ or
-    // luminance; the double per-direction path (`skylight eval`'s) otherwise or when exact.
-    const bool batch = !exact && o.sun == sl::SunMode::sky &&
-                       (o.quantity == sl::Quantity::xyz || o.quantity == sl::Quantity::luminance);
-    parallel_chunks(n, threads, [&](std::size_t b, std::size_t e) {
-      if (batch) {
-        const std::size_t m = e - b;
-        // One buffer per worker thread, kept between calls (no allocation per chunk).
-        thread_local std::vector<float> buffer;
-        if (buffer.size() < 6 * m) buffer.resize(6 * kChunk);
-        const std::span<float> x(buffer.data(), m), y(buffer.data() + m, m),
-            z(buffer.data() + 2 * m, m), X(buffer.data() + 3 * m, m), Y(buffer.data() + 4 * m, m),
-            Z(buffer.data() + 5 * m, m);
-        if (!fill(b, m, x.data(), y.data(), z.data()))
-          for (std::size_t i = b; i < e; ++i) direction(i);  // throws for the first bad one
-        model_->tristimulus_batch({x, y, z}, {X, Y, Z});
-        // Widened into the output; |v| <= FLT_MAX is false for NaN and Inf (branch-free, so the
-        // loops vectorise).
-        bool finite = true;
-        if (cols == 1) {
-          for (std::size_t i = 0; i < m; ++i) {
-            finite &= std::abs(Y[i]) <= std::numeric_limits<float>::max();
-            dst[b + i] = Y[i];
-          }
-        } else {
-          double* row = dst + 3 * b;
-          for (std::size_t i = 0; i < m; ++i) {
-            finite &= (std::abs(X[i]) <= std::numeric_limits<float>::max()) &
-                      (std::abs(Y[i]) <= std::numeric_limits<float>::max()) &
-                      (std::abs(Z[i]) <= std::numeric_limits<float>::max());
-            row[3 * i] = X[i];
-            row[3 * i + 1] = Y[i];
-            row[3 * i + 2] = Z[i];
-          }
-        }
-        if (!finite) non_finite(b, e, cols, dst);
-      } else {
-        for (std::size_t i = b; i < e; ++i) {
-          const std::vector<double> v = sl::evaluate(*model_, direction(i), o);
-          std::copy(v.begin(), v.end(), dst + i * cols);
-        }
-        non_finite(b, e, cols, dst);
-      }
-    });
+    const std::span<double> dst(out.mutable_data(), n * cols);
+    with_threads(threads, [&] { run(o, dst); });
     return out;
-  }
-
-  // Throws for the first non-finite value of directions [b, e) (no output holds NaN or Inf; the
-  // first chunk's error is rethrown by parallel_for).
-  void non_finite(std::size_t b, std::size_t e, std::size_t cols, const double* dst) const {
-    for (std::size_t i = b * cols; i < e * cols; ++i)
-      if (!std::isfinite(dst[i]))
-        throw sl::InvalidArgument(fmt::format(
-            "model '{}' gives a non-finite value in direction {}: its parameters overflow",
-            info_->name, i / cols));
   }
 
   const sl::ModelInfo* info_;
@@ -668,10 +601,7 @@ py::array_t<double> sh_per_direction(
   const sl::sh::Coefficients e = irradiance ? sl::sh::irradiance_coefficients(c) : c;
   parallel_chunks(n, 0, [&](std::size_t b, std::size_t end) {
     for (std::size_t i = b; i < end; ++i) {
-      const sl::Vec3 q{p[3 * i], p[3 * i + 1], p[3 * i + 2]};
-      const double l2 = sl::dot(q, q);
-      if (!(l2 > 0.0) || !(l2 < kInf)) bad_direction(i, q);
-      const sl::sh::Triple t = sl::sh::reconstruct(e, (1.0 / std::sqrt(l2)) * q);
+      const sl::sh::Triple t = sl::sh::reconstruct(e, sl::row_direction(p, i));
       for (std::size_t k = 0; k < 3; ++k) d[3 * i + k] = t[k];
     }
   });
@@ -946,6 +876,8 @@ PYBIND11_MODULE(_skylight, m) {
       .def("columns", &Sky::columns)
       .def("evaluate_directions", &Sky::evaluate_directions)
       .def("evaluate_angles", &Sky::evaluate_angles)
+      .def("evaluate_soa", &Sky::evaluate_soa)
       .def("render", &Sky::render)
-      .def("batch_cpu_seconds", &Sky::batch_cpu_seconds);
+      .def("batch_cpu_seconds", &Sky::batch_cpu_seconds)
+      .def("rows_cpu_seconds", &Sky::rows_cpu_seconds);
 }

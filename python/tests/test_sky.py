@@ -95,6 +95,35 @@ def test_shapes_broadcast_and_the_batch_path_agrees_with_the_exact_one():
     np.testing.assert_array_equal(sky.evaluate(z, a, quantity="xyz", threads=1), fast)
 
 
+@pytest.mark.parametrize("model,kwargs", [("preetham", {"turbidity": 3}),
+                                          ("hosek", {"turbidity": 3, "albedo": 0.3}),
+                                          ("nn", {"turbidity": 3})])
+def test_float32_soa_is_the_float64_batch_path_and_checks_its_input(model, kwargs):
+    sky = skylight.Sky(model, sun_zenith=45, sun_azimuth=180, **kwargs)
+    rng = np.random.default_rng(5)
+    v = rng.normal(size=(40000, 3))
+    v /= np.linalg.norm(v, axis=1, keepdims=True)
+    x, y, z = (np.ascontiguousarray(v[:, k], dtype=np.float32) for k in range(3))
+    soa = sky.evaluate_soa(x, y, z)
+    assert soa.shape == (3, 40000) and soa.dtype == np.float32
+    # The same float directions through the float64 rows: the same kernel, bit for bit.
+    rows = sky.evaluate_directions(v, quantity="xyz")
+    np.testing.assert_array_equal(soa.T.astype(np.float64), rows)
+    out = np.empty((3, 40000), dtype=np.float32)
+    assert sky.evaluate_soa(x, y, z, threads=1, out=out) is out
+    np.testing.assert_array_equal(out, soa)
+    z_long = z.copy()
+    z_long[123] *= 1.01
+    with pytest.raises(skylight.InvalidArgument, match=r"direction 123 = .* not a unit vector"):
+        sky.evaluate_soa(x, y, z_long)
+    with pytest.raises(skylight.InvalidArgument, match=r"x must be a 1-D C-contiguous float32"):
+        sky.evaluate_soa(v[:, 0], y, z)
+    with pytest.raises(skylight.InvalidArgument, match=r"one length"):
+        sky.evaluate_soa(x, y, z[:10])
+    with pytest.raises(skylight.InvalidArgument, match=r"shape \(3, 40000\)"):
+        sky.evaluate_soa(x, y, z, out=np.empty((40000, 3), dtype=np.float32))
+
+
 def test_spectral_and_sun_modes():
     sky = skylight.Sky("preetham", turbidity=3, sun_zenith=45, sun_azimuth=180)
     s = sky.evaluate([10, 20], [0, 0], quantity="spectral", wavelengths=[450, 550, 650])

@@ -2,6 +2,7 @@
 parameter added to the library without regenerating them fails here."""
 
 import ast
+import inspect
 import os
 import pathlib
 import subprocess
@@ -28,3 +29,12 @@ def test_stubs_match_the_schemas(tmp_path):
         names = {a.arg for a in f.args.kwonlyargs}
         for p in m["parameters"]:
             assert p["name"].replace("-", "_") in names, (m["name"], p["name"])
+    # Every public method of Sky is in the stub with the class's parameter names, in order.
+    stubbed = {f.name: f for f in sky.body if isinstance(f, ast.FunctionDef)}
+    for name, fn in inspect.getmembers(skylight.Sky, inspect.isfunction):
+        if name.startswith("_"):
+            continue
+        assert name in stubbed, f"Sky.{name} is missing from the stubs"
+        a = stubbed[name].args
+        stub_names = [x.arg for x in a.args + a.kwonlyargs] + ([a.kwarg.arg] if a.kwarg else [])
+        assert stub_names == list(inspect.signature(fn).parameters), name

@@ -1,9 +1,16 @@
 #!/usr/bin/python3
-"""The Python binding's overhead (issue 30): Sky.evaluate_directions(..., quantity="xyz",
-threads=1) on 2^20 directions, into a new array and into out=, against the C++ batch path in the same process (the extension's
-batch_cpu_seconds: tristimulus_batch over the same directions in structure-of-arrays floats,
-one thread, CPU time). Prints the median of `--repeat` runs of each, in CPU time of the process
-(time.process_time: one thread, so equal to the thread's).
+"""The Python binding's overhead (docs/PYTHON.md): 2^20 directions, one thread, CPU time
+(time.thread_time of the calling thread, which does all the work with threads=1), medians of `--repeat` runs, against
+the C++ batch paths in the same process (the extension's *_cpu_seconds, timed around the library
+call alone, writing into the same output arrays as the Python calls):
+
+  evaluate_directions(v, quantity="xyz") on float64 rows (N, 3), into a new array and into out=,
+      against sl::evaluate_rows on the same rows (the C++ path for that layout);
+  evaluate_soa(x, y, z) on float32 arrays (N,), into out=, against sl::evaluate_soa on the same
+      arrays (C++ checked) and against tristimulus_batch alone (the models' SIMD kernel: no
+      checks of the directions and results, no conversion).
+
+The last column, rows / kernel, is the cost of the float64 layout itself (C++ alone).
 
 Usage: PYTHONPATH=build/python /usr/bin/python3 python/tools/bench_overhead.py [--repeat 7]
 """
@@ -20,6 +27,18 @@ MODELS = [("preetham", {"turbidity": 3}), ("hosek", {"turbidity": 3, "albedo": 0
           ("nn", {"turbidity": 3})]
 
 
+# Written before each timed call, so that every call starts with the same (cold) cache: the
+# order of the calls would otherwise favour the one that runs just after another wrote its output.
+_SCRATCH = np.zeros(64 << 20, dtype=np.uint8)
+
+
+def cpu(fn):
+    _SCRATCH.fill(1)
+    t0 = time.thread_time()
+    fn()
+    return time.thread_time() - t0
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--repeat", type=int, default=7)
@@ -30,32 +49,37 @@ def main():
     v[:, 2] = np.abs(v[:, 2])
     v /= np.linalg.norm(v, axis=1, keepdims=True)
     soa = [np.ascontiguousarray(v[:, k], dtype=np.float32) for k in range(3)]
-    print(f"{'model':10} {'python ms':>10} {'with out= ms':>13} {'C++ batch ms':>13} "
-          f"{'ratio':>6} {'ratio out=':>10}")
+    print(f"{'model':9} {'rows py':>8} {'out=':>7} {'C++':>7} {'ratio':>6} {'ratio out=':>10} | "
+          f"{'soa py':>7} {'C++':>7} {'kernel':>7} {'ratio':>6} {'/kernel':>7} | "
+          f"{'rows/kernel':>11}   (ms)")
     for name, kw in MODELS:
         sky = skylight.Sky(name, sun_zenith=45, sun_azimuth=180, **kw)
-        py, py_out, cpp = [], [], []
         out = np.empty((args.n, 3))
+        out32 = np.empty((3, args.n), dtype=np.float32)
+        t = {k: [] for k in ("py", "py_out", "rows", "soa", "checked", "kernel")}
         for _ in range(args.repeat):
-            t0 = time.process_time()
-            sky.evaluate_directions(v, quantity="xyz", threads=1)
-            py.append(time.process_time() - t0)
-            t0 = time.process_time()
-            sky.evaluate_directions(v, quantity="xyz", threads=1, out=out)
-            py_out.append(time.process_time() - t0)
-            cpp.append(sky._sky.batch_cpu_seconds(*soa))
-        p, po, c = statistics.median(py), statistics.median(py_out), statistics.median(cpp)
-        print(f"{name:10} {1e3 * p:10.2f} {1e3 * po:13.2f} {1e3 * c:13.2f} {p / c:6.2f} "
-              f"{po / c:10.2f}")
+            t["py"].append(cpu(lambda: sky.evaluate_directions(v, quantity="xyz", threads=1)))
+            t["py_out"].append(
+                cpu(lambda: sky.evaluate_directions(v, quantity="xyz", threads=1, out=out)))
+            _SCRATCH.fill(4)
+            t["rows"].append(sky._sky.rows_cpu_seconds(v, out))
+            t["soa"].append(cpu(lambda: sky.evaluate_soa(*soa, threads=1, out=out32)))
+            _SCRATCH.fill(2)
+            t["checked"].append(sky._sky.batch_cpu_seconds(*soa, out32, True))
+            _SCRATCH.fill(3)
+            t["kernel"].append(sky._sky.batch_cpu_seconds(*soa, out32, False))
+        m = {k: 1e3 * statistics.median(x) for k, x in t.items()}
+        print(f"{name:9} {m['py']:8.2f} {m['py_out']:7.2f} {m['rows']:7.2f} "
+              f"{m['py'] / m['rows']:6.3f} {m['py_out'] / m['rows']:10.3f} | {m['soa']:7.2f} "
+              f"{m['checked']:7.2f} {m['kernel']:7.2f} {m['soa'] / m['checked']:6.3f} "
+              f"{m['soa'] / m['kernel']:7.3f} | {m['rows'] / m['kernel']:11.2f}")
     # The cost of a call itself: 16 directions.
     sky = skylight.Sky("preetham", sun_zenith=45, sun_azimuth=180, turbidity=3)
     few = v[:16]
     calls = []
     for _ in range(args.repeat):
-        t0 = time.process_time()
-        for _ in range(1000):
-            sky.evaluate_directions(few, quantity="xyz", threads=1)
-        calls.append((time.process_time() - t0) / 1000)
+        calls.append(cpu(lambda: [sky.evaluate_directions(few, quantity="xyz", threads=1)
+                                  for _ in range(1000)]) / 1000)
     print(f"one call on 16 directions: {1e6 * statistics.median(calls):.1f} us")
 
 

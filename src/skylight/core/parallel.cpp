@@ -16,11 +16,15 @@ namespace skylight {
 namespace {
 
 std::atomic<int> g_thread_override{0};
+// ScopedThreadCount's count for the calling thread (0: none).
+thread_local int t_thread_override = 0;
 
 int default_thread_count() {
   if (const char* env = std::getenv("SKYLIGHT_THREADS"))
     if (const auto n = parse_thread_count(env)) return *n;
-  return std::max(1u, std::thread::hardware_concurrency());
+  // Read once: a system call of a few microseconds, which per-call users would pay each time.
+  static const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  return cores;
 }
 
 // Set while a thread runs chunks of a parallel_for: a nested call then runs serially instead of
@@ -143,8 +147,17 @@ std::optional<int> parse_thread_count(std::string_view text) {
 }
 
 int thread_count() {
+  if (t_thread_override > 0) return t_thread_override;
   const int o = g_thread_override.load();
   return o > 0 ? o : default_thread_count();
+}
+
+ScopedThreadCount::ScopedThreadCount(int n) : previous_(t_thread_override) {
+  if (n > 0) t_thread_override = std::min(n, kMaxThreads);
+}
+
+ScopedThreadCount::~ScopedThreadCount() {
+  t_thread_override = previous_;
 }
 
 void set_thread_count(int n) {

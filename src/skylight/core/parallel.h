@@ -21,6 +21,20 @@ std::optional<int> parse_thread_count(std::string_view text);
 // n >= 1; 0 restores the default.
 void set_thread_count(int n);
 
+// thread_count() is `n` for the calling thread while this lives (n >= 1; 0 changes nothing):
+// a per-call count (the Python package's threads=) that neither changes nor races with the
+// process-wide one. Scopes nest.
+class ScopedThreadCount {
+ public:
+  explicit ScopedThreadCount(int n);
+  ~ScopedThreadCount();
+  ScopedThreadCount(const ScopedThreadCount&) = delete;
+  ScopedThreadCount& operator=(const ScopedThreadCount&) = delete;
+
+ private:
+  int previous_;
+};
+
 // Calls body(begin, end) over [0, n) in chunks of at most `grain` items, on up to thread_count()
 // threads: the calling thread plus a persistent pool of thread_count() - 1 workers (started on
 // first use, resized when the count changes), so a call costs ~0.4 us instead of a thread start.

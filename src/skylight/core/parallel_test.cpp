@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <thread>
 #include <vector>
 
 #include "skylight/core/error.h"
@@ -29,6 +30,31 @@ TEST(Parallel, PropagatesExceptions) {
                               if (b == 500) throw IoError("boom");
                             }),
                IoError);
+  set_thread_count(0);
+}
+
+TEST(Parallel, ScopedThreadCountIsPerThreadAndNests) {
+  set_thread_count(3);
+  {
+    const ScopedThreadCount one(1);
+    EXPECT_EQ(thread_count(), 1);
+    {
+      const ScopedThreadCount two(2);
+      EXPECT_EQ(thread_count(), 2);
+      // Another thread keeps the process-wide count.
+      int other = 0;
+      std::thread([&] { other = thread_count(); }).join();
+      EXPECT_EQ(other, 3);
+      // The scoped count is the count a parallel_for of this thread takes.
+      std::atomic<int> chunks{0};
+      parallel_for(1000, 10, [&](std::size_t, std::size_t) { chunks++; });
+      EXPECT_EQ(chunks.load(), 100);
+    }
+    EXPECT_EQ(thread_count(), 1);
+    const ScopedThreadCount none(0);  // changes nothing
+    EXPECT_EQ(thread_count(), 1);
+  }
+  EXPECT_EQ(thread_count(), 3);
   set_thread_count(0);
 }
 

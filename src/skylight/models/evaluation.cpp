@@ -2,7 +2,14 @@
 
 #include <fmt/format.h>
 
+#include <cmath>
+#include <limits>
+
 #include "skylight/core/error.h"
+#include "skylight/core/frame.h"
+#include "skylight/core/interleave.h"
+#include "skylight/core/math.h"
+#include "skylight/core/parallel.h"
 #include "skylight/core/parameters.h"
 
 namespace skylight {
@@ -185,6 +192,134 @@ std::vector<double> evaluate(const SkyModel& model, Vec3 v, const EvaluationOpti
       return {rgb.r, rgb.g, rgb.b};
     }
   }
+}
+
+namespace {
+
+// Sub-chunks of kBatchChunk directions per parallel_for chunk.
+constexpr std::size_t kBatchSubChunks = 16;
+
+[[noreturn, gnu::noinline, gnu::cold]] void non_finite(const SkyModel& model, std::size_t i) {
+  throw InvalidArgument(
+      fmt::format("model '{}' gives a non-finite value in direction {}: its parameters overflow",
+                  model.name(), i));
+}
+
+// Throws for the first non-finite value of directions [b, e).
+void check_finite(const SkyModel& model, std::size_t b, std::size_t e, std::size_t cols,
+                  const double* out) {
+  for (std::size_t i = b * cols; i < e * cols; ++i)
+    if (!std::isfinite(out[i])) non_finite(model, i / cols);
+}
+
+// n directions: direction(i) the unit vector of the i-th (called from the worker threads);
+// fill(b, m, x, y, z) the batch path's float input of directions [b, b + m), false if one is bad.
+template <class Direction, class Fill>
+void evaluate_batch(const SkyModel& model, std::size_t n, Direction direction, Fill fill,
+
+                    const EvaluationOptions& o, std::span<double> out, bool exact) {
+  const std::size_t cols = quantity_columns(o).size();
+  if (out.size() != n * cols)
+    throw InvalidArgument(
+        fmt::format("the output holds {} values, not {} x {}", out.size(), n, cols));
+  double* dst = out.data();
+  const bool batch = !exact && o.sun == SunMode::sky &&
+                     (o.quantity == Quantity::xyz || o.quantity == Quantity::luminance);
+  parallel_for(n, kBatchChunk * kBatchSubChunks, [&](std::size_t b, std::size_t e) {
+    if (!batch) {
+      for (std::size_t i = b; i < e; ++i) {
+        const std::vector<double> v = evaluate(model, direction(i), o);
+        std::copy(v.begin(), v.end(), dst + i * cols);
+      }
+      check_finite(model, b, e, cols, dst);
+      return;
+    }
+    // One buffer per worker thread, kept between calls (no allocation per chunk).
+    thread_local std::vector<float> buffer;
+    if (buffer.size() < 6 * kBatchChunk) buffer.resize(6 * kBatchChunk);
+    for (std::size_t sb = b; sb < e; sb += kBatchChunk) {
+      const std::size_t m = std::min(kBatchChunk, e - sb), se = sb + m;
+      float* x = buffer.data();
+      float *y = x + m, *z = y + m, *X = z + m, *Y = X + m, *Z = Y + m;
+      if (!fill(sb, m, x, y, z))
+        for (std::size_t i = sb; i < se; ++i) direction(i);  // throws for the first bad one
+      model.tristimulus_batch({{x, m}, {y, m}, {z, m}}, {{X, m}, {Y, m}, {Z, m}});
+      const bool finite = cols == 1 ? widen(Y, m, dst + sb) : soa_to_rows(X, Y, Z, m, dst + 3 * sb);
+      if (!finite) check_finite(model, sb, se, cols, dst);
+    }
+  });
+}
+
+}  // namespace
+
+void evaluate_rows(const SkyModel& model, std::span<const double> directions,
+                   const EvaluationOptions& o, std::span<double> out, bool exact) {
+  if (directions.size() % 3 != 0)
+    throw InvalidArgument(
+        fmt::format("directions hold {} values, not a multiple of 3", directions.size()));
+  const double* p = directions.data();
+  const auto direction = [p](std::size_t i) { return row_direction(p, i); };
+  const auto fill = [p](std::size_t b, std::size_t m, float* x, float* y, float* z) {
+    return directions_to_soa(p + 3 * b, m, x, y, z);
+  };
+  evaluate_batch(model, directions.size() / 3, direction, fill, o, out, exact);
+}
+
+void evaluate_soa(const SkyModel& model, const DirectionsSoA& d, const XyzSoA& out) {
+  const std::size_t n = d.size();
+  if (d.y.size() != n || d.z.size() != n || out.X.size() != n || out.Y.size() != n ||
+      out.Z.size() != n)
+    throw InvalidArgument("x, y, z and the outputs must have one length");
+  // Sub-chunks of kBatchChunk: the checks read what the kernel reads and writes in L1.
+  parallel_for(n, kBatchChunk * kBatchSubChunks, [&](std::size_t cb, std::size_t ce) {
+    for (std::size_t b = cb; b < ce; b += kBatchChunk) {
+      const std::size_t m = std::min(kBatchChunk, ce - b);
+      const XyzSoA o{out.X.subspan(b, m), out.Y.subspan(b, m), out.Z.subspan(b, m)};
+      model.tristimulus_batch({d.x.subspan(b, m), d.y.subspan(b, m), d.z.subspan(b, m)}, o);
+      // Checked after the kernel has brought the directions into L1 (its arithmetic overlaps the
+      // memory reads better than a streaming check does).
+      if (!unit_soa(d.x.data() + b, d.y.data() + b, d.z.data() + b, m))
+        for (std::size_t i = b; i < b + m; ++i)
+          if (!unit_soa(d.x.data() + i, d.y.data() + i, d.z.data() + i, 1))
+            throw InvalidArgument(fmt::format(
+                "direction {} = ({}, {}, {}) is not a unit vector (|v|^2 within {} of 1)", i,
+                d.x[i], d.y[i], d.z[i], kFloatUnitLengthTolerance));
+      for (const auto& channel : {o.X, o.Y, o.Z})
+        if (!all_finite(channel.data(), m))
+          for (std::size_t i = 0; i < m; ++i)
+            if (!std::isfinite(channel[i])) non_finite(model, b + i);
+    }
+  });
+}
+
+void evaluate_angles(const SkyModel& model, std::span<const double> zenith_deg,
+                     std::span<const double> azimuth_deg, const EvaluationOptions& o,
+                     std::span<double> out, bool exact) {
+  const std::size_t n = zenith_deg.size();
+  if (azimuth_deg.size() != n)
+    throw InvalidArgument("zenith_deg and azimuth_deg must have one length");
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!(zenith_deg[i] >= 0.0 && zenith_deg[i] <= 180.0))
+      throw InvalidArgument(
+          fmt::format("zenith_deg[{}] = {} is outside [0, 180]", i, zenith_deg[i]));
+    if (!(azimuth_deg[i] >= -360.0 && azimuth_deg[i] <= 360.0))
+      throw InvalidArgument(
+          fmt::format("azimuth_deg[{}] = {} is outside [-360, 360]", i, azimuth_deg[i]));
+  }
+  const auto direction = [&](std::size_t i) {
+    return direction_from_angles(deg_to_rad(zenith_deg[i]),
+                                 wrap_azimuth(deg_to_rad(azimuth_deg[i])));
+  };
+  const auto fill = [&](std::size_t b, std::size_t m, float* x, float* y, float* z) {
+    for (std::size_t i = 0; i < m; ++i) {
+      const Vec3 d = direction(b + i);
+      x[i] = static_cast<float>(d.x);
+      y[i] = static_cast<float>(d.y);
+      z[i] = static_cast<float>(d.z);
+    }
+    return true;
+  };
+  evaluate_batch(model, n, direction, fill, o, out, exact);
 }
 
 }  // namespace skylight

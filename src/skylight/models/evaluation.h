@@ -4,6 +4,7 @@
 // models/sky_model.h has the model's own parameters.
 #pragma once
 
+#include <span>
 #include <string>
 #include <vector>
 
@@ -54,5 +55,33 @@ std::vector<std::string> quantity_columns(const EvaluationOptions& options);
 // wavelength outside the model's range; the caller checks finiteness (non-finite values are an
 // overflow of the model's parameters).
 std::vector<double> evaluate(const SkyModel& model, Vec3 view, const EvaluationOptions& options);
+
+// Directions evaluated per parallel_for chunk by evaluate_rows and evaluate_angles: the chunk's
+// float64 rows, its float structure-of-arrays and its results stay in the L1/L2 cache.
+inline constexpr std::size_t kBatchChunk = 1024;
+
+// The batch evaluation of many directions into `out` (directions x quantity_columns(options)
+// float64 values, row by row), in chunks on thread_count() threads: the model's single-precision
+// SIMD path (tristimulus_batch) for the sky's XYZ or luminance unless `exact`; evaluate() per
+// direction otherwise. InvalidArgument naming the first bad direction, a wrong `out` size, or the
+// first non-finite value (an overflow of the model's parameters; `out` is then partly written).
+// The options must have been validated (validate(options, model)).
+//
+// evaluate_rows: `directions` holds rows (x, y, z), any finite non-zero length (normalised; a
+// direction with |v|^2 within kUnitLengthTolerance of 1 as it is on the SIMD path). The Python
+// package's Sky.evaluate_directions, and the C++ batch path for float64 rows
+// (bench/bench_models.cpp).
+void evaluate_rows(const SkyModel& model, std::span<const double> directions,
+                   const EvaluationOptions& options, std::span<double> out, bool exact = false);
+// evaluate_soa: the model's SIMD batch path (tristimulus_batch: the sky's XYZ, Y in cd/m^2) on
+// float structure-of-arrays, in place of the caller's arrays, checked: every direction a unit
+// vector to kFloatUnitLengthTolerance (InvalidArgument naming the first that is not) and every
+// result finite. The Python package's Sky.evaluate_soa: no conversion at all.
+void evaluate_soa(const SkyModel& model, const DirectionsSoA& directions, const XyzSoA& out);
+// evaluate_angles: zenith [0, 180] and azimuth [-360, 360] angles [deg] of one length, the
+// directions made as `skylight eval` makes them from its CSV.
+void evaluate_angles(const SkyModel& model, std::span<const double> zenith_deg,
+                     std::span<const double> azimuth_deg, const EvaluationOptions& options,
+                     std::span<double> out, bool exact = false);
 
 }  // namespace skylight
