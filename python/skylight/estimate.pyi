@@ -1,5 +1,7 @@
+from os import PathLike
 from typing import Any
 
 import numpy.typing as npt
 
-def turbidity(image: npt.ArrayLike, mask: npt.ArrayLike | None = ..., **options: Any) -> dict[str, Any]: ...
+def turbidity(image: npt.ArrayLike | str | PathLike[str], mask: npt.ArrayLike | None = ...,
+              **options: Any) -> dict[str, Any]: ...

@@ -1,5 +1,6 @@
 """Aerial perspective on images with depth (Morales, Oishi & Ikeuchi 2017; docs/HAZE.md): add,
-re-target or remove haze as ``skylight haze add|retarget|remove`` does, on numpy arrays."""
+re-target or remove haze, or composite a virtual object into a hazy photo, as ``skylight haze
+add|retarget|remove|composite`` does, on numpy arrays."""
 
 import numpy as _np
 
@@ -28,3 +29,16 @@ def retarget(image, depth, **options):
 def remove(image, depth, **options):
     """The haze of ``turbidity`` removed (eq. 10 inverted, Gamma floored at min_transmission)."""
     return _apply("remove", image, depth, options)
+
+
+def composite(background, obj, depth, alpha=None, **options):
+    """The virtual object ``obj`` ((H, W, 3) linear) at ``depth`` ((H, W) metres, or normalised
+    with ``near``/``far``) given the haze of ``turbidity`` (eq. 10, as add) and laid over the
+    ``background`` photo, which already shows that haze: alpha * hazed object + (1 - alpha) *
+    background (Morales 2017 §6.2). ``alpha``: (H, W) coverage in [0, 1]; None: 1 where the
+    depth is > 0. ``options``: the haze composite operation's (as add). Returns (H, W, 3)
+    float32."""
+    return _skylight.haze_composite(
+        _np.asarray(background, dtype=_np.float32), _np.asarray(obj, dtype=_np.float32),
+        _np.asarray(depth, dtype=_np.float32),
+        None if alpha is None else _np.asarray(alpha, dtype=_np.float32), options)

@@ -1,5 +1,6 @@
-"""Neural sky models (Satilmis et al. 2016; docs/NN.md): train a network on a registered model,
-then use it as the ``nn`` model (``skylight.Sky("nn", weights=path)``)."""
+"""Neural sky models (Satilmis et al. 2016; Pietras 2023; docs/NN.md): train a network on a
+registered model, on HDR sky images or a Pietras network on nishita, then use it as the ``nn``
+model (``skylight.Sky("nn", weights=path)``) or the ``pietras`` model."""
 
 import os as _os
 
@@ -7,14 +8,34 @@ from . import _skylight
 
 
 def train(output, source="preetham", progress=None, **options):
-    """Trains a sky network on ``source`` (any registered model) as ``skylight nn train`` does,
-    writes its weights file to ``output`` (atomically; nothing when training fails its held-out
-    check or is interrupted) and returns the summary (iterations, training and validation
-    errors, the check). ``options``: the nn train operation's (seed, hidden, trainer, inputs,
-    encoding, iterations, time_limit, starts, start_iterations, max_error, target_scale, suns,
-    view_zeniths, view_azimuths; ``skylight.operations()``). ``progress(iteration, mse)`` is
-    called after every iteration. Ctrl-C stops training between iterations (KeyboardInterrupt)."""
-    return _skylight.nn_train(_os.fspath(output), dict(options, source=source), progress)
+    """Trains a network as ``skylight nn train`` does and writes its weights file to ``output``
+    (atomically; nothing when training fails its held-out check or is interrupted); returns the
+    summary. What is trained:
+
+    * a sky network on ``source`` (any registered model; the paper's protocol): returns the
+      iterations, training and validation errors and the held-out check;
+    * with ``images=LIST`` a sky network on a sequence of HDR sky images (a CSV list
+      ``file[,sun_zenith_deg,sun_azimuth_deg][,time][,mask]``, docs/NN.md; their layout:
+      projection, lens, fov, ...; lat and lon for rows with a time; kfold; samples per image):
+      returns each image's sun and samples, the cross-validation folds, the held-out captures'
+      check and the final errors;
+    * with ``network="pietras"|"log3"`` (and ``source="nishita"``) a Pietras network (samples,
+      region, init, the planet's options): returns its weights, iterations and check.
+
+    ``options``: the nn train operation's (``skylight.operations()``); one a kind of training
+    does not read warns. ``progress(iteration, mse)`` is called after every iteration (a Pietras
+    network's iterations counted over its sub-networks). Ctrl-C stops training between
+    iterations (KeyboardInterrupt)."""
+    if "images" in options:
+        if source != "preetham":
+            raise _skylight.InvalidArgument("source is not an option of training on images")
+        options["images"] = _os.fspath(options["images"])
+    else:
+        options["source"] = source
+    for key in ("init", "mask", "camera_csv"):
+        if isinstance(options.get(key), _os.PathLike):
+            options[key] = _os.fspath(options[key])
+    return _skylight.nn_train(_os.fspath(output), options, progress)
 
 
 def load(path, **parameters):

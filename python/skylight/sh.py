@@ -1,7 +1,10 @@
 """Spherical-harmonics sky lighting on numpy arrays (the library's sh/ and fit/sh_fit.h): a
-sky's SH projection, reconstruction, rotation, the ringing filter and diffuse irradiance.
+sky's SH projection, reconstruction, rotation, the ringing filter and diffuse irradiance, and
+polynomial tables of the coefficients over the sun and turbidity (fit, load, evaluate, export).
 Coefficients are float64 arrays of shape (bands^2, 3), row index(l, m) = l (l + 1) + m, real SH
 without the Condon-Shortley phase, azimuth from north towards east (docs/SH.md)."""
+
+import os as _os
 
 import numpy as _np
 
@@ -55,3 +58,66 @@ def rotate(c, matrix=None, zenith_deg=None):
 def ringing_filter(c):
     """Habel et al. 2008 eq. 5: the zonal coefficients damped by sinc(pi l / N)."""
     return _skylight.sh_ringing_filter(_np.asarray(c, dtype=_np.float64))
+
+
+class Table:
+    """An SH polynomial table (Habel et al. 2008 eq. 1; docs/SH.md): per stored coefficient and
+    channel a Chebyshev polynomial in the sun zenith and the table's parameter tau (turbidity for
+    preetham and hosek). Made by :func:`fit` or :func:`load_table`; the ``sh`` model renders one
+    (``skylight.Sky("sh", table=path)`` after :meth:`save`)."""
+
+    def __init__(self, table):
+        self._table = table
+
+    def describe(self):
+        """What the table holds: model, parameter (tau's name or None), channels, bands, degrees,
+        sun_zenith_range_deg, tau_range, theta_axis, tau_pieces, ground_albedo,
+        coefficient_count."""
+        return self._table.describe()
+
+    def coefficients(self, sun_zenith, tau=None, sun_azimuth=0.0, bands=None,
+                     ringing_filter=True):
+        """The (bands², 3) SH coefficients (row l (l + 1) + m, the table's channels) of the sky
+        with the sun at ``sun_zenith`` / ``sun_azimuth`` [deg] and ``tau`` (None: the middle of
+        the table's range), rotated to the azimuth (eq. 4) and, unless ``ringing_filter=False``,
+        filtered (eq. 5). ``bands``: the first N bands (None: all of the table's). Outside the
+        fitted ranges raises InvalidArgument."""
+        n = self.describe()["bands"] if bands is None else int(bands)
+        return self._table.coefficients(float(sun_zenith), None if tau is None else float(tau),
+                                        float(sun_azimuth), n, bool(ringing_filter))
+
+    def save(self, path):
+        """Writes the table's JSON file (``skylight sh fit -o``'s format; atomically)."""
+        self._table.save(_os.fspath(path))
+
+    def c_header(self, name="skylight_sh_table", monomial=False):
+        """The table as a C header (``skylight sh export --c-header``): its Chebyshev
+        coefficients and, with ``monomial``, the published monomial form."""
+        return self._table.c_header(name, bool(monomial))
+
+    def error(self, progress=None, **options):
+        """E_mean (eq. 3) and E_max (eq. 2) against converged projections of the table's model,
+        per band count and channel, worst and median over the test points (``skylight sh error
+        --json``'s rows). ``options``: points (theta, tau), midpoints_only. ``progress(done,
+        total)`` after each projection; Ctrl-C stops (KeyboardInterrupt)."""
+        return self._table.error(options, progress)
+
+    def __repr__(self):
+        d = self.describe()
+        return (f"skylight.sh.Table(model={d['model']!r}, parameter={d['parameter']!r}, "
+                f"bands={d['bands']}, degrees={d['degrees']})")
+
+
+def fit(model, progress=None, **options):
+    """Fits an SH polynomial table to a registered model as ``skylight sh fit`` does (its
+    converged projections on a grid of suns and tau; the model's fit policy gives tau, its range
+    and the table's structure). ``options``: the sh fit operation's (bands, degrees, parameter,
+    range, theta_range, grid, set, channels, tolerance, theta_axis, tau_pieces, ground_albedo;
+    ``skylight.operations()``). ``progress(done, total)`` after each projection; Ctrl-C stops
+    between projections (KeyboardInterrupt). Returns a :class:`Table`."""
+    return Table(_skylight._ShTable.fit(dict(options, model=model), progress))
+
+
+def load_table(path):
+    """The table in the JSON file ``path`` (``skylight sh fit -o``'s format), validated."""
+    return Table(_skylight._ShTable.load(_os.fspath(path)))

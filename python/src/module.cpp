@@ -28,6 +28,7 @@
 #include "skylight/core/parallel.h"
 #include "skylight/core/parameters.h"
 #include "skylight/core/text.h"
+#include "skylight/estimate/capture.h"
 #include "skylight/estimate/photo.h"
 #include "skylight/fit/luminance_fit.h"
 #include "skylight/fit/network_training.h"
@@ -48,6 +49,7 @@
 #include "skylight/report/report.h"
 #include "skylight/sh/basis.h"
 #include "skylight/sh/irradiance.h"
+#include "skylight/sh/polynomial.h"
 #include "skylight/sh/projection.h"
 #include "skylight/sh/rotation.h"
 #include "skylight/sun/spa.h"
@@ -658,39 +660,47 @@ std::vector<std::string> write_report(const std::string& output_dir, const py::d
 // (atomically); the request's options from the schema. Ctrl-C stops between iterations: the
 // progress callback checks Python's signals with the GIL taken, and KeyboardInterrupt is raised
 // (nothing written). Returns the summary as a dict.
-py::dict nn_train(const std::string& output, const py::dict& kwargs, py::object progress) {
-  const auto& schema = sl::fit::NetworkTrainingRequest::schema();
-  const sl::ParameterValues values = schema_values(schema.specs(), kwargs, "nn.train");
-  sl::fit::NetworkTrainingRequest req;
-  schema.bind(values, req, "nn.train");
-  for (const std::string& name :
-       sl::fit::NetworkTrainingRequest::unread(values, sl::fit::NetworkTrainingRequest::Kind::sky))
-    PyErr_WarnEx(
-        PyExc_UserWarning,
-        fmt::format("{} is not read by a sky network's training; ignored", python_spelling(name))
-            .c_str(),
-        1);
-  if (req.network)
-    throw sl::InvalidArgument(
-        "nn.train trains a sky network on a model (source=...); images and the Pietras "
-        "networks are not in the Python package yet");
-  sl::fit::NeuralTraining t = req.sky_training();
+// The callbacks of a training: Ctrl-C (checked under the GIL) stops it between iterations,
+// `progress(iteration, mse)` (if given) is called after each.
+struct TrainingProgress {
+  const py::object* progress;
   bool interrupted = false;
-  t.options.progress = [&](const sl::nn::TrainLogEntry& e) {
+  bool operator()(int iteration, double mse) {
     py::gil_scoped_acquire gil;
     if (PyErr_CheckSignals() != 0) {
       interrupted = true;
       return false;
     }
-    if (!progress.is_none()) progress(e.iteration, e.mse);
+    if (!progress->is_none()) (*progress)(iteration, mse);
     return true;
-  };
-  sl::fit::NeuralTrainingResult r;
-  {
-    py::gil_scoped_release release;
-    r = sl::fit::train_neural_sky(t);
   }
-  if (interrupted) throw py::error_already_set();
+  // Between steps without a return value (reading images): Ctrl-C ends the work by exception.
+  struct Stop {};
+  void step() {
+    py::gil_scoped_acquire gil;
+    if (PyErr_CheckSignals() != 0) {
+      interrupted = true;
+      throw Stop{};
+    }
+  }
+  // Runs the training with the GIL released; KeyboardInterrupt when it was interrupted.
+  template <class F>
+  void run(F&& fn) {
+    try {
+      py::gil_scoped_release release;
+      fn();
+    } catch (const Stop&) {
+    }
+    if (interrupted) throw py::error_already_set();
+  }
+};
+
+py::dict nn_train_sky(const std::string& output, const sl::fit::NetworkTrainingRequest& req,
+                      TrainingProgress& tp) {
+  sl::fit::NeuralTraining t = req.sky_training();
+  t.options.progress = [&](const sl::nn::TrainLogEntry& e) { return tp(e.iteration, e.mse); };
+  sl::fit::NeuralTrainingResult r;
+  tp.run([&] { r = sl::fit::train_neural_sky(t); });
   r.network.provenance.software = fmt::format("skylight {} (Python)", sl::kVersion);
   sl::io::write_text_file(output, sl::nn::to_json(r.network));
   py::dict d;
@@ -708,6 +718,126 @@ py::dict nn_train(const std::string& output, const py::dict& kwargs, py::object 
     d["validation_relative_p95"] = r.validation->errors.relative_p95;
   }
   if (r.check) d["check"] = r.check->summary();
+  return d;
+}
+
+// `nn train --images LIST`: a sky network on a sequence of HDR sky images.
+py::dict nn_train_images(const std::string& output, const sl::fit::NetworkTrainingRequest& req,
+                         const sl::ParameterValues& values, TrainingProgress& tp) {
+  sl::fit::ImageTrainingOptions options;
+  sl::fit::ImageTrainingOptions::schema().bind(
+      values.only(sl::fit::ImageTrainingOptions::schema().specs()), options, "nn.train");
+  sl::fit::NeuralTraining t = req.sky_training();
+  t.options.progress = [&](const sl::nn::TrainLogEntry& e) { return tp(e.iteration, e.mse); };
+  sl::fit::ImageTrainingResult r;
+  tp.run([&] {
+    r = sl::fit::train_on_images(options, t, req.samples.value_or(sl::fit::kImageSamples),
+                                 [&](int, int, const std::string&) { tp.step(); });
+  });
+  sl::nn::SkyNetwork network = r.trained.network;
+  network.provenance.software = fmt::format("skylight {} (Python)", sl::kVersion);
+  sl::io::write_text_file(output, sl::nn::to_json(network));
+  py::dict d;
+  py::list images;
+  for (const sl::fit::LoadedImage& li : r.images) {
+    py::dict i;
+    i["line"] = li.entry.line;
+    i["file"] = li.entry.file.string();
+    i["sun_zenith_deg"] = sl::rad_to_deg(li.sampled.samples.state.sun_zenith);
+    i["sun_azimuth_deg"] = sl::rad_to_deg(li.sampled.samples.state.sun_azimuth);
+    i["sun_from"] = li.sun_source;
+    i["sky_pixels"] = li.sampled.sky_pixels;
+    i["samples"] = li.sampled.samples.views.size();
+    images.append(i);
+  }
+  d["images"] = images;
+  d["examples"] = r.examples;
+  d["target_scale"] = r.target_scale;
+  if (r.cross_validation) {
+    py::list folds;
+    for (const sl::nn::FoldResult& f : r.cross_validation->folds) {
+      py::dict fd;
+      py::list lines;
+      for (int k : f.held_out) lines.append(r.images[static_cast<std::size_t>(k)].entry.line);
+      fd["held_out_lines"] = lines;
+      fd["test_examples"] = f.test_examples;
+      fd["training_rmse"] = f.training_rmse;
+      fd["rmse"] = f.errors.rmse;
+      fd["relative_median"] = f.errors.relative_median;
+      fd["relative_p95"] = f.errors.relative_p95;
+      folds.append(fd);
+    }
+    d["cross_validation"] = folds;
+    d["cross_validation_mean_rmse"] = r.cross_validation->mean_rmse;
+  }
+  d["check"] = r.check ? py::cast(r.check->summary(r.images)) : py::object(py::none());
+  const auto& pv = network.provenance;
+  d["layout"] = network.net.layout().describe();
+  d["trainer"] = pv.trainer;
+  d["seed"] = pv.seed;
+  d["iterations"] = pv.iterations;
+  d["stop"] = pv.stop;
+  d["rmse"] = r.errors.rmse;
+  d["relative_median"] = r.errors.relative_median;
+  d["relative_p95"] = r.errors.relative_p95;
+  return d;
+}
+
+// `nn train --network pietras|log3`: a Pietras network on nishita.
+py::dict nn_train_pietras(const std::string& output, const sl::fit::NetworkTrainingRequest& req,
+                          TrainingProgress& tp) {
+  std::optional<sl::nn::PietrasNetwork> initial;
+  sl::fit::PietrasTraining t = req.pietras_training(initial, output);
+  const int iterations = t.options.max_iterations;
+  t.progress = [&](int k, const sl::nn::TrainLogEntry& e) {
+    return tp(k * iterations + e.iteration, e.mse);
+  };
+  sl::fit::PietrasTrainingResult result;
+  tp.run([&] { result = sl::fit::train_pietras(t); });
+  sl::nn::PietrasNetwork& net = result.network;
+  net.provenance.software = fmt::format("skylight {} (Python)", sl::kVersion);
+  sl::io::write_text_file(output, sl::nn::to_json(net));
+  py::dict d;
+  d["network"] = std::string(sl::nn::to_string(t.kind));
+  d["weights"] = net.parameter_count();
+  d["samples"] = net.provenance.samples;
+  d["iterations"] = net.provenance.iterations;
+  d["region"] = net.provenance.region;
+  d["trainer"] = std::string(sl::nn::to_string(t.options.trainer));
+  d["seed"] = req.seed;
+  if (result.check) d["check"] = result.check->summary();
+  return d;
+}
+
+// `skylight nn train`: a sky network on a model (source=), on HDR sky images (images=, a list
+// file) or a Pietras network on nishita (network=); the weights file written atomically, nothing
+// when the training fails its held-out check or is interrupted.
+py::dict nn_train(const std::string& output, const py::dict& kwargs, py::object progress) {
+  using Kind = sl::fit::NetworkTrainingRequest::Kind;
+  const auto& schema = sl::fit::NetworkTrainingRequest::schema();
+  std::vector<sl::ParameterSpec> specs = schema.specs();
+  for (const auto& s : sl::fit::ImageTrainingOptions::schema().specs()) specs.push_back(s);
+  const sl::ParameterValues values = schema_values(specs, kwargs, "nn.train");
+  sl::fit::NetworkTrainingRequest req;
+  schema.bind(values.only(schema.specs()), req, "nn.train");
+  const Kind kind = req.network ? Kind::pietras : values.has("images") ? Kind::images : Kind::sky;
+  if (kind == Kind::images)
+    for (const char* name : {"source", "suns", "view-zeniths", "view-azimuths", "network"})
+      if (values.has(name))
+        throw sl::InvalidArgument(
+            fmt::format("{} is not an option of training on images", python_spelling(name)));
+  for (const std::string& name : sl::fit::NetworkTrainingRequest::unread(values, kind))
+    PyErr_WarnEx(PyExc_UserWarning,
+                 fmt::format("{} is not read by this training ({}); ignored", python_spelling(name),
+                             kind == Kind::sky      ? "a sky network on a model"
+                             : kind == Kind::images ? "images"
+                                                    : "network")
+                     .c_str(),
+                 1);
+  TrainingProgress tp{&progress};
+  py::dict d = kind == Kind::pietras  ? nn_train_pietras(output, req, tp)
+               : kind == Kind::images ? nn_train_images(output, req, values, tp)
+                                      : nn_train_sky(output, req, tp);
   d["output"] = output;
   return d;
 }
@@ -740,19 +870,25 @@ sl::io::ImageF image_of(py::array_t<float, py::array::c_style | py::array::force
 py::dict estimate_fit(py::array_t<float, py::array::c_style | py::array::forcecast> photo,
                       py::object mask, const py::dict& kwargs) {
   const sl::OperationInfo& op = sl::operations::find("estimate");
-  std::vector<sl::ParameterSpec> specs;
-  for (const auto& s : op.parameters)  // the file options of the CLI are the arrays here
-    if (s.name != "exif" && s.name != "utc-offset") specs.push_back(s);
-  const sl::ParameterValues given = schema_values(specs, kwargs, "estimate");
+  // Every option of the operation, the capture's EXIF file (exif, utc_offset) included; the
+  // photo and the mask are the arrays.
+  const sl::ParameterValues given = schema_values(op.parameters, kwargs, "estimate");
   const sl::io::ImageF image = image_of(photo, "the photo");
   std::optional<sl::io::ImageF> user_mask;
   if (!mask.is_none())
     user_mask = image_of(mask.cast<py::array_t<float, py::array::c_style | py::array::forcecast>>(),
                          "the mask");
+  sl::estimate::CaptureOptions co;
+  sl::estimate::CaptureOptions::schema().bind(
+      given.only(sl::estimate::CaptureOptions::schema().specs()), co, "estimate");
+  if (co.exif.empty() && !co.utc_offset.empty())
+    throw sl::InvalidArgument("utc_offset is read only with exif (the capture's EXIF file)");
+  std::optional<sl::estimate::Capture> capture;
   sl::operations::PhotoEstimate pe;
   {
     py::gil_scoped_release release;
-    pe = sl::operations::estimate_photo(image, given, user_mask ? &*user_mask : nullptr);
+    if (!co.exif.empty()) capture = sl::estimate::read_capture(co, image.width);
+    pe = sl::operations::estimate_photo(image, given, user_mask ? &*user_mask : nullptr, capture);
   }
   const std::string& model = pe.model;
   const sl::fit::LuminanceFit& fit = pe.fit;
@@ -773,7 +909,51 @@ py::dict estimate_fit(py::array_t<float, py::array::c_style | py::array::forceca
   d["sun_source"] = pe.sun_source;
   d["samples"] = ps.samples.size();
   d["sky_pixels"] = ps.sky_pixels;
+  if (capture) {
+    // As `skylight estimate --json` reports it.
+    const sl::io::ExifInfo& e = capture->exif;
+    const auto or_none = [](const auto& v) -> py::object {
+      return v ? py::cast(*v) : py::object(py::none());
+    };
+    py::dict x;
+    x["file"] = co.exif;
+    x["camera"] = fmt::format("{}{}{}", e.make, e.make.empty() ? "" : " ", e.model);
+    x["date_time"] = or_none(e.date_time);
+    x["utc_offset"] = or_none(e.utc_offset);
+    x["focal_length_mm"] = or_none(e.focal_length_mm);
+    x["focal_length_px"] = or_none(capture->focal_length_px);
+    x["latitude_deg"] = or_none(e.latitude_deg);
+    x["longitude_deg"] = or_none(e.longitude_deg);
+    d["exif"] = x;
+  }
   return d;
+}
+
+// A haze operation's options (its schema without the GL switch) as named values.
+sl::ParameterValues haze_values(const std::string& operation, const py::dict& kwargs) {
+  std::vector<sl::ParameterSpec> specs;
+  for (const auto& s : sl::operations::find("haze " + operation).parameters)
+    if (s.name != "gpu") specs.push_back(s);
+  return schema_values(specs, kwargs, "haze." + operation);
+}
+
+// A one-channel (H, W[, 1]) array as an image.
+sl::io::ImageF scalar_image_of(py::array_t<float, py::array::c_style | py::array::forcecast> a,
+                               const char* what) {
+  if (a.ndim() == 2) a = a.reshape({a.shape(0), a.shape(1), py::ssize_t{1}});
+  sl::io::ImageF img = image_of(a, what);
+  if (img.channels != 1) throw sl::InvalidArgument(fmt::format("{} must have one channel", what));
+  return img;
+}
+
+py::array_t<float> rgb_array_of(const sl::io::ImageF& out) {
+  for (const float v : out.data)
+    if (!std::isfinite(v))
+      throw sl::InvalidArgument("the result holds NaN or Inf (raise min_transmission)");
+  py::array_t<float> result(
+      {static_cast<std::size_t>(out.height), static_cast<std::size_t>(out.width), std::size_t{3}});
+  std::copy(out.data.begin(), out.data.end(), result.mutable_data());
+  return result;
 }
 
 // `skylight haze add|retarget|remove` on arrays (Morales et al. 2017; haze/request.h): the image
@@ -792,45 +972,163 @@ py::array_t<float> haze_apply(const std::string& name,
     op = sl::haze::HazeOperation::remove;
   else
     throw sl::InvalidArgument(fmt::format("no haze operation '{}'", name));
-  std::vector<sl::ParameterSpec> specs;
-  for (const auto& s : sl::operations::find("haze " + name).parameters)
-    if (s.name != "gpu") specs.push_back(s);
-  const sl::ParameterValues given = schema_values(specs, kwargs, "haze." + name);
-  const auto bound = [&](const auto& schema, auto value) {
-    schema.bind(given.only(schema.specs()), value, "haze");
-    return value;
-  };
-  const sl::haze::Atmosphere air = bound(sl::haze::atmosphere_schema(), sl::haze::Atmosphere{});
-  sl::haze::validate(air);
-  const sl::haze::CameraSensitivity cam =
-      bound(sl::haze::SensitivityOptions::schema(), sl::haze::SensitivityOptions{}).sensitivity();
-  const auto airlight = bound(sl::haze::AirlightOptions::schema(), sl::haze::AirlightOptions{});
-  const auto options = bound(sl::haze::HazeOptions::schema(), sl::haze::HazeOptions{});
-  const auto image_camera =
-      bound(sl::haze::ImageCameraOptions::schema(), sl::haze::ImageCameraOptions{});
+  const sl::ParameterValues given = haze_values(name, kwargs);
   const sl::io::ImageF img = image_of(image, "the image");
   if (img.channels != 3) throw sl::InvalidArgument("the image must have R, G, B");
-  if (depth.ndim() == 2) depth = depth.reshape({depth.shape(0), depth.shape(1), py::ssize_t{1}});
-  const sl::io::ImageF d = image_of(depth, "the depth");
-  if (d.channels != 1) throw sl::InvalidArgument("the depth must have one channel");
-  const sl::haze::HazeSettings settings =
-      sl::haze::haze_settings(op, air, options, cam, sl::haze::AirlightSource(airlight),
-                              image_camera, img.width, img.height);
-  const sl::io::ImageF depth_m = sl::haze::depth_in_metres(d, {options.near_m, options.far_m},
+  const sl::io::ImageF d = scalar_image_of(depth, "the depth");
+  const sl::haze::ImageHazeRequest r =
+      sl::haze::image_haze_request(op, given, img.width, img.height);
+  const sl::io::ImageF depth_m = sl::haze::depth_in_metres(d, {r.options.near_m, r.options.far_m},
                                                            img.width, img.height, "the depth");
   sl::io::ImageF out;
   {
     py::gil_scoped_release release;
-    out = sl::haze::apply_haze(img, depth_m, cam, settings, nullptr);
+    out = sl::haze::apply_haze(img, depth_m, r.camera, r.settings, nullptr);
   }
-  for (const float v : out.data)
-    if (!std::isfinite(v))
-      throw sl::InvalidArgument("the result holds NaN or Inf (raise min_transmission)");
-  py::array_t<float> result(
-      {static_cast<std::size_t>(out.height), static_cast<std::size_t>(out.width), std::size_t{3}});
-  std::copy(out.data.begin(), out.data.end(), result.mutable_data());
-  return result;
+  return rgb_array_of(out);
 }
+
+// `skylight haze composite` on arrays: the background photo (H, W, 3) already showing the haze of
+// T, the object (H, W, 3), its depth (H, W[, 1]) and coverage alpha (H, W[, 1]) in [0, 1] (None:
+// 1 where the depth is > 0).
+py::array_t<float> haze_composite(
+    py::array_t<float, py::array::c_style | py::array::forcecast> background,
+    py::array_t<float, py::array::c_style | py::array::forcecast> object,
+    py::array_t<float, py::array::c_style | py::array::forcecast> depth, py::object alpha,
+    const py::dict& kwargs) {
+  const sl::ParameterValues given = haze_values("composite", kwargs);
+  const sl::io::ImageF bg = image_of(background, "the background");
+  const sl::io::ImageF obj = image_of(object, "the object");
+  const sl::io::ImageF d = scalar_image_of(depth, "the object's depth");
+  const sl::haze::ImageHazeRequest r =
+      sl::haze::image_haze_request(sl::haze::HazeOperation::add, given, bg.width, bg.height);
+  const sl::io::ImageF depth_m = sl::haze::depth_in_metres(
+      d, {r.options.near_m, r.options.far_m}, obj.width, obj.height, "the object's depth");
+  const sl::io::ImageF a =
+      alpha.is_none()
+          ? sl::haze::coverage_from_depth(depth_m)
+          : scalar_image_of(
+                alpha.cast<py::array_t<float, py::array::c_style | py::array::forcecast>>(),
+                "the alpha");
+  sl::io::ImageF out;
+  {
+    py::gil_scoped_release release;
+    out = sl::haze::composite(bg, obj, a, depth_m, r.camera, r.settings);
+  }
+  return rgb_array_of(out);
+}
+
+// An SH polynomial table (Habel et al. 2008 eq. 1; docs/SH.md): fitted (`skylight sh fit`) or
+// read from its JSON file, evaluated, written, exported and checked (`sh error`).
+class ShTable {
+ public:
+  explicit ShTable(sl::sh::PolynomialTable t) : table_(std::move(t)) {}
+
+  // `skylight sh fit`: the operation's options; progress(done, total) after each projection;
+  // Ctrl-C stops between projections (KeyboardInterrupt).
+  static ShTable fit(const py::dict& kwargs, py::object progress) {
+    const auto& schema = sl::fit::ShFitRequest::schema();
+    sl::fit::ShFitRequest req;
+    schema.bind(schema_values(schema.specs(), kwargs, "sh.fit"), req, "sh.fit");
+    sl::fit::ShFitSettings s = sl::fit::sh_fit_settings(req);
+    s.polynomial.progress = interruptible(progress);
+    sl::sh::PolynomialTable t;
+    run_interruptible([&] { t = sl::fit::fit_sh_table(s); });
+    return ShTable(std::move(t));
+  }
+
+  static ShTable load(const std::string& path) {
+    return ShTable(sl::sh::table_from_json(sl::io::read_text_file(path), path));
+  }
+
+  // The coefficients (bands^2, 3) at the sun's zenith and azimuth [deg] and tau (None: the
+  // middle of the table's range, as the `sh` model takes it), with or without the ringing filter.
+  py::array_t<double> coefficients(double sun_zenith_deg, std::optional<double> tau,
+                                   double sun_azimuth_deg, int bands, bool ringing_filter) const {
+    const double t = tau.value_or(0.5 * (table_.tau_min + table_.tau_max));
+    if (bands <= 0 || bands > table_.bands)
+      throw sl::InvalidArgument(
+          fmt::format("bands = {} is outside [1, {}] (the table's)", bands, table_.bands));
+    return array_of(sl::sh::evaluate_table(table_, sl::deg_to_rad(sun_zenith_deg), t,
+                                           sl::deg_to_rad(sun_azimuth_deg), bands, ringing_filter));
+  }
+
+  void save(const std::string& path) const {
+    sl::io::write_text_file(path, sl::sh::table_to_json(table_));
+  }
+  std::string c_header(const std::string& name, bool monomial) const {
+    return sl::sh::table_to_c_header(table_, name, monomial);
+  }
+
+  // `skylight sh error --json`'s rows.
+  py::list error(const py::dict& kwargs, py::object progress) const {
+    const auto& schema = sl::fit::ShErrorOptions::schema();
+    sl::fit::ShErrorOptions o;
+    schema.bind(schema_values(schema.specs(), kwargs, "sh.Table.error"), o, "sh.Table.error");
+    sl::fit::ShTableError e;
+    const auto report = interruptible(progress);
+    run_interruptible([&] { e = sl::fit::table_error(table_, o, report); });
+    const char* names = table_.channels == sl::sh::Channels::xyz ? "XYZ" : "rgb";
+    py::list rows;
+    for (const sl::fit::ShErrorRow& r : e.rows) {
+      py::dict d;
+      d["bands"] = r.bands;
+      d["channel"] = std::string(1, names[r.channel]);
+      d["e_mean_worst_percent"] = 100 * r.e_mean_worst;
+      d["e_mean_median_percent"] = 100 * r.e_mean_median;
+      d["e_max_worst_percent"] = 100 * r.e_max_worst;
+      d["e_max_median_percent"] = 100 * r.e_max_median;
+      d["worst_sun_zenith_deg"] = sl::rad_to_deg(r.worst_theta);
+      d["worst_tau"] = r.worst_tau;
+      rows.append(d);
+    }
+    return rows;
+  }
+
+  py::dict describe() const {
+    py::dict d;
+    d["model"] = table_.model;
+    d["parameter"] = table_.parameter.empty() ? py::object(py::none()) : py::cast(table_.parameter);
+    d["channels"] = table_.channels == sl::sh::Channels::xyz ? "xyz" : "linear-srgb";
+    d["bands"] = table_.bands;
+    d["degrees"] = py::make_tuple(table_.degree_theta, table_.degree_tau);
+    d["sun_zenith_range_deg"] =
+        py::make_tuple(sl::rad_to_deg(table_.theta_min), sl::rad_to_deg(table_.theta_max));
+    d["tau_range"] = py::make_tuple(table_.tau_min, table_.tau_max);
+    d["theta_axis"] = table_.theta_axis == sl::sh::ThetaAxis::theta ? "theta" : "elevation-cbrt";
+    d["tau_pieces"] = table_.tau_pieces;
+    d["ground_albedo"] =
+        table_.ground_albedo ? py::cast(*table_.ground_albedo) : py::object(py::none());
+    d["coefficient_count"] = table_.coefficients.size();
+    return d;
+  }
+
+ private:
+  // A progress callback that calls `progress(done, total)` (if given) under the GIL and stops the
+  // work on Ctrl-C (the work is then rethrown as KeyboardInterrupt by run_interruptible).
+  struct Interrupted {};
+  // `progress` outlives the work; the callback holds its address only, so that copies of the
+  // callback made without the GIL touch no reference count.
+  static std::function<void(int, int)> interruptible(const py::object& progress) {
+    const py::object* p = &progress;
+    return [p](int done, int total) {
+      py::gil_scoped_acquire gil;
+      if (PyErr_CheckSignals() != 0) throw Interrupted{};
+      if (!p->is_none()) (*p)(done, total);
+    };
+  }
+  template <class F>
+  static void run_interruptible(F&& fn) {
+    try {
+      py::gil_scoped_release release;
+      fn();
+    } catch (const Interrupted&) {
+      throw py::error_already_set();
+    }
+  }
+
+  sl::sh::PolynomialTable table_;
+};
 
 }  // namespace
 
@@ -858,6 +1156,7 @@ PYBIND11_MODULE(_skylight, m) {
   m.def("nn_glsl", &nn_glsl);
   m.def("estimate_fit", &estimate_fit);
   m.def("haze_apply", &haze_apply);
+  m.def("haze_composite", &haze_composite);
   m.def("sh_per_direction", &sh_per_direction);
   m.def("sh_rotate", &sh_rotate);
   m.def("sh_rotate_about_zenith", &sh_rotate_about_zenith);
@@ -865,6 +1164,14 @@ PYBIND11_MODULE(_skylight, m) {
     return array_of(sl::sh::ringing_filter(coefficients_of(c)));
   });
   m.def("write_image", &write_image, py::arg("path"), py::arg("image"), py::arg("metadata"));
+  py::class_<ShTable>(m, "_ShTable")
+      .def_static("fit", &ShTable::fit)
+      .def_static("load", &ShTable::load)
+      .def("coefficients", &ShTable::coefficients)
+      .def("save", &ShTable::save)
+      .def("c_header", &ShTable::c_header)
+      .def("error", &ShTable::error)
+      .def("describe", &ShTable::describe);
   py::class_<Sky>(m, "_Sky")
       .def(py::init<const std::string&, const py::dict&>(), py::arg("model"), py::arg("kwargs"))
       .def_property_readonly("name", &Sky::name)

@@ -57,3 +57,35 @@ def test_errors(photo):
         skylight.estimate.turbidity(img, sampels=100)
     with pytest.raises(skylight.InvalidArgument, match="shape"):
         skylight.estimate.turbidity(img[:, :, 0])
+
+
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+EXIF = os.path.join(ROOT, "tests", "data", "exif", "capture.jpg")
+# tests/data/exif/capture.jpg: 2024-06-21 15:00:00 +02:00 at 48 deg 8' N, 11 deg 34' 30" E, 520 m.
+WHEN = {"time": "2024-06-21T15:00:00+02:00", "lat": 48.133333333333333, "lon": 11.575,
+        "elevation": 520}
+
+
+def test_exif_gives_the_sun_as_the_cli(tmp_path):
+    path = tmp_path / "sky.exr"
+    args = [f"--{k}={v}" for k, v in WHEN.items()]
+    subprocess.run([CLI, "render", "--model", "preetham", "--turbidity", "4", *args,
+                    "--projection", "fisheye", "--width", "200", "--height", "200", "-o", str(path)],
+                   check=True, capture_output=True)
+    out = subprocess.run([CLI, "estimate", "--image", str(path), "--exif", EXIF, "--seed", "3",
+                          "--json"], check=True, capture_output=True, text=True).stdout
+    cli = json.loads(out)
+    # The path of the photo, or its array; the EXIF file as str or a path object.
+    py = skylight.estimate.turbidity(path, exif=EXIF, seed=3)
+    by_time = skylight.estimate.turbidity(skylight.io.read(path), seed=3, **WHEN)
+    assert py["sun_source"] == "exif" and by_time["sun_source"] == "time"
+    for key in ("turbidity", "sun_zenith_deg", "sun_azimuth_deg", "residual", "samples"):
+        assert py[key] == cli[key], key
+    assert py["sun_zenith_deg"] == by_time["sun_zenith_deg"]
+    assert py["exif"] == cli["exif"]
+    assert py["exif"]["camera"] == "SkylightTest Fisheye 8mm"
+    assert abs(py["turbidity"] - 4.0) < EXACT_T_TOL * 1e3
+    with pytest.raises(skylight.InvalidArgument, match="utc_offset is read only with exif"):
+        skylight.estimate.turbidity(path, utc_offset="+02:00")
+    with pytest.raises(OSError, match="nope.jpg"):
+        skylight.estimate.turbidity(path, exif=tmp_path / "nope.jpg")

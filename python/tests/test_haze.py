@@ -54,3 +54,41 @@ def test_errors():
         skylight.haze.add(image, np.ones((4, 4)), turbidty=3)
     with pytest.raises(skylight.InvalidArgument, match="shape"):
         skylight.haze.add(image[:, :, 0], np.ones((4, 4)), **OPTIONS)
+
+
+def test_composite_is_the_clis(tmp_path):
+    background = skylight.haze.add(skylight.io.read(DATA / "valley.hdr"),
+                                   skylight.io.read(DATA / "valley_depth.pfm")[:, :, 0], **OPTIONS)
+    h, w = background.shape[:2]
+    # A grey box 2 km away in the middle third, its edge half covered.
+    obj = np.zeros_like(background)
+    depth = np.zeros((h, w), np.float32)
+    alpha = np.zeros((h, w), np.float32)
+    rows, cols = slice(h // 3, 2 * h // 3), slice(w // 3, 2 * w // 3)
+    obj[rows, cols] = 0.2
+    depth[rows, cols] = 2000.0
+    alpha[rows, cols] = 1.0
+    alpha[rows, w // 3] = 0.5
+    paths = {k: tmp_path / f"{k}.pfm" for k in ("bg", "obj", "depth", "alpha", "out")}
+    skylight.io.write(paths["bg"], background)
+    skylight.io.write(paths["obj"], obj)
+    skylight.io.write(paths["depth"], depth[:, :, None])
+    skylight.io.write(paths["alpha"], alpha[:, :, None])
+    for with_alpha in (True, False):
+        args = ["--object-alpha", str(paths["alpha"])] if with_alpha else []
+        subprocess.run([CLI, "haze", "composite", "--background", str(paths["bg"]), "--object",
+                        str(paths["obj"]), "--object-depth", str(paths["depth"]), *args,
+                        *cli_flags(OPTIONS), "-o", str(paths["out"])],
+                       check=True, capture_output=True)
+        py = skylight.haze.composite(background, obj, depth, alpha if with_alpha else None,
+                                     **OPTIONS)
+        np.testing.assert_array_equal(py, skylight.io.read(paths["out"]))
+        paths["out"].unlink()
+    # Outside the object the background is untouched; inside, the object got the haze add gives.
+    py = skylight.haze.composite(background, obj, depth, alpha, **OPTIONS)
+    np.testing.assert_array_equal(py[alpha == 0], background[alpha == 0])
+    hazed = skylight.haze.add(obj, np.where(depth > 0, depth, 1.0), **OPTIONS)
+    inside = alpha == 1
+    np.testing.assert_allclose(py[inside], hazed[inside], rtol=ROUND_TRIP_TOL)
+    with pytest.raises(skylight.InvalidArgument, match="alpha"):
+        skylight.haze.composite(background, obj, depth, alpha * 2, **OPTIONS)

@@ -66,3 +66,40 @@ def test_glsl_is_the_clis_export(tmp_path):
     assert "#version 330 core" in skylight.nn.glsl()
     with pytest.raises(OSError, match="cannot read"):
         skylight.nn.glsl(tmp_path / "missing.json")
+
+
+def test_images_train_a_network_as_the_cli(tmp_path):
+    # Three rendered captures (hosek, the sun given in the list), as `nn train --images` reads
+    # them; the middle one is the held-out capture.
+    suns = [(30, 120), (45, 150), (60, 180)]
+    lines = ["file,sun_zenith_deg,sun_azimuth_deg"]
+    for k, (z, a) in enumerate(suns):
+        sky = skylight.Sky("hosek", turbidity=3, sun_zenith=z, sun_azimuth=a)
+        skylight.io.write(tmp_path / f"c{k}.exr", sky.render(96, 48))
+        lines.append(f"c{k}.exr,{z},{a}")
+    (tmp_path / "seq.csv").write_text("\n".join(lines) + "\n")
+    opts = dict(hidden=8, iterations=30, samples=300, max_error=1000, seed=2)
+    r = skylight.nn.train(tmp_path / "w.json", images=tmp_path / "seq.csv", **opts)
+    assert [i["line"] for i in r["images"]] == [2, 3, 4]
+    assert [i["sun_from"] for i in r["images"]] == ["list"] * 3
+    assert r["images"][1]["sun_zenith_deg"] == pytest.approx(45.0)
+    assert r["examples"] == 900 and "lines 3" in r["check"]
+    cli = subprocess.run([CLI, "nn", "train", "--images", str(tmp_path / "seq.csv"),
+                          "--hidden", "8", "--iterations", "30", "--samples", "300",
+                          "--max-error", "1000", "--seed", "2", "-o", str(tmp_path / "c.json")],
+                         check=True, capture_output=True, text=True).stdout
+    assert f"{r['examples']} examples" in cli
+    mine = json.loads((tmp_path / "w.json").read_text())
+    theirs = json.loads((tmp_path / "c.json").read_text())
+    assert mine["parameters"] == theirs["parameters"]  # the same training, bit for bit
+    with pytest.raises(skylight.InvalidArgument, match="source is not an option of training on"):
+        skylight.nn.train(tmp_path / "x.json", source="hosek", images=tmp_path / "seq.csv")
+
+
+def test_pietras_network_trains_and_warns_of_unread_options(tmp_path):
+    with pytest.warns(UserWarning, match="starts is not read by this training"):
+        r = skylight.nn.train(tmp_path / "p.json", source="nishita", network="pietras",
+                              samples=2000, iterations=3, max_error=1e6, starts=3)
+    assert r["network"] == "pietras" and r["weights"] > 0 and r["samples"] == 2000
+    sky = skylight.Sky("pietras", weights=str(tmp_path / "p.json"), sun_zenith=40)
+    assert np.isfinite(sky.evaluate([0, 60], [0, 90], quantity="xyz")).all()

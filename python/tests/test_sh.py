@@ -68,3 +68,74 @@ def test_reconstruction_approaches_a_smooth_sky():
     np.testing.assert_allclose(skylight.sh.evaluate(c, v), exact, rtol=0.08)
     with pytest.raises(skylight.InvalidArgument, match="bands\\^2"):
         skylight.sh.evaluate(np.zeros((5, 3)), v)
+
+
+# A small table (3 bands, degrees 4 x 2 over T 2.5-4): seconds to fit.
+SMALL_FIT = dict(bands=3, degrees=[4, 2], range=[2.5, 4.0], theta_range=[10.0, 60.0])
+# The small table reproduces its model's projections within a few % of c_00 (docs/SH.md: the
+# fits' error is their degrees'; 17 x 12 tables reach 1e-3).
+SMALL_FIT_TOL = 0.03
+
+
+def flags(options):
+    out = []
+    for k, v in options.items():
+        out += [f"--{k.replace('_', '-')}", ",".join(str(x) for x in v) if isinstance(v, list)
+                else str(v)]
+    return out
+
+
+def test_fit_is_the_clis_table_and_reproduces_the_projections(tmp_path):
+    import json
+    import os
+    import subprocess
+    calls = []
+    table = skylight.sh.fit("preetham", progress=lambda done, total: calls.append((done, total)),
+                            **SMALL_FIT)
+    assert calls and calls[-1][0] == calls[-1][1]
+    d = table.describe()
+    assert d["model"] == "preetham" and d["parameter"] == "turbidity" and d["bands"] == 3
+    assert d["degrees"] == (4, 2) and d["tau_range"] == (2.5, 4.0)
+    cli = tmp_path / "cli.json"
+    subprocess.run([os.environ.get("SKYLIGHT_CLI", "skylight"), "sh", "fit", "--model",
+                    "preetham", *flags(SMALL_FIT), "-o", str(cli)], check=True,
+                   capture_output=True)
+    mine = tmp_path / "py.json"
+    table.save(mine)
+    assert json.loads(mine.read_text()) == json.loads(cli.read_text())
+    again = skylight.sh.load_table(mine)
+    # Within the fit's error of the model's own projection, at a point between the grid's.
+    c = again.coefficients(sun_zenith=33.0, tau=3.3, sun_azimuth=120.0)
+    ref = skylight.sh.project(skylight.Sky("preetham", turbidity=3.3, sun_zenith=33.0,
+                                           sun_azimuth=120.0), bands=3, channels="xyz")
+    unfiltered = again.coefficients(sun_zenith=33.0, tau=3.3, sun_azimuth=120.0,
+                                    ringing_filter=False)
+    assert c.shape == (9, 3)
+    assert np.abs(unfiltered - ref).max() < SMALL_FIT_TOL * abs(ref[0, 1])
+    # The sh model reads the saved table: its reconstruction is the filtered coefficients'.
+    sky = skylight.Sky("sh", table=str(mine), turbidity=3.3, sun_zenith=33.0, sun_azimuth=120.0)
+    v = np.array([[0.3, -0.2, 0.9], [0.0, 0.6, 0.5]])
+    np.testing.assert_allclose(sky.evaluate_directions(v, quantity="xyz", exact=True),
+                               skylight.sh.evaluate(c, v), rtol=1e-5)
+    assert "preetham" in again.c_header(name="small")
+    rows = again.error(points=[3, 2])
+    assert len(rows) == 3 * 3 and {r["channel"] for r in rows} == {"X", "Y", "Z"}
+    assert all(r["e_mean_worst_percent"] >= r["e_mean_median_percent"] >= 0 for r in rows)
+    with pytest.raises(skylight.InvalidArgument, match="outside"):
+        again.coefficients(sun_zenith=80.0, tau=3.0)
+    with pytest.raises(skylight.InvalidArgument, match="degres is not a parameter of sh.fit"):
+        skylight.sh.fit("preetham", degres=[4, 2])
+    with pytest.raises(OSError):
+        skylight.sh.load_table(tmp_path / "nope.json")
+
+
+def test_fit_stops_on_ctrl_c():
+    import os
+    import signal
+
+    def interrupt(done, total):
+        if done == 2:
+            os.kill(os.getpid(), signal.SIGINT)
+
+    with pytest.raises(KeyboardInterrupt):
+        skylight.sh.fit("preetham", progress=interrupt, **SMALL_FIT)

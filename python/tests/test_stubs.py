@@ -38,3 +38,20 @@ def test_stubs_match_the_schemas(tmp_path):
         a = stubbed[name].args
         stub_names = [x.arg for x in a.args + a.kwonlyargs] + ([a.kwarg.arg] if a.kwarg else [])
         assert stub_names == list(inspect.signature(fn).parameters), name
+
+
+def test_submodule_stubs_list_every_public_function_with_its_parameters():
+    import importlib
+    import skylight
+    for name in ("estimate", "haze", "io", "nn", "sh"):
+        module = importlib.import_module(f"skylight.{name}")
+        tree = ast.parse((ROOT / "python" / "skylight" / f"{name}.pyi").read_text())
+        stubbed = {n.name: n for n in tree.body if isinstance(n, (ast.FunctionDef, ast.ClassDef))}
+        for fname, fn in vars(module).items():
+            if fname.startswith("_") or getattr(fn, "__module__", None) != module.__name__:
+                continue
+            assert fname in stubbed, f"skylight.{name}.{fname} is missing from {name}.pyi"
+            if inspect.isfunction(fn):
+                a = stubbed[fname].args
+                names = [x.arg for x in a.args + a.kwonlyargs] + ([a.kwarg.arg] if a.kwarg else [])
+                assert names == list(inspect.signature(fn).parameters), f"{name}.{fname}"

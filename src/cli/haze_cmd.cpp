@@ -181,18 +181,21 @@ io::ImageF apply_on_gpu(const io::ImageF& image, const io::ImageF& depth_m,
 
 int run_image(const HazeCommand& f, haze::HazeOperation op, std::string_view name) {
   check_gpu_available(f.gpu());
-  const haze::AirlightOptions ao = f.airlight();
+  // The options' errors before the files are read (the request binds them again).
+  (void)f.airlight();
   check_output(f.output);
-  const haze::CameraSensitivity cam = f.sensitivity();
-  const haze::Atmosphere air = f.atmosphere();
-  const auto options = f.flags.bind(haze::HazeOptions::schema(), {}, "haze");
+  (void)f.sensitivity();
+  (void)f.atmosphere();
   const io::ImageF image = io::read_image(f.image);
   if (image.channels != 3)
     throw InvalidArgument(
         fmt::format("--image '{}' has one channel; haze needs R, G, B", excerpt(f.image)));
-  const haze::HazeSettings s = haze::haze_settings(
-      op, air, options, cam, haze::AirlightSource(ao),
-      f.flags.bind(haze::ImageCameraOptions::schema(), {}, "haze"), image.width, image.height);
+  const haze::ImageHazeRequest r =
+      haze::image_haze_request(op, f.flags.values(), image.width, image.height);
+  const haze::CameraSensitivity& cam = r.camera;
+  const haze::Atmosphere& air = r.air;
+  const haze::HazeOptions& options = r.options;
+  const haze::HazeSettings& s = r.settings;
   const io::ImageF depth = haze::depth_in_metres(
       io::read_scalar_image(f.depth), {options.near_m, options.far_m}, image.width, image.height,
       fmt::format("--depth '{}'", excerpt(f.depth)));
@@ -212,15 +215,18 @@ int run_image(const HazeCommand& f, haze::HazeOperation op, std::string_view nam
 
 int run_composite(const HazeCommand& f) {
   check_gpu_available(f.gpu());
-  const haze::AirlightOptions ao = f.airlight();
+  // The options' errors before the files are read (the request binds them again).
+  (void)f.airlight();
   check_output(f.output);
-  const haze::CameraSensitivity cam = f.sensitivity();
-  const haze::Atmosphere air = f.atmosphere();
-  const auto options = f.flags.bind(haze::HazeOptions::schema(), {}, "haze");
+  (void)f.sensitivity();
+  (void)f.atmosphere();
   const io::ImageF bg = io::read_image(f.image);
-  const haze::HazeSettings s = haze::haze_settings(
-      haze::HazeOperation::add, air, options, cam, haze::AirlightSource(ao),
-      f.flags.bind(haze::ImageCameraOptions::schema(), {}, "haze"), bg.width, bg.height);
+  const haze::ImageHazeRequest r =
+      haze::image_haze_request(haze::HazeOperation::add, f.flags.values(), bg.width, bg.height);
+  const haze::CameraSensitivity& cam = r.camera;
+  const haze::Atmosphere& air = r.air;
+  const haze::HazeOptions& options = r.options;
+  const haze::HazeSettings& s = r.settings;
   const io::ImageF obj = io::read_image(f.object);
   const io::ImageF depth = haze::depth_in_metres(
       io::read_scalar_image(f.object_depth), {options.near_m, options.far_m}, obj.width, obj.height,

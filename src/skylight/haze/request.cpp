@@ -420,6 +420,24 @@ HazeSettings haze_settings(HazeOperation operation, const Atmosphere& air, const
   return s;
 }
 
+ImageHazeRequest image_haze_request(HazeOperation operation, const ParameterValues& given,
+                                    int width, int height) {
+  const auto bound = [&](const auto& schema, auto value) {
+    schema.bind(given.only(schema.specs()), value, "haze");
+    return value;
+  };
+  ImageHazeRequest r;
+  r.air = bound(atmosphere_schema(), Atmosphere{});
+  validate(r.air);
+  r.camera = bound(SensitivityOptions::schema(), SensitivityOptions{}).sensitivity();
+  r.options = bound(HazeOptions::schema(), HazeOptions{});
+  r.settings =
+      haze_settings(operation, r.air, r.options, r.camera,
+                    AirlightSource(bound(AirlightOptions::schema(), AirlightOptions{})),
+                    bound(ImageCameraOptions::schema(), ImageCameraOptions{}), width, height);
+  return r;
+}
+
 io::ImageF coverage_from_depth(const io::ImageF& depth) {
   io::ImageF alpha(depth.width, depth.height, 1);
   for (std::size_t i = 0; i < alpha.data.size(); ++i)

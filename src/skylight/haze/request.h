@@ -109,6 +109,19 @@ HazeSettings haze_settings(HazeOperation operation, const Atmosphere& air,
                            const AirlightSource& airlight, const ImageCameraOptions& image_camera,
                            int width, int height);
 
+// An image operation (add, retarget, remove; composite as add) from its schema's values (the
+// operation's parameters in `operations`, parsed): the atmosphere (validated), the camera's
+// sensitivity, the depth options and the settings for an image of width x height. The CLI and the
+// Python package build their operations from this.
+struct ImageHazeRequest {
+  Atmosphere air;
+  CameraSensitivity camera;
+  HazeOptions options;
+  HazeSettings settings;
+};
+ImageHazeRequest image_haze_request(HazeOperation operation, const ParameterValues& given,
+                                    int width, int height);
+
 // The coverage of a composited object without an alpha map: 1 where its depth is > 0.
 io::ImageF coverage_from_depth(const io::ImageF& depth);
 
