@@ -94,15 +94,17 @@ class Pool {
     for (auto& t : workers_) t.join();
     workers_.clear();
     stop_ = false;
-    for (std::size_t i = 0; i < count; ++i) workers_.emplace_back([this] { loop(); });
-  }
-
-  void loop() {
-    std::size_t seen = 0;
+    // A new worker has seen the generation of its creation: a job posted right after (by run(),
+    // before the thread got to read the generation itself) is still new to it.
+    std::size_t now = 0;
     {
       std::lock_guard lock(mutex_);
-      seen = generation_;
+      now = generation_;
     }
+    for (std::size_t i = 0; i < count; ++i) workers_.emplace_back([this, now] { loop(now); });
+  }
+
+  void loop(std::size_t seen) {
     while (true) {
       Job* job = nullptr;
       {

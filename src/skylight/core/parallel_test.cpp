@@ -3,6 +3,9 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <chrono>
+#include <mutex>
+#include <set>
 #include <thread>
 #include <vector>
 
@@ -30,6 +33,23 @@ TEST(Parallel, PropagatesExceptions) {
                               if (b == 500) throw IoError("boom");
                             }),
                IoError);
+  set_thread_count(0);
+}
+
+TEST(Parallel, TheFirstCallAfterAResizeUsesTheWorkers) {
+  // A worker started by the resize must take part in the very job that caused it (it once waited
+  // for the next job when it started after the job was posted).
+  for (const int threads : {2, 3}) {
+    set_thread_count(threads);
+    std::mutex m;
+    std::set<std::thread::id> seen;
+    parallel_for(40, 1, [&](std::size_t, std::size_t) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(2));
+      const std::lock_guard lock(m);
+      seen.insert(std::this_thread::get_id());
+    });
+    EXPECT_GE(seen.size(), 2u) << threads;
+  }
   set_thread_count(0);
 }
 

@@ -16,6 +16,7 @@
 #include <functional>
 #include <map>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <string_view>
 #include <type_traits>
@@ -273,6 +274,29 @@ class ParameterSchema {
           [field, get = e.get](const P& p) { return get(p.*field); });
     }
     return *this;
+  }
+  // Every entry of the schema of P's base class B (P derives from B): a model whose parameters
+  // extend another's.
+  template <class B>
+  ParameterSchema& inherit(const ParameterSchema<B>& base) {
+    static_assert(std::is_base_of_v<B, P>);
+    for (const auto& e : base.entries())
+      add(
+          e.spec, [set = e.set](P& p, const ParameterValue& v) { set(static_cast<B&>(p), v); },
+          [get = e.get](const P& p) { return get(static_cast<const B&>(p)); });
+    return *this;
+  }
+  // Replaces the default (and, if given, the description) of the entry `name` (e.g. of an
+  // inherited entry whose default differs here). The entry must exist.
+  ParameterSchema& redefault(std::string_view name, ParameterDefault value,
+                             std::string description = {}) {
+    for (auto& e : entries_)
+      if (e.spec.name == name) {
+        e.spec.default_value = std::move(value);
+        if (!description.empty()) e.spec.description = std::move(description);
+        return *this;
+      }
+    throw std::logic_error("redefault: no parameter " + std::string(name));
   }
   // Any other mapping (e.g. one value into two fields).
   ParameterSchema& custom(ParameterSpec spec, std::function<void(P&, const ParameterValue&)> set,

@@ -92,11 +92,14 @@ class NishitaModel final : public SkyModel {
   Vec3 observer() const { return observer_; }  // planet-centred position [m]
   // The reference path's XYZ (brute force; tests and benchmarks only: ~1000x slower).
   Xyz tristimulus_reference(Vec3 view, const atmosphere::ReferenceSettings& rs = {}) const;
-
- private:
+  // The XYZ of spectral radiances at the XYZ wavelengths (the midpoint sum over 20 nm bins).
   Xyz to_xyz(const std::array<double, kNishitaXyzCount>& radiance) const;
+  // The wavelengths, solar irradiance and coefficients of the XYZ integration.
+  const atmosphere::Spectral& xyz_spectral() const { return xyz_spectral_; }
+  // The extraterrestrial solar spectral irradiance used at nm [W m^-2 nm^-1].
   double irradiance(double nm) const;
 
+ private:
   NishitaSetup setup_;
   std::optional<NishitaParameters> params_;  // when built from user parameters
   std::unique_ptr<atmosphere::Atmosphere> atmosphere_;

@@ -164,6 +164,17 @@ TEST(Registry, EdgeSweepsGiveFiniteNonNegativeOutput) {
   std::printf("edge sweeps: %zu models, %zu directions each way\n", models_built, evaluations);
 }
 
+// Exactly one model is the report's physical atmosphere (its colour and twilight reference).
+TEST(Registry, OneModelIsThePhysicalReference) {
+  int n = 0;
+  for (const auto& info : model_registry())
+    if (info.report.physical_reference) {
+      ++n;
+      EXPECT_FALSE(info.report.title.empty()) << info.name;
+    }
+  EXPECT_EQ(n, 1);
+}
+
 // README.md's --model row names every model of the registry, and nothing else.
 TEST(Registry, ReadmeModelFlagListsEveryModel) {
   const std::string readme = testing_support::source_file("README.md");

@@ -277,6 +277,9 @@ struct ReportPolicy {
   // over `truncation_range` against the source. Empty: none.
   std::string truncation{};
   std::array<int, 2> truncation_range{};
+  // The report's physical atmosphere: the reference of its colour and twilight table (one model
+  // of the registry declares it: the most complete physics, today `hillaire`).
+  bool physical_reference = false;
 };
 
 // Binds the generic values into the model's typed parameters (its schema applies defaults and

@@ -332,7 +332,11 @@ void ReportWriter::section_trust() {
 }
 
 void ReportWriter::physical_atmosphere_table() {
-  const std::string reference(NishitaModel::kName);
+  // The registry's physical atmosphere (its ReportPolicy says so).
+  std::string reference;
+  for (const ModelInfo& info : model_registry())
+    if (info.report.physical_reference) reference = info.name;
+  SKYLIGHT_CHECK(!reference.empty(), "no model is the report's physical reference");
   const HemisphereGrid grid = hemisphere_grid(cfg_.colour_n_theta, cfg_.colour_n_phi);
   std::vector<TrustBand> bands = cfg_.trust_bands;
   bands.insert(bands.begin(), cfg_.twilight_band);
@@ -413,8 +417,9 @@ void ReportWriter::physical_atmosphere_table() {
   }
   html_trust_ += fmt::format(
       "<h3 id=\"trust-physical\">Colour and twilight against the physical atmosphere</h3>\n<p>"
-      "Each model's sky closest to <code>{}</code> (its report title: the physical atmosphere; "
-      "single scattering until multiple scattering lands) over its parameter values within its "
+      "Each model's sky closest to <code>{}</code> (its report title: the physical atmosphere, "
+      "every order of scattering; its own error against a path tracer in docs/ATMOSPHERE.md) "
+      "over its parameter values within its "
       "domain, on a {} × {} grid, {:g}° around the sun left out. Colour: the solid-angle-weighted "
       "mean CIE 1976 chromaticity distance Δu′v′; <b>rule</b>: <i>use</i> up to {:g} (about "
       "the size of MacAdam's just-noticeable ellipses in u′v′), <i>use with care</i> up to {:g}, "
