@@ -228,3 +228,37 @@ def sun_position(times, lat, lon, **spa):
     out = _skylight.sun_position(_np.ascontiguousarray(ns.reshape(-1)),
                                  dict(spa, lat=lat, lon=lon))
     return out[:, 0].reshape(shape), out[:, 1].reshape(shape)
+
+
+def _utc_offset_minutes(utc_offset):
+    if utc_offset is None:
+        return 0
+    if isinstance(utc_offset, str):
+        import re
+        m = re.fullmatch(r"([+-])(\d\d):(\d\d)", utc_offset)
+        if not m:
+            raise InvalidArgument(f"utc_offset = {utc_offset!r} is not +HH:MM or -HH:MM")
+        sign = 1 if m.group(1) == "+" else -1
+        return sign * (int(m.group(2)) * 60 + int(m.group(3)))
+    if hasattr(utc_offset, "total_seconds"):
+        return int(round(utc_offset.total_seconds() / 60))
+    raise InvalidArgument(f"utc_offset = {utc_offset!r}: give +HH:MM text or a timedelta")
+
+
+def sun_events(times, lat, lon, utc_offset=None, **spa):
+    """Sunrise, transit and sunset (SPA App. A.2) on the local calendar date of each time, as
+    ``skylight sun`` gives them: a dict of ``sunrise``, ``transit``, ``sunset`` (numpy
+    datetime64[ns] arrays of the times' shape, in UTC; NaT where the event does not occur on that
+    date) and ``polar`` (str array: "" on a normal day, "polar_day" or "polar_night").
+
+    ``times`` as for sun_position; the local date is taken at ``utc_offset`` (+HH:MM text or a
+    timedelta; None: UTC); ``spa``: the SPA's other parameters (elevation, pressure,
+    temperature, delta_t, atmos_refract, ...)."""
+    ns, shape = _epoch_ns(times)
+    events, kinds = _skylight.sun_events(_np.ascontiguousarray(ns.reshape(-1)),
+                                         _utc_offset_minutes(utc_offset),
+                                         dict(spa, lat=lat, lon=lon))
+    out = {name: events[:, k].view("datetime64[ns]").reshape(shape)
+           for k, name in enumerate(("sunrise", "transit", "sunset"))}
+    out["polar"] = _np.array(["", "polar_day", "polar_night"])[kinds].reshape(shape)
+    return out

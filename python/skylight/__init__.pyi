@@ -25,6 +25,10 @@ def sun_position(times: Any, lat: float, lon: float, *, elevation: float = ...,
                  pressure: float = ..., temperature: float = ..., delta_t: float = ...,
                  delta_ut1: float = ..., atmos_refract: float = ..., slope: float = ...,
                  azimuth_rotation: float = ...) -> tuple[np.ndarray, np.ndarray]: ...
+def sun_events(times: Any, lat: float, lon: float, utc_offset: Any = ..., *,
+               elevation: float = ..., pressure: float = ..., temperature: float = ...,
+               delta_t: float = ..., delta_ut1: float = ...,
+               atmos_refract: float = ...) -> dict[str, np.ndarray]: ...
 
 Quantity = Literal['rgb', 'xyz', 'luminance', 'spectral']
 

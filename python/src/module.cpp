@@ -434,10 +434,8 @@ sl::sun::DateTime civil_utc(std::int64_t ns) {
   return t;
 }
 
-// The SPA for each time (ns since the epoch, UTC): (N, 2) zenith and azimuth [deg].
-py::array_t<double> sun_position(
-    py::array_t<std::int64_t, py::array::c_style | py::array::forcecast> ns,
-    const py::dict& kwargs) {
+// The SPA's options (lat, lon, elevation, pressure, ...) as keyword arguments of `what`.
+sl::sun::SpaInput spa_input_of(const py::dict& kwargs, const char* what) {
   sl::ParameterValues values;
   for (const auto& [key, value] : kwargs) {
     const std::string name = schema_name(key.cast<std::string>());
@@ -445,7 +443,7 @@ py::array_t<double> sun_position(
     if (std::none_of(specs.begin(), specs.end(),
                      [&](const sl::ParameterSpec& s) { return s.name == name; }))
       throw sl::InvalidArgument(
-          fmt::format("{} is not a parameter of sun_position", key.cast<std::string>()));
+          fmt::format("{} is not a parameter of {}", key.cast<std::string>(), what));
     const sl::ParameterSpec& spec = sl::sun::spa_parameter_spec(name);
     if (value.is_none()) continue;
     const sl::ParameterValue v = to_value(spec, value);
@@ -453,7 +451,15 @@ py::array_t<double> sun_position(
     values.set(name, v);
   }
   sl::sun::SpaInput base;
-  sl::sun::spa_input_schema().bind(values, base, "sun_position");
+  sl::sun::spa_input_schema().bind(values, base, what);
+  return base;
+}
+
+// The SPA for each time (ns since the epoch, UTC): (N, 2) zenith and azimuth [deg].
+py::array_t<double> sun_position(
+    py::array_t<std::int64_t, py::array::c_style | py::array::forcecast> ns,
+    const py::dict& kwargs) {
+  const sl::sun::SpaInput base = spa_input_of(kwargs, "sun_position");
   const auto n = static_cast<std::size_t>(ns.size());
   py::array_t<double> out({n, std::size_t{2}});
   double* dst = out.mutable_data();
@@ -586,6 +592,48 @@ py::tuple sh_project(const Sky& sky, int bands, const std::string& channels,
     p = sl::fit::project_model(sky.model(), channels_of(channels), bands, o);
   }
   return py::make_tuple(array_of(p.coefficients), p.converged, p.nodes);
+}
+
+// Sunrise, transit and sunset (SPA App. A.2, sun::sun_events) on the local calendar date of each
+// time (ns since the epoch, UTC) at a UTC offset [min]: (N, 3) int64 ns since the epoch (UTC) of
+// the events, INT64_MIN (numpy's NaT) where none occurs on that date, and (N,) day kinds
+// (0 normal, 1 polar day, 2 polar night).
+py::tuple sun_events(py::array_t<std::int64_t, py::array::c_style | py::array::forcecast> ns,
+                     int utc_offset_minutes, const py::dict& kwargs) {
+  if (utc_offset_minutes < -1080 || utc_offset_minutes > 1080)
+    throw sl::InvalidArgument(
+        fmt::format("utc_offset = {} min is outside [-18:00, +18:00]", utc_offset_minutes));
+  const sl::sun::SpaInput base = spa_input_of(kwargs, "sun_events");
+  const auto n = static_cast<std::size_t>(ns.size());
+  py::array_t<std::int64_t> events({n, std::size_t{3}});
+  py::array_t<std::int8_t> kinds(n);
+  std::int64_t* ev = events.mutable_data();
+  std::int8_t* kd = kinds.mutable_data();
+  const std::int64_t* t = ns.data();
+  std::vector<sl::sun::DateTime> times(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    times[i] = civil_utc(t[i] + static_cast<std::int64_t>(utc_offset_minutes) * 60'000'000'000);
+    times[i].utc_offset_minutes = utc_offset_minutes;
+    sl::sun::validate(times[i], fmt::format("times[{}]", i));
+  }
+  constexpr double kUnixEpochJd = 2440587.5;
+  constexpr double kNsPerDay = 86'400e9;
+  parallel_chunks(n, 0, [&](std::size_t b, std::size_t e) {
+    for (std::size_t i = b; i < e; ++i) {
+      sl::sun::SpaInput in = base;
+      in.time = times[i];
+      const sl::sun::SunEvents se = sl::sun::sun_events(in);
+      const std::optional<sl::sun::SunEvent>* each[3] = {&se.sunrise, &se.transit, &se.sunset};
+      for (int k = 0; k < 3; ++k)
+        ev[3 * i + k] = *each[k] ? static_cast<std::int64_t>(
+                                       std::llround(((*each[k])->jd - kUnixEpochJd) * kNsPerDay))
+                                 : std::numeric_limits<std::int64_t>::min();
+      kd[i] = se.kind == sl::sun::DayKind::normal      ? 0
+              : se.kind == sl::sun::DayKind::polar_day ? 1
+                                                       : 2;
+    }
+  });
+  return py::make_tuple(events, kinds);
 }
 
 // Per direction (N, 3) -> (N, 3): the reconstruction (sh::reconstruct) or the irradiance for a
@@ -1156,6 +1204,7 @@ PYBIND11_MODULE(_skylight, m) {
   m.def("nn_glsl", &nn_glsl);
   m.def("estimate_fit", &estimate_fit);
   m.def("haze_apply", &haze_apply);
+  m.def("sun_events", &sun_events);
   m.def("haze_composite", &haze_composite);
   m.def("sh_per_direction", &sh_per_direction);
   m.def("sh_rotate", &sh_rotate);

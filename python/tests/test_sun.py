@@ -73,3 +73,33 @@ def test_agrees_with_ephem():
         daz = (a[0] - np.degrees(float(sun.az)) + 180.0) % 360.0 - 180.0
         assert abs(daz) * np.cos(np.radians(alt)) < EPHEM_TOL_DEG
     assert checked > 100
+
+
+def test_sun_events_are_the_clis():
+    # Munich on the solstice (+02:00), Tromso in polar day and polar night (+01:00 / +02:00).
+    cases = [("2024-06-21T12:00:00+02:00", 48.1, 11.6, "+02:00"),
+             ("2024-12-21T09:00:00+01:00", 48.1, 11.6, "+01:00"),
+             ("2024-06-21T12:00:00+02:00", 69.65, 18.96, "+02:00"),
+             ("2024-12-21T12:00:00+01:00", 69.65, 18.96, "+01:00")]
+    for when, lat, lon, off in cases:
+        ev = skylight.sun_events([when], lat, lon, utc_offset=off)
+        j = json.loads(subprocess.run([CLI, "sun", "--time", when, "--lat", str(lat), "--lon",
+                                       str(lon), "--json"], capture_output=True, text=True,
+                                      check=True).stdout)
+        assert ev["polar"][0] == (j["polar"] or "")
+        for name in ("sunrise", "transit", "sunset"):
+            if j[name] is None:
+                assert np.isnat(ev[name][0]), (when, name)
+                continue
+            # The CLI prints local time to the second: the same instant, rounded.
+            cli = dt.datetime.fromisoformat(j[name]).astimezone(dt.timezone.utc)
+            mine = ev[name][0].astype("datetime64[ms]").item().replace(tzinfo=dt.timezone.utc)
+            assert abs((mine - cli).total_seconds()) <= 0.5, (when, name, mine, cli)
+    # Shapes, and the transit close to local solar noon at lon 0 on an equinox.
+    t = np.array(["2024-03-20T06:00", "2024-09-22T06:00"], dtype="datetime64[ns]").reshape(2, 1)
+    ev = skylight.sun_events(t, 0.0, 0.0)
+    assert ev["transit"].shape == (2, 1)
+    noon = t.astype("datetime64[D]") + np.timedelta64(12, "h")
+    assert np.all(np.abs(ev["transit"] - noon) < np.timedelta64(15, "m"))
+    with pytest.raises(skylight.InvalidArgument, match="utc_offset"):
+        skylight.sun_events(t, 0.0, 0.0, utc_offset="2:00")
