@@ -237,7 +237,7 @@ HillaireModel::HillaireModel(const HillaireParameters& params)
                  for (std::size_t job = b; job < e; ++job) {
                    const int i = static_cast<int>(job) / kHillaireSkyAzimuths;
                    const int j = static_cast<int>(job) % kHillaireSkyAzimuths;
-                   const double zenith = sky_zenith(i);
+                   const double zenith = sky_zenith(i, kHillaireSkyZeniths);
                    const double azimuth = sun().azimuth + kPi * j / (kHillaireSkyAzimuths - 1);
                    multiple_scattering(
                        direction_from_angles(zenith, azimuth), xyz, xyz_lut_,
@@ -249,8 +249,8 @@ HillaireModel::HillaireModel(const HillaireParameters& params)
 // Rows: the upper half (row < mid) l = 1 - row / mid, zenith = horizon (1 - l^2); the lower half
 // l = (row - mid) / (rows - 1 - mid), zenith = horizon + (pi - horizon) l^2: both dense at the
 // horizon, where the sky changes fastest.
-double HillaireModel::sky_zenith(double row) const {
-  const double mid = 0.5 * (kHillaireSkyZeniths - 1);
+double HillaireModel::sky_zenith(double row, int rows) const {
+  const double mid = 0.5 * (rows - 1);
   if (row <= mid) {
     const double l = 1.0 - row / mid;
     return horizon_zenith_ * (1.0 - l * l);
@@ -259,8 +259,8 @@ double HillaireModel::sky_zenith(double row) const {
   return horizon_zenith_ + (kPi - horizon_zenith_) * l * l;
 }
 
-double HillaireModel::sky_row(double zenith) const {
-  const double mid = 0.5 * (kHillaireSkyZeniths - 1);
+double HillaireModel::sky_row(double zenith, int rows) const {
+  const double mid = 0.5 * (rows - 1);
   if (zenith <= horizon_zenith_)
     return mid * (1.0 - std::sqrt(std::max(0.0, 1.0 - zenith / horizon_zenith_)));
   return mid + mid * std::sqrt(std::min(1.0, (zenith - horizon_zenith_) / (kPi - horizon_zenith_)));
@@ -305,6 +305,47 @@ void HillaireModel::multiple_scattering(Vec3 view, const Spectral& spec,
             });
 }
 
+void HillaireModel::build_batch_lut() const {
+  const int rows = kHillaireBatchZeniths, cols = kHillaireBatchAzimuths;
+  batch_.assign(static_cast<std::size_t>(rows) * cols * 3, 0.0f);
+  parallel_for(static_cast<std::size_t>(rows * cols), 64, [&](std::size_t b, std::size_t e) {
+    for (std::size_t job = b; job < e; ++job) {
+      const int i = static_cast<int>(job) / cols, j = static_cast<int>(job) % cols;
+      const double azimuth = sun().azimuth + kPi * j / (cols - 1);
+      const Xyz c = tristimulus(direction_from_angles(sky_zenith(i, rows), azimuth));
+      batch_[3 * job] = static_cast<float>(c.X);
+      batch_[3 * job + 1] = static_cast<float>(c.Y);
+      batch_[3 * job + 2] = static_cast<float>(c.Z);
+    }
+  });
+}
+
+void HillaireModel::tristimulus_batch(const DirectionsSoA& dirs, const XyzSoA& out) const {
+  SKYLIGHT_CHECK(out.size() == dirs.size(), "tristimulus_batch: size mismatch");
+  std::call_once(batch_once_, [this] { build_batch_lut(); });
+  const int rows = kHillaireBatchZeniths, cols = kHillaireBatchAzimuths;
+  const double sun_az = sun().azimuth;
+  for (std::size_t k = 0; k < dirs.size(); ++k) {
+    const double zenith = std::acos(std::clamp(static_cast<double>(dirs.z[k]), -1.0, 1.0));
+    const double phi =
+        std::abs(wrap_azimuth(std::atan2(dirs.x[k], dirs.y[k]) - sun_az + kPi) - kPi);
+    const double y = std::clamp(sky_row(zenith, rows), 0.0, rows - 1.0);
+    const double x = std::clamp(phi / kPi, 0.0, 1.0) * (cols - 1);
+    const int i = std::min(static_cast<int>(y), rows - 2),
+              j = std::min(static_cast<int>(x), cols - 2);
+    const float fy = static_cast<float>(y - i), fx = static_cast<float>(x - j);
+    const float* a = &batch_[(static_cast<std::size_t>(i) * cols + j) * 3];
+    const float* c = a + static_cast<std::size_t>(cols) * 3;
+    float v[3];
+    for (int ch = 0; ch < 3; ++ch)
+      v[ch] =
+          (1 - fy) * ((1 - fx) * a[ch] + fx * a[3 + ch]) + fy * ((1 - fx) * c[ch] + fx * c[3 + ch]);
+    out.X[k] = v[0];
+    out.Y[k] = v[1];
+    out.Z[k] = v[2];
+  }
+}
+
 ParameterValues HillaireModel::parameter_values() const {
   return HillaireParameters::schema().values_of(params_);
 }
@@ -316,7 +357,7 @@ Xyz HillaireModel::tristimulus(Vec3 view) const {
   // The multiple scattering from the sky-view LUT (bilinear; azimuth from the sun's, folded).
   const double zenith = std::acos(std::clamp(v.z, -1.0, 1.0));
   const double phi = std::abs(wrap_azimuth(std::atan2(v.x, v.y) - sun().azimuth + kPi) - kPi);
-  const double y = std::clamp(sky_row(zenith), 0.0, kHillaireSkyZeniths - 1.0);
+  const double y = std::clamp(sky_row(zenith, kHillaireSkyZeniths), 0.0, kHillaireSkyZeniths - 1.0);
   const double x = std::clamp(phi / kPi, 0.0, 1.0) * (kHillaireSkyAzimuths - 1);
   const int i = std::min(static_cast<int>(y), kHillaireSkyZeniths - 2);
   const int j = std::min(static_cast<int>(x), kHillaireSkyAzimuths - 2);

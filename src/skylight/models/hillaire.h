@@ -19,6 +19,7 @@
 
 #include <array>
 #include <memory>
+#include <mutex>
 #include <vector>
 
 #include "skylight/models/nishita.h"
@@ -46,6 +47,12 @@ inline constexpr int kHillaireLutRayNodes = 8;
 inline constexpr int kHillaireSkyZeniths = 64;
 inline constexpr int kHillaireSkyAzimuths = 32;
 
+// The batch path's LUT of the whole sky (single + multiple scattering, as XYZ) per observer and
+// sun, on the same two axes (built on the first batch call): render-sized batches are bilinear
+// lookups.
+inline constexpr int kHillaireBatchZeniths = 256;
+inline constexpr int kHillaireBatchAzimuths = 128;
+
 // `nishita`'s parameters, with the ozone layer on by default (Earth's 300 DU: the blue zenith of
 // twilight, the Chappuis band).
 struct HillaireParameters : NishitaParameters {
@@ -62,6 +69,9 @@ class HillaireModel final : public SkyModel {
   std::string_view name() const override { return kName; }
   ParameterValues parameter_values() const override;
   Xyz tristimulus(Vec3 view) const override;
+  // The fast path: the whole-sky LUT (kHillaireBatchZeniths x kHillaireBatchAzimuths), bilinear,
+  // in float; its error against tristimulus() is bounded in hillaire_test.cpp.
+  void tristimulus_batch(const DirectionsSoA& dirs, const XyzSoA& out) const override;
   std::optional<double> spectral_radiance(Vec3 view, double nm) const override;
   Domain domain() const override;
 
@@ -97,9 +107,13 @@ class HillaireModel final : public SkyModel {
   // The sky-view LUT: [zenith row][azimuth column][XYZ wavelength] multiple-scattering radiance.
   std::vector<double> sky_;
   double horizon_zenith_ = 0.0;  // [rad] of the observer's horizon (pi/2 on the ground)
-  // The sky-view LUT's row coordinate of a view zenith [rad] and back.
-  double sky_row(double zenith) const;
-  double sky_zenith(double row) const;
+  // A LUT's row coordinate of a view zenith [rad] and back, for `rows` rows.
+  double sky_row(double zenith, int rows) const;
+  double sky_zenith(double row, int rows) const;
+  // The batch LUT: [row][column] X, Y, Z in float, built once (thread-safe) on first use.
+  mutable std::once_flag batch_once_;
+  mutable std::vector<float> batch_;
+  void build_batch_lut() const;
 };
 
 }  // namespace skylight
