@@ -14,6 +14,7 @@
 #include "skylight/core/frame.h"
 #include "skylight/core/math.h"
 #include "skylight/core/parallel.h"
+#include "skylight/models/solar_disc.h"
 
 namespace skylight {
 
@@ -174,6 +175,7 @@ HillaireModel::HillaireModel(const HillaireParameters& params)
   lut_nm_.push_back(kNishitaMinNm);
   lut_nm_.push_back(kNishitaMaxNm);
   for (double nm : xyz.nm) xyz_lut_.push_back(lut_weight(nm));
+  for (int k = 0; k < kNishitaXyzCount; ++k) sun_transmittance_[k] = sun_transmittance(xyz.nm[k]);
   const std::size_t nl = lut_nm_.size();
   psi_ = psi_cache().get(lut_key(a), [&] {
     std::vector<double> psi;
@@ -346,6 +348,49 @@ void HillaireModel::tristimulus_batch(const DirectionsSoA& dirs, const XyzSoA& o
   }
 }
 
+double HillaireModel::sun_transmittance(double nm) const {
+  const Atmosphere& atm = single_->atmosphere();
+  const AtmosphereParameters& a = atm.parameters();
+  if (atmosphere::in_planet_shadow(observer_, sun_, a.ground_radius_m)) return 0.0;
+  const double to_top = atmosphere::ray_sphere_far(observer_, sun_, a.top_radius_m);
+  if (to_top <= 0) return 1.0;  // above the atmosphere, looking away from it
+  const double l[1] = {nm}, one[1] = {1.0};
+  const Spectral spec = atmosphere::make_spectral(a, l, one);
+  double t[1] = {0.0};
+  atm.transmittance(observer_, sun_, to_top, spec, t);
+  return t[0];
+}
+
+double HillaireModel::sun_angular_radius() const {
+  return kSolarAngularRadius;
+}
+
+Xyz HillaireModel::sun_tristimulus(Vec3 view) const {
+  const Vec3 v = normalize(view);
+  const double gamma = std::acos(std::clamp(dot(v, sun_), -1.0, 1.0));
+  // The part of the disc behind the planet (below the horizon) is hidden by the ground.
+  if (gamma > kSolarAngularRadius ||
+      atmosphere::in_planet_shadow(observer_, v,
+                                   single_->atmosphere().parameters().ground_radius_m))
+    return {};
+  const Spectral& xyz = single_->xyz_spectral();
+  std::array<double, kNishitaXyzCount> r{};
+  for (int k = 0; k < kNishitaXyzCount; ++k)
+    r[k] = xyz.solar[k] * sun_transmittance_[k] * solar_disc_factor(gamma, xyz.nm[k]);
+  return single_->to_xyz(r);
+}
+
+std::optional<double> HillaireModel::sun_spectral_radiance(Vec3 view, double nm) const {
+  if (!(nm >= kNishitaMinNm && nm <= kNishitaMaxNm)) return std::nullopt;
+  const Vec3 v = normalize(view);
+  const double gamma = std::acos(std::clamp(dot(v, sun_), -1.0, 1.0));
+  if (gamma > kSolarAngularRadius ||
+      atmosphere::in_planet_shadow(observer_, v,
+                                   single_->atmosphere().parameters().ground_radius_m))
+    return 0.0;
+  return single_->irradiance(nm) * sun_transmittance(nm) * solar_disc_factor(gamma, nm);
+}
+
 ParameterValues HillaireModel::parameter_values() const {
   return HillaireParameters::schema().values_of(params_);
 }
@@ -401,7 +446,8 @@ ModelInfo HillaireModel::registry_entry() {
       "XYZ with Y [cd/m^2] for the ASTM G-173 extraterrestrial sun (20 nm bins 380-780 nm); "
       "spectral radiance [W m^-2 sr^-1 nm^-1] 360-830 nm; with --solar-irradiance E both per flat "
       "irradiance E; in-scattered light of every order, the ground reflects only with an "
-      "explicit --albedo; no solar disc";
+      "explicit --albedo; --include-sun / --sun-only: the solar disc (0.2665 deg, limb-darkened, "
+      "through the atmosphere's transmittance)";
   info.parameters = HillaireParameters::schema().specs();
   info.domain =
       "nishita's: any observer altitude 0-10000 km, any view direction and sun elevation; the "

@@ -74,6 +74,13 @@ class HillaireModel final : public SkyModel {
   void tristimulus_batch(const DirectionsSoA& dirs, const XyzSoA& out) const override;
   std::optional<double> spectral_radiance(Vec3 view, double nm) const override;
   Domain domain() const override;
+  // The solar disc (models/solar_disc.h: kSolarAngularRadius, Hosek & Wilkie 2013's limb
+  // darkening) seen through the atmosphere's transmittance from the observer (0 when the sun is
+  // below the observer's horizon, behind the planet).
+  bool has_sun() const override { return true; }
+  double sun_angular_radius() const override;
+  Xyz sun_tristimulus(Vec3 view) const override;
+  std::optional<double> sun_spectral_radiance(Vec3 view, double nm) const override;
 
   // The single scattering alone: nishita with the same parameters.
   const NishitaModel& single_scattering() const { return *single_; }
@@ -101,6 +108,10 @@ class HillaireModel final : public SkyModel {
   std::vector<double> lut_nm_;
   std::vector<LutWeight> xyz_lut_;  // the XYZ wavelengths' places in the LUT
   Vec3 observer_, sun_;
+  // The transmittance from the observer to the top along the sun's direction, per XYZ wavelength.
+  std::array<double, kNishitaXyzCount> sun_transmittance_{};
+  // The same at one wavelength.
+  double sun_transmittance(double nm) const;
   // [wavelength][altitude][sun cosine], per unit irradiance (shared by the models of one
   // atmosphere: a process-wide cache of the last 8).
   std::shared_ptr<const std::vector<double>> psi_;

@@ -152,3 +152,57 @@ TEST(Hillaire, TheBatchPathIsTheScalarPathWithinItsBound) {
 
 }  // namespace
 }  // namespace skylight
+
+namespace skylight {
+namespace {
+
+// The disc's integral (midpoint rule on a 200 x 200 grid over the disc's square) is the
+// extraterrestrial irradiance times the transmittance: the grid's edge cells cost < 0.2 %.
+constexpr double kDiscIntegralRelTol = 2e-3;
+
+TEST(Hillaire, TheSolarDiscIsTheTransmittedIrradianceLimbDarkened) {
+  for (const double sun_el : {60.0, 2.0}) {
+    const HillaireModel h(with_sun(sun_el, 100.0));
+    ASSERT_TRUE(h.has_sun());
+    const Vec3 s = h.sun().direction();
+    // An orthonormal frame around the sun, and the disc's integral at 550 nm.
+    const Vec3 t = normalize(cross(Vec3{0, 0, 1}, s)), b = cross(s, t);
+    const double r = h.sun_angular_radius();
+    constexpr int kN = 200;
+    double integral = 0.0;
+    for (int i = 0; i < kN; ++i)
+      for (int j = 0; j < kN; ++j) {
+        const double u = -r + (i + 0.5) * 2 * r / kN, v = -r + (j + 0.5) * 2 * r / kN;
+        const Vec3 d = normalize(s + u * t + v * b);
+        integral += *h.sun_spectral_radiance(d, 550.0) * (2 * r / kN) * (2 * r / kN);
+      }
+    // The transmittance along the sun's line of sight: exp(-optical depth) by quadrature.
+    const auto& atm = h.single_scattering().atmosphere();
+    const double l[1] = {550.0}, one[1] = {1.0};
+    const auto spec = atmosphere::make_spectral(atm.parameters(), l, one);
+    const Vec3 o = h.single_scattering().observer();
+    double T[1];
+    atm.transmittance(o, s, atmosphere::ray_sphere_far(o, s, atm.parameters().top_radius_m), spec,
+                      T);
+    const double want = solar_spectral_irradiance(550.0) * T[0];
+    EXPECT_NEAR(integral, want, kDiscIntegralRelTol * want) << sun_el;
+    // Limb darkening: the centre brighter than near the edge; nothing outside the disc.
+    EXPECT_GT(*h.sun_spectral_radiance(s, 550.0),
+              1.5 * *h.sun_spectral_radiance(normalize(s + 0.98 * r * t), 550.0));
+    EXPECT_EQ(*h.sun_spectral_radiance(normalize(s + 1.01 * r * t), 550.0), 0.0);
+    EXPECT_EQ(h.sun_tristimulus(normalize(s + 1.01 * r * t)).Y, 0.0);
+  }
+  // The low sun is redder (more of its blue scattered out on the way): a larger x chromaticity.
+  const auto chromaticity_x = [](double el) {
+    const HillaireModel h(with_sun(el));
+    const Xyz c = h.sun_tristimulus(h.sun().direction());
+    return c.X / (c.X + c.Y + c.Z);
+  };
+  EXPECT_GT(chromaticity_x(2.0), chromaticity_x(60.0) + 0.05);
+  // Below the horizon: no disc.
+  const HillaireModel set(with_sun(-2.0));
+  EXPECT_EQ(set.sun_tristimulus(set.sun().direction()).Y, 0.0);
+}
+
+}  // namespace
+}  // namespace skylight
