@@ -17,7 +17,7 @@ namespace {
 
 struct EvalCommand {
   ModelOptions model;
-  SchemaFlags flags;  // --quantity, --wavelengths (models/evaluation.h)
+  SchemaFlags flags;  // --quantity, --wavelengths, --reference (models/evaluation.h)
   std::string input;
 };
 
@@ -28,6 +28,12 @@ int run_eval(const EvalCommand& f) {
   const auto model = f.model.make();
   warn_domain(*model, options.quantity == Quantity::spectral);
   validate(options, *model);
+  const ReferenceOptions ref = f.flags.bind(ReferenceOptions::schema(), {}, "eval");
+  if (!ref.reference)
+    for (const char* name : {"paths", "seed"})
+      if (f.flags.given(name))
+        warn(fmt::format("--{} is read only with --reference; ignored", name));
+  const ModelInfo& info = require_model(std::string(model->name()), "model");
 
   const bool from_stdin = f.input.empty() || f.input == "-";
   const std::string source = from_stdin ? "<stdin>" : f.input;
@@ -35,10 +41,21 @@ int run_eval(const EvalCommand& f) {
   const auto rows = io::parse_directions_csv(text, source);
   std::string out(io::kDirectionsHeader);
   for (const std::string& c : quantity_columns(options)) out += "," + c;
+  if (ref.reference)
+    for (const std::string& c : quantity_columns(options)) out += "," + c + "_se";
   out += "\n";
   for (const auto& row : rows) {
     out += row.text;
-    for (double v : evaluate(*model, direction_from_angles(row.zenith, row.azimuth), options)) {
+    const Vec3 view = direction_from_angles(row.zenith, row.azimuth);
+    std::vector<double> values;
+    if (ref.reference) {
+      const ReferenceValue r = evaluate_reference(info, *model, view, options, ref.request);
+      values = r.value;
+      values.insert(values.end(), r.standard_error.begin(), r.standard_error.end());
+    } else {
+      values = evaluate(*model, view, options);
+    }
+    for (double v : values) {
       // No output may hold NaN or Inf: a value that overflows is an error naming the row.
       if (!std::isfinite(v))
         throw InvalidArgument(fmt::format(

@@ -58,6 +58,37 @@ TEST_F(Cli, EvalQuantities) {
   EXPECT_EQ(r.status, 0) << r.err;
 }
 
+// --reference: the model's reference integrator with a standard-error column per value; the
+// options it reads warn without it; a model without one, rgb and the sun modes are errors.
+TEST_F(Cli, EvalReferenceAddsStandardErrorColumns) {
+  const std::string in = "zenith_deg,azimuth_deg\n0,0\n70,180\n";
+  auto r = run("eval --model hillaire --quantity luminance --reference --paths 2000", in);
+  ASSERT_EQ(r.status, 0) << r.err;
+  std::string header;
+  const auto rows = parse_csv_numbers(r.out, &header);
+  EXPECT_EQ(header, "zenith_deg,azimuth_deg,luminance,luminance_se");
+  ASSERT_EQ(rows.size(), 2u);
+  for (const auto& row : rows) {
+    EXPECT_GT(row[3], 0.0);
+    EXPECT_LT(row[3], 0.05 * row[2]);
+  }
+  r = run("eval --model nishita --quantity xyz --reference", in);
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(r.out.substr(0, r.out.find('\n')), "zenith_deg,azimuth_deg,x,y,z,x_se,y_se,z_se");
+  r = run("eval --model hillaire --quantity luminance --paths 10", in);
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.err.find("warning: --paths is read only with --reference; ignored"),
+            std::string::npos)
+      << r.err;
+  for (const char* bad : {"eval --model preetham --reference", "eval --model hillaire --reference",
+                          "eval --model hillaire --reference --quantity xyz --include-sun"}) {
+    r = run(bad, in);
+    EXPECT_EQ(r.status, 2) << bad;
+    EXPECT_NE(r.err.find("reference"), std::string::npos) << r.err;
+    EXPECT_TRUE(r.out.empty()) << bad;
+  }
+}
+
 TEST_F(Cli, EvalNishitaUnitIrradianceAndObserverAltitude) {
   // zenith, horizon (north), 30 deg below the horizon (south).
   const std::string in = "zenith_deg,azimuth_deg\n0,0\n90,0\n120,180\n";

@@ -152,6 +152,59 @@ std::vector<std::string> quantity_columns(const EvaluationOptions& o) {
   return {};
 }
 
+const ParameterSchema<ReferenceOptions>& ReferenceOptions::schema() {
+  static const ParameterSchema<ReferenceOptions> s = [] {
+    ParameterSchema<ReferenceOptions> s;
+    s.flag(&ReferenceOptions::reference,
+           {.name = "reference",
+            .description = "the model's reference integrator (the brute force or the Monte Carlo "
+                           "path tracer its fast path is checked against), with a standard-error "
+                           "column per value; the sky alone"})
+        .custom(
+            {.name = "paths",
+             .unit = "1",
+             .kind = ParameterKind::integer,
+             .min = 2.0,
+             .max = 1e9,
+             .default_value = ParameterValue(20000.0),
+             .description = "--reference: Monte Carlo paths per wavelength"},
+            [](ReferenceOptions& r, const ParameterValue& v) {
+              r.request.paths = static_cast<std::uint64_t>(std::get<double>(v));
+            },
+            [](const ReferenceOptions& r) -> std::optional<ParameterValue> {
+              return static_cast<double>(r.request.paths);
+            })
+        .custom(
+            {.name = "seed",
+             .unit = "1",
+             .kind = ParameterKind::integer,
+             .min = 0.0,
+             .max = 4294967295.0,
+             .default_value = ParameterValue(1.0),
+             .description = "--reference: the paths' seed"},
+            [](ReferenceOptions& r, const ParameterValue& v) {
+              r.request.seed = static_cast<std::uint64_t>(std::get<double>(v));
+            },
+            [](const ReferenceOptions& r) -> std::optional<ParameterValue> {
+              return static_cast<double>(r.request.seed);
+            });
+    return s;
+  }();
+  return s;
+}
+
+ReferenceValue evaluate_reference(const ModelInfo& info, const SkyModel& model, Vec3 view,
+                                  const EvaluationOptions& o, const ReferenceRequest& request) {
+  if (!info.reference)
+    throw InvalidArgument(
+        fmt::format("{}: model '{}' has no reference integrator", spelled("reference"), info.name));
+  if (o.sun != SunMode::sky)
+    throw InvalidArgument(fmt::format("{} evaluates the sky alone (without {} or {})",
+                                      spelled("reference"), spelled("include-sun"),
+                                      spelled("sun-only")));
+  return info.reference(model, view, o, request);
+}
+
 std::vector<double> evaluate(const SkyModel& model, Vec3 v, const EvaluationOptions& o) {
   const bool sky = o.sun != SunMode::sun_only, sun = o.sun != SunMode::sky;
   if (o.quantity == Quantity::spectral) {

@@ -43,6 +43,19 @@ struct EvaluationOptions {
   static const ParameterSchema<EvaluationOptions>& schema();
 };
 
+// `eval --reference`, `--paths`, `--seed`: the model's reference integrator instead of its fast
+// path (ModelInfo::reference), with a standard-error column per value.
+struct ReferenceOptions {
+  bool reference = false;
+  ReferenceRequest request;
+  static const ParameterSchema<ReferenceOptions>& schema();
+};
+// The reference's value and standard errors of `view` (the sky alone: InvalidArgument for a sun
+// mode, or for a model without a reference).
+ReferenceValue evaluate_reference(const ModelInfo& info, const SkyModel& model, Vec3 view,
+                                  const EvaluationOptions& options,
+                                  const ReferenceRequest& request);
+
 // Checks the options (spectral needs wavelengths; wavelengths only with spectral), then against
 // the model (a spectral model for spectral, a solar disc for the sun modes): InvalidArgument
 // naming the option.

@@ -10,10 +10,12 @@
 #include <mutex>
 #include <string>
 
+#include "skylight/atmosphere/path_tracer.h"
 #include "skylight/core/error.h"
 #include "skylight/core/frame.h"
 #include "skylight/core/math.h"
 #include "skylight/core/parallel.h"
+#include "skylight/models/evaluation.h"
 #include "skylight/models/solar_disc.h"
 
 namespace skylight {
@@ -453,6 +455,26 @@ ModelInfo HillaireModel::registry_entry() {
       "nishita's: any observer altitude 0-10000 km, any view direction and sun elevation; the "
       "approximation's error against the Monte Carlo path tracer: docs/ATMOSPHERE.md";
   info.make = model_factory<HillaireModel, HillaireParameters>();
+  // The Monte Carlo path tracer of the same atmosphere (every order; standard errors). (The
+  // entry starts as nishita's: its reference, the single scattering, is replaced here.)
+  info.reference = [](const SkyModel& m, Vec3 view, const EvaluationOptions& o,
+                      const ReferenceRequest& rq) {
+    const auto& h = static_cast<const HillaireModel&>(m);
+    const NishitaModel& n = h.single_scattering();
+    const std::vector<double> nm = n.reference_wavelengths(o);
+    std::vector<double> solar;
+    for (double l : nm) solar.push_back(n.irradiance(l));
+    const auto spec = atmosphere::make_spectral(n.atmosphere().parameters(), nm, solar);
+    atmosphere::PathTracerSettings s;
+    s.paths = rq.paths;
+    s.seed = rq.seed;
+    const auto r = atmosphere::path_trace(n.atmosphere().parameters(), n.observer(),
+                                          normalize(view), h.sun().direction(), spec, s);
+    return n.reference_value(o, r.radiance, r.standard_error);
+  };
+  info.reference_description =
+      "the Monte Carlo path tracer of the same atmosphere (atmosphere/path_tracer.h: every order "
+      "of scattering, segments estimator; standard errors)";
   info.report = ReportPolicy{
       .title = "Hillaire 2020 (Earth defaults)", .colour = "#17becf", .physical_reference = true};
   return info;

@@ -11,7 +11,9 @@
 #include <vector>
 
 #include "skylight/atmosphere/path_tracer.h"
+#include "skylight/core/error.h"
 #include "skylight/core/math.h"
+#include "skylight/models/evaluation.h"
 
 namespace skylight {
 namespace {
@@ -202,6 +204,58 @@ TEST(Hillaire, TheSolarDiscIsTheTransmittedIrradianceLimbDarkened) {
   // Below the horizon: no disc.
   const HillaireModel set(with_sun(-2.0));
   EXPECT_EQ(set.sun_tristimulus(set.sun().direction()).Y, 0.0);
+}
+
+}  // namespace
+}  // namespace skylight
+
+namespace skylight {
+namespace {
+
+TEST(Hillaire, EvalReferenceIsThePathTracerWithStandardErrors) {
+  const HillaireModel h(with_sun(30.0));
+  const ModelInfo& info = require_model("hillaire");
+  EvaluationOptions o;
+  o.quantity = Quantity::luminance;
+  ReferenceRequest rq;
+  rq.paths = 4000;
+  const Vec3 zenith{0, 0, 1};
+  const ReferenceValue r = evaluate_reference(info, h, zenith, o, rq);
+  ASSERT_EQ(r.value.size(), 1u);
+  ASSERT_EQ(r.standard_error.size(), 1u);
+  EXPECT_GT(r.standard_error[0], 0.0);
+  EXPECT_LT(r.standard_error[0], 0.02 * r.value[0]);
+  // The model within its published day error (docs/ATMOSPHERE.md) of its reference.
+  EXPECT_NEAR(h.tristimulus(zenith).Y, r.value[0], kDayMaxRelError * r.value[0]);
+  // The same seed, the same value; spectral columns are the path tracer's own.
+  EXPECT_EQ(evaluate_reference(info, h, zenith, o, rq).value, r.value);
+  o.quantity = Quantity::spectral;
+  o.wavelengths_nm = {450.0, 600.0};
+  EXPECT_EQ(evaluate_reference(info, h, zenith, o, rq).value.size(), 2u);
+  o.wavelengths_nm = {900.0};
+  EXPECT_THROW(evaluate_reference(info, h, zenith, o, rq), InvalidArgument);
+  o.quantity = Quantity::rgb;
+  EXPECT_THROW(evaluate_reference(info, h, zenith, o, rq), InvalidArgument);
+  o.quantity = Quantity::xyz;
+  o.sun = SunMode::sky_and_sun;
+  EXPECT_THROW(evaluate_reference(info, h, zenith, o, rq), InvalidArgument);
+}
+
+TEST(Hillaire, NishitasReferenceIsItsBruteForce) {
+  NishitaParameters p;
+  p.sun = {.zenith = deg_to_rad(50.0), .azimuth = 1.0};
+  const NishitaModel n(p);
+  EvaluationOptions o;
+  o.quantity = Quantity::xyz;
+  const Vec3 v = normalize(Vec3{0.3, 0.2, 0.8});
+  const ReferenceValue r = evaluate_reference(require_model("nishita"), n, v, o, {});
+  const Xyz want = n.tristimulus_reference(v);
+  EXPECT_DOUBLE_EQ(r.value[1], want.Y);
+  EXPECT_EQ(r.standard_error, (std::vector<double>{0.0, 0.0, 0.0}));
+  // A model without a reference integrator says so.
+  EXPECT_THROW(evaluate_reference(require_model("preetham"),
+                                  *make_sky_model("preetham", SkyParameters{}), v, o, {}),
+               InvalidArgument);
 }
 
 }  // namespace

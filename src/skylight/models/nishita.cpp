@@ -9,6 +9,7 @@
 #include "skylight/core/data.h"
 #include "skylight/core/error.h"
 #include "skylight/core/parameters.h"
+#include "skylight/models/evaluation.h"
 
 namespace skylight {
 namespace {
@@ -200,6 +201,48 @@ std::optional<double> NishitaModel::spectral_radiance(Vec3 view, double nm) cons
   return out[0];
 }
 
+std::vector<double> NishitaModel::reference_wavelengths(const EvaluationOptions& o) const {
+  if (o.quantity == Quantity::rgb)
+    throw InvalidArgument(
+        fmt::format("{} gives xyz, luminance or spectral (not rgb)", spelled("reference")));
+  if (o.quantity != Quantity::spectral) return xyz_spectral_.nm;
+  for (double nm : o.wavelengths_nm)
+    if (!(nm >= kNishitaMinNm && nm <= kNishitaMaxNm))
+      throw InvalidArgument(fmt::format("{}: {} nm is outside the range of model '{}'",
+                                        spelled("wavelengths"), nm, name()));
+  return o.wavelengths_nm;
+}
+
+ReferenceValue NishitaModel::reference_value(const EvaluationOptions& o,
+                                             std::span<const double> radiance,
+                                             std::span<const double> se) const {
+  ReferenceValue r;
+  if (o.quantity == Quantity::spectral) {
+    r.value.assign(radiance.begin(), radiance.end());
+    r.standard_error.assign(se.begin(), se.end());
+    return r;
+  }
+  std::array<double, kNishitaXyzCount> l{};
+  std::copy(radiance.begin(), radiance.end(), l.begin());
+  const Xyz c = to_xyz(l);
+  // The standard errors of the weighted sums, the wavelengths' estimates being independent.
+  const double f = kMaxLuminousEfficacy * kNishitaXyzStep;
+  double vx = 0, vy = 0, vz = 0;
+  for (int k = 0; k < kNishitaXyzCount; ++k) {
+    vx += std::pow(cmf_[k].x * se[k], 2);
+    vy += std::pow(cmf_[k].y * se[k], 2);
+    vz += std::pow(cmf_[k].z * se[k], 2);
+  }
+  if (o.quantity == Quantity::luminance) {
+    r.value = {c.Y};
+    r.standard_error = {f * std::sqrt(vy)};
+  } else {
+    r.value = {c.X, c.Y, c.Z};
+    r.standard_error = {f * std::sqrt(vx), f * std::sqrt(vy), f * std::sqrt(vz)};
+  }
+  return r;
+}
+
 Domain NishitaModel::domain() const {
   Domain d;
   if (sun().zenith > kPi / 2)
@@ -306,6 +349,22 @@ ModelInfo NishitaModel::registry_entry() {
       .neural = NeuralPolicy{},
       .sh_fit = ShFitPolicy{},
       .report = ReportPolicy{.title = "Nishita (Earth defaults)", .colour = "#2ca02c"},
+      // The brute-force single scattering (no tables), deterministic.
+      .reference =
+          [](const SkyModel& m, Vec3 view, const EvaluationOptions& o, const ReferenceRequest&) {
+            const auto& n = static_cast<const NishitaModel&>(m);
+            const std::vector<double> nm = n.reference_wavelengths(o);
+            std::vector<double> solar;
+            for (double l : nm) solar.push_back(n.irradiance(l));
+            const auto spec = atmosphere::make_spectral(n.atmosphere().parameters(), nm, solar);
+            std::vector<double> r(nm.size()), se(nm.size(), 0.0);
+            n.atmosphere().single_scattering_reference(n.observer(), normalize(view),
+                                                       n.sun().direction(), spec, r);
+            return n.reference_value(o, r, se);
+          },
+      .reference_description =
+          "the brute-force single scattering (optical lengths by "
+          "quadrature along every ray, no tables; deterministic)",
   };
 }
 

@@ -98,6 +98,13 @@ class NishitaModel final : public SkyModel {
   const atmosphere::Spectral& xyz_spectral() const { return xyz_spectral_; }
   // The extraterrestrial solar spectral irradiance used at nm [W m^-2 nm^-1].
   double irradiance(double nm) const;
+  // `eval --reference`'s wavelengths for the options (the XYZ integration's, or the spectral
+  // ones, checked against 360-830 nm; InvalidArgument for rgb), and the quantity's values and
+  // standard errors from spectral radiances and their standard errors there (independent per
+  // wavelength).
+  std::vector<double> reference_wavelengths(const EvaluationOptions& options) const;
+  ReferenceValue reference_value(const EvaluationOptions& options, std::span<const double> radiance,
+                                 std::span<const double> standard_error) const;
 
  private:
   NishitaSetup setup_;

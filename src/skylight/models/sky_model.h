@@ -8,6 +8,7 @@
 
 #include <array>
 #include <cstddef>
+#include <cstdint>
 #include <functional>
 #include <memory>
 #include <optional>
@@ -286,6 +287,20 @@ struct ReportPolicy {
 // checks them) and builds the model.
 using ModelFactory = std::function<std::unique_ptr<SkyModel>(const SkyParameters&)>;
 
+// `eval --reference`: the value of a direction by the model's reference integrator (the brute force
+// or the Monte Carlo path tracer its fast path is checked against), with standard errors (0 for a
+// deterministic integrator), in the quantity's columns (models/evaluation.h).
+struct EvaluationOptions;
+struct ReferenceRequest {
+  std::uint64_t paths = 20000;  // Monte Carlo paths per wavelength
+  std::uint64_t seed = 1;
+};
+struct ReferenceValue {
+  std::vector<double> value, standard_error;
+};
+using ReferencePath = std::function<ReferenceValue(
+    const SkyModel&, Vec3 view, const EvaluationOptions&, const ReferenceRequest&)>;
+
 struct ModelInfo {
   std::string name;
   std::string description;
@@ -312,6 +327,9 @@ struct ModelInfo {
   std::optional<ShFitPolicy> sh_fit{};
   BenchPolicy bench{};
   ReportPolicy report{};
+  // The reference integrator of `eval --reference` and what it is; empty: none.
+  ReferencePath reference{};
+  std::string reference_description{};
 
   // The model's own parameter of that name (not the sun's); nullptr if it has none.
   const ParameterSpec* find_parameter(std::string_view parameter) const;

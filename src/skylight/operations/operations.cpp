@@ -58,8 +58,10 @@ OperationInfo eval_operation() {
   return {"eval",
           "a sky model evaluated in given directions (zenith, azimuth): linear sRGB, XYZ, "
           "luminance or spectral radiance, of the sky, the solar disc or both",
-          concat({model_specs(), EvaluationOptions::schema().specs()}),
-          "one value per quantity column (models/evaluation.h, quantity_columns)"};
+          concat({model_specs(), EvaluationOptions::schema().specs(),
+                  ReferenceOptions::schema().specs()}),
+          "one value per quantity column (models/evaluation.h, quantity_columns); with "
+          "--reference a standard-error column after each"};
 }
 
 OperationInfo estimate_operation() {
