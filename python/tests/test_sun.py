@@ -44,7 +44,7 @@ def test_shapes_and_aware_datetimes():
         skylight.sun_position(t, lat=91.0, lon=0.0)
 
 
-# The bound: the two algorithms agree to 0.01 deg above 5 deg elevation with refraction off.
+# The bound (docs/PYTHON.md): the two algorithms agree to 0.01 deg above 5 deg elevation with refraction off.
 EPHEM_TOL_DEG = 0.01
 
 

@@ -17,7 +17,7 @@ namespace {
 
 // Closed forms evaluated by hand in double: round-off only.
 constexpr double kClosedFormTol = 1e-12;
-// The bound on the sky's integral against the diffuse horizontal illuminance.
+// The bound on the sky's integral against the diffuse horizontal illuminance (docs/DAYLIGHT.md).
 constexpr double kIntegralTol = 0.005;
 // The papers' quadrature against one four times finer in each angle: its own discretisation
 // error, far below kIntegralTol.
