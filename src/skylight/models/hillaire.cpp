@@ -136,6 +136,16 @@ PsiCache& psi_cache() {
   return cache;
 }
 
+// The LUT's sun-cosine axis: u in [0, 1] -> mu_s = sign(w) w^2, w = 2 u - 1 (denser at the
+// horizon, mu_s = 0, where the light changes fastest at sunset), and back.
+double lut_mu_s(double u) {
+  const double w = 2.0 * u - 1.0;
+  return std::copysign(w * w, w);
+}
+double lut_mu_s_coordinate(double mu_s) {
+  return 0.5 * (1.0 + std::copysign(std::sqrt(std::abs(mu_s)), mu_s));
+}
+
 }  // namespace
 
 const ParameterSchema<HillaireParameters>& HillaireParameters::schema() {
@@ -202,7 +212,7 @@ HillaireModel::HillaireModel(const HillaireParameters& params)
         const int ih = static_cast<int>(job) / nmu, jm = static_cast<int>(job) % nmu;
         // The top row sits just below the top (a ray from the top itself has no length upward).
         const double h = std::min(top * ih / (nh - 1), top * (1.0 - 1e-6));
-        const double mu_s = -1.0 + 2.0 * jm / (nmu - 1);
+        const double mu_s = lut_mu_s(static_cast<double>(jm) / (nmu - 1));
         const Vec3 x{0, 0, R0 + h};
         const Vec3 sun{safe_sqrt(1.0 - mu_s * mu_s), 0, mu_s};
         std::fill(l2.begin(), l2.end(), 0.0);
@@ -275,7 +285,7 @@ double HillaireModel::psi(std::size_t k, double altitude_m, double mu_s) const {
   const AtmosphereParameters& a = single_->atmosphere().parameters();
   const double top = a.top_radius_m - a.ground_radius_m;
   const double x = std::clamp(altitude_m / top, 0.0, 1.0) * (nh - 1);
-  const double y = (std::clamp(mu_s, -1.0, 1.0) + 1.0) * 0.5 * (nmu - 1);
+  const double y = lut_mu_s_coordinate(std::clamp(mu_s, -1.0, 1.0)) * (nmu - 1);
   const int i = std::min(static_cast<int>(x), nh - 2), j = std::min(static_cast<int>(y), nmu - 2);
   const double fx = x - i, fy = y - j;
   const double* t = &(*psi_)[k * nh * nmu];

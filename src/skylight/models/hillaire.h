@@ -12,9 +12,11 @@
 // reflection of the direct sun), L_f = integral of T sigma_s along the ray: light that has been
 // scattered is taken as isotropic and its further orders as the same fraction f_ms each time.
 // Where this differs from the paper: the LUT is computed for every wavelength of the XYZ
-// integration (the paper: three RGB channels), its sphere integral has 12 x 6 (x 2 by symmetry)
-// directions (the paper 64, without symmetry), and the view ray is integrated with nishita's
-// machinery instead of a sky-view LUT (docs/ATMOSPHERE.md).
+// integration (the paper: three RGB channels), its sun cosines are dense at the horizon
+// (mu_s = sign(w) w^2, w uniform on [-1, 1]; the paper's uniform axis: twilight errors to 64 %),
+// its sphere integral has 12 x 6 (x 2 by symmetry) directions (the paper 64, without symmetry), and
+// the view ray is integrated with nishita's machinery instead of a sky-view LUT
+// (docs/ATMOSPHERE.md).
 #pragma once
 
 #include <array>
@@ -27,7 +29,7 @@
 namespace skylight {
 
 // The multiple-scattering LUT: altitudes (uniform from the ground to the top) x sun cosines
-// (uniform on [-1, 1]), as the paper's 32 x 32.
+// (mu_s = sign(w) w^2, w uniform on [-1, 1]), 32 x 32 as the paper's.
 inline constexpr int kHillaireLutAltitudes = 32;
 inline constexpr int kHillaireLutSunCosines = 32;
 // The LUT's sphere integral: cosines (midpoints on [-1, 1]) x azimuths (midpoints on [0, pi];
