@@ -47,9 +47,7 @@ int main(int argc, char** argv) {
     const HillaireModel h(hp);
     const auto& atm = h.single_scattering().atmosphere();
     const std::vector<double> nm{450, 550, 650};
-    std::vector<double> solar;
-    for (double l : nm) solar.push_back(solar_spectral_irradiance(l));
-    const auto spec = atmosphere::make_spectral(atm.parameters(), nm, solar);
+    const auto spec = h.single_scattering().spectral_at(nm);
     atmosphere::PathTracerSettings s;
     s.paths = sun_el < 0 ? 4 * paths : paths;
     Errors here;

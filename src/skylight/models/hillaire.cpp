@@ -161,18 +161,13 @@ const ParameterSchema<HillaireParameters>& HillaireParameters::schema() {
 }
 
 HillaireModel::LutWeight HillaireModel::lut_weight(double nm) const {
-  // lut_nm_ is the XYZ wavelengths (ascending) then 360 and 830: search the sorted order.
-  std::vector<std::size_t> order(lut_nm_.size());
-  for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
-  std::sort(order.begin(), order.end(),
-            [&](std::size_t a, std::size_t b) { return lut_nm_[a] < lut_nm_[b]; });
-  if (nm <= lut_nm_[order.front()]) return {order.front(), order.front(), 0.0};
-  for (std::size_t j = 1; j < order.size(); ++j)
-    if (nm <= lut_nm_[order[j]]) {
-      const double a = lut_nm_[order[j - 1]], b = lut_nm_[order[j]];
-      return {order[j - 1], order[j], (nm - a) / (b - a)};
-    }
-  return {order.back(), order.back(), 0.0};
+  // lut_nm_ is ascending.
+  const auto it = std::lower_bound(lut_nm_.begin(), lut_nm_.end(), nm);
+  if (it == lut_nm_.begin()) return {0, 0, 0.0};
+  if (it == lut_nm_.end()) return {lut_nm_.size() - 1, lut_nm_.size() - 1, 0.0};
+  const auto j = static_cast<std::size_t>(it - lut_nm_.begin());
+  const double a = lut_nm_[j - 1], b = lut_nm_[j];
+  return {j - 1, j, (nm - a) / (b - a)};
 }
 
 HillaireModel::HillaireModel(const HillaireParameters& params)
@@ -183,8 +178,8 @@ HillaireModel::HillaireModel(const HillaireParameters& params)
   observer_ = single_->observer();
   sun_ = params.sun.direction();
   const Spectral& xyz = single_->xyz_spectral();
-  lut_nm_ = xyz.nm;
   lut_nm_.push_back(kNishitaMinNm);
+  lut_nm_.insert(lut_nm_.end(), xyz.nm.begin(), xyz.nm.end());
   lut_nm_.push_back(kNishitaMaxNm);
   for (double nm : xyz.nm) xyz_lut_.push_back(lut_weight(nm));
   for (int k = 0; k < kNishitaXyzCount; ++k) sun_transmittance_[k] = sun_transmittance(xyz.nm[k]);
@@ -429,13 +424,14 @@ Xyz HillaireModel::tristimulus(Vec3 view) const {
 }
 
 std::optional<double> HillaireModel::spectral_radiance(Vec3 view, double nm) const {
-  const std::optional<double> single = single_->spectral_radiance(view, nm);
-  if (!single) return std::nullopt;
-  const double l[1] = {nm}, s[1] = {single_->irradiance(nm)};
-  const Spectral spec = atmosphere::make_spectral(single_->atmosphere().parameters(), l, s);
-  double ms[1] = {0.0};
-  multiple_scattering(view, spec, {lut_weight(nm)}, ms);
-  return *single + ms[0];
+  if (!(nm >= kNishitaMinNm && nm <= kNishitaMaxNm)) return std::nullopt;
+  // One Spectral for both parts (nishita's spectral_radiance would build its own).
+  const Spectral spec = single_->spectral_at(std::span<const double>(&nm, 1));
+  const Vec3 v = normalize(view);
+  double single[1] = {0.0}, ms[1] = {0.0};
+  single_->atmosphere().single_scattering(observer_, v, sun_, spec, single);
+  multiple_scattering(v, spec, {lut_weight(nm)}, ms);
+  return single[0] + ms[0];
 }
 
 Domain HillaireModel::domain() const {
@@ -472,9 +468,7 @@ ModelInfo HillaireModel::registry_entry() {
     const auto& h = static_cast<const HillaireModel&>(m);
     const NishitaModel& n = h.single_scattering();
     const std::vector<double> nm = n.reference_wavelengths(o);
-    std::vector<double> solar;
-    for (double l : nm) solar.push_back(n.irradiance(l));
-    const auto spec = atmosphere::make_spectral(n.atmosphere().parameters(), nm, solar);
+    const auto spec = n.spectral_at(nm);
     atmosphere::PathTracerSettings s;
     s.paths = rq.paths;
     s.seed = rq.seed;

@@ -89,8 +89,8 @@ class HillaireModel final : public SkyModel {
   // Psi_ms [sr^-1 per unit extraterrestrial irradiance] at wavelength index k of the LUT's
   // wavelengths, altitude h [m] and local sun cosine mu_s (bilinear in the LUT).
   double psi(std::size_t k, double altitude_m, double mu_s) const;
-  // The LUT's wavelengths: those of the XYZ integration, then 360 and 830 nm (the ends of
-  // spectral_radiance's range; between the others Psi is interpolated linearly in wavelength).
+  // The LUT's wavelengths, ascending: 360 nm, those of the XYZ integration, 830 nm (the ends of
+  // spectral_radiance's range; between them Psi is interpolated linearly in wavelength).
   const std::vector<double>& lut_wavelengths() const { return lut_nm_; }
   // Where a wavelength lies among lut_wavelengths(): Psi = (1 - t) Psi[k0] + t Psi[k1].
   struct LutWeight {

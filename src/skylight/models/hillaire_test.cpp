@@ -87,9 +87,7 @@ TEST(Hillaire, DaySkiesAreWithinTheirPublishedErrorOfThePathTracer) {
     const HillaireModel h(with_sun(sun_el));
     const auto& atm = h.single_scattering().atmosphere();
     const std::vector<double> nm{450.0, 550.0, 650.0};
-    std::vector<double> solar;
-    for (double l : nm) solar.push_back(solar_spectral_irradiance(l));
-    const auto spec = atmosphere::make_spectral(atm.parameters(), nm, solar);
+    const auto spec = h.single_scattering().spectral_at(nm);
     atmosphere::PathTracerSettings s;
     s.paths = 20000;
     for (const double el : {90.0, 45.0, 20.0, 5.0})

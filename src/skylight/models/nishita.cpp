@@ -192,10 +192,15 @@ Xyz NishitaModel::tristimulus_reference(Vec3 view, const atmosphere::ReferenceSe
   return to_xyz(r);
 }
 
+atmosphere::Spectral NishitaModel::spectral_at(std::span<const double> nm) const {
+  std::vector<double> solar;
+  for (double l : nm) solar.push_back(irradiance(l));
+  return atmosphere::make_spectral(atmosphere_->parameters(), nm, solar);
+}
+
 std::optional<double> NishitaModel::spectral_radiance(Vec3 view, double nm) const {
   if (!(nm >= kNishitaMinNm && nm <= kNishitaMaxNm)) return std::nullopt;
-  const double l[1] = {nm}, s[1] = {irradiance(nm)};
-  const auto spec = atmosphere::make_spectral(atmosphere_->parameters(), l, s);
+  const auto spec = spectral_at(std::span<const double>(&nm, 1));
   double out[1] = {0.0};
   atmosphere_->single_scattering(observer_, normalize(view), sun_, spec, out);
   return out[0];
@@ -354,9 +359,7 @@ ModelInfo NishitaModel::registry_entry() {
           [](const SkyModel& m, Vec3 view, const EvaluationOptions& o, const ReferenceRequest&) {
             const auto& n = static_cast<const NishitaModel&>(m);
             const std::vector<double> nm = n.reference_wavelengths(o);
-            std::vector<double> solar;
-            for (double l : nm) solar.push_back(n.irradiance(l));
-            const auto spec = atmosphere::make_spectral(n.atmosphere().parameters(), nm, solar);
+            const auto spec = n.spectral_at(nm);
             std::vector<double> r(nm.size()), se(nm.size(), 0.0);
             n.atmosphere().single_scattering_reference(n.observer(), normalize(view),
                                                        n.sun().direction(), spec, r);

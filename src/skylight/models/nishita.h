@@ -98,6 +98,8 @@ class NishitaModel final : public SkyModel {
   const atmosphere::Spectral& xyz_spectral() const { return xyz_spectral_; }
   // The extraterrestrial solar spectral irradiance used at nm [W m^-2 nm^-1].
   double irradiance(double nm) const;
+  // The atmosphere's coefficients and that irradiance at the wavelengths nm.
+  atmosphere::Spectral spectral_at(std::span<const double> nm) const;
   // `eval --reference`'s wavelengths for the options (the XYZ integration's, or the spectral
   // ones, checked against 360-830 nm; InvalidArgument for rgb), and the quantity's values and
   // standard errors from spectral radiances and their standard errors there (independent per
