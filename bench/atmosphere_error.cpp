@@ -1,21 +1,29 @@
 // The error of the multiple-scattering models against the Monte Carlo path tracer
 // (docs/ATMOSPHERE.md): for each sun elevation, 10 view directions (zenith; elevations 45, 20,
 // 5 deg at azimuths 0, 90 and 180, the sun at azimuth 180) and 450, 550,
-// 650 nm, the relative error of `hillaire` (and of `nishita`, single scattering, for scale)
+// 650 nm, the relative error of `bruneton` (default orders), `hillaire` (and of `nishita`,
+// single scattering, for scale)
 // against path_trace (segments estimator, Earth defaults with 300 DU of ozone, black ground),
 // over the cases whose path-traced standard error is below 0.5 %. Prints the median, the 95th
-// percentile and the maximum per sun elevation and over day (>= 3 deg) and twilight (< 0).
+// percentile and the maximum per sun elevation and over day (>= 10 deg: sun zenith <= 80 deg), the
+// low sun (3 deg) and twilight (< 0).
 //
-// Usage: skylight_atmosphere_error [PATHS (default 100000; twilight x 4)]
+// `skylight_atmosphere_error orders VIEW_ZENITH SUN_ELEVATION VIEW_AZIMUTH` (deg; the sun at
+// azimuth 180) prints instead bruneton's orders 1-5 one by one against the path tracer's tallies
+// (100 000 paths) at 450, 550 and 650 nm.
+// Usage: skylight_atmosphere_error [PATHS (default 100000; twilight x 4)] [ORDERS (bruneton's
+// --scattering-orders, default 4)]
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cstdlib>
 #include <string>
 #include <vector>
 
 #include "skylight/atmosphere/path_tracer.h"
 #include "skylight/core/math.h"
+#include "skylight/models/bruneton.h"
 #include "skylight/models/hillaire.h"
 
 namespace {
@@ -23,7 +31,7 @@ namespace {
 using namespace skylight;
 
 struct Errors {
-  std::vector<double> hillaire, nishita;
+  std::vector<double> bruneton, hillaire, nishita;
   int skipped = 0;
 };
 
@@ -39,12 +47,48 @@ std::string stats(std::vector<double> e) {
 
 int main(int argc, char** argv) {
   const std::uint64_t paths = argc > 1 ? std::strtoull(argv[1], nullptr, 10) : 100000;
+  const int orders = argc > 2 ? std::atoi(argv[2]) : 4;
   constexpr double kMaxStandardError = 0.005;
-  Errors day, twilight;
+  Errors day, low, twilight;
+  if (argc == 5 && std::string(argv[1]) == "orders") {
+    const std::vector<double> nm{450, 550, 650};
+    const double vz = std::atof(argv[2]), se = std::atof(argv[3]), az = std::atof(argv[4]);
+    const Vec3 v = direction_from_angles(deg_to_rad(vz), deg_to_rad(az));
+    std::vector<double> prev(3, 0.0);
+    BrunetonParameters bp;
+    bp.sun = {.zenith = deg_to_rad(90 - se), .azimuth = deg_to_rad(180)};
+    const BrunetonModel b1(bp);
+    const auto spec = b1.single_scattering().spectral_at(nm);
+    atmosphere::PathTracerSettings s;
+    s.paths = 100000;
+    const auto r =
+        atmosphere::path_trace(b1.single_scattering().atmosphere().parameters(),
+                               b1.single_scattering().observer(), v, b1.sun().direction(), spec, s);
+    for (int n = 1; n <= 5; ++n) {
+      bp.scattering_orders = n;
+      const BrunetonModel b(bp);
+      for (int l = 0; l < 3; ++l) {
+        const double x = *b.spectral_radiance(v, nm[l]);
+        fmt::print("order {} nm {}: bruneton {:.5g} path {:.5g} +- {:.2g}\n", n, nm[l], x - prev[l],
+                   r.order_radiance[n - 1][l], r.order_standard_error[n - 1][l]);
+        prev[l] = x;
+      }
+    }
+    return 0;
+  }
   for (const double sun_el : {60.0, 30.0, 10.0, 3.0, -1.0, -3.0, -6.0}) {
     HillaireParameters hp;
     hp.sun = {.zenith = deg_to_rad(90 - sun_el), .azimuth = deg_to_rad(180)};
     const HillaireModel h(hp);
+    BrunetonParameters bp;
+    bp.sun = hp.sun;
+    bp.scattering_orders = orders;
+    const auto t0 = std::chrono::steady_clock::now();
+    const BrunetonModel b(bp);
+    if (sun_el == 60.0 && b.tables())
+      fmt::print("bruneton precomputation: {:.2f} s CPU, {:.2f} s wall (with the sky-view LUT)\n",
+                 b.tables()->cpu_seconds,
+                 std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
     const auto& atm = h.single_scattering().atmosphere();
     const std::vector<double> nm{450, 550, 650};
     const auto spec = h.single_scattering().spectral_at(nm);
@@ -62,19 +106,25 @@ int main(int argc, char** argv) {
             ++here.skipped;
             continue;
           }
+          here.bruneton.push_back(std::abs(*b.spectral_radiance(v, nm[l]) / r.radiance[l] - 1));
           here.hillaire.push_back(std::abs(*h.spectral_radiance(v, nm[l]) / r.radiance[l] - 1));
           here.nishita.push_back(
               std::abs(*h.single_scattering().spectral_radiance(v, nm[l]) / r.radiance[l] - 1));
         }
       }
-    fmt::print("sun {:5.1f} deg: hillaire {}; nishita {}; {} cases above 0.5 % error skipped\n",
-               sun_el, stats(here.hillaire), stats(here.nishita), here.skipped);
-    Errors& all = sun_el >= 3 ? day : twilight;
+    Errors& all = sun_el >= 10 ? day : sun_el > 0 ? low : twilight;
+    fmt::print(
+        "sun {:5.1f} deg: bruneton {}; hillaire {}; nishita {}; {} cases above 0.5 % error "
+        "skipped\n",
+        sun_el, stats(here.bruneton), stats(here.hillaire), stats(here.nishita), here.skipped);
+    all.bruneton.insert(all.bruneton.end(), here.bruneton.begin(), here.bruneton.end());
     all.hillaire.insert(all.hillaire.end(), here.hillaire.begin(), here.hillaire.end());
     all.nishita.insert(all.nishita.end(), here.nishita.begin(), here.nishita.end());
   }
-  fmt::print("day (sun 3-60 deg): hillaire {}; nishita {}\n", stats(day.hillaire),
-             stats(day.nishita));
-  fmt::print("twilight (sun -1 to -6 deg): hillaire {}; nishita {}\n", stats(twilight.hillaire),
-             stats(twilight.nishita));
+  fmt::print("day (sun 10-60 deg): bruneton {}; hillaire {}; nishita {}\n", stats(day.bruneton),
+             stats(day.hillaire), stats(day.nishita));
+  fmt::print("low sun (3 deg): bruneton {}; hillaire {}; nishita {}\n", stats(low.bruneton),
+             stats(low.hillaire), stats(low.nishita));
+  fmt::print("twilight (sun -1 to -6 deg): bruneton {}; hillaire {}; nishita {}\n",
+             stats(twilight.bruneton), stats(twilight.hillaire), stats(twilight.nishita));
 }

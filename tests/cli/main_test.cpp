@@ -108,16 +108,16 @@ TEST_F(Cli, TyposAreNamedWithTheNearestName) {
        "'--sun-zenith'?"},
       {"eval --model preethm",
        "skylight: error: unknown model 'preethm'; did you mean 'preetham'? (known: perez, "
-       "preetham, cie, hosek, nishita, hillaire, nn, pietras, sh)"},
+       "preetham, cie, hosek, nishita, hillaire, bruneton, nn, pietras, sh)"},
       {"nn train --source hosk -o x.json",
        "skylight: error: --source: unknown model 'hosk'; did you mean 'hosek'? (known: perez, "
-       "preetham, cie, hosek, nishita, hillaire, nn, pietras, sh)"},
+       "preetham, cie, hosek, nishita, hillaire, bruneton, nn, pietras, sh)"},
       {"bench --models preetham,hosk",
        "skylight: error: --models: unknown model 'hosk'; did you mean 'hosek'? (known: perez, "
-       "preetham, cie, hosek, nishita, hillaire, nn, pietras, sh)"},
+       "preetham, cie, hosek, nishita, hillaire, bruneton, nn, pietras, sh)"},
       {"sh fit --model preethm -o x.json",
        "skylight: error: --model = 'preethm' is not one of "
-       "perez|preetham|cie|hosek|nishita|hillaire|nn|pietras; did you mean 'preetham'?"},
+       "perez|preetham|cie|hosek|nishita|hillaire|bruneton|nn|pietras; did you mean 'preetham'?"},
       {"render --model cie --projection fisheey -o x.exr",
        "skylight: error: --projection = 'fisheey' is not one of "
        "equirect|hemisphere|fisheye|cubemap|camera; did you mean 'fisheye'?"},

@@ -27,7 +27,7 @@ TEST_F(Cli, ModelsJsonAndHelp) {
   std::vector<std::string> names;
   for (const auto& m : j) names.push_back(m["name"]);
   EXPECT_EQ(names, (std::vector<std::string>{"perez", "preetham", "cie", "hosek", "nishita",
-                                             "hillaire", "nn", "pietras", "sh"}));
+                                             "hillaire", "bruneton", "nn", "pietras", "sh"}));
   for (const auto& m : j) {
     for (const auto& p : m["parameters"]) {
       // Text and flag parameters (nn's weights file, sh's --table and --no-ringing-filter) have no

@@ -59,7 +59,7 @@ TEST(Hillaire, TheSkyViewLutIsTheDirectIntegration) {
     const HillaireModel h(with_sun(sun_el, 120.0));
     const NishitaModel& n = h.single_scattering();
     const atmosphere::Spectral& xyz = n.xyz_spectral();
-    std::vector<HillaireModel::LutWeight> w;
+    std::vector<PhysicalSkyModel::LutWeight> w;
     for (double nm : xyz.nm) w.push_back(h.lut_weight(nm));
     for (const double el : {89.0, 60.0, 25.0, 8.0, 1.0, -3.0, -40.0})
       for (const double az : {0.0, 77.0, 120.0, 200.0, 300.0}) {

@@ -107,19 +107,26 @@ TEST(Registry, ModelsReportWhatTheyReadAsParameterValues) {
 // sun at the zenith, the horizon and below it; the scalar and the batch paths over directions
 // that include the horizon, the nadir and the sun. Nothing non-finite, no negative luminance
 // (except from the models that declare their output unclamped: `sh`).
-TEST(Registry, EdgeSweepsGiveFiniteNonNegativeOutput) {
+class EdgeSweeps : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(EdgeSweeps, GiveFiniteNonNegativeOutput) {
   std::vector<Vec3> dirs;
   for (int it = 0; it <= 18; ++it)
     for (int ip = 0; ip < 8; ++ip)
       dirs.push_back(direction_from_angles(it * 10.0 * kDegree, ip * 45.0 * kDegree));
   for (double z : {89.99, 90.0, 90.01}) dirs.push_back(direction_from_angles(z * kDegree, kPi));
   std::size_t models_built = 0, evaluations = 0;
-  for (const auto& info : model_registry()) {
-    std::vector<ParameterValues> variants{info.example};
+  {
+    const ModelInfo& info = *find_model(GetParam());
+    // The example, with the values the sweeps hold (ModelInfo::sweep).
+    ParameterValues base = info.example;
+    for (const auto& [name, value] : info.sweep.all()) base.set(name, value);
+    std::vector<ParameterValues> variants{base};
     for (const auto& spec : info.parameters) {
       if (spec.kind != ParameterKind::number && spec.kind != ParameterKind::integer) continue;
+      if (info.sweep.has(spec.name)) continue;
       for (double v : {spec.min, spec.max}) {
-        ParameterValues p = info.example;
+        ParameterValues p = base;
         p.set(spec.name, v);
         variants.push_back(p);
       }
@@ -166,6 +173,14 @@ TEST(Registry, EdgeSweepsGiveFiniteNonNegativeOutput) {
   }
   std::printf("edge sweeps: %zu models, %zu directions each way\n", models_built, evaluations);
 }
+
+std::vector<std::string> model_names() {
+  std::vector<std::string> names;
+  for (const auto& info : model_registry()) names.push_back(info.name);
+  return names;
+}
+INSTANTIATE_TEST_SUITE_P(Registry, EdgeSweeps, ::testing::ValuesIn(model_names()),
+                         [](const auto& param) { return param.param; });
 
 // Exactly one model is the report's physical atmosphere (its colour and twilight reference).
 TEST(Registry, OneModelIsThePhysicalReference) {

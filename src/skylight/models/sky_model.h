@@ -317,6 +317,10 @@ struct ModelInfo {
   // Values that make a typical sky where the defaults do not (the required parameters): used by
   // benchmarks, the report and the docs' examples.
   ParameterValues example{};
+  // Values the tests that build the model at every parameter edge hold fixed (on top of
+  // `example`), for a model whose set-up at a full setting is too slow to repeat for each edge
+  // (bruneton: 2 scattering orders, ~1 s of tables per atmosphere instead of ~4 s).
+  ParameterValues sweep{};
   // The output may be negative (and is non-zero below the horizon): `sh`, whose reconstruction is
   // returned unclamped; every other model is non-negative.
   bool unclamped = false;

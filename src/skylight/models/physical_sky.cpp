@@ -1,0 +1,251 @@
+#include "skylight/models/physical_sky.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "skylight/atmosphere/path_tracer.h"
+#include "skylight/core/error.h"
+#include "skylight/core/frame.h"
+#include "skylight/core/math.h"
+#include "skylight/core/parallel.h"
+#include "skylight/models/evaluation.h"
+#include "skylight/models/solar_disc.h"
+
+namespace skylight {
+
+using atmosphere::Atmosphere;
+using atmosphere::AtmosphereParameters;
+using atmosphere::Spectral;
+
+void transmittance_of(const Spectral& spec, std::size_t components, const Densities& t,
+                      std::span<double> out) {
+  for (std::size_t l = 0; l < out.size(); ++l) {
+    double tau = 0.0;
+    for (std::size_t i = 0; i < components; ++i) tau += spec.extinction[i][l] * t[i];
+    out[l] = std::exp(-tau);
+  }
+}
+
+void scattering_of(const Spectral& spec, std::size_t components, const Densities& rho,
+                   std::span<double> out) {
+  for (std::size_t l = 0; l < out.size(); ++l) {
+    double s = 0.0;
+    for (std::size_t i = 0; i < components; ++i) s += rho[i] * spec.scattering[i][l];
+    out[l] = s;
+  }
+}
+
+std::string atmosphere_key(const AtmosphereParameters& a) {
+  std::string k = fmt::format("{:a} {:a} {:a}", a.ground_radius_m, a.top_radius_m,
+                              a.ground_albedo.value_or(-1.0));
+  for (const auto& c : a.components) {
+    k += fmt::format("|{:a} {:a} {:a} {:a} {:a} {} {:a} {} {:a} {:a}", c.scale_height_m,
+                     c.scattering_per_m, c.extinction_per_m, c.reference_nm, c.angstrom_exponent,
+                     static_cast<int>(c.phase), c.g, static_cast<int>(c.profile), c.peak_altitude_m,
+                     c.half_width_m);
+    for (std::size_t i = 0; i < c.absorption_per_m.size(); ++i)
+      k += fmt::format(" {:a}:{:a}", c.absorption_per_m.wavelengths()[i],
+                       c.absorption_per_m.values()[i]);
+  }
+  return k;
+}
+
+PhysicalSkyModel::LutWeight PhysicalSkyModel::lut_weight(double nm) const {
+  // lut_nm_ is ascending.
+  const auto it = std::lower_bound(lut_nm_.begin(), lut_nm_.end(), nm);
+  if (it == lut_nm_.begin()) return {0, 0, 0.0};
+  if (it == lut_nm_.end()) return {lut_nm_.size() - 1, lut_nm_.size() - 1, 0.0};
+  const auto j = static_cast<std::size_t>(it - lut_nm_.begin());
+  const double a = lut_nm_[j - 1], b = lut_nm_[j];
+  return {j - 1, j, (nm - a) / (b - a)};
+}
+
+PhysicalSkyModel::PhysicalSkyModel(const NishitaParameters& params) : SkyModel(params.sun) {
+  single_ = std::make_unique<NishitaModel>(params);
+  observer_ = single_->observer();
+  sun_ = params.sun.direction();
+  const Spectral& xyz = single_->xyz_spectral();
+  lut_nm_.push_back(kNishitaMinNm);
+  lut_nm_.insert(lut_nm_.end(), xyz.nm.begin(), xyz.nm.end());
+  lut_nm_.push_back(kNishitaMaxNm);
+  for (double nm : xyz.nm) xyz_lut_.push_back(lut_weight(nm));
+  for (int k = 0; k < kNishitaXyzCount; ++k) sun_transmittance_[k] = sun_transmittance(xyz.nm[k]);
+  const double r_obs = length(observer_);
+  horizon_zenith_ =
+      kPi / 2 + std::acos(std::min(1.0, atmosphere().parameters().ground_radius_m / r_obs));
+}
+
+void PhysicalSkyModel::build_sky_view() {
+  const Spectral& xyz = single_->xyz_spectral();
+  sky_.assign(static_cast<std::size_t>(kSkyViewZeniths) * kSkyViewAzimuths * kNishitaXyzCount, 0.0);
+  parallel_for(static_cast<std::size_t>(kSkyViewZeniths * kSkyViewAzimuths), 8,
+               [&](std::size_t b, std::size_t e) {
+                 for (std::size_t job = b; job < e; ++job) {
+                   const int i = static_cast<int>(job) / kSkyViewAzimuths;
+                   const int j = static_cast<int>(job) % kSkyViewAzimuths;
+                   const double zenith = sky_zenith(i, kSkyViewZeniths);
+                   const double azimuth = sun().azimuth + kPi * j / (kSkyViewAzimuths - 1);
+                   multiple_scattering(
+                       direction_from_angles(zenith, azimuth), xyz, xyz_lut_,
+                       std::span<double>(&sky_[job * kNishitaXyzCount], kNishitaXyzCount));
+                 }
+               });
+}
+
+// Rows: the upper half (row < mid) l = 1 - row / mid, zenith = horizon (1 - l^2); the lower half
+// l = (row - mid) / (rows - 1 - mid), zenith = horizon + (pi - horizon) l^2: both dense at the
+// horizon, where the sky changes fastest.
+double PhysicalSkyModel::sky_zenith(double row, int rows) const {
+  const double mid = 0.5 * (rows - 1);
+  if (row <= mid) {
+    const double l = 1.0 - row / mid;
+    return horizon_zenith_ * (1.0 - l * l);
+  }
+  const double l = (row - mid) / mid;
+  return horizon_zenith_ + (kPi - horizon_zenith_) * l * l;
+}
+
+double PhysicalSkyModel::sky_row(double zenith, int rows) const {
+  const double mid = 0.5 * (rows - 1);
+  if (zenith <= horizon_zenith_)
+    return mid * (1.0 - std::sqrt(std::max(0.0, 1.0 - zenith / horizon_zenith_)));
+  return mid + mid * std::sqrt(std::min(1.0, (zenith - horizon_zenith_) / (kPi - horizon_zenith_)));
+}
+
+void PhysicalSkyModel::build_batch_lut() const {
+  const int rows = kSkyBatchZeniths, cols = kSkyBatchAzimuths;
+  batch_.assign(static_cast<std::size_t>(rows) * cols * 3, 0.0f);
+  parallel_for(static_cast<std::size_t>(rows * cols), 64, [&](std::size_t b, std::size_t e) {
+    for (std::size_t job = b; job < e; ++job) {
+      const int i = static_cast<int>(job) / cols, j = static_cast<int>(job) % cols;
+      const double azimuth = sun().azimuth + kPi * j / (cols - 1);
+      const Xyz c = tristimulus(direction_from_angles(sky_zenith(i, rows), azimuth));
+      batch_[3 * job] = static_cast<float>(c.X);
+      batch_[3 * job + 1] = static_cast<float>(c.Y);
+      batch_[3 * job + 2] = static_cast<float>(c.Z);
+    }
+  });
+}
+
+void PhysicalSkyModel::tristimulus_batch(const DirectionsSoA& dirs, const XyzSoA& out) const {
+  SKYLIGHT_CHECK(out.size() == dirs.size(), "tristimulus_batch: size mismatch");
+  std::call_once(batch_once_, [this] { build_batch_lut(); });
+  const int rows = kSkyBatchZeniths, cols = kSkyBatchAzimuths;
+  const double sun_az = sun().azimuth;
+  for (std::size_t k = 0; k < dirs.size(); ++k) {
+    const double zenith = std::acos(std::clamp(static_cast<double>(dirs.z[k]), -1.0, 1.0));
+    const double phi =
+        std::abs(wrap_azimuth(std::atan2(dirs.x[k], dirs.y[k]) - sun_az + kPi) - kPi);
+    const double y = std::clamp(sky_row(zenith, rows), 0.0, rows - 1.0);
+    const double x = std::clamp(phi / kPi, 0.0, 1.0) * (cols - 1);
+    const int i = std::min(static_cast<int>(y), rows - 2),
+              j = std::min(static_cast<int>(x), cols - 2);
+    const float fy = static_cast<float>(y - i), fx = static_cast<float>(x - j);
+    const float* a = &batch_[(static_cast<std::size_t>(i) * cols + j) * 3];
+    const float* c = a + static_cast<std::size_t>(cols) * 3;
+    float v[3];
+    for (int ch = 0; ch < 3; ++ch)
+      v[ch] =
+          (1 - fy) * ((1 - fx) * a[ch] + fx * a[3 + ch]) + fy * ((1 - fx) * c[ch] + fx * c[3 + ch]);
+    out.X[k] = v[0];
+    out.Y[k] = v[1];
+    out.Z[k] = v[2];
+  }
+}
+
+double PhysicalSkyModel::sun_transmittance(double nm) const {
+  const Atmosphere& atm = atmosphere();
+  const AtmosphereParameters& a = atm.parameters();
+  if (atmosphere::in_planet_shadow(observer_, sun_, a.ground_radius_m)) return 0.0;
+  const double to_top = atmosphere::ray_sphere_far(observer_, sun_, a.top_radius_m);
+  if (to_top <= 0) return 1.0;  // above the atmosphere, looking away from it
+  const double l[1] = {nm}, one[1] = {1.0};
+  const Spectral spec = atmosphere::make_spectral(a, l, one);
+  double t[1] = {0.0};
+  atm.transmittance(observer_, sun_, to_top, spec, t);
+  return t[0];
+}
+
+double PhysicalSkyModel::sun_angular_radius() const {
+  return kSolarAngularRadius;
+}
+
+Xyz PhysicalSkyModel::sun_tristimulus(Vec3 view) const {
+  const Vec3 v = normalize(view);
+  const double gamma = std::acos(std::clamp(dot(v, sun_), -1.0, 1.0));
+  // The part of the disc behind the planet (below the horizon) is hidden by the ground.
+  if (gamma > kSolarAngularRadius ||
+      atmosphere::in_planet_shadow(observer_, v, atmosphere().parameters().ground_radius_m))
+    return {};
+  const Spectral& xyz = single_->xyz_spectral();
+  std::array<double, kNishitaXyzCount> r{};
+  for (int k = 0; k < kNishitaXyzCount; ++k)
+    r[k] = xyz.solar[k] * sun_transmittance_[k] * solar_disc_factor(gamma, xyz.nm[k]);
+  return single_->to_xyz(r);
+}
+
+std::optional<double> PhysicalSkyModel::sun_spectral_radiance(Vec3 view, double nm) const {
+  if (!(nm >= kNishitaMinNm && nm <= kNishitaMaxNm)) return std::nullopt;
+  const Vec3 v = normalize(view);
+  const double gamma = std::acos(std::clamp(dot(v, sun_), -1.0, 1.0));
+  if (gamma > kSolarAngularRadius ||
+      atmosphere::in_planet_shadow(observer_, v, atmosphere().parameters().ground_radius_m))
+    return 0.0;
+  return single_->irradiance(nm) * sun_transmittance(nm) * solar_disc_factor(gamma, nm);
+}
+
+Xyz PhysicalSkyModel::tristimulus(Vec3 view) const {
+  std::array<double, kNishitaXyzCount> r{};
+  const Vec3 v = normalize(view);
+  atmosphere().single_scattering(observer_, v, sun_, single_->xyz_spectral(), r);
+  // The multiple scattering from the sky-view LUT (bilinear; azimuth from the sun's, folded).
+  const double zenith = std::acos(std::clamp(v.z, -1.0, 1.0));
+  const double phi = std::abs(wrap_azimuth(std::atan2(v.x, v.y) - sun().azimuth + kPi) - kPi);
+  const double y = std::clamp(sky_row(zenith, kSkyViewZeniths), 0.0, kSkyViewZeniths - 1.0);
+  const double x = std::clamp(phi / kPi, 0.0, 1.0) * (kSkyViewAzimuths - 1);
+  const int i = std::min(static_cast<int>(y), kSkyViewZeniths - 2);
+  const int j = std::min(static_cast<int>(x), kSkyViewAzimuths - 2);
+  const double fy = y - i, fx = x - j;
+  const auto at = [&](int ii, int jj) {
+    return &sky_[(static_cast<std::size_t>(ii) * kSkyViewAzimuths + jj) * kNishitaXyzCount];
+  };
+  const double *a = at(i, j), *b = at(i, j + 1), *c = at(i + 1, j), *d = at(i + 1, j + 1);
+  for (int k = 0; k < kNishitaXyzCount; ++k)
+    r[k] += (1 - fy) * ((1 - fx) * a[k] + fx * b[k]) + fy * ((1 - fx) * c[k] + fx * d[k]);
+  return single_->to_xyz(r);
+}
+
+std::optional<double> PhysicalSkyModel::spectral_radiance(Vec3 view, double nm) const {
+  if (!(nm >= kNishitaMinNm && nm <= kNishitaMaxNm)) return std::nullopt;
+  // One Spectral for both parts (nishita's spectral_radiance would build its own).
+  const Spectral spec = single_->spectral_at(std::span<const double>(&nm, 1));
+  const Vec3 v = normalize(view);
+  double single[1] = {0.0}, ms[1] = {0.0};
+  atmosphere().single_scattering(observer_, v, sun_, spec, single);
+  multiple_scattering(v, spec, {lut_weight(nm)}, ms);
+  return single[0] + ms[0];
+}
+
+ReferencePath PhysicalSkyModel::path_tracer_reference() {
+  return [](const SkyModel& m, Vec3 view, const EvaluationOptions& o, const ReferenceRequest& rq) {
+    const auto& p = static_cast<const PhysicalSkyModel&>(m);
+    const NishitaModel& n = p.single_scattering();
+    const std::vector<double> nm = n.reference_wavelengths(o);
+    const auto spec = n.spectral_at(nm);
+    atmosphere::PathTracerSettings s;
+    s.paths = rq.paths;
+    s.seed = rq.seed;
+    const auto r = atmosphere::path_trace(n.atmosphere().parameters(), n.observer(),
+                                          normalize(view), p.sun().direction(), spec, s);
+    return n.reference_value(o, r.radiance, r.standard_error);
+  };
+}
+
+std::string PhysicalSkyModel::path_tracer_reference_description() {
+  return "the Monte Carlo path tracer of the same atmosphere (atmosphere/path_tracer.h: every "
+         "order of scattering, segments estimator; standard errors)";
+}
+
+}  // namespace skylight
