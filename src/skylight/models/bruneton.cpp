@@ -150,7 +150,6 @@ std::vector<float> phase_matrix(const Grid& g, int i, const atmosphere::Componen
   for (int m = 0; m < kNmu; ++m) {
     const double mu = Grid::cell_cosine(mh, m, 0.5), sm = safe_sqrt(1.0 - mu * mu);
     for (int m2 = 0; m2 < kNmu; ++m2) {
-      const double lo = Grid::cell_cosine(mh, m2, 0.0), hi = Grid::cell_cosine(mh, m2, 1.0);
       for (int delta = -kOff; delta < kNphi; ++delta) {
         double sum = 0.0;
         for (int a = 0; a < S; ++a) {
@@ -167,8 +166,6 @@ std::vector<float> phase_matrix(const Grid& g, int i, const atmosphere::Componen
             sum += atmosphere::phase(c, mu * mu2 + sm * s2 * std::cos(rel)) * dmu * dphi / S;
           }
         }
-        (void)lo;
-        (void)hi;
         kernel[(static_cast<std::size_t>(m) * kNmu + m2) * kDeltas + (delta + kOff)] = sum;
       }
     }
