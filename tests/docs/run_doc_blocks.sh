@@ -23,7 +23,7 @@
 # counted as such. SKYLIGHT_DOC_FILES (paths relative to SOURCE_DIR, space-separated) limits the
 # run to those files, each optionally to the blocks that start in a line range (FILE:FROM-TO, TO
 # may be empty: to the end); default README.md and docs/*.md. ctest runs one test per file
-# (Docs.<file>; README.md in two ranges). A quoted output whose command lies in a block outside
+# (Docs.<file>; README.md in three ranges). A quoted output whose command lies in a block outside
 # the range is left to the run of that range.
 set -euo pipefail
 src="${1:?usage: run_doc_blocks.sh SOURCE_DIR PATH/TO/skylight [PATH/TO/skylight_bench]}"

@@ -407,13 +407,13 @@ const ParameterSchema<BrunetonParameters>& BrunetonParameters::schema() {
 
 BrunetonModel::BrunetonModel(const BrunetonParameters& params)
     : PhysicalSkyModel(params), params_(params) {
-  if (params_.scattering_orders > 1) {
-    const Atmosphere& atm = atmosphere();
+  const Atmosphere& atm = atmosphere();
+  const std::string key =
+      atmosphere_key(atm.parameters()) + fmt::format(" orders {}", params_.scattering_orders);
+  if (params_.scattering_orders > 1)
     tables_ = tables_cache().get(
-        atmosphere_key(atm.parameters()) + fmt::format(" orders {}", params_.scattering_orders),
-        [&] { return compute_tables(atm, lut_wavelengths(), params_.scattering_orders); });
-  }
-  build_sky_view();
+        key, [&] { return compute_tables(atm, lut_wavelengths(), params_.scattering_orders); });
+  build_sky_view(key);
 }
 
 void BrunetonModel::multiple_scattering(Vec3 view, const Spectral& spec,

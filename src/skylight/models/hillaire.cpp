@@ -54,7 +54,8 @@ HillaireModel::HillaireModel(const HillaireParameters& params)
   const AtmosphereParameters& a = atm.parameters();
   const std::vector<double>& lut_nm = lut_wavelengths();
   const std::size_t nl = lut_nm.size();
-  psi_ = psi_cache().get(atmosphere_key(a), [&] {
+  const std::string key = atmosphere_key(a);
+  psi_ = psi_cache().get(key, [&] {
     std::vector<double> psi;
     // Per unit irradiance; the first scattering with an isotropic phase function (HG with g = 0
     // is exactly 1 / (4 pi)); the tables are shared with the single scattering's (same profiles).
@@ -106,7 +107,7 @@ HillaireModel::HillaireModel(const HillaireParameters& params)
     });
     return psi;
   });
-  build_sky_view();
+  build_sky_view(key);
 }
 
 double HillaireModel::psi(std::size_t k, double altitude_m, double mu_s) const {

@@ -150,6 +150,41 @@ TEST(Hillaire, TheBatchPathIsTheScalarPathWithinItsBound) {
   }
 }
 
+// The LUTs are shared between models built for the same atmosphere, sun and observer
+// (physical_sky.cpp's caches): a model that differs in any of them gets its own. The radiance is
+// linear in the solar irradiance, and the same model built twice is the same sky.
+constexpr double kLinearityRelTol = 1e-12;  // two roundings per node of the same sums
+
+TEST(Hillaire, ModelsBuiltOneAfterTheOtherKeepTheirOwnLuts) {
+  HillaireParameters p = with_sun(30.0, 150.0);
+  p.solar_irradiance = 1.0;
+  const HillaireModel once(p);
+  p.solar_irradiance = 2.0;
+  const HillaireModel twice(p);
+  p.observer_altitude_m = 5000.0;
+  const HillaireModel high(p);
+  p.observer_altitude_m = 0.0;
+  p.sun.azimuth = deg_to_rad(200.0);
+  const HillaireModel turned(p);
+  p.sun.azimuth = deg_to_rad(150.0);
+  const HillaireModel again(p);
+  const std::vector<float> x{0.2f, -0.6f, 0.0f}, y{0.3f, 0.1f, -0.8f}, z{0.93f, 0.79f, 0.6f};
+  std::vector<float> X1(3), Y1(3), Z1(3), X2(3), Y2(3), Z2(3);
+  once.tristimulus_batch({x, y, z}, {X1, Y1, Z1});
+  twice.tristimulus_batch({x, y, z}, {X2, Y2, Z2});
+  for (std::size_t k = 0; k < x.size(); ++k) {
+    const Vec3 v = normalize(Vec3{x[k], y[k], z[k]});
+    const double y1 = once.tristimulus(v).Y;
+    EXPECT_NEAR(twice.tristimulus(v).Y / y1, 2.0, 2.0 * kLinearityRelTol) << k;
+    EXPECT_NEAR(Y2[k] / Y1[k], 2.0, 1e-6) << k;  // float LUT: one rounding each
+    EXPECT_EQ(again.tristimulus(v).Y, twice.tristimulus(v).Y) << k;
+    // Seen from 5 km the sky above is darker; the sun turned by 50 deg moves the sky with it.
+    EXPECT_LT(high.tristimulus(v).Y, 0.95 * twice.tristimulus(v).Y) << k;
+    const Vec3 w = direction_from_angles(std::acos(v.z), std::atan2(v.x, v.y) + deg_to_rad(50.0));
+    EXPECT_NEAR(turned.tristimulus(w).Y / twice.tristimulus(v).Y, 1.0, 1e-9) << k;
+  }
+}
+
 }  // namespace
 }  // namespace skylight
 

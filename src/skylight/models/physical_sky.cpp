@@ -77,21 +77,44 @@ PhysicalSkyModel::PhysicalSkyModel(const NishitaParameters& params) : SkyModel(p
       kPi / 2 + std::acos(std::min(1.0, atmosphere().parameters().ground_radius_m / r_obs));
 }
 
-void PhysicalSkyModel::build_sky_view() {
+namespace {
+
+// The LUTs of the last models built: the report and the sweeps rebuild a model for the same
+// atmosphere and sun many times (kSkyViewZeniths x kSkyViewAzimuths x 20 doubles = 0.3 MB each;
+// the batch LUT 0.4 MB).
+AtmosphereTableCache<std::vector<double>, 64>& sky_view_cache() {
+  static AtmosphereTableCache<std::vector<double>, 64> cache;
+  return cache;
+}
+AtmosphereTableCache<std::vector<float>, 16>& batch_cache() {
+  static AtmosphereTableCache<std::vector<float>, 16> cache;
+  return cache;
+}
+
+}  // namespace
+
+void PhysicalSkyModel::build_sky_view(const std::string& tables_key) {
   const Spectral& xyz = single_->xyz_spectral();
-  sky_.assign(static_cast<std::size_t>(kSkyViewZeniths) * kSkyViewAzimuths * kNishitaXyzCount, 0.0);
-  parallel_for(static_cast<std::size_t>(kSkyViewZeniths * kSkyViewAzimuths), 8,
-               [&](std::size_t b, std::size_t e) {
-                 for (std::size_t job = b; job < e; ++job) {
-                   const int i = static_cast<int>(job) / kSkyViewAzimuths;
-                   const int j = static_cast<int>(job) % kSkyViewAzimuths;
-                   const double zenith = sky_zenith(i, kSkyViewZeniths);
-                   const double azimuth = sun().azimuth + kPi * j / (kSkyViewAzimuths - 1);
-                   multiple_scattering(
-                       direction_from_angles(zenith, azimuth), xyz, xyz_lut_,
-                       std::span<double>(&sky_[job * kNishitaXyzCount], kNishitaXyzCount));
-                 }
-               });
+  lut_key_ = fmt::format("{} | observer {:a} {:a} {:a} | sun {:a} {:a} | solar", tables_key,
+                         observer_.x, observer_.y, observer_.z, sun().zenith, sun().azimuth);
+  for (double e : xyz.solar) lut_key_ += fmt::format(" {:a}", e);
+  sky_ = sky_view_cache().get(lut_key_, [&] {
+    std::vector<double> sky(
+        static_cast<std::size_t>(kSkyViewZeniths) * kSkyViewAzimuths * kNishitaXyzCount, 0.0);
+    parallel_for(static_cast<std::size_t>(kSkyViewZeniths * kSkyViewAzimuths), 8,
+                 [&](std::size_t b, std::size_t e) {
+                   for (std::size_t job = b; job < e; ++job) {
+                     const int i = static_cast<int>(job) / kSkyViewAzimuths;
+                     const int j = static_cast<int>(job) % kSkyViewAzimuths;
+                     const double zenith = sky_zenith(i, kSkyViewZeniths);
+                     const double azimuth = sun().azimuth + kPi * j / (kSkyViewAzimuths - 1);
+                     multiple_scattering(
+                         direction_from_angles(zenith, azimuth), xyz, xyz_lut_,
+                         std::span<double>(&sky[job * kNishitaXyzCount], kNishitaXyzCount));
+                   }
+                 });
+    return sky;
+  });
 }
 
 // Rows: the upper half (row < mid) l = 1 - row / mid, zenith = horizon (1 - l^2); the lower half
@@ -114,24 +137,27 @@ double PhysicalSkyModel::sky_row(double zenith, int rows) const {
   return mid + mid * std::sqrt(std::min(1.0, (zenith - horizon_zenith_) / (kPi - horizon_zenith_)));
 }
 
-void PhysicalSkyModel::build_batch_lut() const {
+std::vector<float> PhysicalSkyModel::build_batch_lut() const {
   const int rows = kSkyBatchZeniths, cols = kSkyBatchAzimuths;
-  batch_.assign(static_cast<std::size_t>(rows) * cols * 3, 0.0f);
+  std::vector<float> batch(static_cast<std::size_t>(rows) * cols * 3, 0.0f);
   parallel_for(static_cast<std::size_t>(rows * cols), 64, [&](std::size_t b, std::size_t e) {
     for (std::size_t job = b; job < e; ++job) {
       const int i = static_cast<int>(job) / cols, j = static_cast<int>(job) % cols;
       const double azimuth = sun().azimuth + kPi * j / (cols - 1);
       const Xyz c = tristimulus(direction_from_angles(sky_zenith(i, rows), azimuth));
-      batch_[3 * job] = static_cast<float>(c.X);
-      batch_[3 * job + 1] = static_cast<float>(c.Y);
-      batch_[3 * job + 2] = static_cast<float>(c.Z);
+      batch[3 * job] = static_cast<float>(c.X);
+      batch[3 * job + 1] = static_cast<float>(c.Y);
+      batch[3 * job + 2] = static_cast<float>(c.Z);
     }
   });
+  return batch;
 }
 
 void PhysicalSkyModel::tristimulus_batch(const DirectionsSoA& dirs, const XyzSoA& out) const {
   SKYLIGHT_CHECK(out.size() == dirs.size(), "tristimulus_batch: size mismatch");
-  std::call_once(batch_once_, [this] { build_batch_lut(); });
+  std::call_once(batch_once_, [this] {
+    batch_ = batch_cache().get(lut_key_, [this] { return build_batch_lut(); });
+  });
   const int rows = kSkyBatchZeniths, cols = kSkyBatchAzimuths;
   const double sun_az = sun().azimuth;
   for (std::size_t k = 0; k < dirs.size(); ++k) {
@@ -143,7 +169,7 @@ void PhysicalSkyModel::tristimulus_batch(const DirectionsSoA& dirs, const XyzSoA
     const int i = std::min(static_cast<int>(y), rows - 2),
               j = std::min(static_cast<int>(x), cols - 2);
     const float fy = static_cast<float>(y - i), fx = static_cast<float>(x - j);
-    const float* a = &batch_[(static_cast<std::size_t>(i) * cols + j) * 3];
+    const float* a = &(*batch_)[(static_cast<std::size_t>(i) * cols + j) * 3];
     const float* c = a + static_cast<std::size_t>(cols) * 3;
     float v[3];
     for (int ch = 0; ch < 3; ++ch)
@@ -209,7 +235,7 @@ Xyz PhysicalSkyModel::tristimulus(Vec3 view) const {
   const int j = std::min(static_cast<int>(x), kSkyViewAzimuths - 2);
   const double fy = y - i, fx = x - j;
   const auto at = [&](int ii, int jj) {
-    return &sky_[(static_cast<std::size_t>(ii) * kSkyViewAzimuths + jj) * kNishitaXyzCount];
+    return &(*sky_)[(static_cast<std::size_t>(ii) * kSkyViewAzimuths + jj) * kNishitaXyzCount];
   };
   const double *a = at(i, j), *b = at(i, j + 1), *c = at(i + 1, j), *d = at(i + 1, j + 1);
   for (int k = 0; k < kNishitaXyzCount; ++k)

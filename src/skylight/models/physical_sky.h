@@ -5,6 +5,7 @@
 // the solar disc (models/solar_disc.h) through the atmosphere's transmittance.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <memory>
 #include <mutex>
@@ -37,9 +38,10 @@ inline constexpr int kSkyViewRayNodes = 32;
 // tables are per unit irradiance and independent of the sun and the observer.
 std::string atmosphere_key(const atmosphere::AtmosphereParameters& a);
 
-// The tables of the last few atmospheres (a new sun or observer reuses its planet's tables: the
-// report's and the sweeps' many suns). Thread-safe; two threads computing the same key keep one.
-template <class T>
+// The tables of the last `Entries` keys, the most recently used kept (a new sun or observer reuses
+// its planet's tables: the report's and the sweeps' many suns; a model rebuilt for the same sun
+// reuses its sky-view LUT). Thread-safe; two threads computing the same key keep one.
+template <class T, std::size_t Entries = 8>
 class AtmosphereTableCache {
  public:
   using Table = std::shared_ptr<const T>;
@@ -47,18 +49,20 @@ class AtmosphereTableCache {
   Table get(const std::string& key, const Build& build) {
     {
       const std::lock_guard lock(mutex_);
-      for (const auto& [k, table] : entries_)
-        if (k == key) return table;
+      for (auto it = entries_.begin(); it != entries_.end(); ++it)
+        if (it->first == key) {
+          std::rotate(entries_.begin(), it, it + 1);
+          return entries_.front().second;
+        }
     }
     Table table = std::make_shared<const T>(build());
     const std::lock_guard lock(mutex_);
     entries_.insert(entries_.begin(), {key, table});
-    if (entries_.size() > kEntries) entries_.pop_back();
+    if (entries_.size() > Entries) entries_.pop_back();
     return table;
   }
 
  private:
-  static constexpr std::size_t kEntries = 8;
   std::mutex mutex_;
   std::vector<std::pair<std::string, Table>> entries_;
 };
@@ -153,8 +157,10 @@ class PhysicalSkyModel : public SkyModel {
  protected:
   explicit PhysicalSkyModel(const NishitaParameters& params);
   // Fills the sky-view LUT: the derived model's constructor calls it last, once
-  // multiple_scattering() can run.
-  void build_sky_view();
+  // multiple_scattering() can run. `tables_key`: what multiple_scattering() depends on besides the
+  // solar spectrum, the observer and the sun (the atmosphere's key, the model's own settings); a
+  // model with the same key, solar spectrum, observer and sun reuses the LUTs of the last built.
+  void build_sky_view(const std::string& tables_key);
   const atmosphere::Atmosphere& atmosphere() const { return single_->atmosphere(); }
   Vec3 observer_, sun_;
 
@@ -166,15 +172,16 @@ class PhysicalSkyModel : public SkyModel {
   std::array<double, kNishitaXyzCount> sun_transmittance_{};
   double sun_transmittance(double nm) const;
   // The sky-view LUT: [zenith row][azimuth column][XYZ wavelength] multiple-scattering radiance.
-  std::vector<double> sky_;
+  std::shared_ptr<const std::vector<double>> sky_;
+  std::string lut_key_;          // build_sky_view's key with the solar spectrum, observer and sun
   double horizon_zenith_ = 0.0;  // [rad] of the observer's horizon (pi/2 on the ground)
   // A LUT's row coordinate of a view zenith [rad] and back, for `rows` rows.
   double sky_row(double zenith, int rows) const;
   double sky_zenith(double row, int rows) const;
   // The batch LUT: [row][column] X, Y, Z in float, built once (thread-safe) on first use.
   mutable std::once_flag batch_once_;
-  mutable std::vector<float> batch_;
-  void build_batch_lut() const;
+  mutable std::shared_ptr<const std::vector<float>> batch_;
+  std::vector<float> build_batch_lut() const;
 };
 
 }  // namespace skylight
