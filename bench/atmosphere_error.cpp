@@ -11,13 +11,18 @@
 // `skylight_atmosphere_error orders VIEW_ZENITH SUN_ELEVATION VIEW_AZIMUTH` (deg; the sun at
 // azimuth 180) prints instead bruneton's orders 1-5 one by one against the path tracer's tallies
 // (100 000 paths) at 450, 550 and 650 nm.
-// Usage: skylight_atmosphere_error [PATHS (default 100000; twilight x 4)] [ORDERS (bruneton's
-// --scattering-orders, default 4)]
+// Observers on the ground and at 20 km.
+// Usage: skylight_atmosphere_error [PATHS (default 100000; twilight x 16)] [ORDERS (bruneton's
+// --scattering-orders, default 4)] [CACHE.csv (the path tracer's results: read where a line has
+// the case, else computed and appended; for comparing changes of the models on the same paths)]
 #include <fmt/format.h>
 
 #include <algorithm>
 #include <chrono>
 #include <cstdlib>
+#include <fstream>
+#include <map>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -43,12 +48,56 @@ std::string stats(std::vector<double> e) {
                      e.size());
 }
 
+// The path tracer's radiance and standard error per wavelength of one case, from the cache file
+// or computed (and appended to it).
+struct Traced {
+  std::vector<double> radiance, standard_error;
+};
+class TraceCache {
+ public:
+  explicit TraceCache(std::string path) : path_(std::move(path)) {
+    if (path_.empty()) return;
+    std::ifstream in(path_);
+    std::string line;
+    while (std::getline(in, line)) {
+      std::istringstream ls(line);
+      std::string key;
+      std::getline(ls, key, ';');
+      Traced t;
+      double r = 0, e = 0;
+      while (ls >> r >> e) {
+        t.radiance.push_back(r);
+        t.standard_error.push_back(e);
+      }
+      entries_[key] = t;
+    }
+  }
+  template <class F>
+  Traced get(const std::string& key, const F& trace) {
+    if (const auto it = entries_.find(key); it != entries_.end()) return it->second;
+    Traced t = trace();
+    if (!path_.empty()) {
+      std::ofstream out(path_, std::ios::app);
+      out << key << ';';
+      for (std::size_t l = 0; l < t.radiance.size(); ++l)
+        out << fmt::format(" {:.17g} {:.17g}", t.radiance[l], t.standard_error[l]);
+      out << '\n';
+    }
+    return entries_[key] = t;
+  }
+
+ private:
+  std::string path_;
+  std::map<std::string, Traced> entries_;
+};
+
 }  // namespace
 
 int main(int argc, char** argv) {
   const std::uint64_t paths = argc > 1 ? std::strtoull(argv[1], nullptr, 10) : 100000;
   const int orders = argc > 2 ? std::atoi(argv[2]) : 4;
   constexpr double kMaxStandardError = 0.005;
+  constexpr double kShownError = 0.03;  // bruneton's cases above it are printed one by one
   Errors day, low, twilight;
   if (argc == 5 && std::string(argv[1]) == "orders") {
     const std::vector<double> nm{450, 550, 650};
@@ -76,51 +125,68 @@ int main(int argc, char** argv) {
     }
     return 0;
   }
-  for (const double sun_el : {60.0, 30.0, 10.0, 3.0, -1.0, -3.0, -6.0}) {
-    HillaireParameters hp;
-    hp.sun = {.zenith = deg_to_rad(90 - sun_el), .azimuth = deg_to_rad(180)};
-    const HillaireModel h(hp);
-    BrunetonParameters bp;
-    bp.sun = hp.sun;
-    bp.scattering_orders = orders;
-    const auto t0 = std::chrono::steady_clock::now();
-    const BrunetonModel b(bp);
-    if (sun_el == 60.0 && b.tables())
-      fmt::print("bruneton precomputation: {:.2f} s CPU, {:.2f} s wall (with the sky-view LUT)\n",
-                 b.tables()->cpu_seconds,
-                 std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
-    const auto& atm = h.single_scattering().atmosphere();
-    const std::vector<double> nm{450, 550, 650};
-    const auto spec = h.single_scattering().spectral_at(nm);
-    atmosphere::PathTracerSettings s;
-    s.paths = sun_el < 0 ? 4 * paths : paths;
-    Errors here;
-    for (const double el : {90.0, 45.0, 20.0, 5.0})
-      for (const double az : {0.0, 90.0, 180.0}) {
-        if (el == 90 && az > 0) continue;
-        const Vec3 v = direction_from_angles(deg_to_rad(90 - el), deg_to_rad(az));
-        const auto r = atmosphere::path_trace(atm.parameters(), h.single_scattering().observer(), v,
-                                              h.sun().direction(), spec, s);
-        for (std::size_t l = 0; l < nm.size(); ++l) {
-          if (r.standard_error[l] > kMaxStandardError * r.radiance[l]) {
-            ++here.skipped;
-            continue;
+  TraceCache cache(argc > 3 ? argv[3] : "");
+  for (const double altitude : {0.0, 20000.0})
+    for (const double sun_el : {60.0, 30.0, 10.0, 3.0, -1.0, -3.0, -6.0}) {
+      HillaireParameters hp;
+      hp.sun = {.zenith = deg_to_rad(90 - sun_el), .azimuth = deg_to_rad(180)};
+      hp.observer_altitude_m = altitude;
+      const HillaireModel h(hp);
+      BrunetonParameters bp;
+      bp.sun = hp.sun;
+      bp.observer_altitude_m = altitude;
+      bp.scattering_orders = orders;
+      const auto t0 = std::chrono::steady_clock::now();
+      const BrunetonModel b(bp);
+      if (sun_el == 60.0 && altitude == 0.0 && b.tables())
+        fmt::print("bruneton precomputation: {:.2f} s CPU, {:.2f} s wall (with the sky-view LUT)\n",
+                   b.tables()->cpu_seconds,
+                   std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+      const auto& atm = h.single_scattering().atmosphere();
+      const std::vector<double> nm{450, 550, 650};
+      const auto spec = h.single_scattering().spectral_at(nm);
+      atmosphere::PathTracerSettings s;
+      s.paths = sun_el < 0 ? 16 * paths : paths;
+      Errors here;
+      for (const double el : {90.0, 45.0, 20.0, 5.0})
+        for (const double az : {0.0, 90.0, 180.0}) {
+          if (el == 90 && az > 0) continue;
+          const Vec3 v = direction_from_angles(deg_to_rad(90 - el), deg_to_rad(az));
+          const Traced r = cache.get(
+              fmt::format("{} {} {} {} {} {}", altitude, sun_el, el, az, s.paths, s.seed), [&] {
+                const auto t =
+                    atmosphere::path_trace(atm.parameters(), h.single_scattering().observer(), v,
+                                           h.sun().direction(), spec, s);
+                return Traced{t.radiance, t.standard_error};
+              });
+          for (std::size_t l = 0; l < nm.size(); ++l) {
+            if (r.standard_error[l] > kMaxStandardError * r.radiance[l]) {
+              ++here.skipped;
+              continue;
+            }
+            here.bruneton.push_back(std::abs(*b.spectral_radiance(v, nm[l]) / r.radiance[l] - 1));
+            if (here.bruneton.back() > kShownError)
+              fmt::print(
+                  "  bruneton {:+.2f} % at view elevation {} deg, azimuth {} deg, {} nm "
+                  "(path tracer +- {:.2f} %; nishita {:+.2f} %)\n",
+                  100 * (*b.spectral_radiance(v, nm[l]) / r.radiance[l] - 1), el, az, nm[l],
+                  100 * r.standard_error[l] / r.radiance[l],
+                  100 * (*h.single_scattering().spectral_radiance(v, nm[l]) / r.radiance[l] - 1));
+            here.hillaire.push_back(std::abs(*h.spectral_radiance(v, nm[l]) / r.radiance[l] - 1));
+            here.nishita.push_back(
+                std::abs(*h.single_scattering().spectral_radiance(v, nm[l]) / r.radiance[l] - 1));
           }
-          here.bruneton.push_back(std::abs(*b.spectral_radiance(v, nm[l]) / r.radiance[l] - 1));
-          here.hillaire.push_back(std::abs(*h.spectral_radiance(v, nm[l]) / r.radiance[l] - 1));
-          here.nishita.push_back(
-              std::abs(*h.single_scattering().spectral_radiance(v, nm[l]) / r.radiance[l] - 1));
         }
-      }
-    Errors& all = sun_el >= 10 ? day : sun_el > 0 ? low : twilight;
-    fmt::print(
-        "sun {:5.1f} deg: bruneton {}; hillaire {}; nishita {}; {} cases above 0.5 % error "
-        "skipped\n",
-        sun_el, stats(here.bruneton), stats(here.hillaire), stats(here.nishita), here.skipped);
-    all.bruneton.insert(all.bruneton.end(), here.bruneton.begin(), here.bruneton.end());
-    all.hillaire.insert(all.hillaire.end(), here.hillaire.begin(), here.hillaire.end());
-    all.nishita.insert(all.nishita.end(), here.nishita.begin(), here.nishita.end());
-  }
+      Errors& all = sun_el >= 10 ? day : sun_el > 0 ? low : twilight;
+      fmt::print(
+          "{:5.0f} m, sun {:5.1f} deg: bruneton {}; hillaire {}; nishita {}; {} cases above 0.5 % "
+          "error skipped\n",
+          altitude, sun_el, stats(here.bruneton), stats(here.hillaire), stats(here.nishita),
+          here.skipped);
+      all.bruneton.insert(all.bruneton.end(), here.bruneton.begin(), here.bruneton.end());
+      all.hillaire.insert(all.hillaire.end(), here.hillaire.begin(), here.hillaire.end());
+      all.nishita.insert(all.nishita.end(), here.nishita.begin(), here.nishita.end());
+    }
   fmt::print("day (sun 10-60 deg): bruneton {}; hillaire {}; nishita {}\n", stats(day.bruneton),
              stats(day.hillaire), stats(day.nishita));
   fmt::print("low sun (3 deg): bruneton {}; hillaire {}; nishita {}\n", stats(low.bruneton),

@@ -13,6 +13,7 @@
 #include "skylight/core/numbers.h"
 #include "skylight/core/parallel.h"
 #include "skylight/core/parameters.h"
+#include "skylight/core/progress.h"
 #include "skylight/io/file.h"
 #include "skylight/version.h"
 
@@ -104,6 +105,11 @@ int main(int argc, char** argv) {
       if (!c.app->parsed()) continue;
       // A command's files are all-or-nothing: written to temporaries, renamed when it succeeds.
       skylight::io::OutputTransaction outputs;
+      // What the library precomputes on the command's behalf (a model's tables) shows its steps
+      // as the command's progress.
+      cli::Progress precomputation(c.app->get_name() + " (precomputation)");
+      const skylight::ScopedProgressSink sink(
+          [&](int done, int total, std::string_view step) { precomputation(done, total, step); });
       const int status = c.run();
       if (status == cli::kExitOk) {
         outputs.commit();

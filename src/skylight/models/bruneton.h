@@ -71,6 +71,13 @@ struct BrunetonTables {
   double cpu_seconds = 0.0;  // the precomputation's (all threads)
 };
 
+// The tables of an atmosphere and number of orders (>= 2) at the wavelengths lut_nm: read from
+// the file cache when SKYLIGHT_TABLE_CACHE names a directory that holds them (io/table_cache.h),
+// else computed with the library's threads, reporting each order (core/progress.h), and stored
+// there. The models share them in memory per atmosphere besides.
+BrunetonTables load_or_compute_tables(const atmosphere::Atmosphere& atm,
+                                      const std::vector<double>& lut_nm, int orders);
+
 class BrunetonModel final : public PhysicalSkyModel {
  public:
   explicit BrunetonModel(const BrunetonParameters& params);

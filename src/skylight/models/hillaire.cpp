@@ -184,6 +184,7 @@ ModelInfo HillaireModel::registry_entry() {
   // reference, the single scattering, is replaced here).
   info.reference = path_tracer_reference();
   info.reference_description = path_tracer_reference_description();
+  info.bench = BenchPolicy{.extra = BenchPolicy::Extra::precomputation};
   info.report = ReportPolicy{
       .title = "Hillaire 2020 (Earth defaults)", .colour = "#17becf", .physical_reference = true};
   return info;

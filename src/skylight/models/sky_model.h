@@ -253,8 +253,10 @@ struct BenchPolicy {
   // How that comparison names the benchmarked sky (default: the model's name).
   std::string label{};
   // A further workload of perf/workloads.h: the SH table's evaluation against projecting the
-  // table's model, or each network kind (with the trainer's initial weights) against nishita.
-  enum class Extra { none, sh_table, network_kinds };
+  // table's model, each network kind (with the trainer's initial weights) against nishita, or
+  // the precomputation a model does before its first frame (tables and LUTs; timed first, before
+  // anything in the process has built them).
+  enum class Extra { none, sh_table, network_kinds, precomputation };
   Extra extra = Extra::none;
 };
 

@@ -3,6 +3,8 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <chrono>
+#include <cstdlib>
 #include <map>
 
 #include "skylight/core/error.h"
@@ -10,6 +12,7 @@
 #include "skylight/core/parameters.h"
 #include "skylight/core/statistics.h"
 #include "skylight/core/system.h"
+#include "skylight/io/table_cache.h"
 #include "skylight/models/sh.h"
 #include "skylight/perf/workloads.h"
 
@@ -160,6 +163,29 @@ double bench_haze(int repeats, const Output& out) {
   return fast;
 }
 
+// The model's first construction in the process (its tables, its sky-view LUT) and its first
+// batch frame (the whole-sky LUT, then the frame): wall and CPU time of all threads. The
+// frame after it is the row's batchN.
+std::string bench_precomputation(const ModelInfo& info, DirectionGrid& grid, int width,
+                                 int height) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const double c0 = process_cpu_s();
+  const auto model = bench_model(info.name);
+  const double build_wall =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const double build_cpu = process_cpu_s() - c0;
+  const double first = median_seconds(1, [&] { grid.threads(*model); });
+  const char* cache = std::getenv(io::kTableCacheVariable);
+  return fmt::format(
+      "{}: precomputation {:.2f} s wall, {:.2f} s CPU (tables and sky-view LUT{}); first "
+      "{}x{} frame {:.0f} ms (with the whole-sky LUT); each frame after it: batchN above\n",
+      info.name, build_wall, build_cpu,
+      cache && *cache
+          ? fmt::format(", {} set: tables read from it when there", io::kTableCacheVariable)
+          : "",
+      width, height, 1e3 * first);
+}
+
 std::vector<const ModelInfo*> bench_infos(const BenchSettings& s) {
   std::vector<const ModelInfo*> models;
   for (const auto& name : s.models.empty() ? default_bench_models() : s.models) {
@@ -251,6 +277,10 @@ double run_bench(const BenchSettings& s, const Output& out) {
                   s.width, s.height, s.repeats, thread_count(), "model", "scalar ms", "batch1 ms",
                   "batchN ms", "SIMD x", "threads x"));
   std::map<std::string, std::pair<double, double>> timed;  // name -> (scalar, batch1)
+  std::string precomputations;
+  for (const ModelInfo* info : models)
+    if (info->bench.extra == BenchPolicy::Extra::precomputation)
+      precomputations += bench_precomputation(*info, grid, s.width, s.height);
   for (const ModelInfo* info : models) timed[info->name] = model_row(*info, grid, s.repeats, out);
   out("SIMD x = scalar loop / batch on one thread; threads x = batch one thread / batch all "
       "threads\n");
@@ -266,6 +296,7 @@ double run_bench(const BenchSettings& s, const Output& out) {
     if (info->bench.extra == BenchPolicy::Extra::network_kinds)
       bench_network_kinds(*info, s.repeats, grid, out);
   }
+  out(precomputations);
   if (s.estimate) bench_estimate(s.repeats, out);
   for (const ModelInfo* info : models)
     if (info->bench.extra == BenchPolicy::Extra::sh_table)
