@@ -13,6 +13,8 @@ out="${SKYLIGHT_OUT:-$root/out}"
 mkdir -p "$out"
 sk="$root/build/skylight"
 sun=(--sun-zenith 45 --sun-azimuth 180)
+# bruneton's precomputed tables, computed once for the renders and the report (io/table_cache.h).
+export SKYLIGHT_TABLE_CACHE="${SKYLIGHT_TABLE_CACHE:-$out/tables}"
 # name | model flags
 skies=(
   "preetham_T3|--model preetham --turbidity 3"
@@ -22,6 +24,8 @@ skies=(
   "cie_type16|--model cie --cie-type 16"
   "hosek_T3|--model hosek --turbidity 3 --albedo 0.3"
   "nishita_earth|--model nishita"
+  "hillaire_earth|--model hillaire"
+  "bruneton_earth|--model bruneton"
   "perez_clear|--model perez --perez -1,-0.32,10,-3,0.45 --zenith-luminance 5000"
   "perez_measured|--model perez --dni 600 --dhi 120 --day-of-year 172"
 )
