@@ -626,7 +626,8 @@ ModelInfo BrunetonModel::registry_entry() {
   info.reference_description = path_tracer_reference_description();
   info.bench = BenchPolicy{.extra = BenchPolicy::Extra::precomputation};
   info.sweep.set("scattering-orders", 2.0);
-  info.report = ReportPolicy{.title = "Bruneton 2017 (Earth defaults)", .colour = "#9467bd"};
+  info.report = ReportPolicy{
+      .title = "Bruneton 2017 (Earth defaults)", .colour = "#9467bd", .physical_atmosphere = true};
   return info;
 }
 

@@ -185,8 +185,10 @@ ModelInfo HillaireModel::registry_entry() {
   info.reference = path_tracer_reference();
   info.reference_description = path_tracer_reference_description();
   info.bench = BenchPolicy{.extra = BenchPolicy::Extra::precomputation};
-  info.report = ReportPolicy{
-      .title = "Hillaire 2020 (Earth defaults)", .colour = "#17becf", .physical_reference = true};
+  info.report = ReportPolicy{.title = "Hillaire 2020 (Earth defaults)",
+                             .colour = "#17becf",
+                             .physical_reference = true,
+                             .physical_atmosphere = true};
   return info;
 }
 

@@ -353,7 +353,9 @@ ModelInfo NishitaModel::registry_entry() {
       .make = model_factory<NishitaModel, NishitaParameters>(),
       .neural = NeuralPolicy{},
       .sh_fit = ShFitPolicy{},
-      .report = ReportPolicy{.title = "Nishita (Earth defaults)", .colour = "#2ca02c"},
+      .report = ReportPolicy{.title = "Nishita (Earth defaults)",
+                             .colour = "#2ca02c",
+                             .physical_atmosphere = true},
       // The brute-force single scattering (no tables), deterministic.
       .reference =
           [](const SkyModel& m, Vec3 view, const EvaluationOptions& o, const ReferenceRequest&) {

@@ -283,6 +283,9 @@ struct ReportPolicy {
   // The report's physical atmosphere: the reference of its colour and twilight table (one model
   // of the registry declares it: the most complete physics, today `hillaire`).
   bool physical_reference = false;
+  // A physically based atmosphere: a row of the report's maps of the physical atmospheres (its
+  // Earth defaults), in registry order (single scattering first).
+  bool physical_atmosphere = false;
 };
 
 // Binds the generic values into the model's typed parameters (its schema applies defaults and

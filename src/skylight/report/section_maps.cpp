@@ -355,10 +355,22 @@ void ReportWriter::section_maps() {
     }
     mosaic("Hosek-Wilkie", "Hosek-Wilkie (ground albedo 0.3)", "T", rows, labels);
   }
-  mosaic("Nishita",
-         "Nishita single scattering (Earth defaults, no ground reflection, ASTM G-173 sun)", "",
-         {comparison_spec(NishitaModel::kName)}, {"Earth"});
-  step("Hosek-Wilkie and Nishita luminance maps");
+  {
+    // The physical atmospheres, one row each: single scattering, then multiple scattering.
+    std::vector<ModelSpec> rows;
+    std::vector<std::string> labels;
+    for (const ModelInfo& info : model_registry())
+      if (info.report.physical_atmosphere) {
+        rows.push_back(comparison_spec(info.name));
+        labels.push_back(info.name);
+      }
+    mosaic("Physical atmospheres",
+           "The physically based atmospheres, each with its Earth defaults (no ground reflection, "
+           "ASTM G-173 sun): the single scattering first, then the models that add multiple "
+           "scattering and ozone (docs/ATMOSPHERE.md)",
+           "model", rows, labels);
+  }
+  step("Hosek-Wilkie and physical atmospheres' luminance maps");
 }
 
 }  // namespace skylight::report::detail
