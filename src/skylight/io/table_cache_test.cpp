@@ -4,6 +4,7 @@
 
 #include <cstdlib>
 #include <fstream>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -13,10 +14,19 @@
 namespace skylight::io {
 namespace {
 
-// SKYLIGHT_TABLE_CACHE set for one scope (unset before and after).
+// SKYLIGHT_TABLE_CACHE set for one scope (the value before, the suite's, comes back after).
 struct CacheVariable {
-  explicit CacheVariable(const std::string& dir) { ::setenv(kTableCacheVariable, dir.c_str(), 1); }
-  ~CacheVariable() { ::unsetenv(kTableCacheVariable); }
+  explicit CacheVariable(const std::string& dir) {
+    if (const char* v = std::getenv(kTableCacheVariable)) before = v;
+    ::setenv(kTableCacheVariable, dir.c_str(), 1);
+  }
+  ~CacheVariable() {
+    if (before)
+      ::setenv(kTableCacheVariable, before->c_str(), 1);
+    else
+      ::unsetenv(kTableCacheVariable);
+  }
+  std::optional<std::string> before;
 };
 
 void write_bytes(const std::filesystem::path& p, const std::vector<char>& bytes) {
@@ -25,8 +35,11 @@ void write_bytes(const std::filesystem::path& p, const std::vector<char>& bytes)
 }
 
 TEST(TableCache, OffUnlessTheVariableNamesADirectory) {
-  ::unsetenv(kTableCacheVariable);
-  EXPECT_FALSE(table_cache_file("kind", "key"));
+  {
+    CacheVariable unset("");
+    ::unsetenv(kTableCacheVariable);
+    EXPECT_FALSE(table_cache_file("kind", "key"));
+  }
   const CacheVariable empty("");
   EXPECT_FALSE(table_cache_file("kind", "key"));
 }

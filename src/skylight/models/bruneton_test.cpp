@@ -156,6 +156,9 @@ TEST(Bruneton, TheGroundsAlbedoEntersTheMultipleScattering) {
 // computation: no progress reported); a damaged file is not used but computed again and replaced.
 TEST(Bruneton, TablesAreStoredInTheTableCacheAndReadBackEqual) {
   testing_support::ScratchDir dir;
+  // The suite's own cache directory (scripts/test.sh sets one for the whole run) comes back after.
+  const char* before = std::getenv(io::kTableCacheVariable);
+  const std::string suite_cache = before ? before : "";
   ::setenv(io::kTableCacheVariable, dir.path().c_str(), 1);
   BrunetonParameters p = with_sun(30.0, 1);
   const BrunetonModel b(p);
@@ -184,7 +187,10 @@ TEST(Bruneton, TablesAreStoredInTheTableCacheAndReadBackEqual) {
   EXPECT_GE(steps.size(), 2u);  // computed
   EXPECT_EQ(again.q, computed.q);
   EXPECT_NE(io::read_file(file), bytes);  // replaced by an intact file
-  ::unsetenv(io::kTableCacheVariable);
+  if (before)
+    ::setenv(io::kTableCacheVariable, suite_cache.c_str(), 1);
+  else
+    ::unsetenv(io::kTableCacheVariable);
 }
 
 }  // namespace bruneton_test
