@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "skylight/atmosphere/path_tracer.h"
+#include "skylight/core/colorimetry.h"
 #include "skylight/core/math.h"
 #include "skylight/core/progress.h"
 #include "skylight/io/file.h"
@@ -191,6 +192,31 @@ TEST(Bruneton, TablesAreStoredInTheTableCacheAndReadBackEqual) {
     ::setenv(io::kTableCacheVariable, suite_cache.c_str(), 1);
   else
     ::unsetenv(io::kTableCacheVariable);
+}
+
+// The spectral sampling: XYZ from the model's wavelengths (nishita's midpoints of 20 nm bins,
+// 390-770 nm) against a 5 nm trapezoid integration 380-780 nm of its own spectral radiance
+// (Bruneton 2017's radiance-to-luminance conversion). Measured: Y within 0.08 % by day and 0.53 %
+// in twilight (-3 deg, the horizon), X and Z within 0.68 % and 0.87 %; the aim is 0.5 % in each
+// (docs/ATMOSPHERE.md, "Spectral sampling": hat-function weights reach 0.23 % by day).
+constexpr double kXyzVsDenseRelTol = 0.01;
+constexpr double kLuminanceVsDenseRelTol = 0.006;
+
+TEST(Bruneton, XyzFromItsWavelengthsMatchesADenseIntegration) {
+  for (const double sun_el : {45.0, 5.0, -3.0}) {
+    const BrunetonModel b(with_sun(sun_el, 3));
+    for (const Vec3 v : {view_dir(90.0, 0.0), view_dir(5.0, 0.0), view_dir(30.0, 180.0)}) {
+      std::vector<double> nm, radiance;
+      for (double l = 380; l <= 780; l += 5) {
+        nm.push_back(l);
+        radiance.push_back(*b.spectral_radiance(v, l));
+      }
+      const Xyz dense = spectral_radiance_to_xyz(nm, radiance), fast = b.tristimulus(v);
+      EXPECT_NEAR(fast.X / dense.X, 1.0, kXyzVsDenseRelTol) << sun_el;
+      EXPECT_NEAR(fast.Y / dense.Y, 1.0, kLuminanceVsDenseRelTol) << sun_el;
+      EXPECT_NEAR(fast.Z / dense.Z, 1.0, kXyzVsDenseRelTol) << sun_el;
+    }
+  }
 }
 
 }  // namespace bruneton_test
