@@ -1,14 +1,15 @@
 #include "skylight/io/table_cache.h"
 
 #include <fmt/format.h>
+#include <unistd.h>
 
+#include <atomic>
 #include <cstdint>
 #include <cstdlib>
 #include <cstring>
+#include <fstream>
+#include <iterator>
 #include <string>
-
-#include "skylight/core/error.h"
-#include "skylight/io/file.h"
 
 namespace skylight::io {
 
@@ -53,12 +54,11 @@ std::optional<std::vector<char>> read_cached_table(const std::filesystem::path& 
                                                    std::string_view key) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(file, ec)) return std::nullopt;
-  std::vector<char> bytes;
-  try {
-    bytes = read_file(file);
-  } catch (const IoError&) {
-    return std::nullopt;
-  }
+  // Read directly, not through open_for_read: the cache is not an input of the command (its
+  // OutputTransaction), and a damaged file is replaced by the same command.
+  std::ifstream in(file, std::ios::binary);
+  std::vector<char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (!in.good() && !in.eof()) return std::nullopt;
   std::size_t pos = kMagic.size();
   if (bytes.size() < pos || std::string_view(bytes.data(), pos) != kMagic) return std::nullopt;
   std::uint32_t order = 0;
@@ -89,18 +89,31 @@ bool write_cached_table(const std::filesystem::path& file, std::string_view key,
   put(head, static_cast<std::uint64_t>(payload.size()));
   std::string tail;
   put(tail, fnv1a(payload, fnv1a(std::span<const char>(key.data(), key.size()))));
-  try {
-    std::error_code ec;
-    std::filesystem::create_directories(file.parent_path(), ec);
-    AtomicFile out(file);
-    out.write(head);
-    out.write(payload.data(), payload.size());
-    out.write(tail);
-    out.commit();
-    return true;
-  } catch (const IoError&) {
+  // Written and renamed here, not through AtomicFile: the cache is not an output of the command
+  // (its OutputTransaction commits the outputs together; the cache is there for the next one).
+  std::error_code ec;
+  std::filesystem::create_directories(file.parent_path(), ec);
+  static std::atomic<unsigned> counter{0};
+  const std::filesystem::path temp =
+      file.parent_path() /
+      fmt::format(".{}.{}-{}.tmp", file.filename().string(), ::getpid(), counter.fetch_add(1));
+  {
+    std::ofstream out(temp, std::ios::binary | std::ios::trunc);
+    out.write(head.data(), static_cast<std::streamsize>(head.size()));
+    out.write(payload.data(), static_cast<std::streamsize>(payload.size()));
+    out.write(tail.data(), static_cast<std::streamsize>(tail.size()));
+    out.flush();
+    if (!out) {
+      std::filesystem::remove(temp, ec);
+      return false;
+    }
+  }
+  std::filesystem::rename(temp, file, ec);
+  if (ec) {
+    std::filesystem::remove(temp, ec);
     return false;
   }
+  return true;
 }
 
 }  // namespace skylight::io

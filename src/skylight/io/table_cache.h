@@ -3,8 +3,10 @@
 // otherwise. One file per table set, named by the kind and a hash of its key (the key: every
 // parameter the tables depend on, exactly, and the table's layout); the file holds the whole key,
 // so a file of another key, a truncated, corrupt or foreign file is never used (the tables are
-// computed again and the file replaced). Files are written atomically (io/file.h); a directory
-// that cannot be written leaves the tables computed but not cached. Format (native byte order,
+// computed again and the file replaced). Files are written to a temporary next to them and
+// renamed (readers never see a part); they are not a command's inputs or outputs (the CLI's
+// OutputTransaction, io/file.h, does not hold them back). A directory that cannot be written
+// leaves the tables computed but not cached. Format (native byte order,
 // checked by a marker): "SKYLIGHT-TABLE 1\n", uint32 0x01020304, uint64 key length, the key,
 // uint64 payload length, the payload, uint64 FNV-1a hash of the key and the payload.
 #pragma once
