@@ -625,6 +625,7 @@ ModelInfo BrunetonModel::registry_entry() {
   info.reference = path_tracer_reference();
   info.reference_description = path_tracer_reference_description();
   info.bench = BenchPolicy{.extra = BenchPolicy::Extra::precomputation};
+  info.costly_setup = true;
   info.sweep.set("scattering-orders", 2.0);
   info.report = ReportPolicy{
       .title = "Bruneton 2017 (Earth defaults)", .colour = "#9467bd", .physical_atmosphere = true};

@@ -185,6 +185,7 @@ ModelInfo HillaireModel::registry_entry() {
   info.reference = path_tracer_reference();
   info.reference_description = path_tracer_reference_description();
   info.bench = BenchPolicy{.extra = BenchPolicy::Extra::precomputation};
+  info.costly_setup = true;
   info.report = ReportPolicy{.title = "Hillaire 2020 (Earth defaults)",
                              .colour = "#17becf",
                              .physical_reference = true,

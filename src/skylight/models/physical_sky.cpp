@@ -95,8 +95,9 @@ AtmosphereTableCache<std::vector<float>, 16>& batch_cache() {
 
 void PhysicalSkyModel::build_sky_view(const std::string& tables_key) {
   const Spectral& xyz = single_->xyz_spectral();
-  lut_key_ = fmt::format("{} | observer {:a} {:a} {:a} | sun {:a} {:a} | solar", tables_key,
-                         observer_.x, observer_.y, observer_.z, sun().zenith, sun().azimuth);
+  lut_key_ =
+      fmt::format("{} {} | observer {:a} {:a} {:a} | sun {:a} {:a} | solar", name(), tables_key,
+                  observer_.x, observer_.y, observer_.z, sun().zenith, sun().azimuth);
   for (double e : xyz.solar) lut_key_ += fmt::format(" {:a}", e);
   sky_ = sky_view_cache().get(lut_key_, [&] {
     std::vector<double> sky(

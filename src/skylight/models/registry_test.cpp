@@ -107,9 +107,18 @@ TEST(Registry, ModelsReportWhatTheyReadAsParameterValues) {
 // sun at the zenith, the horizon and below it; the scalar and the batch paths over directions
 // that include the horizon, the nadir and the sun. Nothing non-finite, no negative luminance
 // (except from the models that declare their output unclamped: `sh`).
+void sweep_edges(const std::string& model);
 class EdgeSweeps : public ::testing::TestWithParam<std::string> {};
-
 TEST_P(EdgeSweeps, GiveFiniteNonNegativeOutput) {
+  sweep_edges(GetParam());
+}
+// The same for the models whose set-up is costly (ModelInfo::costly_setup), a suite of their own.
+class CostlyEdgeSweeps : public ::testing::TestWithParam<std::string> {};
+TEST_P(CostlyEdgeSweeps, GiveFiniteNonNegativeOutput) {
+  sweep_edges(GetParam());
+}
+
+void sweep_edges(const std::string& model) {
   std::vector<Vec3> dirs;
   for (int it = 0; it <= 18; ++it)
     for (int ip = 0; ip < 8; ++ip)
@@ -117,7 +126,7 @@ TEST_P(EdgeSweeps, GiveFiniteNonNegativeOutput) {
   for (double z : {89.99, 90.0, 90.01}) dirs.push_back(direction_from_angles(z * kDegree, kPi));
   std::size_t models_built = 0, evaluations = 0;
   {
-    const ModelInfo& info = *find_model(GetParam());
+    const ModelInfo& info = *find_model(model);
     // The example, with the values the sweeps hold (ModelInfo::sweep).
     ParameterValues base = info.example;
     for (const auto& [name, value] : info.sweep.all()) base.set(name, value);
@@ -174,12 +183,15 @@ TEST_P(EdgeSweeps, GiveFiniteNonNegativeOutput) {
   std::printf("edge sweeps: %zu models, %zu directions each way\n", models_built, evaluations);
 }
 
-std::vector<std::string> model_names() {
+std::vector<std::string> model_names(bool costly) {
   std::vector<std::string> names;
-  for (const auto& info : model_registry()) names.push_back(info.name);
+  for (const auto& info : model_registry())
+    if (info.costly_setup == costly) names.push_back(info.name);
   return names;
 }
-INSTANTIATE_TEST_SUITE_P(Registry, EdgeSweeps, ::testing::ValuesIn(model_names()),
+INSTANTIATE_TEST_SUITE_P(Registry, EdgeSweeps, ::testing::ValuesIn(model_names(false)),
+                         [](const auto& param) { return param.param; });
+INSTANTIATE_TEST_SUITE_P(Registry, CostlyEdgeSweeps, ::testing::ValuesIn(model_names(true)),
                          [](const auto& param) { return param.param; });
 
 // Exactly one model is the report's physical atmosphere (its colour and twilight reference).

@@ -326,6 +326,11 @@ struct ModelInfo {
   // `example`), for a model whose set-up at a full setting is too slow to repeat for each edge
   // (bruneton: 2 scattering orders, ~1 s of tables per atmosphere instead of ~4 s).
   ParameterValues sweep{};
+  // The set-up takes 0.1 s or more (tables, LUTs per sun): the edge sweeps of such a model are
+  // their own ctest suite (Registry/CostlyEdgeSweeps), which the sanitizer pass of
+  // scripts/test.sh leaves to the Release pass (each takes minutes under ASan; the model's own
+  // tests run there).
+  bool costly_setup = false;
   // The output may be negative (and is non-zero below the horizon): `sh`, whose reconstruction is
   // returned unclamped; every other model is non-negative.
   bool unclamped = false;
