@@ -8,7 +8,6 @@
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
-#include <iterator>
 #include <string>
 
 namespace skylight::io {
@@ -56,9 +55,11 @@ std::optional<std::vector<char>> read_cached_table(const std::filesystem::path& 
   if (!std::filesystem::is_regular_file(file, ec)) return std::nullopt;
   // Read directly, not through open_for_read: the cache is not an input of the command (its
   // OutputTransaction), and a damaged file is replaced by the same command.
+  const auto size = std::filesystem::file_size(file, ec);
+  if (ec) return std::nullopt;
+  std::vector<char> bytes(size);
   std::ifstream in(file, std::ios::binary);
-  std::vector<char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  if (!in.good() && !in.eof()) return std::nullopt;
+  if (!in.read(bytes.data(), static_cast<std::streamsize>(size))) return std::nullopt;
   std::size_t pos = kMagic.size();
   if (bytes.size() < pos || std::string_view(bytes.data(), pos) != kMagic) return std::nullopt;
   std::uint32_t order = 0;

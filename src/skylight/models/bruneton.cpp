@@ -39,7 +39,10 @@ constexpr double kCheckedDepression = 6.0 * kDegree;
 
 // The grid of one atmosphere's tables (bruneton.h).
 struct Grid {
+  Grid(double ground_radius, double atmosphere_height)
+      : ground(ground_radius), height(atmosphere_height), min_mu_s(lowest_sun_cosine()) {}
   double ground = 0.0, height = 0.0;  // R0 [m]; top - R0 [m]
+  double min_mu_s = 0.0;              // lowest_sun_cosine(), once per grid (the hot path reads it)
 
   double altitude(int i) const {
     const double u = static_cast<double>(i) / (kNr - 1);
@@ -51,10 +54,11 @@ struct Grid {
   // The lowest sun cosine of the tables (below it the orders >= 2 are 0): three times the depth
   // of the horizon seen from the top of the atmosphere (Earth: 24 deg below the horizon), the sun
   // lighting air that lights air that lights the observer's.
-  double min_sun_cosine() const {
+  double lowest_sun_cosine() const {
     const double dip = std::acos(ground / (ground + height));
     return -std::sin(std::min(kPi / 2, kDarkDips * dip));
   }
+  double min_sun_cosine() const { return min_mu_s; }
   double sun_cosine(int j) const {
     const double w = -1.0 + 2.0 * j / (kNs - 1);
     return w >= 0 ? w * w : min_sun_cosine() * w * w;
@@ -137,8 +141,9 @@ std::size_t row_of(int i, int d, std::size_t nl) {
 void blend_sun(const Grid& g, const Lerp& sun, double mu_s, const double* v0, const double* v1,
                std::size_t nl, double* out) {
   double r = 1.0, f = sun.f;
-  const double m0 = g.sun_cosine(sun.i), m1 = g.sun_cosine(sun.i + 1);
+  const double m1 = g.sun_cosine(sun.i + 1);
   if (m1 <= 0.0) {
+    const double m0 = g.sun_cosine(sun.i);
     double s0 = 0.0, s1 = 0.0;
     for (std::size_t l = 0; l < nl; ++l) {
       s0 += v0[l];
@@ -149,7 +154,8 @@ void blend_sun(const Grid& g, const Lerp& sun, double mu_s, const double* v0, co
       f = std::clamp((m0 * m0 - mu_s * mu_s) / (m0 * m0 - m1 * m1), 0.0, 1.0);
     }
   }
-  const double scale = std::pow(r, f), f1 = f / r;
+  // Above the horizon (r = 1) this is the linear interpolation: no pow in the day's hot path.
+  const double scale = r == 1.0 ? 1.0 : std::pow(r, f), f1 = f / r;
   for (std::size_t l = 0; l < nl; ++l) out[l] += scale * ((1.0 - f) * v0[l] + f1 * v1[l]);
 }
 

@@ -108,7 +108,8 @@ TEST(Bruneton, DaySkiesAreWithinTheirPublishedErrorOfThePathTracer) {
 // >= 2 are most of the sky (nishita alone 30-75 % low; a linear interpolation along the sun
 // cosine was 8-14 % high there). Measured at 1.6 million paths (bench/atmosphere_error.cpp):
 // within 1.8 % at 3 deg and 3.5 % at 6 deg below the horizon; here 100 000 paths per case
-// (standard errors 0.4-1.5 %), bounds of the 5 % plus three standard errors.
+// (standard errors 0.4-1.5 %), bounds of the 5 % aimed at (docs/ATMOSPHERE.md) plus three
+// standard errors.
 constexpr double kTwilightMaxRelError = 0.05;
 constexpr double kTwilightSigmas = 3.0;
 
