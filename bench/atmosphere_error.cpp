@@ -12,12 +12,20 @@
 // azimuth 180) prints instead bruneton's orders 1-5 one by one against the path tracer's tallies
 // (100 000 paths) at 450, 550 and 650 nm.
 // Observers on the ground and at 20 km.
+//
+// `skylight_atmosphere_error xyz` prints instead the spectral sampling's error (docs/ATMOSPHERE.md,
+// "Spectral sampling"): X, Y, Z of nishita, hillaire and bruneton against a 5 nm trapezoid
+// integration (380-780 nm) of each model's own spectral radiance, by day (sun 60, 45, 20, 5 deg)
+// and in twilight (1, -1, -3, -5 deg), observers at 0 and 20 km, views at elevations 90, 30, 5, 1
+// deg and azimuths 0, 90, 180: the quadrature alone (the model's XYZ weights on its exact spectral
+// radiance) and tristimulus() (with the sky-view LUT).
 // Usage: skylight_atmosphere_error [PATHS (default 100000; twilight x 16)] [ORDERS (bruneton's
 // --scattering-orders, default 4)] [CACHE.csv (the path tracer's results: read where a line has
 // the case, else computed and appended; for comparing changes of the models on the same paths)]
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cstdlib>
 #include <fstream>
@@ -27,6 +35,7 @@
 #include <vector>
 
 #include "skylight/atmosphere/path_tracer.h"
+#include "skylight/core/colorimetry.h"
 #include "skylight/core/math.h"
 #include "skylight/models/bruneton.h"
 #include "skylight/models/hillaire.h"
@@ -93,6 +102,70 @@ class TraceCache {
 
 }  // namespace
 
+namespace {
+
+// The relative error of each of X, Y, Z, the largest of the three.
+double xyz_error(const Xyz& a, const Xyz& b) {
+  return std::max({std::abs(a.X / b.X - 1), std::abs(a.Y / b.Y - 1), std::abs(a.Z / b.Z - 1)});
+}
+
+int xyz_sampling() {
+  struct Tally {
+    std::vector<double> quadrature, tristimulus;
+  };
+  std::map<std::string, std::array<Tally, 2>> tallies;  // model -> day, twilight
+  for (const double altitude : {0.0, 20000.0})
+    for (const double sun_el : {60.0, 45.0, 20.0, 5.0, 1.0, -1.0, -3.0, -5.0}) {
+      BrunetonParameters p;
+      p.sun = {.zenith = deg_to_rad(90 - sun_el), .azimuth = deg_to_rad(180)};
+      p.observer_altitude_m = altitude;
+      const NishitaModel n(p);
+      HillaireParameters hp;
+      static_cast<NishitaParameters&>(hp) = p;
+      const HillaireModel h(hp);
+      const BrunetonModel b(p);
+      const int set = sun_el >= 5.0 ? 0 : 1;
+      for (const double el : {90.0, 30.0, 5.0, 1.0})
+        for (const double az : {0.0, 90.0, 180.0}) {
+          const Vec3 v = direction_from_angles(deg_to_rad(90 - el), deg_to_rad(az));
+          const auto dense = [&](const SkyModel& m) {
+            std::vector<double> nm, l;
+            for (double x = 380; x <= 780; x += 5) {
+              nm.push_back(x);
+              l.push_back(*m.spectral_radiance(v, x));
+            }
+            return spectral_radiance_to_xyz(nm, l);
+          };
+          const Xyz dn = dense(n);
+          tallies["nishita (20 CMF samples, 20 nm)"][set].tristimulus.push_back(
+              xyz_error(n.tristimulus(v), dn));
+          for (const PhysicalSkyModel* m : {static_cast<const PhysicalSkyModel*>(&h),
+                                            static_cast<const PhysicalSkyModel*>(&b)}) {
+            const Xyz d = dense(*m);
+            std::vector<double> at_nodes;
+            for (const double x : m->xyz_spectral().nm)
+              at_nodes.push_back(*m->spectral_radiance(v, x));
+            Tally& t = tallies[fmt::format("{} (41 spline weights, 10 nm)", m->name())][set];
+            t.quadrature.push_back(xyz_error(m->to_xyz(at_nodes), d));
+            t.tristimulus.push_back(xyz_error(m->tristimulus(v), d));
+          }
+        }
+    }
+  const auto stats = [](std::vector<double> e) {
+    if (e.empty()) return std::string("-");
+    std::sort(e.begin(), e.end());
+    return fmt::format("median {:.3f} %, max {:.3f} %", 100 * e[e.size() / 2], 100 * e.back());
+  };
+  for (const auto& [name, t] : tallies)
+    for (int set = 0; set < 2; ++set)
+      fmt::print("{:<40} {:<9} quadrature {:<34} tristimulus {}\n", name,
+                 set == 0 ? "day" : "twilight", stats(t[set].quadrature),
+                 stats(t[set].tristimulus));
+  return 0;
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
   const std::uint64_t paths = argc > 1 ? std::strtoull(argv[1], nullptr, 10) : 100000;
   const int orders = argc > 2 ? std::atoi(argv[2]) : 4;
@@ -125,6 +198,7 @@ int main(int argc, char** argv) {
     }
     return 0;
   }
+  if (argc == 2 && std::string(argv[1]) == "xyz") return xyz_sampling();
   TraceCache cache(argc > 3 ? argv[3] : "");
   for (const double altitude : {0.0, 20000.0})
     for (const double sun_el : {60.0, 30.0, 10.0, 3.0, -1.0, -3.0, -6.0}) {

@@ -58,17 +58,17 @@ TEST(Hillaire, TheSkyViewLutIsTheDirectIntegration) {
   for (const double sun_el : {50.0, 5.0, -4.0}) {
     const HillaireModel h(with_sun(sun_el, 120.0));
     const NishitaModel& n = h.single_scattering();
-    const atmosphere::Spectral& xyz = n.xyz_spectral();
+    const atmosphere::Spectral& xyz = h.xyz_spectral();
     std::vector<PhysicalSkyModel::LutWeight> w;
     for (double nm : xyz.nm) w.push_back(h.lut_weight(nm));
     for (const double el : {89.0, 60.0, 25.0, 8.0, 1.0, -3.0, -40.0})
       for (const double az : {0.0, 77.0, 120.0, 200.0, 300.0}) {
         const Vec3 v = view_dir(el, az);
-        std::array<double, kNishitaXyzCount> single{}, ms{};
+        std::array<double, kPhysicalXyzCount> single{}, ms{};
         n.atmosphere().single_scattering(n.observer(), v, h.sun().direction(), xyz, single);
         h.multiple_scattering(v, xyz, w, ms);
-        for (int k = 0; k < kNishitaXyzCount; ++k) single[k] += ms[k];
-        const Xyz direct = n.to_xyz(single), lut = h.tristimulus(v);
+        for (int k = 0; k < kPhysicalXyzCount; ++k) single[k] += ms[k];
+        const Xyz direct = h.to_xyz(single), lut = h.tristimulus(v);
         EXPECT_NEAR(lut.Y, direct.Y, kSkyLutRelTol * direct.Y)
             << "sun " << sun_el << " view " << el << "/" << az;
       }

@@ -9,6 +9,7 @@
 #include "skylight/core/data.h"
 #include "skylight/core/error.h"
 #include "skylight/core/parameters.h"
+#include "skylight/core/xyz_quadrature.h"
 #include "skylight/models/evaluation.h"
 
 namespace skylight {
@@ -218,34 +219,42 @@ std::vector<double> NishitaModel::reference_wavelengths(const EvaluationOptions&
   return o.wavelengths_nm;
 }
 
-ReferenceValue NishitaModel::reference_value(const EvaluationOptions& o,
-                                             std::span<const double> radiance,
-                                             std::span<const double> se) const {
+ReferenceValue weighted_reference_value(const EvaluationOptions& o, std::span<const Cmf> weights,
+                                        std::span<const double> radiance,
+                                        std::span<const double> se) {
   ReferenceValue r;
   if (o.quantity == Quantity::spectral) {
     r.value.assign(radiance.begin(), radiance.end());
     r.standard_error.assign(se.begin(), se.end());
     return r;
   }
-  std::array<double, kNishitaXyzCount> l{};
-  std::copy(radiance.begin(), radiance.end(), l.begin());
-  const Xyz c = to_xyz(l);
+  const Xyz c = weighted_xyz(weights, radiance);
   // The standard errors of the weighted sums, the wavelengths' estimates being independent.
-  const double f = kMaxLuminousEfficacy * kNishitaXyzStep;
-  double vx = 0, vy = 0, vz = 0;
-  for (int k = 0; k < kNishitaXyzCount; ++k) {
-    vx += std::pow(cmf_[k].x * se[k], 2);
-    vy += std::pow(cmf_[k].y * se[k], 2);
-    vz += std::pow(cmf_[k].z * se[k], 2);
+  Xyz v;
+  for (std::size_t k = 0; k < weights.size(); ++k) {
+    v.X += std::pow(weights[k].x * se[k], 2);
+    v.Y += std::pow(weights[k].y * se[k], 2);
+    v.Z += std::pow(weights[k].z * se[k], 2);
   }
+  const double f = kMaxLuminousEfficacy;
   if (o.quantity == Quantity::luminance) {
     r.value = {c.Y};
-    r.standard_error = {f * std::sqrt(vy)};
+    r.standard_error = {f * std::sqrt(v.Y)};
   } else {
     r.value = {c.X, c.Y, c.Z};
-    r.standard_error = {f * std::sqrt(vx), f * std::sqrt(vy), f * std::sqrt(vz)};
+    r.standard_error = {f * std::sqrt(v.X), f * std::sqrt(v.Y), f * std::sqrt(v.Z)};
   }
   return r;
+}
+
+ReferenceValue NishitaModel::reference_value(const EvaluationOptions& o,
+                                             std::span<const double> radiance,
+                                             std::span<const double> se) const {
+  // The midpoint sum's weights: the CMFs times the bins' width.
+  std::array<Cmf, kNishitaXyzCount> w{};
+  for (int k = 0; k < kNishitaXyzCount; ++k)
+    w[k] = {cmf_[k].x * kNishitaXyzStep, cmf_[k].y * kNishitaXyzStep, cmf_[k].z * kNishitaXyzStep};
+  return weighted_reference_value(o, w, radiance, se);
 }
 
 Domain NishitaModel::domain() const {

@@ -10,6 +10,7 @@
 #include "skylight/core/frame.h"
 #include "skylight/core/math.h"
 #include "skylight/core/parallel.h"
+#include "skylight/core/xyz_quadrature.h"
 #include "skylight/models/evaluation.h"
 #include "skylight/models/solar_disc.h"
 
@@ -66,12 +67,18 @@ PhysicalSkyModel::PhysicalSkyModel(const NishitaParameters& params) : SkyModel(p
   single_ = std::make_unique<NishitaModel>(params);
   observer_ = single_->observer();
   sun_ = params.sun.direction();
-  const Spectral& xyz = single_->xyz_spectral();
+  const Spectral& tables = single_->xyz_spectral();
   lut_nm_.push_back(kNishitaMinNm);
-  lut_nm_.insert(lut_nm_.end(), xyz.nm.begin(), xyz.nm.end());
+  lut_nm_.insert(lut_nm_.end(), tables.nm.begin(), tables.nm.end());
   lut_nm_.push_back(kNishitaMaxNm);
-  for (double nm : xyz.nm) xyz_lut_.push_back(lut_weight(nm));
-  for (int k = 0; k < kNishitaXyzCount; ++k) sun_transmittance_[k] = sun_transmittance(xyz.nm[k]);
+  std::array<double, kPhysicalXyzCount> nm{};
+  for (int k = 0; k < kPhysicalXyzCount; ++k) nm[k] = kPhysicalXyzFirst + kPhysicalXyzStep * k;
+  xyz_ = single_->spectral_at(nm);
+  xyz_weights_ = spline_xyz_weights(nm, [this](double l) { return single_->irradiance(l); });
+  for (int k = 0; k < kPhysicalXyzCount; ++k) {
+    xyz_lut_.push_back(lut_weight(nm[k]));
+    sun_transmittance_[k] = sun_transmittance(nm[k]);
+  }
   const double r_obs = length(observer_);
   horizon_zenith_ =
       kPi / 2 + std::acos(std::min(1.0, atmosphere().parameters().ground_radius_m / r_obs));
@@ -80,7 +87,7 @@ PhysicalSkyModel::PhysicalSkyModel(const NishitaParameters& params) : SkyModel(p
 namespace {
 
 // The LUTs of the last models built: the report and the sweeps rebuild a model for the same
-// atmosphere and sun many times (kSkyViewZeniths x kSkyViewAzimuths x 20 doubles = 0.3 MB each;
+// atmosphere and sun many times (kSkyViewZeniths x kSkyViewAzimuths x 41 doubles = 0.7 MB each;
 // the batch LUT 0.4 MB).
 AtmosphereTableCache<std::vector<double>, 64>& sky_view_cache() {
   static AtmosphereTableCache<std::vector<double>, 64> cache;
@@ -94,14 +101,14 @@ AtmosphereTableCache<std::vector<float>, 16>& batch_cache() {
 }  // namespace
 
 void PhysicalSkyModel::build_sky_view(const std::string& tables_key) {
-  const Spectral& xyz = single_->xyz_spectral();
+  const Spectral& xyz = xyz_;
   lut_key_ =
       fmt::format("{} {} | observer {:a} {:a} {:a} | sun {:a} {:a} | solar", name(), tables_key,
                   observer_.x, observer_.y, observer_.z, sun().zenith, sun().azimuth);
   for (double e : xyz.solar) lut_key_ += fmt::format(" {:a}", e);
   sky_ = sky_view_cache().get(lut_key_, [&] {
     std::vector<double> sky(
-        static_cast<std::size_t>(kSkyViewZeniths) * kSkyViewAzimuths * kNishitaXyzCount, 0.0);
+        static_cast<std::size_t>(kSkyViewZeniths) * kSkyViewAzimuths * kPhysicalXyzCount, 0.0);
     parallel_for(static_cast<std::size_t>(kSkyViewZeniths * kSkyViewAzimuths), 8,
                  [&](std::size_t b, std::size_t e) {
                    for (std::size_t job = b; job < e; ++job) {
@@ -111,7 +118,7 @@ void PhysicalSkyModel::build_sky_view(const std::string& tables_key) {
                      const double azimuth = sun().azimuth + kPi * j / (kSkyViewAzimuths - 1);
                      multiple_scattering(
                          direction_from_angles(zenith, azimuth), xyz, xyz_lut_,
-                         std::span<double>(&sky[job * kNishitaXyzCount], kNishitaXyzCount));
+                         std::span<double>(&sky[job * kPhysicalXyzCount], kPhysicalXyzCount));
                    }
                  });
     return sky;
@@ -206,11 +213,10 @@ Xyz PhysicalSkyModel::sun_tristimulus(Vec3 view) const {
   if (gamma > kSolarAngularRadius ||
       atmosphere::in_planet_shadow(observer_, v, atmosphere().parameters().ground_radius_m))
     return {};
-  const Spectral& xyz = single_->xyz_spectral();
-  std::array<double, kNishitaXyzCount> r{};
-  for (int k = 0; k < kNishitaXyzCount; ++k)
-    r[k] = xyz.solar[k] * sun_transmittance_[k] * solar_disc_factor(gamma, xyz.nm[k]);
-  return single_->to_xyz(r);
+  std::array<double, kPhysicalXyzCount> r{};
+  for (int k = 0; k < kPhysicalXyzCount; ++k)
+    r[k] = xyz_.solar[k] * sun_transmittance_[k] * solar_disc_factor(gamma, xyz_.nm[k]);
+  return to_xyz(r);
 }
 
 std::optional<double> PhysicalSkyModel::sun_spectral_radiance(Vec3 view, double nm) const {
@@ -224,9 +230,9 @@ std::optional<double> PhysicalSkyModel::sun_spectral_radiance(Vec3 view, double 
 }
 
 Xyz PhysicalSkyModel::tristimulus(Vec3 view) const {
-  std::array<double, kNishitaXyzCount> r{};
+  std::array<double, kPhysicalXyzCount> r{};
   const Vec3 v = normalize(view);
-  atmosphere().single_scattering(observer_, v, sun_, single_->xyz_spectral(), r);
+  atmosphere().single_scattering(observer_, v, sun_, xyz_, r);
   // The multiple scattering from the sky-view LUT (bilinear; azimuth from the sun's, folded).
   const double zenith = std::acos(std::clamp(v.z, -1.0, 1.0));
   const double phi = std::abs(wrap_azimuth(std::atan2(v.x, v.y) - sun().azimuth + kPi) - kPi);
@@ -236,12 +242,28 @@ Xyz PhysicalSkyModel::tristimulus(Vec3 view) const {
   const int j = std::min(static_cast<int>(x), kSkyViewAzimuths - 2);
   const double fy = y - i, fx = x - j;
   const auto at = [&](int ii, int jj) {
-    return &(*sky_)[(static_cast<std::size_t>(ii) * kSkyViewAzimuths + jj) * kNishitaXyzCount];
+    return &(*sky_)[(static_cast<std::size_t>(ii) * kSkyViewAzimuths + jj) * kPhysicalXyzCount];
   };
   const double *a = at(i, j), *b = at(i, j + 1), *c = at(i + 1, j), *d = at(i + 1, j + 1);
-  for (int k = 0; k < kNishitaXyzCount; ++k)
+  for (int k = 0; k < kPhysicalXyzCount; ++k)
     r[k] += (1 - fy) * ((1 - fx) * a[k] + fx * b[k]) + fy * ((1 - fx) * c[k] + fx * d[k]);
-  return single_->to_xyz(r);
+  return to_xyz(r);
+}
+
+Xyz PhysicalSkyModel::to_xyz(std::span<const double> radiance) const {
+  return weighted_xyz(xyz_weights_, radiance);
+}
+
+std::vector<double> PhysicalSkyModel::reference_wavelengths(const EvaluationOptions& o) const {
+  std::vector<double> nm = single_->reference_wavelengths(o);  // checks the options
+  if (o.quantity != Quantity::spectral) nm = xyz_.nm;
+  return nm;
+}
+
+ReferenceValue PhysicalSkyModel::reference_value(const EvaluationOptions& o,
+                                                 std::span<const double> radiance,
+                                                 std::span<const double> se) const {
+  return weighted_reference_value(o, xyz_weights_, radiance, se);
 }
 
 std::optional<double> PhysicalSkyModel::spectral_radiance(Vec3 view, double nm) const {
@@ -259,14 +281,14 @@ ReferencePath PhysicalSkyModel::path_tracer_reference() {
   return [](const SkyModel& m, Vec3 view, const EvaluationOptions& o, const ReferenceRequest& rq) {
     const auto& p = static_cast<const PhysicalSkyModel&>(m);
     const NishitaModel& n = p.single_scattering();
-    const std::vector<double> nm = n.reference_wavelengths(o);
+    const std::vector<double> nm = p.reference_wavelengths(o);
     const auto spec = n.spectral_at(nm);
     atmosphere::PathTracerSettings s;
     s.paths = rq.paths;
     s.seed = rq.seed;
     const auto r = atmosphere::path_trace(n.atmosphere().parameters(), n.observer(),
                                           normalize(view), p.sun().direction(), spec, s);
-    return n.reference_value(o, r.radiance, r.standard_error);
+    return p.reference_value(o, r.radiance, r.standard_error);
   };
 }
 

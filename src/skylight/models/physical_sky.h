@@ -34,6 +34,15 @@ inline constexpr int kSkyBatchAzimuths = 128;
 // (u^2-spaced toward the piece's lower end, as the brute-force reference's).
 inline constexpr int kSkyViewRayNodes = 32;
 
+// The XYZ quadrature of these skies (docs/ATMOSPHERE.md, "Spectral sampling"): the spectral
+// radiance at 41 wavelengths, every 10 nm from 380 to 780 nm, weighted by spline_xyz_weights
+// (core/xyz_quadrature.h) for the model's solar spectrum. Against a 5 nm integration of the
+// model's own spectral radiance: within 0.1 % in X, Y and Z by day and in twilight (nishita's 20
+// CMF samples at 20 nm: up to 0.8 % by day, 1 % in twilight).
+inline constexpr int kPhysicalXyzCount = 41;
+inline constexpr double kPhysicalXyzFirst = 380.0;  // [nm]
+inline constexpr double kPhysicalXyzStep = 10.0;    // [nm]
+
 // Every field of an atmosphere that a precomputed table depends on, exactly (hex floats): the
 // tables are per unit irradiance and independent of the sun and the observer.
 std::string atmosphere_key(const atmosphere::AtmosphereParameters& a);
@@ -121,8 +130,9 @@ class PhysicalSkyModel : public SkyModel {
  public:
   // The single scattering alone: nishita with the same parameters.
   const NishitaModel& single_scattering() const { return *single_; }
-  // The tables' wavelengths, ascending: 360 nm, those of the XYZ integration, 830 nm (the ends of
-  // spectral_radiance's range; between them a table is interpolated linearly in wavelength).
+  // The tables' wavelengths, ascending: 360 nm, nishita's XYZ wavelengths (390-770 nm every 20
+  // nm), 830 nm (the ends of spectral_radiance's range; between them a table is interpolated
+  // linearly in wavelength).
   const std::vector<double>& lut_wavelengths() const { return lut_nm_; }
   // Where a wavelength lies among lut_wavelengths(): v = (1 - t) v[k0] + t v[k1].
   struct LutWeight {
@@ -137,6 +147,10 @@ class PhysicalSkyModel : public SkyModel {
                                    const std::vector<LutWeight>& weights,
                                    std::span<double> out) const = 0;
 
+  // The wavelengths, solar irradiance and coefficients of the XYZ quadrature (kPhysicalXyzCount).
+  const atmosphere::Spectral& xyz_spectral() const { return xyz_; }
+  // XYZ (Y in cd/m^2) of spectral radiances at those wavelengths.
+  Xyz to_xyz(std::span<const double> radiance) const;
   Xyz tristimulus(Vec3 view) const override;
   // The fast path: the whole-sky LUT (kSkyBatchZeniths x kSkyBatchAzimuths), bilinear, in float;
   // its error against tristimulus() is bounded in the models' tests.
@@ -150,9 +164,15 @@ class PhysicalSkyModel : public SkyModel {
   Xyz sun_tristimulus(Vec3 view) const override;
   std::optional<double> sun_spectral_radiance(Vec3 view, double nm) const override;
 
-  // `eval --reference` of these models: the Monte Carlo path tracer of the same atmosphere.
+  // `eval --reference` of these models: the Monte Carlo path tracer of the same atmosphere, at the
+  // XYZ quadrature's wavelengths (or the spectral ones).
   static ReferencePath path_tracer_reference();
   static std::string path_tracer_reference_description();
+  // Its wavelengths for the options and the quantity's values from the spectral radiances there
+  // (as NishitaModel's, with this model's XYZ quadrature).
+  std::vector<double> reference_wavelengths(const EvaluationOptions& options) const;
+  ReferenceValue reference_value(const EvaluationOptions& options, std::span<const double> radiance,
+                                 std::span<const double> standard_error) const;
 
  protected:
   explicit PhysicalSkyModel(const NishitaParameters& params);
@@ -167,9 +187,11 @@ class PhysicalSkyModel : public SkyModel {
  private:
   std::unique_ptr<NishitaModel> single_;
   std::vector<double> lut_nm_;
+  atmosphere::Spectral xyz_;        // the XYZ quadrature's wavelengths
+  std::vector<Cmf> xyz_weights_;    // and weights (spline_xyz_weights)
   std::vector<LutWeight> xyz_lut_;  // the XYZ wavelengths' places among lut_nm_
   // The transmittance from the observer to the top along the sun's direction, per XYZ wavelength.
-  std::array<double, kNishitaXyzCount> sun_transmittance_{};
+  std::array<double, kPhysicalXyzCount> sun_transmittance_{};
   double sun_transmittance(double nm) const;
   // The sky-view LUT: [zenith row][azimuth column][XYZ wavelength] multiple-scattering radiance.
   std::shared_ptr<const std::vector<double>> sky_;
