@@ -39,6 +39,14 @@ summary() {
 }
 trap summary EXIT
 
+# Fills a pass's table cache with Earth's bruneton tables (the default parameters, 4 orders) by the
+# pass's own binary, before its tests: no test then pays their precomputation (~40 s under the
+# sanitizers, in whichever test came first; docs/TESTING.md).
+warm_table_cache() {
+  printf 'zenith_deg,azimuth_deg\n0,0\n' |
+    SKYLIGHT_TABLE_CACHE="$2" "$1/skylight" eval --model bruneton --quantity luminance >/dev/null
+}
+
 begin "setup (packages)"
 bash scripts/setup.sh
 begin "Release build"
@@ -48,6 +56,7 @@ begin "Release tests (ctest)"
 # (io/table_cache.h; Earth's take 4 s in Release, ~40 s under the sanitizers, and a dozen tests'
 # processes build them): emptied first, so that every pass computes them with its own code.
 rm -rf build/test-table-cache
+warm_table_cache build "$root/build/test-table-cache"
 SKYLIGHT_TABLE_CACHE="$root/build/test-table-cache" \
   ctest --test-dir build --output-on-failure -j "$(nproc)"
 rm -rf build/test-table-cache  # 32 MB per parameter set the tests used (~0.5 GB)
@@ -80,6 +89,8 @@ if [ "${SKYLIGHT_SKIP_SANITIZERS:-0}" != "1" ]; then
   # models with a costly set-up (ModelInfo::costly_setup: 350 test-seconds under ASan; their own
   # tests run here).
   rm -rf build-asan/test-table-cache
+  ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
+    warm_table_cache build-asan "$root/build-asan/test-table-cache"
   SKYLIGHT_TABLE_CACHE="$root/build-asan/test-table-cache" \
   ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
     ctest --test-dir build-asan --output-on-failure -j "$(nproc)" \
