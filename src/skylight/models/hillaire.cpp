@@ -186,10 +186,8 @@ ModelInfo HillaireModel::registry_entry() {
   info.reference_description = path_tracer_reference_description();
   info.bench = BenchPolicy{.extra = BenchPolicy::Extra::precomputation};
   info.costly_setup = true;
-  info.report = ReportPolicy{.title = "Hillaire 2020 (Earth defaults)",
-                             .colour = "#17becf",
-                             .physical_reference = true,
-                             .physical_atmosphere = true};
+  info.report = ReportPolicy{
+      .title = "Hillaire 2020 (Earth defaults)", .colour = "#17becf", .physical_atmosphere = true};
   return info;
 }
 

@@ -281,7 +281,7 @@ struct ReportPolicy {
   std::string truncation{};
   std::array<int, 2> truncation_range{};
   // The report's physical atmosphere: the reference of its colour and twilight table (one model
-  // of the registry declares it: the most complete physics, today `hillaire`).
+  // of the registry declares it: the one closest to the path tracer).
   bool physical_reference = false;
   // A physically based atmosphere: a row of the report's maps of the physical atmospheres (its
   // Earth defaults), in registry order (single scattering first).

@@ -443,16 +443,20 @@ void ReportWriter::physical_atmosphere_table() {
   // missing verdict is a statement and not a gap.
   const std::vector<std::pair<std::string, std::string>> without_verdict = {
       {"absolute illuminance",
-       "no reference the report trusts: the CIE absolute level is the Kittler-Darula typical "
-       "zenith luminance, whose own band spans a factor 3-4 (section 3), and the physical "
-       "atmosphere is single scattering (its diffuse horizontal illuminance is compared with the "
-       "others in section 6); compared without a verdict until a multiple-scattering atmosphere "
-       "is registered"},
+       fmt::format(
+           "no reference the report trusts for the analytic skies' levels: the CIE absolute level "
+           "is the Kittler-Darula typical zenith luminance, whose own band spans a factor 3-4 "
+           "(section 3), and the physical atmosphere ({}) is one clean atmosphere (Earth "
+           "defaults, no turbidity), whose level the analytic models' more turbid skies are not "
+           "meant to match (its diffuse horizontal illuminance is about half the CIE clear "
+           "sky's); section 6 compares the levels without a verdict",
+           reference)},
       {"spectrum",
-       "no spectral reference: the CIE standard skies give luminance only and the single-"
-       "scattering atmosphere misses the multiply scattered blue; spectral irradiance is "
-       "compared in section 6 without a verdict, and colour (above) is the spectrum's judged "
-       "projection"}};
+       fmt::format("no spectral reference for the analytic skies: the CIE standard skies give "
+                   "luminance only, and the physical atmosphere ({}) is spectral but one clean "
+                   "atmosphere; spectral irradiance is compared in section 6 without a verdict, "
+                   "and colour (above) is the spectrum's judged projection",
+                   reference)}};
   std::string items;
   Json json_items = Json::array();
   for (const auto& [quantity, reason] : without_verdict) {
