@@ -16,10 +16,10 @@
 // `skylight_atmosphere_error xyz` prints instead the spectral sampling's error (docs/ATMOSPHERE.md,
 // "Spectral sampling"): X, Y, Z of nishita, hillaire and bruneton against a 5 nm trapezoid
 // integration (380-780 nm) of each model's own spectral radiance, by day (sun 60, 45, 20, 5 deg)
-// and in twilight (1, -1, -3, -5 deg), observers at 0 and 20 km, views at elevations 90, 30, 5, 1
-// deg and azimuths 0, 90, 180: the quadrature alone (the model's XYZ weights on its exact spectral
-// radiance) and tristimulus() (with the sky-view LUT).
-// Usage: skylight_atmosphere_error [PATHS (default 100000; twilight x 16)] [ORDERS (bruneton's
+// and at a low sun and in twilight (1, -1, -3, -5 deg), observers at 0 and 20 km, views at
+// elevations 90, 30, 5, 1 deg and azimuths 0, 90, 180: the quadrature alone (the model's XYZ
+// weights on its exact spectral radiance) and tristimulus() (with the sky-view LUT). Usage:
+// skylight_atmosphere_error [PATHS (default 100000; twilight x 16)] [ORDERS (bruneton's
 // --scattering-orders, default 4)] [CACHE.csv (the path tracer's results: read where a line has
 // the case, else computed and appended; for comparing changes of the models on the same paths)]
 #include <fmt/format.h>
@@ -137,15 +137,17 @@ int xyz_sampling() {
             return spectral_radiance_to_xyz(nm, l);
           };
           const Xyz dn = dense(n);
-          tallies["nishita (20 CMF samples, 20 nm)"][set].tristimulus.push_back(
-              xyz_error(n.tristimulus(v), dn));
+          tallies[fmt::format("nishita ({} CMF samples, {:g} nm)", kNishitaXyzCount,
+                              kNishitaXyzStep)][set]
+              .tristimulus.push_back(xyz_error(n.tristimulus(v), dn));
           for (const PhysicalSkyModel* m : {static_cast<const PhysicalSkyModel*>(&h),
                                             static_cast<const PhysicalSkyModel*>(&b)}) {
             const Xyz d = dense(*m);
             std::vector<double> at_nodes;
             for (const double x : m->xyz_spectral().nm)
               at_nodes.push_back(*m->spectral_radiance(v, x));
-            Tally& t = tallies[fmt::format("{} (41 spline weights, 10 nm)", m->name())][set];
+            Tally& t = tallies[fmt::format("{} ({} spline weights, {:g} nm)", m->name(),
+                                           kPhysicalXyzCount, kPhysicalXyzStep)][set];
             t.quadrature.push_back(xyz_error(m->to_xyz(at_nodes), d));
             t.tristimulus.push_back(xyz_error(m->tristimulus(v), d));
           }
@@ -158,8 +160,8 @@ int xyz_sampling() {
   };
   for (const auto& [name, t] : tallies)
     for (int set = 0; set < 2; ++set)
-      fmt::print("{:<40} {:<9} quadrature {:<34} tristimulus {}\n", name,
-                 set == 0 ? "day" : "twilight", stats(t[set].quadrature),
+      fmt::print("{:<40} {:<17} quadrature {:<34} tristimulus {}\n", name,
+                 set == 0 ? "day" : "low sun, twilight", stats(t[set].quadrature),
                  stats(t[set].tristimulus));
   return 0;
 }

@@ -49,6 +49,13 @@ std::vector<Cmf> spline_xyz_weights(std::span<const double> nodes_nm,
     dl[j] += 0.5 * (nm[j + 1] - nm[j]);
     dl[j + 1] += 0.5 * (nm[j + 1] - nm[j]);
   }
+  // CMF x E x trapezoid weight of each sample, once.
+  std::vector<Cmf> ce(nm.size());
+  for (std::size_t j = 0; j < nm.size(); ++j) {
+    const Cmf c = cie1931_cmf(nm[j]);
+    const double f = dl[j] * e(nm[j]);
+    ce[j] = {f * c.x, f * c.y, f * c.z};
+  }
   std::vector<Cmf> w(n);
   std::vector<double> unit(n, 0.0);
   for (std::size_t k = 0; k < n; ++k) {
@@ -64,13 +71,11 @@ std::vector<Cmf> spline_xyz_weights(std::span<const double> nodes_nm,
       const double t = std::clamp((nm[j] - nodes_nm[i]) / h, 0.0, 1.0), u = 1.0 - t;
       const double phi = u * unit[i] + t * unit[i + 1] +
                          h * h / 6.0 * ((u * u * u - u) * m[i] + (t * t * t - t) * m[i + 1]);
-      if (phi == 0.0) continue;
-      const Cmf c = cie1931_cmf(nm[j]);
-      const double s = dl[j] * e(nm[j]) * phi / ek;
-      w[k].x += s * c.x;
-      w[k].y += s * c.y;
-      w[k].z += s * c.z;
+      w[k].x += phi * ce[j].x;
+      w[k].y += phi * ce[j].y;
+      w[k].z += phi * ce[j].z;
     }
+    w[k] = {w[k].x / ek, w[k].y / ek, w[k].z / ek};
   }
   return w;
 }

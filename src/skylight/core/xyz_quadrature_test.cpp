@@ -44,6 +44,9 @@ double rel(const Xyz& a, const Xyz& b) {
 
 // The spline reproduces a linear g exactly (to the rounding of ~400 terms).
 constexpr double kLinearRelTol = 1e-12;
+// Nodes whose ends lie half a nanometre inside 380 and 780 nm: the sums lack those two halves
+// (measured 4.9e-5, the largest of X, Y, Z).
+constexpr double kOffGridEndsRelTol = 2e-4;
 
 TEST(XyzQuadrature, ExactForALinearFactor) {
   const std::vector<double> n = nodes(380, 10, 780);
@@ -54,9 +57,9 @@ TEST(XyzQuadrature, ExactForALinearFactor) {
   // Uneven nodes and ends off the 1 nm grid.
   const std::vector<double> uneven{380.5, 400, 430, 445, 500, 560, 600, 690, 779.5};
   const auto constant = [](double) { return 1.0; };
-  EXPECT_LT(rel(at_nodes(spline_xyz_weights(uneven, wiggly), uneven, constant),
-                dense(380, 780, constant)),
-            0.01);  // only the half nanometres at the ends differ
+  const double ends = rel(at_nodes(spline_xyz_weights(uneven, wiggly), uneven, constant),
+                          dense(380, 780, constant));
+  EXPECT_LT(ends, kOffGridEndsRelTol);
 }
 
 // A spectrum all in the red meets z-bar's small negative weights there: Z is 0, not below.
@@ -103,6 +106,18 @@ TEST(XyzQuadrature, SmoothFactorsBeatSampledCmfs) {
     EXPECT_LT(spline, kSmoothRelTol);
     EXPECT_LT(spline, 0.1 * cmf);
   }
+}
+
+// Uneven nodes (8 to 60 nm apart) and a curved factor: the spline's moments depend on the
+// spacing on each side of a node, which even nodes cannot tell apart. Measured: 0.09 %; with the
+// neighbours' spacings exchanged in the elimination of the tridiagonal system, 2.7 %.
+constexpr double kUnevenRelTol = 0.003;
+
+TEST(XyzQuadrature, UnevenNodesFollowACurvedFactor) {
+  const std::vector<double> uneven{380, 388, 400, 430, 445, 460, 500, 560, 600, 630, 690, 720, 780};
+  const Xyz ref = dense(380, 780, sunset);
+  const double e = rel(at_nodes(spline_xyz_weights(uneven, wiggly), uneven, sunset), ref);
+  EXPECT_LT(e, kUnevenRelTol);
 }
 
 TEST(XyzQuadrature, RejectsBadNodes) {

@@ -216,41 +216,5 @@ TEST(Bruneton, TablesAreStoredInTheTableCacheAndReadBackEqual) {
     ::unsetenv(io::kTableCacheVariable);
 }
 
-// The spectral sampling (docs/ATMOSPHERE.md, "Spectral sampling"): XYZ from the model's 41
-// wavelengths (every 10 nm, 380-780 nm, spline_xyz_weights) against a 5 nm trapezoid integration
-// 380-780 nm of its own spectral radiance (Bruneton 2017's radiance-to-luminance conversion), by
-// day, at sunset and in twilight, on the ground and at 20 km. The quadrature alone (the exact
-// spectral radiance at its wavelengths): measured within 0.04 % by day and 0.11 % in twilight;
-// tristimulus(), which adds the orders >= 2 from the sky-view LUT (bilinear in the view: its own
-// error, Hillaire.TheSkyViewLutIsTheDirectIntegration), within 0.44 % (here: 0.08 % and 0.31 %;
-// nishita's 20 CMF samples: 0.87 %). The aim: 0.5 % in X, Y, Z.
-constexpr double kQuadratureRelTol = 0.002;
-constexpr double kXyzVsDenseRelTol = 0.005;
-
-TEST(Bruneton, XyzFromItsWavelengthsMatchesADenseIntegration) {
-  const auto rel = [](const Xyz& a, const Xyz& b) {
-    return std::max({std::abs(a.X / b.X - 1), std::abs(a.Y / b.Y - 1), std::abs(a.Z / b.Z - 1)});
-  };
-  for (const double altitude : {0.0, 20e3})
-    for (const double sun_el : {45.0, 5.0, -3.0}) {
-      BrunetonParameters p = with_sun(sun_el, 3);
-      p.observer_altitude_m = altitude;
-      const BrunetonModel b(p);
-      for (const Vec3 v :
-           {view_dir(90.0, 0.0), view_dir(5.0, 0.0), view_dir(1.0, 90.0), view_dir(30.0, 180.0)}) {
-        std::vector<double> nm, radiance, at_nodes;
-        for (double l = 380; l <= 780; l += 5) {
-          nm.push_back(l);
-          radiance.push_back(*b.spectral_radiance(v, l));
-        }
-        for (const double l : b.xyz_spectral().nm) at_nodes.push_back(*b.spectral_radiance(v, l));
-        const Xyz dense = spectral_radiance_to_xyz(nm, radiance);
-        const double q = rel(b.to_xyz(at_nodes), dense), t = rel(b.tristimulus(v), dense);
-        EXPECT_LT(q, kQuadratureRelTol) << altitude << " " << sun_el;
-        EXPECT_LT(t, kXyzVsDenseRelTol) << altitude << " " << sun_el;
-      }
-    }
-}
-
 }  // namespace bruneton_test
 }  // namespace skylight

@@ -11,6 +11,7 @@
 #include "skylight/core/math.h"
 #include "skylight/core/parallel.h"
 #include "skylight/core/parameters.h"
+#include "skylight/core/xyz_quadrature.h"
 
 namespace skylight {
 
@@ -373,6 +374,49 @@ void evaluate_angles(const SkyModel& model, std::span<const double> zenith_deg,
     return true;
   };
   evaluate_batch(model, n, direction, fill, o, out, exact);
+}
+
+std::vector<double> reference_wavelengths_of(const EvaluationOptions& o, std::string_view model,
+                                             std::span<const double> xyz_nm, double min_nm,
+                                             double max_nm) {
+  if (o.quantity == Quantity::rgb)
+    throw InvalidArgument(
+        fmt::format("{} gives xyz, luminance or spectral (not rgb)", spelled("reference")));
+  if (o.quantity != Quantity::spectral) return {xyz_nm.begin(), xyz_nm.end()};
+  for (double nm : o.wavelengths_nm)
+    if (!(nm >= min_nm && nm <= max_nm))
+      throw InvalidArgument(fmt::format("{}: {} nm is outside the range of model '{}'",
+                                        spelled("wavelengths"), nm, model));
+  return o.wavelengths_nm;
+}
+
+ReferenceValue weighted_reference_value(const EvaluationOptions& o, std::span<const Cmf> weights,
+                                        std::span<const double> radiance,
+                                        std::span<const double> se) {
+  SKYLIGHT_CHECK(radiance.size() == se.size(), "reference: size mismatch");
+  ReferenceValue r;
+  if (o.quantity == Quantity::spectral) {
+    r.value.assign(radiance.begin(), radiance.end());
+    r.standard_error.assign(se.begin(), se.end());
+    return r;
+  }
+  const Xyz c = weighted_xyz(weights, radiance);  // checks the sizes
+  // The standard errors of the weighted sums, the wavelengths' estimates being independent.
+  Xyz v;
+  for (std::size_t k = 0; k < weights.size(); ++k) {
+    v.X += std::pow(weights[k].x * se[k], 2);
+    v.Y += std::pow(weights[k].y * se[k], 2);
+    v.Z += std::pow(weights[k].z * se[k], 2);
+  }
+  const double f = kMaxLuminousEfficacy;
+  if (o.quantity == Quantity::luminance) {
+    r.value = {c.Y};
+    r.standard_error = {f * std::sqrt(v.Y)};
+  } else {
+    r.value = {c.X, c.Y, c.Z};
+    r.standard_error = {f * std::sqrt(v.X), f * std::sqrt(v.Y), f * std::sqrt(v.Z)};
+  }
+  return r;
 }
 
 }  // namespace skylight

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "skylight/core/colorimetry.h"
 #include "skylight/core/parameters.h"
 #include "skylight/models/sky_model.h"
 
@@ -55,6 +56,20 @@ struct ReferenceOptions {
 ReferenceValue evaluate_reference(const ModelInfo& info, const SkyModel& model, Vec3 view,
                                   const EvaluationOptions& options,
                                   const ReferenceRequest& request);
+
+// A reference integrator's wavelengths for the options: those of the model's XYZ quadrature
+// (`xyz_nm`) for xyz and luminance, the spectral ones (checked against [min_nm, max_nm], naming
+// `model`) for spectral; InvalidArgument for rgb. And the quantity's values and standard errors
+// from spectral radiances and their standard errors there (independent per wavelength) with the
+// quadrature's `weights` (core/xyz_quadrature.h: X = K_m sum_k w_k.x L_k), or the spectral
+// radiances themselves.
+std::vector<double> reference_wavelengths_of(const EvaluationOptions& options,
+                                             std::string_view model, std::span<const double> xyz_nm,
+                                             double min_nm, double max_nm);
+ReferenceValue weighted_reference_value(const EvaluationOptions& options,
+                                        std::span<const Cmf> weights,
+                                        std::span<const double> radiance,
+                                        std::span<const double> standard_error);
 
 // Checks the options (spectral needs wavelengths; wavelengths only with spectral), then against
 // the model (a spectral model for spectral, a solar disc for the sun modes): InvalidArgument

@@ -170,7 +170,8 @@ ModelInfo HillaireModel::registry_entry() {
       "(orders >= 2 as isotropic in-scattering from a 32 x 32 table over altitude and sun "
       "angle) in nishita's atmosphere; ozone on by default";
   info.output =
-      "XYZ with Y [cd/m^2] for the ASTM G-173 extraterrestrial sun (20 nm bins 380-780 nm); "
+      "XYZ with Y [cd/m^2] for the ASTM G-173 extraterrestrial sun (41 wavelengths, 10 nm "
+      "apart, 380-780 nm, spline weights: docs/ATMOSPHERE.md); "
       "spectral radiance [W m^-2 sr^-1 nm^-1] 360-830 nm; with --solar-irradiance E both per flat "
       "irradiance E; in-scattered light of every order, the ground reflects only with an "
       "explicit --albedo; --include-sun / --sun-only: the solar disc (0.2665 deg, limb-darkened, "

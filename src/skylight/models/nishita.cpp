@@ -9,7 +9,6 @@
 #include "skylight/core/data.h"
 #include "skylight/core/error.h"
 #include "skylight/core/parameters.h"
-#include "skylight/core/xyz_quadrature.h"
 #include "skylight/models/evaluation.h"
 
 namespace skylight {
@@ -208,43 +207,7 @@ std::optional<double> NishitaModel::spectral_radiance(Vec3 view, double nm) cons
 }
 
 std::vector<double> NishitaModel::reference_wavelengths(const EvaluationOptions& o) const {
-  if (o.quantity == Quantity::rgb)
-    throw InvalidArgument(
-        fmt::format("{} gives xyz, luminance or spectral (not rgb)", spelled("reference")));
-  if (o.quantity != Quantity::spectral) return xyz_spectral_.nm;
-  for (double nm : o.wavelengths_nm)
-    if (!(nm >= kNishitaMinNm && nm <= kNishitaMaxNm))
-      throw InvalidArgument(fmt::format("{}: {} nm is outside the range of model '{}'",
-                                        spelled("wavelengths"), nm, name()));
-  return o.wavelengths_nm;
-}
-
-ReferenceValue weighted_reference_value(const EvaluationOptions& o, std::span<const Cmf> weights,
-                                        std::span<const double> radiance,
-                                        std::span<const double> se) {
-  ReferenceValue r;
-  if (o.quantity == Quantity::spectral) {
-    r.value.assign(radiance.begin(), radiance.end());
-    r.standard_error.assign(se.begin(), se.end());
-    return r;
-  }
-  const Xyz c = weighted_xyz(weights, radiance);
-  // The standard errors of the weighted sums, the wavelengths' estimates being independent.
-  Xyz v;
-  for (std::size_t k = 0; k < weights.size(); ++k) {
-    v.X += std::pow(weights[k].x * se[k], 2);
-    v.Y += std::pow(weights[k].y * se[k], 2);
-    v.Z += std::pow(weights[k].z * se[k], 2);
-  }
-  const double f = kMaxLuminousEfficacy;
-  if (o.quantity == Quantity::luminance) {
-    r.value = {c.Y};
-    r.standard_error = {f * std::sqrt(v.Y)};
-  } else {
-    r.value = {c.X, c.Y, c.Z};
-    r.standard_error = {f * std::sqrt(v.X), f * std::sqrt(v.Y), f * std::sqrt(v.Z)};
-  }
-  return r;
+  return reference_wavelengths_of(o, name(), xyz_spectral_.nm, kNishitaMinNm, kNishitaMaxNm);
 }
 
 ReferenceValue NishitaModel::reference_value(const EvaluationOptions& o,

@@ -20,7 +20,6 @@
 #include <optional>
 
 #include "skylight/atmosphere/atmosphere.h"
-#include "skylight/core/colorimetry.h"
 #include "skylight/models/sky_model.h"
 
 namespace skylight {
@@ -117,14 +116,6 @@ class NishitaModel final : public SkyModel {
   std::array<Cmf, kNishitaXyzCount> cmf_{};  // CIE 1931 CMFs at the XYZ wavelengths
   Vec3 observer_, sun_;
 };
-
-// `eval --reference`'s value of a quantity from spectral radiances and their standard errors at
-// the wavelengths of an XYZ quadrature with `weights` (core/xyz_quadrature.h; independent per
-// wavelength), or the spectral radiances themselves for a spectral quantity.
-ReferenceValue weighted_reference_value(const EvaluationOptions& options,
-                                        std::span<const Cmf> weights,
-                                        std::span<const double> radiance,
-                                        std::span<const double> standard_error);
 
 // Representative wavelengths of the linear sRGB channels R, G, B for a transmittance per channel
 // (Pietras §IV, models/pietras.h) [nm]: the dominant wavelengths of the sRGB primaries.

@@ -255,9 +255,7 @@ Xyz PhysicalSkyModel::to_xyz(std::span<const double> radiance) const {
 }
 
 std::vector<double> PhysicalSkyModel::reference_wavelengths(const EvaluationOptions& o) const {
-  std::vector<double> nm = single_->reference_wavelengths(o);  // checks the options
-  if (o.quantity != Quantity::spectral) nm = xyz_.nm;
-  return nm;
+  return reference_wavelengths_of(o, name(), xyz_.nm, kNishitaMinNm, kNishitaMaxNm);
 }
 
 ReferenceValue PhysicalSkyModel::reference_value(const EvaluationOptions& o,

@@ -418,7 +418,8 @@ void ReportWriter::physical_atmosphere_table() {
   html_trust_ += fmt::format(
       "<h3 id=\"trust-physical\">Colour and twilight against the physical atmosphere</h3>\n<p>"
       "Each model's sky closest to <code>{}</code> (its report title: the physical atmosphere, "
-      "every order of scattering; its own error against a path tracer in docs/ATMOSPHERE.md) "
+      "multiple scattering with its default orders; its own error against a path tracer in "
+      "docs/ATMOSPHERE.md) "
       "over its parameter values within its "
       "domain, on a {} × {} grid, {:g}° around the sun left out. Colour: the solid-angle-weighted "
       "mean CIE 1976 chromaticity distance Δu′v′; <b>rule</b>: <i>use</i> up to {:g} (about "
