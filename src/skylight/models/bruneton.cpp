@@ -292,17 +292,17 @@ std::vector<double> ground_irradiance(const Grid& g, const NodeTable& l) {
   return e;
 }
 
-// The irradiance table at mu_s (blend_sun along the sun cosine), times `scale`, added to out.
+// The irradiance table at mu_s (blend_sun along the sun cosine), times `scale`, added to out;
+// v0, v1: nl values of scratch.
 void add_irradiance(const Grid& g, const std::vector<double>& e, std::size_t nl, double mu_s,
-                    double scale, double* out) {
+                    double scale, double* v0, double* v1, double* out) {
   if (mu_s < g.min_sun_cosine()) return;
   const Lerp s = lerp_at(g.sun_coordinate(mu_s), kNs);
-  std::vector<double> v0(nl), v1(nl);
   for (std::size_t l = 0; l < nl; ++l) {
     v0[l] = scale * e[s.i * nl + l];
     v1[l] = scale * e[(s.i + 1) * nl + l];
   }
-  blend_sun(g, s, mu_s, v0.data(), v1.data(), nl, out);
+  blend_sun(g, s, mu_s, v0, v1, nl, out);
 }
 
 // The source of orders >= 2 along a ray: at each node of ray_nodes, sum_c beta_c rho_c Q_c(place)
@@ -326,6 +326,12 @@ void integrate_ray(const RaySource& src, Vec3 x, Vec3 view, Vec3 sun, int ray_no
   std::fill(out.begin(), out.end(), 0.0);
   std::vector<double> qv(nt), q0(nt), q1(nt), tr(nl), sig(nl);
   const double nu = dot(view, sun);
+  // A value of the table wavelengths (qv's) at the l-th wavelength of spec.
+  const auto at = [&](const std::vector<double>& v, std::size_t l) {
+    return weights ? (1.0 - (*weights)[l].t) * v[(*weights)[l].k0] +
+                         (*weights)[l].t * v[(*weights)[l].k1]
+                   : v[l];
+  };
   Densities last_t{};
   const bool hits = ray_nodes(
       src.atm, x, view, sun, ray_nodes_per_piece,
@@ -337,23 +343,18 @@ void integrate_ray(const RaySource& src, Vec3 x, Vec3 view, Vec3 sun, int ray_no
         const double den = std::sqrt(std::max(0.0, (1.0 - mu * mu) * (1.0 - mu_s * mu_s)));
         const double cos_phi = den > 1e-9 ? (nu - mu * mu_s) / den : 1.0;
         const Place p = place_of(src.grid, r, mu, mu_s, cos_phi);
+        if (p.dark) return;  // the orders >= 2 are 0 here
         transmittance_of(spec, nc, t, tr);
         std::fill(sig.begin(), sig.end(), 0.0);
         for (std::size_t ci = 0; ci < src.components.size(); ++ci) {
           const std::size_t c = src.components[ci];
           if (rho[c] <= 0.0) continue;
           std::fill(qv.begin(), qv.end(), 0.0);
-          if (p.dark) continue;
           std::fill(q0.begin(), q0.end(), 0.0);
           std::fill(q1.begin(), q1.end(), 0.0);
           add_corners(src.q[ci], nt, p, rho[c], q0.data(), q1.data());
           blend_sun(src.grid, p.sun, mu_s, q0.data(), q1.data(), nt, qv.data());
-          for (std::size_t l = 0; l < nl; ++l) {
-            const double v = weights ? (1.0 - (*weights)[l].t) * qv[(*weights)[l].k0] +
-                                           (*weights)[l].t * qv[(*weights)[l].k1]
-                                     : qv[l];
-            sig[l] += spec.scattering[c][l] * v;
-          }
+          for (std::size_t l = 0; l < nl; ++l) sig[l] += spec.scattering[c][l] * at(qv, l);
         }
         for (std::size_t l = 0; l < nl; ++l) out[l] += w * tr[l] * sig[l] * spec.solar[l];
       });
@@ -361,16 +362,12 @@ void integrate_ray(const RaySource& src, Vec3 x, Vec3 view, Vec3 sun, int ray_no
   const double dist = atmosphere::ray_sphere_near(x, view, src.grid.ground);
   if (dist < 0.0) return;
   const Vec3 gp = x + dist * view;
-  std::vector<double> e(nt, 0.0);
+  std::vector<double>& e = qv;  // the ground's irradiance at the table wavelengths
+  std::fill(e.begin(), e.end(), 0.0);
   add_irradiance(src.grid, *src.irradiance, nt, dot(gp, sun) / length(gp), src.albedo / kPi,
-                 e.data());
+                 q0.data(), q1.data(), e.data());
   transmittance_of(spec, nc, last_t, tr);
-  for (std::size_t l = 0; l < nl; ++l) {
-    const double v = weights ? (1.0 - (*weights)[l].t) * e[(*weights)[l].k0] +
-                                   (*weights)[l].t * e[(*weights)[l].k1]
-                             : e[l];
-    out[l] += tr[l] * v * spec.solar[l];
-  }
+  for (std::size_t l = 0; l < nl; ++l) out[l] += tr[l] * at(e, l) * spec.solar[l];
 }
 
 BrunetonTables compute_tables(const Atmosphere& atm, const std::vector<double>& lut_nm,

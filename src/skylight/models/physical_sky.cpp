@@ -75,10 +75,8 @@ PhysicalSkyModel::PhysicalSkyModel(const NishitaParameters& params) : SkyModel(p
   for (int k = 0; k < kPhysicalXyzCount; ++k) nm[k] = kPhysicalXyzFirst + kPhysicalXyzStep * k;
   xyz_ = single_->spectral_at(nm);
   xyz_weights_ = spline_xyz_weights(nm, [this](double l) { return single_->irradiance(l); });
-  for (int k = 0; k < kPhysicalXyzCount; ++k) {
-    xyz_lut_.push_back(lut_weight(nm[k]));
-    sun_transmittance_[k] = sun_transmittance(nm[k]);
-  }
+  for (int k = 0; k < kPhysicalXyzCount; ++k) xyz_lut_.push_back(lut_weight(nm[k]));
+  sun_transmittance(xyz_, sun_transmittance_);
   const double r_obs = length(observer_);
   horizon_zenith_ =
       kPi / 2 + std::acos(std::min(1.0, atmosphere().parameters().ground_radius_m / r_obs));
@@ -189,17 +187,19 @@ void PhysicalSkyModel::tristimulus_batch(const DirectionsSoA& dirs, const XyzSoA
   }
 }
 
-double PhysicalSkyModel::sun_transmittance(double nm) const {
+void PhysicalSkyModel::sun_transmittance(const Spectral& spec, std::span<double> out) const {
   const Atmosphere& atm = atmosphere();
   const AtmosphereParameters& a = atm.parameters();
-  if (atmosphere::in_planet_shadow(observer_, sun_, a.ground_radius_m)) return 0.0;
+  if (atmosphere::in_planet_shadow(observer_, sun_, a.ground_radius_m)) {
+    std::fill(out.begin(), out.end(), 0.0);
+    return;
+  }
   const double to_top = atmosphere::ray_sphere_far(observer_, sun_, a.top_radius_m);
-  if (to_top <= 0) return 1.0;  // above the atmosphere, looking away from it
-  const double l[1] = {nm}, one[1] = {1.0};
-  const Spectral spec = atmosphere::make_spectral(a, l, one);
-  double t[1] = {0.0};
-  atm.transmittance(observer_, sun_, to_top, spec, t);
-  return t[0];
+  if (to_top <= 0) {  // above the atmosphere, looking away from it
+    std::fill(out.begin(), out.end(), 1.0);
+    return;
+  }
+  atm.transmittance(observer_, sun_, to_top, spec, out);
 }
 
 double PhysicalSkyModel::sun_angular_radius() const {
@@ -226,7 +226,10 @@ std::optional<double> PhysicalSkyModel::sun_spectral_radiance(Vec3 view, double 
   if (gamma > kSolarAngularRadius ||
       atmosphere::in_planet_shadow(observer_, v, atmosphere().parameters().ground_radius_m))
     return 0.0;
-  return single_->irradiance(nm) * sun_transmittance(nm) * solar_disc_factor(gamma, nm);
+  const double l[1] = {nm}, one[1] = {1.0};
+  double t[1] = {0.0};
+  sun_transmittance(atmosphere::make_spectral(atmosphere().parameters(), l, one), t);
+  return single_->irradiance(nm) * t[0] * solar_disc_factor(gamma, nm);
 }
 
 Xyz PhysicalSkyModel::tristimulus(Vec3 view) const {

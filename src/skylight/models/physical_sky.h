@@ -192,7 +192,8 @@ class PhysicalSkyModel : public SkyModel {
   std::vector<LutWeight> xyz_lut_;  // the XYZ wavelengths' places among lut_nm_
   // The transmittance from the observer to the top along the sun's direction, per XYZ wavelength.
   std::array<double, kPhysicalXyzCount> sun_transmittance_{};
-  double sun_transmittance(double nm) const;
+  // That transmittance at the wavelengths of `spec` (0 behind the planet).
+  void sun_transmittance(const atmosphere::Spectral& spec, std::span<double> out) const;
   // The sky-view LUT: [zenith row][azimuth column][XYZ wavelength] multiple-scattering radiance.
   std::shared_ptr<const std::vector<double>> sky_;
   std::string lut_key_;          // build_sky_view's key with the solar spectrum, observer and sun
