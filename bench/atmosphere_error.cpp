@@ -49,12 +49,14 @@ struct Errors {
   int skipped = 0;
 };
 
-std::string stats(std::vector<double> e) {
+// Median, 95th percentile and maximum of relative errors, in % with `decimals`.
+std::string stats(std::vector<double> e, int decimals = 2) {
   if (e.empty()) return "-";
   std::sort(e.begin(), e.end());
-  return fmt::format("median {:5.2f} %, p95 {:5.2f} %, max {:6.2f} % (n {})", 100 * e[e.size() / 2],
-                     100 * e[static_cast<std::size_t>(0.95 * (e.size() - 1))], 100 * e.back(),
-                     e.size());
+  return fmt::format("median {:5.{}f} %, p95 {:5.{}f} %, max {:6.{}f} % (n {})",
+                     100 * e[e.size() / 2], decimals,
+                     100 * e[static_cast<std::size_t>(0.95 * (e.size() - 1))], decimals,
+                     100 * e.back(), decimals, e.size());
 }
 
 // The path tracer's radiance and standard error per wavelength of one case, from the cache file
@@ -99,10 +101,6 @@ class TraceCache {
   std::string path_;
   std::map<std::string, Traced> entries_;
 };
-
-}  // namespace
-
-namespace {
 
 // The relative error of each of X, Y, Z, the largest of the three.
 double xyz_error(const Xyz& a, const Xyz& b) {
@@ -153,16 +151,11 @@ int xyz_sampling() {
           }
         }
     }
-  const auto stats = [](std::vector<double> e) {
-    if (e.empty()) return std::string("-");
-    std::sort(e.begin(), e.end());
-    return fmt::format("median {:.3f} %, max {:.3f} %", 100 * e[e.size() / 2], 100 * e.back());
-  };
   for (const auto& [name, t] : tallies)
     for (int set = 0; set < 2; ++set)
-      fmt::print("{:<40} {:<17} quadrature {:<34} tristimulus {}\n", name,
-                 set == 0 ? "day" : "low sun, twilight", stats(t[set].quadrature),
-                 stats(t[set].tristimulus));
+      fmt::print("{:<40} {:<17} quadrature {:<50} tristimulus {}\n", name,
+                 set == 0 ? "day" : "low sun, twilight", stats(t[set].quadrature, 3),
+                 stats(t[set].tristimulus, 3));
   return 0;
 }
 
