@@ -17,6 +17,7 @@
 // SkyMatrixYear/*: `skylight daylight --epw`'s matrix of the sample year (Tregenza, Reinhart 2305).
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
 #include <chrono>
 #include <string>
 #include <vector>
@@ -152,29 +153,44 @@ void SetUp(benchmark::State& state, const char* name) {
 
 }  // namespace
 
-BENCHMARK_CAPTURE(RowsBaseline, preetham, "preetham")->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(Rows, preetham, "preetham")->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(RowsBaseline, hosek, "hosek")->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(Rows, hosek, "hosek")->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(RowsBaseline, nn, "nn")->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(Rows, nn, "nn")->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(Scalar, preetham, "preetham")->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(Batch, preetham, "preetham")->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(Threads, preetham, "preetham")->Unit(benchmark::kMillisecond)->UseRealTime();
-BENCHMARK_CAPTURE(Scalar, cie, "cie")->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(Batch, cie, "cie")->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(Threads, cie, "cie")->Unit(benchmark::kMillisecond)->UseRealTime();
-BENCHMARK_CAPTURE(Scalar, hosek, "hosek")->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(Batch, hosek, "hosek")->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(Threads, hosek, "hosek")->Unit(benchmark::kMillisecond)->UseRealTime();
-// nn: the embedded 6-12-3 network (Satilmis et al. 2016) trained on preetham (docs/NN.md).
-BENCHMARK_CAPTURE(Scalar, nn, "nn")->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(Batch, nn, "nn")->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(Threads, nn, "nn")->Unit(benchmark::kMillisecond)->UseRealTime();
-// nishita: the batch is the scalar loop over the table-driven fast path (no SIMD batch).
-BENCHMARK_CAPTURE(Scalar, nishita, "nishita")->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(Batch, nishita, "nishita")->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(Threads, nishita, "nishita")->Unit(benchmark::kMillisecond)->UseRealTime();
+// Every model the registry's bench policies name, as `skylight bench` does: those timed by default
+// (preetham, cie, hosek, nn: the embedded 6-12-3 network, docs/NN.md) and the models others are
+// compared with (nishita, pietras' baseline: the scalar loop over its table-driven fast path, no
+// SIMD batch): scalar loop, batch, batch on all threads and set-up; the float64 rows of the Python
+// layout for those timed by default. `nishita`'s set-up: the optical-length tables (2 components x
+// 256 x 256 quadratures); `hosek`'s: XYZ, RGB and 11 spectral band states and the solar disc's XYZ
+// polynomial, the embedded tables parsed once on first use (outside the steady state).
+const bool kModelBenchmarksRegistered = [] {
+  std::vector<std::string> names;
+  for (const ModelInfo& m : model_registry())
+    if (m.bench.by_default) names.push_back(m.name);
+  for (const ModelInfo& m : model_registry())
+    if (!m.bench.baseline.empty() &&
+        std::find(names.begin(), names.end(), m.bench.baseline) == names.end())
+      names.push_back(m.bench.baseline);
+  // The benchmarks keep a pointer to their model's name: the names live as long as the process.
+  static const std::vector<std::string> kept = names;
+  for (const std::string& name : kept) {
+    const char* n = name.c_str();
+    const ModelInfo& m = *find_model(name);
+    if (m.bench.by_default) {
+      benchmark::RegisterBenchmark(("RowsBaseline/" + name).c_str(), RowsBaseline, n)
+          ->Unit(benchmark::kMillisecond);
+      benchmark::RegisterBenchmark(("Rows/" + name).c_str(), Rows, n)
+          ->Unit(benchmark::kMillisecond);
+    }
+    benchmark::RegisterBenchmark(("Scalar/" + name).c_str(), Scalar, n)
+        ->Unit(benchmark::kMillisecond);
+    benchmark::RegisterBenchmark(("Batch/" + name).c_str(), Batch, n)
+        ->Unit(benchmark::kMillisecond);
+    benchmark::RegisterBenchmark(("Threads/" + name).c_str(), Threads, n)
+        ->Unit(benchmark::kMillisecond)
+        ->UseRealTime();
+    benchmark::RegisterBenchmark(("SetUp/" + name).c_str(), SetUp, n)
+        ->Unit(m.bench.by_default ? benchmark::kMicrosecond : benchmark::kMillisecond);
+  }
+  return true;
+}();
 // Pietras §III: the pietras model with a Pietras network (trainer's initial weights, the cost of a
 // trained one), observer on the ground, sun at zenith 45 deg; compare with Batch/nishita.
 void PietrasBatch(benchmark::State& state, nn::PietrasKind kind) {
@@ -189,14 +205,6 @@ void PietrasBatch(benchmark::State& state, nn::PietrasKind kind) {
 BENCHMARK_CAPTURE(PietrasBatch, pietras, nn::PietrasKind::pietras)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(PietrasBatch, log3, nn::PietrasKind::log3)->Unit(benchmark::kMillisecond);
 BENCHMARK(NishitaReference)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(1);
-BENCHMARK_CAPTURE(SetUp, preetham, "preetham")->Unit(benchmark::kMicrosecond);
-BENCHMARK_CAPTURE(SetUp, cie, "cie")->Unit(benchmark::kMicrosecond);
-// hosek: the whole model set-up (XYZ, RGB and 11 spectral band states, plus the solar disc's XYZ
-// polynomial); the embedded tables are parsed once, on first use (outside the steady state).
-BENCHMARK_CAPTURE(SetUp, hosek, "hosek")->Unit(benchmark::kMicrosecond);
-BENCHMARK_CAPTURE(SetUp, nn, "nn")->Unit(benchmark::kMicrosecond);
-// nishita: the optical-length tables (2 components x 256 x 256 quadratures).
-BENCHMARK_CAPTURE(SetUp, nishita, "nishita")->Unit(benchmark::kMillisecond);
 
 // Habel 2008 §4: one sky's 7 bands x 3 channels from the embedded (17, 12) table, eq. 1 + rotation
 // (eq. 4) + ringing filter (eq. 5); against the direct projection of the table's model

@@ -68,14 +68,22 @@ int main(int argc, char** argv) {
   for (CLI::App* sub : app.get_subcommands([](const CLI::App*) { return true; }))
     add_footer(sub, add_footer);
 
+  // --help and --version print to standard output like any command: a failed write (closed
+  // stdout, full disk) is an error, not a silent success.
+  const auto printed = [](int status) {
+    std::cout.flush();
+    if (std::cout) return status;
+    std::cerr << "skylight: error: cannot write to standard output\n";
+    return cli::kExitRuntime;
+  };
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
-    return app.exit(e);
+    return printed(app.exit(e));
   } catch (const CLI::CallForAllHelp& e) {
-    return app.exit(e);
+    return printed(app.exit(e));
   } catch (const CLI::CallForVersion& e) {
-    return app.exit(e);
+    return printed(app.exit(e));
   } catch (const skylight::InvalidArgument& e) {
     // A value out of its schema's range (schema_check): the library's message names the flag.
     std::cerr << "skylight: error: " << e.what() << "\n";

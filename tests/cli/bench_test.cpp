@@ -42,6 +42,18 @@ TEST_F(Cli, BenchRefusesModelFlagsSayingSo) {
   EXPECT_EQ(r.out.find("--turbidity"), std::string::npos) << r.out;
 }
 
+// An empty list would time the defaults (minutes) instead of nothing: refused, as an empty name
+// in a list.
+TEST_F(Cli, BenchRefusesAnEmptyModelList) {
+  testing_support::CliResult r = run("bench --models ''");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_EQ(r.err, "skylight: error: --models = '' names no model\n");
+  EXPECT_EQ(r.out, "");
+  r = run("bench --models preetham,,cie");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_EQ(r.err, "skylight: error: --models = 'preetham,,cie': name 2 is empty\n");
+}
+
 TEST_F(Cli, BenchTimesOneEstimateOnAMegapixelFisheye) {
   const testing_support::CliResult r =
       run("bench --width 8 --height 4 --repeats 1 --models preetham --estimate");

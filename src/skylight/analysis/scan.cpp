@@ -36,8 +36,8 @@ void read_comment(std::string_view body, const std::string& source, std::size_t 
   if (!azimuth && !elevation) return;
   const auto v = parse_number(value);
   if (!v)
-    throw InvalidArgument(fmt::format("{} line {}: {} '{}' is not a finite number", source, line,
-                                      key, excerpt(value)));
+    throw InvalidArgument(fmt::format("{} line {}: {} '{}' {}", source, line, key, excerpt(value),
+                                      number_problem(value)));
   const double lo = azimuth ? -360.0 : 0.0, hi = azimuth ? 360.0 : 90.0;
   if (*v < lo || *v > hi)
     throw InvalidArgument(

@@ -37,7 +37,8 @@ struct SkyScan {
 };
 
 // Parses the CSV text. Throws InvalidArgument "<source> line L column C: ..." for a field that is
-// not a finite number (NaN and infinities included) or out of range, "<source> line L: expected N
+// not a number (NaN and infinities included; one that overflows or underflows to 0 is said so:
+// number_problem) or out of range, "<source> line L: expected N
 // fields, found M" for a missing column, and names a missing header column or a bad sun comment.
 SkyScan parse_sky_scan(std::string_view text, std::string source);
 // Reads and parses a file (IoError naming the path if it cannot be read).

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "skylight/core/earth.h"
 #include "skylight/core/spectrum.h"
 
 namespace skylight::atmosphere {
@@ -63,9 +64,11 @@ struct Component {
 //   and 13.558 (550/440)^4 = 33.10 (given 33.1), so the three RGB values are one law.
 // Mie: H = 1.2 km, beta_s = 3.996e-6, beta_e = 4.440e-6 m^-1 at every wavelength (exponent 0),
 //   Cornette-Shanks phase with g = 0.8.
-inline constexpr double kEarthGroundRadius = 6360e3;         // [m]
-inline constexpr double kEarthTopRadius = 6420e3;            // [m]
-inline constexpr double kRayleighScaleHeight = 8000;         // [m]
+// The radii and the Rayleigh scale height: core/earth.h (kEarthGroundRadius, kEarthTopRadius,
+// kRayleighScaleHeight), shared with the Pietras networks.
+using skylight::kEarthGroundRadius;
+using skylight::kEarthTopRadius;
+using skylight::kRayleighScaleHeight;
 inline constexpr double kRayleighScattering550 = 13.558e-6;  // [m^-1] at 550 nm
 inline constexpr double kRayleighExponent = 4;               // lambda^-4
 inline constexpr double kMieScaleHeight = 1200;              // [m]

@@ -90,8 +90,8 @@ double CsvTable::number(std::size_t row, std::size_t col) const {
   const std::string& field = text(row, col);
   const auto value = parse_number(field);
   if (!value)
-    throw IoError(fmt::format("{} line {} column {}: '{}' is not a finite number", source_,
-                              line_numbers_[row], col + 1, excerpt(field)));
+    throw IoError(fmt::format("{} line {} column {}: '{}' {}", source_, line_numbers_[row], col + 1,
+                              excerpt(field), number_problem(field)));
   return *value;
 }
 

@@ -65,20 +65,21 @@ std::optional<long long> parse_integer(std::string_view text) {
   return v;
 }
 
+std::string number_problem(std::string_view text) {
+  if (!is_decimal_literal(text)) return "is not a number";
+  // A number, but not one a double holds: too large, or non-zero and too small.
+  const double magnitude = std::strtod(std::string(text).c_str(), nullptr);
+  return std::isinf(magnitude) || std::abs(magnitude) > 1.0
+             ? fmt::format("overflows (the largest number is {:.3g})",
+                           std::numeric_limits<double>::max())
+             : fmt::format("underflows to 0 (the smallest non-zero number is {:.3g})",
+                           std::numeric_limits<double>::denorm_min());
+}
+
 double parse_number(std::string_view text, std::string_view what) {
   const auto v = parse_number(text);
   if (v) return *v;
-  if (is_decimal_literal(text)) {
-    // A number, but not one a double holds: too large, or non-zero and too small.
-    const double magnitude = std::strtod(std::string(text).c_str(), nullptr);
-    throw InvalidArgument(
-        std::isinf(magnitude) || std::abs(magnitude) > 1.0
-            ? fmt::format("{}: '{}' overflows (the largest number is {:.3g})", what, excerpt(text),
-                          std::numeric_limits<double>::max())
-            : fmt::format("{}: '{}' underflows to 0 (the smallest non-zero number is {:.3g})", what,
-                          excerpt(text), std::numeric_limits<double>::denorm_min()));
-  }
-  throw InvalidArgument(fmt::format("{}: '{}' is not a number", what, excerpt(text)));
+  throw InvalidArgument(fmt::format("{}: '{}' {}", what, excerpt(text), number_problem(text)));
 }
 
 long long parse_integer(std::string_view text, std::string_view what) {

@@ -21,7 +21,13 @@ std::optional<double> parse_number(std::string_view text);
 // A whole decimal integer (optional sign, digits only), or nullopt (also when out of range).
 std::optional<long long> parse_integer(std::string_view text);
 
-// The same, throwing InvalidArgument "<what>: '<excerpt>' is not a number" (or "is not an
+// Why `text` is not a number under the rules above, as a message's predicate: "is not a number",
+// "overflows (the largest number is 1.8e+308)" or "underflows to 0 (the smallest non-zero number is
+// 4.94e-324)"; every reader of numbers in user files words its error with it, so that "1e-400" is
+// never called "not a finite number".
+std::string number_problem(std::string_view text);
+
+// The same, throwing InvalidArgument "<what>: '<excerpt>' <number_problem>" (or "is not an
 // integer"); `what` names the flag, field or file position.
 double parse_number(std::string_view text, std::string_view what);
 long long parse_integer(std::string_view text, std::string_view what);

@@ -72,8 +72,9 @@ std::vector<SequenceEntry> parse_sequence_list(std::string_view text, const std:
       if (c.empty()) continue;
       auto angle = [&](std::string_view name, double lo, double hi) {
         const auto v = parse_number(c);
-        if (!v || *v < lo || *v > hi)
-          throw fail(fmt::format("{} '{}' is not a number in [{}, {}]", name, excerpt(c), lo, hi));
+        if (!v) throw fail(fmt::format("{} '{}' {}", name, excerpt(c), number_problem(c)));
+        if (*v < lo || *v > hi)
+          throw fail(fmt::format("{} '{}' is outside [{}, {}]", name, excerpt(c), lo, hi));
         return *v;
       };
       // A file or mask cell names a file: not a folder (trailing '/', '.', '..'; found by the

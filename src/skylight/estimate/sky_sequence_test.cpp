@@ -59,7 +59,10 @@ TEST(SkySequence, ListErrorsNameTheFileAndLine) {
             "seq.csv:1: unknown column 'zenith' (file, sun_zenith_deg, "
             "sun_azimuth_deg, time, mask)");
   EXPECT_EQ(message("file,sun_zenith_deg,sun_azimuth_deg\na.exr,40,10\nb.exr,95,10\n"),
-            "seq.csv:3: sun_zenith_deg '95' is not a number in [0, 90]");
+            "seq.csv:3: sun_zenith_deg '95' is outside [0, 90]");
+  EXPECT_EQ(message("file,sun_zenith_deg,sun_azimuth_deg\na.exr,1e-999,10\n"),
+            "seq.csv:2: sun_zenith_deg '1e-999' underflows to 0 (the smallest non-zero number is "
+            "4.94e-324)");
   EXPECT_EQ(message("file,sun_zenith_deg,sun_azimuth_deg\na.exr,40,\n"),
             "seq.csv:2: sun_zenith_deg and sun_azimuth_deg go together");
   EXPECT_EQ(message("file,time\n\na.exr\n"), "seq.csv:3: 1 cells, the header has 2");

@@ -10,6 +10,7 @@
 #include "skylight/core/error.h"
 #include "skylight/core/math.h"
 #include "skylight/core/numbers.h"
+#include "skylight/haze/request.h"
 #include "skylight/models/preetham.h"
 
 namespace skylight::haze {
@@ -35,10 +36,8 @@ ScatteringVariant parse_scattering_variant(std::string_view text) {
 }
 
 void validate(const Atmosphere& a) {
-  if (!(a.turbidity >= 1.0 && a.turbidity <= 64.0))
-    throw InvalidArgument(fmt::format("turbidity {} is outside 1 .. 64", a.turbidity));
-  if (!(a.altitude_m >= -500.0 && a.altitude_m <= 20000.0))
-    throw InvalidArgument(fmt::format("altitude {} m is outside -500 .. 20000 m", a.altitude_m));
+  // The ranges are the schema's, declared once (haze/request.cpp).
+  atmosphere_schema().validate(a, "haze");
 }
 
 double rayleigh_per_m(double nm, double altitude_m, ScatteringVariant variant) {

@@ -35,9 +35,10 @@ inline constexpr double kRayleighCorrection = 1.0396;
 inline constexpr double kImprovedMieFudge = 0.0092;
 
 // The state of the air along a horizontal path at the observer's altitude.
+// Ranges: atmosphere_schema() (haze/request.h).
 struct Atmosphere {
-  double turbidity = 2.0;   // T [1], 1 (pure air) .. 64
-  double altitude_m = 0.0;  // h0 [m] above sea level, -500 .. 20000
+  double turbidity = 2.0;   // T [1] (1: pure air)
+  double altitude_m = 0.0;  // h0 [m] above sea level
   ScatteringVariant variant = ScatteringVariant::improved;
 };
 

@@ -126,10 +126,14 @@ CameraSensitivity parse_camera_csv(std::string_view text, const std::string& sou
     std::array<double, 4> v{};
     for (std::size_t i = 0; i < 4; ++i) {
       const std::optional<double> x = parse_number(fields[i]);
-      if (!x || !std::isfinite(*x) || (i > 0 && *x < 0.0))
-        throw InvalidArgument(fmt::format("{} line {} column {}: '{}' is not a finite number{}",
-                                          source, line_no, i + 1, excerpt(fields[i]),
-                                          i > 0 ? " >= 0" : ""));
+      if (!x)
+        throw InvalidArgument(fmt::format("{} line {} column {}: '{}' {}", source, line_no, i + 1,
+                                          excerpt(fields[i]), number_problem(fields[i])));
+      if (i > 0 && *x < 0.0)
+        throw InvalidArgument(
+            fmt::format("{} line {} column {}: '{}' is negative (a sensitivity "
+                        "is >= 0)",
+                        source, line_no, i + 1, excerpt(fields[i])));
       v[i] = *x;
     }
     if (!nm.empty() && !(v[0] > nm.back()))

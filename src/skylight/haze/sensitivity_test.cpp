@@ -51,9 +51,9 @@ TEST(HazeCamera, UserCsvParsesStrictly) {
   EXPECT_EQ(message("nm,red,g,b\n380,1,1,1\n780,1,1,1\n"),
             "cam.csv line 1: the header must be 'nm,r,g,b', not 'nm,red,g,b'");
   EXPECT_EQ(message("nm,r,g,b\n380,1,1,1\n780,1,x,1\n"),
-            "cam.csv line 3 column 3: 'x' is not a finite number >= 0");
+            "cam.csv line 3 column 3: 'x' is not a number");
   EXPECT_EQ(message("nm,r,g,b\n380,1,1,1\n780,1,-1,1\n"),
-            "cam.csv line 3 column 3: '-1' is not a finite number >= 0");
+            "cam.csv line 3 column 3: '-1' is negative (a sensitivity is >= 0)");
   EXPECT_EQ(message("nm,r,g,b\n380,1,1,1\n380,1,1,1\n"),
             "cam.csv line 3: wavelength 380 nm is not above the previous 380 nm");
   EXPECT_EQ(message("nm,r,g,b\n400,1,1,1\n780,1,1,1\n"),

@@ -62,8 +62,8 @@ std::vector<DirectionRow> parse_directions_csv(std::string_view text, std::strin
   auto field = [&](std::size_t line_no, std::string_view s, const ParameterSpec& spec) {
     const auto v = parse_number(s);
     if (!v)
-      throw InvalidArgument(fmt::format("{} line {}: {} '{}' is not a finite number", source,
-                                        line_no, spec.name, excerpt(s)));
+      throw InvalidArgument(fmt::format("{} line {}: {} '{}' {}", source, line_no, spec.name,
+                                        excerpt(s), number_problem(s)));
     if (*v < spec.min || *v > spec.max)
       throw InvalidArgument(fmt::format("{} line {}: {} = {} is outside [{}, {}]", source, line_no,
                                         spec.name, excerpt(s), spec.min, spec.max));

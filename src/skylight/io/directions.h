@@ -27,8 +27,8 @@ struct DirectionRow {
 
 // Parses the CSV text; `source` names it in messages. Throws InvalidArgument
 // "<source>: empty input ...", "<source> line L: header must be ...", "<source> line L: expected
-// 2 fields ...", "<source> line L: <column> '<text>' is not a finite number" or "... is outside
-// [min, max]". A header without rows gives no rows.
+// 2 fields ...", "<source> line L: <column> '<text>' is not a number" (or "overflows", "underflows
+// to 0": number_problem)" or "... is outside [min, max]". A header without rows gives no rows.
 std::vector<DirectionRow> parse_directions_csv(std::string_view text, std::string_view source);
 
 }  // namespace skylight::io

@@ -40,9 +40,13 @@ TEST(Directions, BadInputNamesSourceLineAndField) {
             "dirs.csv line 1: header must be 'zenith_deg,azimuth_deg', got 'zen,az'");
   EXPECT_EQ(error_of(head + "1,2,3\n"),
             "dirs.csv line 2: expected 2 fields 'zenith_deg,azimuth_deg', got '1,2,3'");
-  EXPECT_EQ(error_of(head + "nan,0\n"), "dirs.csv line 2: zenith_deg 'nan' is not a finite number");
+  EXPECT_EQ(error_of(head + "nan,0\n"), "dirs.csv line 2: zenith_deg 'nan' is not a number");
   EXPECT_EQ(error_of(head + "0,1e999\n"),
-            "dirs.csv line 2: azimuth_deg '1e999' is not a finite number");
+            "dirs.csv line 2: azimuth_deg '1e999' overflows (the largest number is 1.8e+308)");
+  // A literal that underflows is named as such, not "not a number" (it is one, too small).
+  EXPECT_EQ(error_of(head + "1e-400,0\n"),
+            "dirs.csv line 2: zenith_deg '1e-400' underflows to 0 (the smallest non-zero number "
+            "is 4.94e-324)");
   EXPECT_EQ(error_of(head + "180.5,0\n"),
             "dirs.csv line 2: zenith_deg = 180.5 is outside [0, 180]");
   EXPECT_EQ(error_of(head + "0,-360.1\n"),

@@ -88,7 +88,9 @@ class Reader {
   double number(std::string_view text, std::size_t index, std::string_view name, double min,
                 double max) const {
     const auto v = parse_number(trim(text));
-    if (!v) fail(fmt::format("field {} ({}) '{}' is not a number", index, name, excerpt(text)));
+    if (!v)
+      fail(fmt::format("field {} ({}) '{}' {}", index, name, excerpt(text),
+                       number_problem(trim(text))));
     if (max == kInf && *v < min)
       fail(fmt::format("field {} ({}) = {} is below {:g}", index, name, excerpt(text), min));
     if (*v < min || *v > max)

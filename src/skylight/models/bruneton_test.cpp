@@ -8,7 +8,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
-#include <fstream>
 #include <memory>
 #include <string>
 #include <vector>
@@ -16,10 +15,6 @@
 #include "skylight/atmosphere/path_tracer.h"
 #include "skylight/core/colorimetry.h"
 #include "skylight/core/math.h"
-#include "skylight/core/progress.h"
-#include "skylight/io/file.h"
-#include "skylight/io/table_cache.h"
-#include "support/scratch_dir.h"
 
 namespace skylight {
 namespace bruneton_test {
@@ -166,54 +161,6 @@ TEST(Bruneton, TheGroundsAlbedoEntersTheMultipleScattering) {
     // The bright ground's orders >= 2 are positive on top of its own single scattering.
     EXPECT_GT(*b.spectral_radiance(v, 500.0), *n.spectral_radiance(v, 500.0)) << el;
   }
-}
-
-// With SKYLIGHT_TABLE_CACHE set the tables are computed once, stored, and read back equal (no
-// computation: no progress reported); a damaged file is not used but computed again and replaced.
-TEST(Bruneton, TablesAreStoredInTheTableCacheAndReadBackEqual) {
-  testing_support::ScratchDir dir;
-  // The suite's own cache directory (scripts/test.sh sets one for the whole run) comes back after.
-  const char* before = std::getenv(io::kTableCacheVariable);
-  const std::string suite_cache = before ? before : "";
-  ::setenv(io::kTableCacheVariable, dir.path().c_str(), 1);
-  BrunetonParameters p = with_sun(30.0, 1);
-  const BrunetonModel b(p);
-  const auto& atm = b.single_scattering().atmosphere();
-  std::vector<std::string> steps;
-  const ScopedProgressSink sink([&](int, int, std::string_view s) { steps.emplace_back(s); });
-  const BrunetonTables computed = load_or_compute_tables(atm, b.lut_wavelengths(), 2);
-  EXPECT_GE(steps.size(), 2u);  // the orders one by one, then done
-  ASSERT_EQ(dir.entries().size(), 1u);
-  const auto file = dir.path() / dir.entries()[0];
-  EXPECT_EQ(file.extension(), ".table");
-  const auto same = [&](const BrunetonTables& t) {
-    EXPECT_EQ(t.components, computed.components);
-    EXPECT_EQ(t.q, computed.q);
-    EXPECT_EQ(t.ground_irradiance, computed.ground_irradiance);
-    EXPECT_EQ(t.cpu_seconds, computed.cpu_seconds);  // the stored precomputation's
-  };
-  steps.clear();
-  same(load_or_compute_tables(atm, b.lut_wavelengths(), 2));
-  EXPECT_EQ(steps, std::vector<std::string>{"bruneton's tables: read from the table cache"});
-  std::vector<char> bytes = io::read_file(file);
-  bytes[bytes.size() / 2] = static_cast<char>(bytes[bytes.size() / 2] ^ 1);
-  std::ofstream(file, std::ios::binary).write(bytes.data(), static_cast<long>(bytes.size()));
-  steps.clear();
-  {
-    // As inside a CLI command: the cache file is neither an input nor an output of the command's
-    // transaction (reading the damaged file and replacing it is not "an output naming an input").
-    io::OutputTransaction command;
-    const BrunetonTables again = load_or_compute_tables(atm, b.lut_wavelengths(), 2);
-    EXPECT_GE(steps.size(), 2u);  // computed
-    EXPECT_EQ(again.q, computed.q);
-    EXPECT_NE(io::read_file(file), bytes);  // replaced by an intact file before the commit
-    command.commit();
-  }
-  EXPECT_EQ(dir.entries().size(), 1u);  // no temporary left
-  if (before)
-    ::setenv(io::kTableCacheVariable, suite_cache.c_str(), 1);
-  else
-    ::unsetenv(io::kTableCacheVariable);
 }
 
 }  // namespace bruneton_test

@@ -16,8 +16,13 @@ namespace skylight {
 namespace {
 
 using atmosphere::Atmosphere;
+using atmosphere::atmosphere_key;
 using atmosphere::AtmosphereParameters;
+using atmosphere::AtmosphereTableCache;
+using atmosphere::ray_nodes;
+using atmosphere::scattering_of;
 using atmosphere::Spectral;
+using atmosphere::transmittance_of;
 
 AtmosphereTableCache<std::vector<double>>& psi_cache() {
   static AtmosphereTableCache<std::vector<double>> cache;

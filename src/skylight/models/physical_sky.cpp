@@ -18,50 +18,8 @@ namespace skylight {
 
 using atmosphere::Atmosphere;
 using atmosphere::AtmosphereParameters;
+using atmosphere::AtmosphereTableCache;
 using atmosphere::Spectral;
-
-void transmittance_of(const Spectral& spec, std::size_t components, const Densities& t,
-                      std::span<double> out) {
-  for (std::size_t l = 0; l < out.size(); ++l) {
-    double tau = 0.0;
-    for (std::size_t i = 0; i < components; ++i) tau += spec.extinction[i][l] * t[i];
-    out[l] = std::exp(-tau);
-  }
-}
-
-void scattering_of(const Spectral& spec, std::size_t components, const Densities& rho,
-                   std::span<double> out) {
-  for (std::size_t l = 0; l < out.size(); ++l) {
-    double s = 0.0;
-    for (std::size_t i = 0; i < components; ++i) s += rho[i] * spec.scattering[i][l];
-    out[l] = s;
-  }
-}
-
-std::string atmosphere_key(const AtmosphereParameters& a) {
-  std::string k = fmt::format("{:a} {:a} {:a}", a.ground_radius_m, a.top_radius_m,
-                              a.ground_albedo.value_or(-1.0));
-  for (const auto& c : a.components) {
-    k += fmt::format("|{:a} {:a} {:a} {:a} {:a} {} {:a} {} {:a} {:a}", c.scale_height_m,
-                     c.scattering_per_m, c.extinction_per_m, c.reference_nm, c.angstrom_exponent,
-                     static_cast<int>(c.phase), c.g, static_cast<int>(c.profile), c.peak_altitude_m,
-                     c.half_width_m);
-    for (std::size_t i = 0; i < c.absorption_per_m.size(); ++i)
-      k += fmt::format(" {:a}:{:a}", c.absorption_per_m.wavelengths()[i],
-                       c.absorption_per_m.values()[i]);
-  }
-  return k;
-}
-
-PhysicalSkyModel::LutWeight PhysicalSkyModel::lut_weight(double nm) const {
-  // lut_nm_ is ascending.
-  const auto it = std::lower_bound(lut_nm_.begin(), lut_nm_.end(), nm);
-  if (it == lut_nm_.begin()) return {0, 0, 0.0};
-  if (it == lut_nm_.end()) return {lut_nm_.size() - 1, lut_nm_.size() - 1, 0.0};
-  const auto j = static_cast<std::size_t>(it - lut_nm_.begin());
-  const double a = lut_nm_[j - 1], b = lut_nm_[j];
-  return {j - 1, j, (nm - a) / (b - a)};
-}
 
 PhysicalSkyModel::PhysicalSkyModel(const NishitaParameters& params) : SkyModel(params.sun) {
   single_ = std::make_unique<NishitaModel>(params);

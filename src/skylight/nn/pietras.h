@@ -24,6 +24,7 @@
 #include <vector>
 
 #include "skylight/core/colorimetry.h"
+#include "skylight/core/earth.h"
 #include "skylight/nn/mlp.h"
 
 namespace skylight::nn {
@@ -69,10 +70,10 @@ struct PietrasProvenance {
 
 struct PietrasNetwork {
   PietrasKind kind = PietrasKind::pietras;
-  std::vector<Mlp> subnets;         // pietras: R, G, B, M; log3: l, r, b
-  double scale_height_m = 8000.0;   // H0 of rho0 [m]
-  double top_altitude_m = 60e3;     // the atmosphere's top above the ground [m] (rho0 floor)
-  double ground_radius_m = 6360e3;  // for the night bound (night_cos_sun_zenith)
+  std::vector<Mlp> subnets;                        // pietras: R, G, B, M; log3: l, r, b
+  double scale_height_m = kRayleighScaleHeight;    // H0 of rho0 [m]
+  double top_altitude_m = kEarthAtmosphereHeight;  // the top above the ground [m] (rho0 floor)
+  double ground_radius_m = kEarthGroundRadius;     // for the night bound (night_cos_sun_zenith)
   double max_value = 1.0;  // pietras: N, log3: Y (source rgb units) that the targets scale to 1
   PietrasProvenance provenance;
 

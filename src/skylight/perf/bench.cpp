@@ -8,6 +8,7 @@
 #include <map>
 
 #include "skylight/core/error.h"
+#include "skylight/core/numbers.h"
 #include "skylight/core/parallel.h"
 #include "skylight/core/parameters.h"
 #include "skylight/core/statistics.h"
@@ -233,11 +234,18 @@ const ParameterSchema<BenchSettings>& BenchSettings::schema() {
                  "models to time, comma-separated (each with its comparison and workload: sh its "
                  "table's evaluation, pietras each network kind); gpu: the GL frames"},
             [](B& b, const ParameterValue& v) {
+              // An empty list, or an empty name in it, is refused: it would silently time the
+              // defaults (or skip a model the user meant to type).
               b.models.clear();
               const std::string& t = std::get<std::string>(v);
-              for (std::size_t a = 0; a <= t.size();) {
+              for (std::size_t a = 0, k = 1; a <= t.size(); ++k) {
                 const std::size_t e = std::min(t.find(',', a), t.size());
-                if (e > a) b.models.push_back(t.substr(a, e - a));
+                if (e == a)
+                  throw InvalidArgument(
+                      t.empty() ? fmt::format("{} = '' names no model", spelled("models"))
+                                : fmt::format("{} = '{}': name {} is empty", spelled("models"),
+                                              excerpt(t), k));
+                b.models.push_back(t.substr(a, e - a));
                 a = e + 1;
               }
             },

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "skylight/core/error.h"
+#include "skylight/core/statistics.h"
 
 namespace skylight::render {
 
@@ -48,13 +49,7 @@ Image8 tonemap_preview(const ImageF& image, const ToneMapOptions& options) {
     const double l = luminance(colour(i));
     if (l > 0.0 && std::isfinite(l)) lum.push_back(l);
   }
-  double reference = 1.0;
-  if (!lum.empty()) {
-    const double rank = std::ceil(options.percentile * static_cast<double>(lum.size())) - 1.0;
-    const size_t index = std::min(lum.size() - 1, static_cast<size_t>(std::max(0.0, rank)));
-    std::nth_element(lum.begin(), lum.begin() + static_cast<std::ptrdiff_t>(index), lum.end());
-    reference = lum[index];
-  }
+  const double reference = lum.empty() ? 1.0 : nearest_rank_percentile(lum, options.percentile);
   const double k = options.exposure / reference;
 
   auto srgb8 = [](double x) {

@@ -225,9 +225,19 @@ std::vector<ScanEntry> scan_entries(const Config& cfg, const SkyScan& scan) {
   return entries;
 }
 
+// The most samples the scatter plot draws per model: a scan of a million rows made a page of
+// gigabytes (5 markers per sample); beyond it every k-th sample is drawn (the statistics use all).
+constexpr std::size_t kMaxScatterSamples = 5000;
+
+// Every how many samples the scatter plot draws one.
+std::size_t scatter_stride(const SkyScan& scan) {
+  return (scan.samples.size() + kMaxScatterSamples - 1) / kMaxScatterSamples;
+}
+
 // Measured against modelled luminance: the best CIE type, CIE 12 and the other families.
 svg::Plot scan_plot(const SkyScan& scan, const std::vector<ScanEntry>& entries,
                     std::size_t best_cie, double excl, bool synthetic) {
+  const std::size_t stride = scatter_stride(scan);
   svg::Plot p;
   p.id = "scan";
   p.title = synthetic ? "Synthetic scan (CIE 7 + noise, a self-test) against modelled luminance"
@@ -244,7 +254,8 @@ svg::Plot scan_plot(const SkyScan& scan, const std::vector<ScanEntry>& entries,
     svg::Series s = svg::marker_series(entries[i].label, {}, {}, entries[i].colour, 2.2);
     if (i == 11 && best_cie != 11) s.colour = "#ff9896";
     const Vec3 sun = entries[i].model->sun().direction();
-    for (const auto& m : scan.samples) {
+    for (std::size_t k = 0; k < scan.samples.size(); k += stride) {
+      const LuminanceSample& m = scan.samples[k];
       const Vec3 v = direction_from_angles(kPi / 2 - m.elevation, m.azimuth);
       if (angle_between(v, sun) < excl) continue;
       const double L = entries[i].model->tristimulus(v).Y;
@@ -331,9 +342,13 @@ void ReportWriter::section_measurements() {
                           : "Best overall",
           entries[best_all].label) +
       figure("measurements.svg", svg::draw(p),
-             fmt::format("Each sample's {} luminance (x) against the models' (y): the best CIE "
+             fmt::format("{} {} luminance (x) against the models' (y): the best CIE "
                          "type, CIE 12, the best-turbidity Preetham and Hosek-Wilkie skies and "
                          "Nishita; the dashed line is 1:1.",
+                         scatter_stride(scan) == 1
+                             ? std::string("Each sample's")
+                             : fmt::format("Every {}th sample's (of {}; the table uses all)",
+                                           scatter_stride(scan), scan.samples.size()),
                          scan_synthetic_ ? "synthetic" : "measured")) +
       t.html();
   json_["measurements"] = {{"source", scan.source},

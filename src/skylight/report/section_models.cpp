@@ -205,9 +205,9 @@ std::string ReportWriter::antisolar_horizon_html() {
       fmt::format(
           "<h3>Antisolar horizon: Preetham / CIE 12 at low sun</h3>\n<p>Luminance at the azimuth "
           "opposite the sun, near the horizon, Preetham at T = {:.3f} (the best match to CIE 12 "
-          "above) over CIE type 12 with the Kittler-Darula typical zenith luminance. Headline "
+          "above) over CIE type 12 with the Kittler-Darula typical zenith luminance. One point "
           "(report.json "
-          "<code>antisolar_horizon_ratio_preetham_vs_cie12</code>): θs = {:g} deg (sun "
+          "<code>antisolar_horizon_ratio_details.ratio</code>): θs = {:g} deg (sun "
           "elevation "
           "{:g} deg, the lowest the Kittler-Darula formula is recommended for), view elevation "
           "{:g} "
@@ -216,8 +216,9 @@ std::string ReportWriter::antisolar_horizon_html() {
           T, cfg_.antisolar_headline_sun_zenith_deg, 90 - cfg_.antisolar_headline_sun_zenith_deg,
           cfg_.antisolar_headline_elevation_deg, summary_.antisolar_ratio) +
       at.html();
-  json_["antisolar_horizon_ratio_preetham_vs_cie12"] = num(summary_.antisolar_ratio);
+  // A single point, not a headline: under its details, with the sun and view it holds for.
   json_["antisolar_horizon_ratio_details"] = {
+      {"ratio", num(summary_.antisolar_ratio)},
       {"sun_zenith_deg", cfg_.antisolar_headline_sun_zenith_deg},
       {"view_elevation_deg", cfg_.antisolar_headline_elevation_deg},
       {"view_azimuth", "opposite the sun (180 deg from the solar azimuth)"},
