@@ -16,7 +16,7 @@ ROOT = os.path.dirname(os.path.abspath(__file__))
 
 class CMakeExtension(Extension):
     def __init__(self):
-        super().__init__("skylight._skylight", sources=[])
+        super().__init__("pyskylight._skylight", sources=[])
 
 
 class CMakeBuild(build_ext):
@@ -28,7 +28,7 @@ class CMakeBuild(build_ext):
                 "-DSKYLIGHT_BUILD_TESTS=OFF", "-DSKYLIGHT_BUILD_BENCH=OFF", "-DSKYLIGHT_PYTHON=ON",
                 f"-DPython_EXECUTABLE={sys.executable}"])
         subprocess.check_call(["cmake", "--build", build, "--target", "skylight_python"])
-        built = os.path.join(build, "python", "skylight")
+        built = os.path.join(build, "python", "pyskylight")
         module = next(f for f in os.listdir(built) if f.startswith("_skylight") and f.endswith(".so"))
         target = self.get_ext_fullpath(ext.name)
         os.makedirs(os.path.dirname(target), exist_ok=True)
@@ -40,9 +40,9 @@ os.makedirs(os.path.join(ROOT, "build-python"), exist_ok=True)
 setup(
     options={"build": {"build_base": "build-python/setuptools"},
              "egg_info": {"egg_base": "build-python"}},
-    packages=["skylight"],
+    packages=["pyskylight"],
     package_dir={"": "python"},
-    package_data={"skylight": ["*.pyi", "py.typed"]},
+    package_data={"pyskylight": ["*.pyi", "py.typed"]},
     ext_modules=[CMakeExtension()],
     cmdclass={"build_ext": CMakeBuild},
 )

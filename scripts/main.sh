@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# The main job (README): installs what is missing, builds, and renders the default sky of every
+# The main job (README): installs what is missing, builds the CLI and the Python package
+# (scripts/build_main.sh), and renders the default sky of every
 # model into out/ — float EXR (with metadata), a tone-mapped PNG preview, and a log-luminance
 # false-colour map with legend — as a full-sphere equirect map and an upward fisheye (the Perez
 # sky also from measured irradiance); the annual Tregenza sky matrix of the sample weather year
@@ -8,7 +9,7 @@ set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "$root"
 bash scripts/setup.sh
-SKYLIGHT_TARGET=skylight_cli bash scripts/build.sh build -DCMAKE_BUILD_TYPE=Release
+bash scripts/build_main.sh
 out="${SKYLIGHT_OUT:-$root/out}"
 mkdir -p "$out"
 sk="$root/build/skylight"

@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# The test command (README): installs what is missing, builds `build/` in Release, runs the whole
+# The test command (README): installs what is missing, builds the main job's targets and runs the
+# README's Python lines against them, builds `build/` in Release, runs the whole
 # ctest suite there (GoogleTest unit + CLI end-to-end tests, the report in headless Chromium, the
 # docs' shell blocks) and builds the README's library example against the installed package.
 # `--full` (what CI runs, .ci/run) adds the libFuzzer pass (scripts/fuzz.sh, docs/TESTING.md) and
@@ -49,6 +50,11 @@ warm_table_cache() {
 
 begin "setup (packages)"
 bash scripts/setup.sh
+begin "the main job's build, then the README's Python lines against it"
+# Exactly the main job's build first (the CLI and the Python package): the README's Python lines
+# must run after it alone, as a new user runs them.
+bash scripts/build_main.sh
+bash tests/docs/readme_python.sh "$root" "$root/build"
 begin "Release build"
 bash scripts/build.sh build -DCMAKE_BUILD_TYPE=Release -DSKYLIGHT_BUILD_TESTS=ON -DSKYLIGHT_BUILD_BENCH=ON
 begin "Release tests (ctest)"

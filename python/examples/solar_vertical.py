@@ -13,7 +13,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-import skylight  # noqa: E402
+import pyskylight  # noqa: E402
 
 SUN = dict(sun_zenith=60.0, sun_azimuth=180.0)
 SKIES = [("preetham", dict(turbidity=3)), ("hosek", dict(turbidity=3, albedo=0.3)),
@@ -24,7 +24,7 @@ zenith = np.abs(signed)
 azimuth = np.where(signed < 0, 0.0, 180.0)  # the sun is in the south
 fig, ax = plt.subplots(figsize=(7, 4))
 for name, params in SKIES:
-    sky = skylight.Sky(name, **SUN, **params)
+    sky = pyskylight.Sky(name, **SUN, **params)
     ax.semilogy(signed, sky.evaluate(zenith, azimuth, quantity="luminance")[..., 0], label=name)
 ax.axvline(SUN["sun_zenith"], color="grey", lw=0.8, ls="--")
 ax.set_xlabel("view zenith angle along the solar vertical [deg] (sun at +60)")

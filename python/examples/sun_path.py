@@ -1,6 +1,6 @@
 #!/usr/bin/python3
 """The sun's path on the solstices and an equinox at one place (the NREL SPA through
-skylight.sun_position, vectorised over a day of minutes), drawn with matplotlib.
+pyskylight.sun_position, vectorised over a day of minutes), drawn with matplotlib.
 
 Usage: PYTHONPATH=build/python /usr/bin/python3 python/examples/sun_path.py OUT.png
 """
@@ -13,14 +13,14 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-import skylight  # noqa: E402
+import pyskylight  # noqa: E402
 
 LAT, LON = 48.14, 11.58  # Munich
 fig, ax = plt.subplots(figsize=(7, 4))
 for day in ("2024-03-20", "2024-06-21", "2024-12-21"):
     t = np.arange(np.datetime64(f"{day}T00:00"), np.datetime64(f"{day}T23:59"),
                   np.timedelta64(5, "m"))
-    zenith, azimuth = skylight.sun_position(t, lat=LAT, lon=LON)
+    zenith, azimuth = pyskylight.sun_position(t, lat=LAT, lon=LON)
     up = zenith < 90
     ax.plot(azimuth[up], 90 - zenith[up], label=day)
 ax.set_xlabel("azimuth [deg from north towards east]")

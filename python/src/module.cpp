@@ -20,6 +20,7 @@
 #include <string>
 #include <vector>
 
+#include "../../src/cli/gpu_backend.h"
 #include "skylight/core/camera.h"
 #include "skylight/core/error.h"
 #include "skylight/core/frame.h"
@@ -98,6 +99,10 @@ sl::ParameterValue to_value(const sl::ParameterSpec& spec, py::handle v) {
         throw sl::InvalidArgument(fmt::format("{} must be a str", sl::spelled(spec.name)));
       return v.cast<std::string>();
     case sl::ParameterKind::numbers: {
+      if (py::isinstance<py::str>(v) || !py::isinstance<py::iterable>(v))
+        throw sl::InvalidArgument(
+            fmt::format("{} must be a sequence of numbers, got {}", sl::spelled(spec.name),
+                        py::str(py::type::of(v).attr("__name__")).cast<std::string>()));
       std::vector<double> out;
       for (py::handle item : py::iter(v)) out.push_back(number_of(spec, item));
       return out;
@@ -138,15 +143,6 @@ sl::ParameterValues schema_values(const std::vector<sl::ParameterSpec>& specs,
     values.set(name, v);
   }
   return values;
-}
-
-// The keyword arguments of a sky: the operation's sun and solar-disc specs and the model's own.
-sl::ParameterValues sky_values(const sl::ModelInfo& info, const py::dict& kwargs) {
-  std::vector<sl::ParameterSpec> specs;
-  for (const auto& s : sl::operations::model_specs())
-    if (s.name != "model") specs.push_back(s);
-  for (const auto& p : info.parameters) specs.push_back(p);
-  return schema_values(specs, kwargs, fmt::format("model '{}'", info.name));
 }
 
 sl::Quantity quantity_of(const std::string& q) {
@@ -191,15 +187,114 @@ double thread_cpu_seconds(F&& fn) {
   return seconds;
 }
 
+// A float (H, W, C) array as an image (C = 1 or 3).
+sl::io::ImageF image_of(py::array_t<float, py::array::c_style | py::array::forcecast> a,
+                        const char* what) {
+  if (a.ndim() != 3 || (a.shape(2) != 1 && a.shape(2) != 3))
+    throw sl::InvalidArgument(fmt::format("{} must have shape (H, W, 3) or (H, W, 1)", what));
+  sl::io::ImageF img(static_cast<int>(a.shape(1)), static_cast<int>(a.shape(0)),
+                     static_cast<int>(a.shape(2)));
+  std::copy(a.data(), a.data() + a.size(), img.data.begin());
+  for (const float v : img.data)
+    if (!std::isfinite(v)) throw sl::InvalidArgument(fmt::format("{} holds NaN or Inf", what));
+  return img;
+}
+
+// ---- operations ---------------------------------------------------------------------------------
+// Every operation of the library (operations/operation.h), generically: keyword arguments bound
+// by the operation's specs (the chosen model's for render and eval), arrays for its image inputs
+// and texts for its text inputs in memory, warnings as Python warnings when they arise, progress
+// and Ctrl-C between steps, the record as JSON text (the Python layer loads it) and the outputs
+// not given a path kept in memory. The same prepare() and execute() as the command line: the same
+// verdicts and messages.
+
+// Stops an operation between steps on Ctrl-C (rethrown as KeyboardInterrupt).
+struct Interrupted {};
+
+// A Python value as the spec's kind (the schema then checks the range); a path-like's path.
+sl::ParameterValue python_value(const sl::ParameterSpec& spec, py::handle v) {
+  if (spec.kind == sl::ParameterKind::text && py::hasattr(v, "__fspath__"))
+    return py::module_::import("os").attr("fspath")(v).cast<std::string>();
+  return to_value(spec, v);
+}
+
+// The keyword arguments as named values of `op` (a name no parameter has: an empty text, which
+// prepare() refuses naming the nearest parameter).
+sl::ParameterValues operation_values(const sl::operations::OperationInfo& op,
+                                     const py::dict& kwargs) {
+  std::string model;
+  if (kwargs.contains("model") && py::isinstance<py::str>(kwargs["model"]))
+    model = kwargs["model"].cast<std::string>();
+  sl::ParameterValues values;
+  for (const auto& [key, value] : kwargs) {
+    const std::string name = schema_name(key.cast<std::string>());
+    if (value.is_none()) continue;
+    const sl::ParameterSpec* spec = sl::operations::parameter_spec(op, model, name);
+    values.set(name, spec ? python_value(*spec, value) : sl::ParameterValue(std::string()));
+  }
+  return values;
+}
+
+// Python's warnings.warn(message, SkylightWarning) under the GIL; a filter that turns it into an
+// error stops the operation.
+PyObject* g_warning_category = nullptr;  // SkylightWarning, made at import
+
+void warn_in_python(const std::string& message) {
+  py::gil_scoped_acquire gil;
+  if (PyErr_WarnEx(g_warning_category, message.c_str(), 2) != 0) throw py::error_already_set();
+}
+
+sl::operations::Frontend python_frontend(const py::dict& inputs, const py::object* progress) {
+  sl::operations::Frontend fe;
+  fe.warn = warn_in_python;
+  fe.keep_outputs = true;
+  fe.progress = [progress](int done, int total, std::string_view step) {
+    py::gil_scoped_acquire gil;
+    if (PyErr_CheckSignals() != 0) throw Interrupted{};
+    if (!progress->is_none()) (*progress)(done, total, std::string(step));
+  };
+  for (const auto& [key, value] : inputs) {
+    const std::string name = schema_name(key.cast<std::string>());
+    if (py::isinstance<py::str>(value))
+      fe.texts[name] = value.cast<std::string>();
+    else
+      fe.images[name] =
+          image_of(value.cast<py::array_t<float, py::array::c_style | py::array::forcecast>>(),
+                   fmt::format("{}", key.cast<std::string>()).c_str());
+  }
+  return fe;
+}
+
+py::object text_object(const std::string& text) {
+  // UTF-8 text as str; other bytes (a .npy matrix) as bytes.
+  PyObject* s = PyUnicode_DecodeUTF8(text.data(), static_cast<Py_ssize_t>(text.size()), nullptr);
+  if (s) return py::reinterpret_steal<py::object>(s);
+  PyErr_Clear();
+  return py::bytes(text);
+}
+
+py::array_t<float> image_array(const sl::io::ImageF& img) {
+  py::array_t<float> out({static_cast<std::size_t>(img.height), static_cast<std::size_t>(img.width),
+                          static_cast<std::size_t>(img.channels)});
+  std::copy(img.data.begin(), img.data.end(), out.mutable_data());
+  return out;
+}
+
 class Sky {
  public:
+  // Prepared as render and eval prepare their sky (operations::sky_declaration): the same
+  // checks, warnings and messages.
   Sky(const std::string& model, const py::dict& kwargs)
       : info_(&sl::require_model(model, "model")) {
-    const sl::operations::SkyRequest r =
-        sl::operations::sky_request(*info_, sky_values(*info_, kwargs));
-    model_ = sl::make_sky_model(info_->name, r.parameters);
-    mode_ = r.sun_mode;
-    sl::check_sun_mode(*model_, mode_);
+    const sl::operations::OperationInfo& op = sl::operations::sky_declaration();
+    py::dict all(kwargs);
+    all["model"] = model;
+    sl::operations::Frontend fe;
+    fe.warn = warn_in_python;
+    const sl::operations::Request request =
+        sl::operations::prepare(op, operation_values(op, all), std::move(fe));
+    model_ = sl::operations::make_sky(request);
+    mode_ = request.bind(sl::SolarDisc::schema()).mode;
   }
 
   std::string name() const { return info_->name; }
@@ -690,380 +785,29 @@ py::array_t<double> sh_rotate_about_zenith(
   return array_of(sl::sh::rotate_about_zenith(coefficients_of(coeffs), sl::deg_to_rad(degrees)));
 }
 
-// The report (report/report.h) into `output_dir`, its options from the schema; the files written.
-std::vector<std::string> write_report(const std::string& output_dir, const py::dict& kwargs) {
-  const auto& schema = sl::report::ReportOptions::schema();
-  sl::report::ReportOptions o;
-  schema.bind(schema_values(schema.specs(), kwargs, "report"), o, "report");
-  o.output_dir = output_dir;
-  sl::report::ReportSummary summary;
-  {
+// (record JSON, {output: array or text}) of the operation `name`.
+py::tuple run_operation(const std::string& name, const py::dict& kwargs, const py::dict& inputs,
+                        py::object progress) {
+  const sl::operations::OperationInfo& op = sl::operations::require_operation(name);
+  sl::operations::Frontend fe = python_frontend(inputs, &progress);
+  sl::operations::Result result;
+  try {
+    const sl::operations::Request request =
+        sl::operations::prepare(op, operation_values(op, kwargs), std::move(fe));
     py::gil_scoped_release release;
-    summary = sl::report::write_report(o);  // its own transaction: all files or none
+    result = sl::operations::execute(request);
+  } catch (const Interrupted&) {
+    throw py::error_already_set();
   }
-  return summary.files;
-}
-
-// nn train of a sky network on a registered model (fit/neural_training.h), written to `output`
-// (atomically); the request's options from the schema. Ctrl-C stops between iterations: the
-// progress callback checks Python's signals with the GIL taken, and KeyboardInterrupt is raised
-// (nothing written). Returns the summary as a dict.
-// The callbacks of a training: Ctrl-C (checked under the GIL) stops it between iterations,
-// `progress(iteration, mse)` (if given) is called after each.
-struct TrainingProgress {
-  const py::object* progress;
-  bool interrupted = false;
-  bool operator()(int iteration, double mse) {
-    py::gil_scoped_acquire gil;
-    if (PyErr_CheckSignals() != 0) {
-      interrupted = true;
-      return false;
-    }
-    if (!progress->is_none()) (*progress)(iteration, mse);
-    return true;
-  }
-  // Between steps without a return value (reading images): Ctrl-C ends the work by exception.
-  struct Stop {};
-  void step() {
-    py::gil_scoped_acquire gil;
-    if (PyErr_CheckSignals() != 0) {
-      interrupted = true;
-      throw Stop{};
-    }
-  }
-  // Runs the training with the GIL released; KeyboardInterrupt when it was interrupted.
-  template <class F>
-  void run(F&& fn) {
-    try {
-      py::gil_scoped_release release;
-      fn();
-    } catch (const Stop&) {
-    }
-    if (interrupted) throw py::error_already_set();
-  }
-};
-
-py::dict nn_train_sky(const std::string& output, const sl::fit::NetworkTrainingRequest& req,
-                      TrainingProgress& tp) {
-  sl::fit::NeuralTraining t = req.sky_training();
-  t.options.progress = [&](const sl::nn::TrainLogEntry& e) { return tp(e.iteration, e.mse); };
-  sl::fit::NeuralTrainingResult r;
-  tp.run([&] { r = sl::fit::train_neural_sky(t); });
-  r.network.provenance.software = fmt::format("skylight {} (Python)", sl::kVersion);
-  sl::io::write_text_file(output, sl::nn::to_json(r.network));
-  py::dict d;
-  const auto& pv = r.network.provenance;
-  d["layout"] = r.network.net.layout().describe();
-  d["source"] = pv.source;
-  d["trainer"] = pv.trainer;
-  d["seed"] = pv.seed;
-  d["iterations"] = pv.iterations;
-  d["stop"] = pv.stop;
-  d["training_rmse"] = std::sqrt(pv.training_mse);
-  if (r.validation) {
-    d["validation_rmse"] = r.validation->errors.rmse;
-    d["validation_relative_median"] = r.validation->errors.relative_median;
-    d["validation_relative_p95"] = r.validation->errors.relative_p95;
-  }
-  if (r.check) d["check"] = r.check->summary();
-  return d;
-}
-
-// `nn train --images LIST`: a sky network on a sequence of HDR sky images.
-py::dict nn_train_images(const std::string& output, const sl::fit::NetworkTrainingRequest& req,
-                         const sl::ParameterValues& values, TrainingProgress& tp) {
-  sl::fit::ImageTrainingOptions options;
-  sl::fit::ImageTrainingOptions::schema().bind(
-      values.only(sl::fit::ImageTrainingOptions::schema().specs()), options, "nn.train");
-  sl::fit::NeuralTraining t = req.sky_training();
-  t.options.progress = [&](const sl::nn::TrainLogEntry& e) { return tp(e.iteration, e.mse); };
-  sl::fit::ImageTrainingResult r;
-  tp.run([&] {
-    r = sl::fit::train_on_images(options, t, req.samples.value_or(sl::fit::kImageSamples),
-                                 [&](int, int, const std::string&) { tp.step(); });
-  });
-  sl::nn::SkyNetwork network = r.trained.network;
-  network.provenance.software = fmt::format("skylight {} (Python)", sl::kVersion);
-  sl::io::write_text_file(output, sl::nn::to_json(network));
-  py::dict d;
-  py::list images;
-  for (const sl::fit::LoadedImage& li : r.images) {
-    py::dict i;
-    i["line"] = li.entry.line;
-    i["file"] = li.entry.file.string();
-    i["sun_zenith_deg"] = sl::rad_to_deg(li.sampled.samples.state.sun_zenith);
-    i["sun_azimuth_deg"] = sl::rad_to_deg(li.sampled.samples.state.sun_azimuth);
-    i["sun_from"] = li.sun_source;
-    i["sky_pixels"] = li.sampled.sky_pixels;
-    i["samples"] = li.sampled.samples.views.size();
-    images.append(i);
-  }
-  d["images"] = images;
-  d["examples"] = r.examples;
-  d["target_scale"] = r.target_scale;
-  if (r.cross_validation) {
-    py::list folds;
-    for (const sl::nn::FoldResult& f : r.cross_validation->folds) {
-      py::dict fd;
-      py::list lines;
-      for (int k : f.held_out) lines.append(r.images[static_cast<std::size_t>(k)].entry.line);
-      fd["held_out_lines"] = lines;
-      fd["test_examples"] = f.test_examples;
-      fd["training_rmse"] = f.training_rmse;
-      fd["rmse"] = f.errors.rmse;
-      fd["relative_median"] = f.errors.relative_median;
-      fd["relative_p95"] = f.errors.relative_p95;
-      folds.append(fd);
-    }
-    d["cross_validation"] = folds;
-    d["cross_validation_mean_rmse"] = r.cross_validation->mean_rmse;
-  }
-  d["check"] = r.check ? py::cast(r.check->summary(r.images)) : py::object(py::none());
-  const auto& pv = network.provenance;
-  d["layout"] = network.net.layout().describe();
-  d["trainer"] = pv.trainer;
-  d["seed"] = pv.seed;
-  d["iterations"] = pv.iterations;
-  d["stop"] = pv.stop;
-  d["rmse"] = r.errors.rmse;
-  d["relative_median"] = r.errors.relative_median;
-  d["relative_p95"] = r.errors.relative_p95;
-  return d;
-}
-
-// `nn train --network pietras|log3`: a Pietras network on nishita.
-py::dict nn_train_pietras(const std::string& output, const sl::fit::NetworkTrainingRequest& req,
-                          TrainingProgress& tp) {
-  std::optional<sl::nn::PietrasNetwork> initial;
-  sl::fit::PietrasTraining t = req.pietras_training(initial, output);
-  const int iterations = t.options.max_iterations;
-  t.progress = [&](int k, const sl::nn::TrainLogEntry& e) {
-    return tp(k * iterations + e.iteration, e.mse);
-  };
-  sl::fit::PietrasTrainingResult result;
-  tp.run([&] { result = sl::fit::train_pietras(t); });
-  sl::nn::PietrasNetwork& net = result.network;
-  net.provenance.software = fmt::format("skylight {} (Python)", sl::kVersion);
-  sl::io::write_text_file(output, sl::nn::to_json(net));
-  py::dict d;
-  d["network"] = std::string(sl::nn::to_string(t.kind));
-  d["weights"] = net.parameter_count();
-  d["samples"] = net.provenance.samples;
-  d["iterations"] = net.provenance.iterations;
-  d["region"] = net.provenance.region;
-  d["trainer"] = std::string(sl::nn::to_string(t.options.trainer));
-  d["seed"] = req.seed;
-  if (result.check) d["check"] = result.check->summary();
-  return d;
-}
-
-// `skylight nn train`: a sky network on a model (source=), on HDR sky images (images=, a list
-// file) or a Pietras network on nishita (network=); the weights file written atomically, nothing
-// when the training fails its held-out check or is interrupted.
-py::dict nn_train(const std::string& output, const py::dict& kwargs, py::object progress) {
-  using Kind = sl::fit::NetworkTrainingRequest::Kind;
-  const auto& schema = sl::fit::NetworkTrainingRequest::schema();
-  std::vector<sl::ParameterSpec> specs = schema.specs();
-  for (const auto& s : sl::fit::ImageTrainingOptions::schema().specs()) specs.push_back(s);
-  const sl::ParameterValues values = schema_values(specs, kwargs, "nn.train");
-  sl::fit::NetworkTrainingRequest req;
-  schema.bind(values.only(schema.specs()), req, "nn.train");
-  const Kind kind = req.network ? Kind::pietras : values.has("images") ? Kind::images : Kind::sky;
-  if (kind == Kind::images)
-    for (const char* name : {"source", "suns", "view-zeniths", "view-azimuths", "network"})
-      if (values.has(name))
-        throw sl::InvalidArgument(
-            fmt::format("{} is not an option of training on images", python_spelling(name)));
-  for (const std::string& name : sl::fit::NetworkTrainingRequest::unread(values, kind))
-    PyErr_WarnEx(PyExc_UserWarning,
-                 fmt::format("{} is not read by this training ({}); ignored", python_spelling(name),
-                             kind == Kind::sky      ? "a sky network on a model"
-                             : kind == Kind::images ? "images"
-                                                    : "network")
-                     .c_str(),
-                 1);
-  TrainingProgress tp{&progress};
-  py::dict d = kind == Kind::pietras  ? nn_train_pietras(output, req, tp)
-               : kind == Kind::images ? nn_train_images(output, req, values, tp)
-                                      : nn_train_sky(output, req, tp);
-  d["output"] = output;
-  return d;
-}
-
-// `skylight nn export --glsl`: the GLSL compilation unit of a weights file (a sky network or a
-// Pietras network), or of the embedded network when `path` is empty.
-std::string nn_glsl(const std::string& path) {
-  if (path.empty()) return sl::nn::glsl_sky_network_file(sl::embedded_sky_network());
-  const std::string text = sl::io::read_text_file(path);
-  return sl::nn::is_pietras_json(text)
-             ? sl::nn::glsl_pietras_network_file(sl::nn::pietras_from_json(text, path))
-             : sl::nn::glsl_sky_network_file(sl::nn::sky_network_from_json(text, path));
-}
-
-// A float (H, W, C) array as an image (C = 1 or 3).
-sl::io::ImageF image_of(py::array_t<float, py::array::c_style | py::array::forcecast> a,
-                        const char* what) {
-  if (a.ndim() != 3 || (a.shape(2) != 1 && a.shape(2) != 3))
-    throw sl::InvalidArgument(fmt::format("{} must have shape (H, W, 3) or (H, W, 1)", what));
-  sl::io::ImageF img(static_cast<int>(a.shape(1)), static_cast<int>(a.shape(0)),
-                     static_cast<int>(a.shape(2)));
-  std::copy(a.data(), a.data() + a.size(), img.data.begin());
-  for (const float v : img.data)
-    if (!std::isfinite(v)) throw sl::InvalidArgument(fmt::format("{} holds NaN or Inf", what));
-  return img;
-}
-
-// `skylight estimate` on an image array (the photo's layout, the sun given, from a time or found,
-// the mask and fit settings from the estimate operation's schema): the fit as a dict.
-py::dict estimate_fit(py::array_t<float, py::array::c_style | py::array::forcecast> photo,
-                      py::object mask, const py::dict& kwargs) {
-  const sl::OperationInfo& op = sl::operations::find("estimate");
-  // Every option of the operation, the capture's EXIF file (exif, utc_offset) included; the
-  // photo and the mask are the arrays.
-  const sl::ParameterValues given = schema_values(op.parameters, kwargs, "estimate");
-  const sl::io::ImageF image = image_of(photo, "the photo");
-  std::optional<sl::io::ImageF> user_mask;
-  if (!mask.is_none())
-    user_mask = image_of(mask.cast<py::array_t<float, py::array::c_style | py::array::forcecast>>(),
-                         "the mask");
-  sl::estimate::CaptureOptions co;
-  sl::estimate::CaptureOptions::schema().bind(
-      given.only(sl::estimate::CaptureOptions::schema().specs()), co, "estimate");
-  if (co.exif.empty() && !co.utc_offset.empty())
-    throw sl::InvalidArgument("utc_offset is read only with exif (the capture's EXIF file)");
-  std::optional<sl::estimate::Capture> capture;
-  sl::operations::PhotoEstimate pe;
-  {
-    py::gil_scoped_release release;
-    if (!co.exif.empty()) capture = sl::estimate::read_capture(co, image.width);
-    pe = sl::operations::estimate_photo(image, given, user_mask ? &*user_mask : nullptr, capture);
-  }
-  const std::string& model = pe.model;
-  const sl::fit::LuminanceFit& fit = pe.fit;
-  const sl::estimate::PhotoSamples& ps = pe.samples;
-  py::dict d;
-  d["model"] = model;
-  for (const auto& p : fit.parameters) {
-    d[py::str(python_spelling(p.name))] = p.value;
-    d[py::str(python_spelling(p.name) + "_sigma")] = p.sigma;
-  }
-  d["inlier_fraction"] = fit.inlier_fraction;
-  d["residual"] = fit.residual;
-  d["inliers"] = fit.inliers;
-  d["method"] = fit.method;
-  d["luminance_scale"] = std::exp(fit.log_scale);
-  d["sun_zenith_deg"] = sl::rad_to_deg(ps.sun.zenith);
-  d["sun_azimuth_deg"] = sl::rad_to_deg(ps.sun.azimuth);
-  d["sun_source"] = pe.sun_source;
-  d["samples"] = ps.samples.size();
-  d["sky_pixels"] = ps.sky_pixels;
-  if (capture) {
-    // As `skylight estimate --json` reports it.
-    const sl::io::ExifInfo& e = capture->exif;
-    const auto or_none = [](const auto& v) -> py::object {
-      return v ? py::cast(*v) : py::object(py::none());
-    };
-    py::dict x;
-    x["file"] = co.exif;
-    x["camera"] = fmt::format("{}{}{}", e.make, e.make.empty() ? "" : " ", e.model);
-    x["date_time"] = or_none(e.date_time);
-    x["utc_offset"] = or_none(e.utc_offset);
-    x["focal_length_mm"] = or_none(e.focal_length_mm);
-    x["focal_length_px"] = or_none(capture->focal_length_px);
-    x["latitude_deg"] = or_none(e.latitude_deg);
-    x["longitude_deg"] = or_none(e.longitude_deg);
-    d["exif"] = x;
-  }
-  return d;
-}
-
-// A haze operation's options (its schema without the GL switch) as named values.
-sl::ParameterValues haze_values(const std::string& operation, const py::dict& kwargs) {
-  std::vector<sl::ParameterSpec> specs;
-  for (const auto& s : sl::operations::find("haze " + operation).parameters)
-    if (s.name != "gpu") specs.push_back(s);
-  return schema_values(specs, kwargs, "haze." + operation);
-}
-
-// A one-channel (H, W[, 1]) array as an image.
-sl::io::ImageF scalar_image_of(py::array_t<float, py::array::c_style | py::array::forcecast> a,
-                               const char* what) {
-  if (a.ndim() == 2) a = a.reshape({a.shape(0), a.shape(1), py::ssize_t{1}});
-  sl::io::ImageF img = image_of(a, what);
-  if (img.channels != 1) throw sl::InvalidArgument(fmt::format("{} must have one channel", what));
-  return img;
-}
-
-py::array_t<float> rgb_array_of(const sl::io::ImageF& out) {
-  for (const float v : out.data)
-    if (!std::isfinite(v))
-      throw sl::InvalidArgument("the result holds NaN or Inf (raise min_transmission)");
-  py::array_t<float> result(
-      {static_cast<std::size_t>(out.height), static_cast<std::size_t>(out.width), std::size_t{3}});
-  std::copy(out.data.begin(), out.data.end(), result.mutable_data());
-  return result;
-}
-
-// `skylight haze add|retarget|remove` on arrays (Morales et al. 2017; haze/request.h): the image
-// (H, W, 3), its depth (H, W[, 1]; metres, or normalised with near/far), the operation's options
-// from its schema. The result (H, W, 3) float32.
-py::array_t<float> haze_apply(const std::string& name,
-                              py::array_t<float, py::array::c_style | py::array::forcecast> image,
-                              py::array_t<float, py::array::c_style | py::array::forcecast> depth,
-                              const py::dict& kwargs) {
-  sl::haze::HazeOperation op{};
-  if (name == "add")
-    op = sl::haze::HazeOperation::add;
-  else if (name == "retarget")
-    op = sl::haze::HazeOperation::retarget;
-  else if (name == "remove")
-    op = sl::haze::HazeOperation::remove;
-  else
-    throw sl::InvalidArgument(fmt::format("no haze operation '{}'", name));
-  const sl::ParameterValues given = haze_values(name, kwargs);
-  const sl::io::ImageF img = image_of(image, "the image");
-  if (img.channels != 3) throw sl::InvalidArgument("the image must have R, G, B");
-  const sl::io::ImageF d = scalar_image_of(depth, "the depth");
-  const sl::haze::ImageHazeRequest r =
-      sl::haze::image_haze_request(op, given, img.width, img.height);
-  const sl::io::ImageF depth_m = sl::haze::depth_in_metres(d, {r.options.near_m, r.options.far_m},
-                                                           img.width, img.height, "the depth");
-  sl::io::ImageF out;
-  {
-    py::gil_scoped_release release;
-    out = sl::haze::apply_haze(img, depth_m, r.camera, r.settings, nullptr);
-  }
-  return rgb_array_of(out);
-}
-
-// `skylight haze composite` on arrays: the background photo (H, W, 3) already showing the haze of
-// T, the object (H, W, 3), its depth (H, W[, 1]) and coverage alpha (H, W[, 1]) in [0, 1] (None:
-// 1 where the depth is > 0).
-py::array_t<float> haze_composite(
-    py::array_t<float, py::array::c_style | py::array::forcecast> background,
-    py::array_t<float, py::array::c_style | py::array::forcecast> object,
-    py::array_t<float, py::array::c_style | py::array::forcecast> depth, py::object alpha,
-    const py::dict& kwargs) {
-  const sl::ParameterValues given = haze_values("composite", kwargs);
-  const sl::io::ImageF bg = image_of(background, "the background");
-  const sl::io::ImageF obj = image_of(object, "the object");
-  const sl::io::ImageF d = scalar_image_of(depth, "the object's depth");
-  const sl::haze::ImageHazeRequest r =
-      sl::haze::image_haze_request(sl::haze::HazeOperation::add, given, bg.width, bg.height);
-  const sl::io::ImageF depth_m = sl::haze::depth_in_metres(
-      d, {r.options.near_m, r.options.far_m}, obj.width, obj.height, "the object's depth");
-  const sl::io::ImageF a =
-      alpha.is_none()
-          ? sl::haze::coverage_from_depth(depth_m)
-          : scalar_image_of(
-                alpha.cast<py::array_t<float, py::array::c_style | py::array::forcecast>>(),
-                "the alpha");
-  sl::io::ImageF out;
-  {
-    py::gil_scoped_release release;
-    out = sl::haze::composite(bg, obj, a, depth_m, r.camera, r.settings);
-  }
-  return rgb_array_of(out);
+  py::dict outputs;
+  for (const auto& [key, img] : result.images)
+    outputs[py::str(python_spelling(key))] = image_array(img);
+  for (const auto& [key, text] : result.texts)
+    outputs[py::str(python_spelling(key))] = text_object(text);
+  if (result.wrote_standard_output) outputs["output"] = text_object(result.standard_output);
+  return py::make_tuple(
+      result.record.dump(-1, ' ', false, nlohmann::ordered_json::error_handler_t::replace),
+      outputs);
 }
 
 // An SH polynomial table (Habel et al. 2008 eq. 1; docs/SH.md): fitted (`skylight sh fit`) or
@@ -1072,22 +816,14 @@ class ShTable {
  public:
   explicit ShTable(sl::sh::PolynomialTable t) : table_(std::move(t)) {}
 
-  // `skylight sh fit`: the operation's options; progress(done, total) after each projection;
-  // Ctrl-C stops between projections (KeyboardInterrupt).
-  static ShTable fit(const py::dict& kwargs, py::object progress) {
-    const auto& schema = sl::fit::ShFitRequest::schema();
-    sl::fit::ShFitRequest req;
-    schema.bind(schema_values(schema.specs(), kwargs, "sh.fit"), req, "sh.fit");
-    sl::fit::ShFitSettings s = sl::fit::sh_fit_settings(req);
-    s.polynomial.progress = interruptible(progress);
-    sl::sh::PolynomialTable t;
-    run_interruptible([&] { t = sl::fit::fit_sh_table(s); });
-    return ShTable(std::move(t));
-  }
-
   static ShTable load(const std::string& path) {
     return ShTable(sl::sh::table_from_json(sl::io::read_text_file(path), path));
   }
+  // A table of `sh fit`'s JSON (the fit operation's output kept in memory).
+  static ShTable from_json(const std::string& text) {
+    return ShTable(sl::sh::table_from_json(text, "the table"));
+  }
+  std::string to_json() const { return sl::sh::table_to_json(table_); }
 
   // The coefficients (bands^2, 3) at the sun's zenith and azimuth [deg] and tau (None: the
   // middle of the table's range, as the `sh` model takes it), with or without the ringing filter.
@@ -1103,34 +839,6 @@ class ShTable {
 
   void save(const std::string& path) const {
     sl::io::write_text_file(path, sl::sh::table_to_json(table_));
-  }
-  std::string c_header(const std::string& name, bool monomial) const {
-    return sl::sh::table_to_c_header(table_, name, monomial);
-  }
-
-  // `skylight sh error --json`'s rows.
-  py::list error(const py::dict& kwargs, py::object progress) const {
-    const auto& schema = sl::fit::ShErrorOptions::schema();
-    sl::fit::ShErrorOptions o;
-    schema.bind(schema_values(schema.specs(), kwargs, "sh.Table.error"), o, "sh.Table.error");
-    sl::fit::ShTableError e;
-    const auto report = interruptible(progress);
-    run_interruptible([&] { e = sl::fit::table_error(table_, o, report); });
-    const char* names = table_.channels == sl::sh::Channels::xyz ? "XYZ" : "rgb";
-    py::list rows;
-    for (const sl::fit::ShErrorRow& r : e.rows) {
-      py::dict d;
-      d["bands"] = r.bands;
-      d["channel"] = std::string(1, names[r.channel]);
-      d["e_mean_worst_percent"] = 100 * r.e_mean_worst;
-      d["e_mean_median_percent"] = 100 * r.e_mean_median;
-      d["e_max_worst_percent"] = 100 * r.e_max_worst;
-      d["e_max_median_percent"] = 100 * r.e_max_median;
-      d["worst_sun_zenith_deg"] = sl::rad_to_deg(r.worst_theta);
-      d["worst_tau"] = r.worst_tau;
-      rows.append(d);
-    }
-    return rows;
   }
 
   py::dict describe() const {
@@ -1152,29 +860,6 @@ class ShTable {
   }
 
  private:
-  // A progress callback that calls `progress(done, total)` (if given) under the GIL and stops the
-  // work on Ctrl-C (the work is then rethrown as KeyboardInterrupt by run_interruptible).
-  struct Interrupted {};
-  // `progress` outlives the work; the callback holds its address only, so that copies of the
-  // callback made without the GIL touch no reference count.
-  static std::function<void(int, int)> interruptible(const py::object& progress) {
-    const py::object* p = &progress;
-    return [p](int done, int total) {
-      py::gil_scoped_acquire gil;
-      if (PyErr_CheckSignals() != 0) throw Interrupted{};
-      if (!p->is_none()) (*p)(done, total);
-    };
-  }
-  template <class F>
-  static void run_interruptible(F&& fn) {
-    try {
-      py::gil_scoped_release release;
-      fn();
-    } catch (const Interrupted&) {
-      throw py::error_already_set();
-    }
-  }
-
   sl::sh::PolynomialTable table_;
 };
 
@@ -1194,18 +879,20 @@ PYBIND11_MODULE(_skylight, m) {
     }
   });
   m.attr("__version__") = sl::kVersion;
+  // The category of the library's warnings (a flag the request does not read, a model outside its
+  // domain): the command line's "skylight: warning: ..." lines.
+  g_warning_category = PyErr_NewException("pyskylight.SkylightWarning", PyExc_UserWarning, nullptr);
+  m.attr("SkylightWarning") = py::reinterpret_borrow<py::object>(g_warning_category);
+  // The GL paths of the operations, when this build has the GPU module.
+  sl::frontend::install_gpu_backend();
   m.def("models_json", &sl::operations::models_json);
   m.def("operations_json", &sl::operations::operations_json);
   m.def("sun_position", &sun_position, py::arg("ns"), py::arg("kwargs"));
   m.def("read_image", &read_image, py::arg("path"));
   m.def("sh_project", &sh_project);
-  m.def("write_report", &write_report);
-  m.def("nn_train", &nn_train);
-  m.def("nn_glsl", &nn_glsl);
-  m.def("estimate_fit", &estimate_fit);
-  m.def("haze_apply", &haze_apply);
+  m.def("run_operation", &run_operation, py::arg("name"), py::arg("kwargs"), py::arg("inputs"),
+        py::arg("progress"));
   m.def("sun_events", &sun_events);
-  m.def("haze_composite", &haze_composite);
   m.def("sh_per_direction", &sh_per_direction);
   m.def("sh_rotate", &sh_rotate);
   m.def("sh_rotate_about_zenith", &sh_rotate_about_zenith);
@@ -1214,12 +901,11 @@ PYBIND11_MODULE(_skylight, m) {
   });
   m.def("write_image", &write_image, py::arg("path"), py::arg("image"), py::arg("metadata"));
   py::class_<ShTable>(m, "_ShTable")
-      .def_static("fit", &ShTable::fit)
+      .def_static("from_json", &ShTable::from_json)
+      .def("to_json", &ShTable::to_json)
       .def_static("load", &ShTable::load)
       .def("coefficients", &ShTable::coefficients)
       .def("save", &ShTable::save)
-      .def("c_header", &ShTable::c_header)
-      .def("error", &ShTable::error)
       .def("describe", &ShTable::describe);
   py::class_<Sky>(m, "_Sky")
       .def(py::init<const std::string&, const py::dict&>(), py::arg("model"), py::arg("kwargs"))

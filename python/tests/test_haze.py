@@ -1,4 +1,4 @@
-"""skylight.haze on arrays: the CLI's image for the same inputs, and remove(add(x)) = x where the
+"""pyskylight.haze on arrays: the CLI's image for the same inputs, and remove(add(x)) = x where the
 transmission stays above the floor."""
 
 import os
@@ -8,7 +8,7 @@ import subprocess
 import numpy as np
 import pytest
 
-import skylight
+import pyskylight
 
 CLI = os.environ.get("SKYLIGHT_CLI", "skylight")
 DATA = pathlib.Path(__file__).resolve().parents[2] / "data" / "haze_scene"
@@ -26,39 +26,39 @@ def cli_flags(options):
 
 
 def test_add_is_the_clis_and_remove_undoes_it(tmp_path):
-    image = skylight.io.read(DATA / "valley.hdr")
-    depth = skylight.io.read(DATA / "valley_depth.pfm")[:, :, 0]
-    hazy = skylight.haze.add(image, depth, **OPTIONS)
+    image = pyskylight.io.read(DATA / "valley.hdr")
+    depth = pyskylight.io.read(DATA / "valley_depth.pfm")[:, :, 0]
+    hazy = pyskylight.haze.add(image, depth, **OPTIONS)
     assert hazy.shape == image.shape and hazy.dtype == np.float32
     out = tmp_path / "hazy.pfm"
     subprocess.run([CLI, "haze", "add", "--image", str(DATA / "valley.hdr"), "--depth",
                     str(DATA / "valley_depth.pfm"), *cli_flags(OPTIONS), "-o", str(out)],
                    check=True, capture_output=True)
-    np.testing.assert_array_equal(hazy, skylight.io.read(out))
+    np.testing.assert_array_equal(hazy, pyskylight.io.read(out))
     # Haze brightens the distant dark ridges; removing it gives the image back where the
     # transmission is well above the floor (the near ridges).
     near = depth < 3000
-    back = skylight.haze.remove(hazy, depth, **OPTIONS)
+    back = pyskylight.haze.remove(hazy, depth, **OPTIONS)
     np.testing.assert_allclose(back[near], image[near], rtol=ROUND_TRIP_TOL, atol=1e-3)
     # Re-targeting T 3 -> 2 -> 3 gives the image back (eq. 26 is invertible where the
     # transmission stays above the floor). (3 -> 2 is not add at T 2: eq. 26 scales by the ratio
     # of camera-integrated transmissions, an approximation of the spectral integral; docs/HAZE.md.)
-    clearer = skylight.haze.retarget(hazy, depth, target_turbidity=2, **OPTIONS)
-    again = skylight.haze.retarget(clearer, depth, **dict(OPTIONS, turbidity=2, target_turbidity=3))
+    clearer = pyskylight.haze.retarget(hazy, depth, target_turbidity=2, **OPTIONS)
+    again = pyskylight.haze.retarget(clearer, depth, **dict(OPTIONS, turbidity=2, target_turbidity=3))
     np.testing.assert_allclose(again[near], hazy[near], rtol=ROUND_TRIP_TOL, atol=1e-3)
 
 
 def test_errors():
     image = np.ones((4, 4, 3), np.float32)
-    with pytest.raises(skylight.InvalidArgument, match="turbidty is not a parameter of haze.add"):
-        skylight.haze.add(image, np.ones((4, 4)), turbidty=3)
-    with pytest.raises(skylight.InvalidArgument, match="shape"):
-        skylight.haze.add(image[:, :, 0], np.ones((4, 4)), **OPTIONS)
+    with pytest.raises(pyskylight.InvalidArgument, match="turbidty is not a parameter of haze add"):
+        pyskylight.haze.add(image, np.ones((4, 4)), turbidty=3)
+    with pytest.raises(pyskylight.InvalidArgument, match="the image has one channel"):
+        pyskylight.haze.add(image[:, :, 0], np.ones((4, 4)), **OPTIONS)
 
 
 def test_composite_is_the_clis(tmp_path):
-    background = skylight.haze.add(skylight.io.read(DATA / "valley.hdr"),
-                                   skylight.io.read(DATA / "valley_depth.pfm")[:, :, 0], **OPTIONS)
+    background = pyskylight.haze.add(pyskylight.io.read(DATA / "valley.hdr"),
+                                   pyskylight.io.read(DATA / "valley_depth.pfm")[:, :, 0], **OPTIONS)
     h, w = background.shape[:2]
     # A grey box 2 km away in the middle third, its edge half covered.
     obj = np.zeros_like(background)
@@ -70,25 +70,25 @@ def test_composite_is_the_clis(tmp_path):
     alpha[rows, cols] = 1.0
     alpha[rows, w // 3] = 0.5
     paths = {k: tmp_path / f"{k}.pfm" for k in ("bg", "obj", "depth", "alpha", "out")}
-    skylight.io.write(paths["bg"], background)
-    skylight.io.write(paths["obj"], obj)
-    skylight.io.write(paths["depth"], depth[:, :, None])
-    skylight.io.write(paths["alpha"], alpha[:, :, None])
+    pyskylight.io.write(paths["bg"], background)
+    pyskylight.io.write(paths["obj"], obj)
+    pyskylight.io.write(paths["depth"], depth[:, :, None])
+    pyskylight.io.write(paths["alpha"], alpha[:, :, None])
     for with_alpha in (True, False):
         args = ["--object-alpha", str(paths["alpha"])] if with_alpha else []
         subprocess.run([CLI, "haze", "composite", "--background", str(paths["bg"]), "--object",
                         str(paths["obj"]), "--object-depth", str(paths["depth"]), *args,
                         *cli_flags(OPTIONS), "-o", str(paths["out"])],
                        check=True, capture_output=True)
-        py = skylight.haze.composite(background, obj, depth, alpha if with_alpha else None,
+        py = pyskylight.haze.composite(background, obj, depth, alpha if with_alpha else None,
                                      **OPTIONS)
-        np.testing.assert_array_equal(py, skylight.io.read(paths["out"]))
+        np.testing.assert_array_equal(py, pyskylight.io.read(paths["out"]))
         paths["out"].unlink()
     # Outside the object the background is untouched; inside, the object got the haze add gives.
-    py = skylight.haze.composite(background, obj, depth, alpha, **OPTIONS)
+    py = pyskylight.haze.composite(background, obj, depth, alpha, **OPTIONS)
     np.testing.assert_array_equal(py[alpha == 0], background[alpha == 0])
-    hazed = skylight.haze.add(obj, np.where(depth > 0, depth, 1.0), **OPTIONS)
+    hazed = pyskylight.haze.add(obj, np.where(depth > 0, depth, 1.0), **OPTIONS)
     inside = alpha == 1
     np.testing.assert_allclose(py[inside], hazed[inside], rtol=ROUND_TRIP_TOL)
-    with pytest.raises(skylight.InvalidArgument, match="alpha"):
-        skylight.haze.composite(background, obj, depth, alpha * 2, **OPTIONS)
+    with pytest.raises(pyskylight.InvalidArgument, match="alpha"):
+        pyskylight.haze.composite(background, obj, depth, alpha * 2, **OPTIONS)

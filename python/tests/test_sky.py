@@ -1,4 +1,4 @@
-"""skylight.Sky against the library: parameters from the schemas, shapes and broadcasting, errors,
+"""pyskylight.Sky against the library: parameters from the schemas, shapes and broadcasting, errors,
 and agreement with the CLI (`skylight eval`) on the same inputs."""
 
 import os
@@ -7,7 +7,7 @@ import subprocess
 import numpy as np
 import pytest
 
-import skylight
+import pyskylight
 
 CLI = os.environ.get("SKYLIGHT_CLI", "skylight")
 
@@ -23,26 +23,26 @@ def cli_eval(args, rows):
 def test_models_are_the_clis_records():
     out = subprocess.run([CLI, "models", "--json"], capture_output=True, text=True, check=True)
     import json
-    assert skylight.models() == json.loads(out.stdout)
-    names = [m["name"] for m in skylight.models()]
+    assert pyskylight.models() == json.loads(out.stdout)
+    names = [m["name"] for m in pyskylight.models()]
     assert {"preetham", "hosek", "cie", "perez", "nishita", "nn"} <= set(names)
 
 
 def test_keywords_are_the_schemas_names_and_parameters_are_read_back():
-    sky = skylight.Sky("hosek", turbidity=3, albedo=0.3, sun_zenith=40, sun_azimuth=180)
+    sky = pyskylight.Sky("hosek", turbidity=3, albedo=0.3, sun_zenith=40, sun_azimuth=180)
     assert sky.model == "hosek"
     assert sky.sun_zenith == 40.0 and sky.sun_azimuth == 180.0
     assert sky.parameters()["turbidity"] == 3.0
     assert sky.parameters()["albedo"] == 0.3
     assert sky.domain() == []
     # The time and place through the SPA, as `--time --lat --lon`.
-    t = skylight.Sky("preetham", time="2024-06-21T12:00:00+02:00", lat=48.1, lon=11.6)
+    t = pyskylight.Sky("preetham", time="2024-06-21T12:00:00+02:00", lat=48.1, lon=11.6)
     import datetime as dt
     tz = dt.timezone(dt.timedelta(hours=2))
-    t2 = skylight.Sky("preetham", time=dt.datetime(2024, 6, 21, 12, tzinfo=tz), lat=48.1, lon=11.6)
+    t2 = pyskylight.Sky("preetham", time=dt.datetime(2024, 6, 21, 12, tzinfo=tz), lat=48.1, lon=11.6)
     assert t.sun_zenith == t2.sun_zenith and t.sun_azimuth == t2.sun_azimuth
     # The SPA's sun for that instant (10:00 UTC), through the same degrees.
-    z, a = skylight.sun_position([dt.datetime(2024, 6, 21, 10, tzinfo=dt.timezone.utc)],
+    z, a = pyskylight.sun_position([dt.datetime(2024, 6, 21, 10, tzinfo=dt.timezone.utc)],
                                  lat=48.1, lon=11.6)
     assert t.sun_zenith == z[0] and t.sun_azimuth == a[0]
     assert t.parameters() == {"turbidity": 3.0}
@@ -63,7 +63,7 @@ def test_exact_evaluation_is_bit_equal_to_skylight_eval(model, kwargs):
     for quantity in ("rgb", "xyz", "luminance"):
         names, expected = cli_eval(["--model", model, "--sun-zenith", "35", "--sun-azimuth", "170",
                                     "--quantity", quantity, *flags], rows)
-        sky = skylight.Sky(model, sun_zenith=35, sun_azimuth=170, **kwargs)
+        sky = pyskylight.Sky(model, sun_zenith=35, sun_azimuth=170, **kwargs)
         got = sky.evaluate([r[0] for r in rows], [r[1] for r in rows], quantity=quantity,
                            exact=True)
         assert names[2:] == sky.columns(quantity)
@@ -77,7 +77,7 @@ BATCH_REL_TOL = 1e-4
 
 
 def test_shapes_broadcast_and_the_batch_path_agrees_with_the_exact_one():
-    sky = skylight.Sky("preetham", turbidity=3, sun_zenith=45, sun_azimuth=180)
+    sky = pyskylight.Sky("preetham", turbidity=3, sun_zenith=45, sun_azimuth=180)
     z = np.linspace(0, 89, 30).reshape(5, 6)
     a = np.array([0.0, 90.0, 180.0, 270.0, 45.0, 300.0])  # broadcast over the rows
     fast = sky.evaluate(z, a, quantity="xyz")
@@ -99,7 +99,7 @@ def test_shapes_broadcast_and_the_batch_path_agrees_with_the_exact_one():
                                           ("hosek", {"turbidity": 3, "albedo": 0.3}),
                                           ("nn", {"turbidity": 3})])
 def test_float32_soa_is_the_float64_batch_path_and_checks_its_input(model, kwargs):
-    sky = skylight.Sky(model, sun_zenith=45, sun_azimuth=180, **kwargs)
+    sky = pyskylight.Sky(model, sun_zenith=45, sun_azimuth=180, **kwargs)
     rng = np.random.default_rng(5)
     v = rng.normal(size=(40000, 3))
     v /= np.linalg.norm(v, axis=1, keepdims=True)
@@ -114,45 +114,45 @@ def test_float32_soa_is_the_float64_batch_path_and_checks_its_input(model, kwarg
     np.testing.assert_array_equal(out, soa)
     z_long = z.copy()
     z_long[123] *= 1.01
-    with pytest.raises(skylight.InvalidArgument, match=r"direction 123 = .* not a unit vector"):
+    with pytest.raises(pyskylight.InvalidArgument, match=r"direction 123 = .* not a unit vector"):
         sky.evaluate_soa(x, y, z_long)
-    with pytest.raises(skylight.InvalidArgument, match=r"x must be a 1-D C-contiguous float32"):
+    with pytest.raises(pyskylight.InvalidArgument, match=r"x must be a 1-D C-contiguous float32"):
         sky.evaluate_soa(v[:, 0], y, z)
-    with pytest.raises(skylight.InvalidArgument, match=r"one length"):
+    with pytest.raises(pyskylight.InvalidArgument, match=r"one length"):
         sky.evaluate_soa(x, y, z[:10])
-    with pytest.raises(skylight.InvalidArgument, match=r"shape \(3, 40000\)"):
+    with pytest.raises(pyskylight.InvalidArgument, match=r"shape \(3, 40000\)"):
         sky.evaluate_soa(x, y, z, out=np.empty((40000, 3), dtype=np.float32))
 
 
 def test_spectral_and_sun_modes():
-    sky = skylight.Sky("preetham", turbidity=3, sun_zenith=45, sun_azimuth=180)
+    sky = pyskylight.Sky("preetham", turbidity=3, sun_zenith=45, sun_azimuth=180)
     s = sky.evaluate([10, 20], [0, 0], quantity="spectral", wavelengths=[450, 550, 650])
     assert s.shape == (2, 3) and (s > 0).all()
     assert sky.columns("spectral", [450, 550]) == ["L450", "L550"]
-    sun = skylight.Sky("preetham", turbidity=3, sun_zenith=45, sun_azimuth=180, sun_only=True)
+    sun = pyskylight.Sky("preetham", turbidity=3, sun_zenith=45, sun_azimuth=180, sun_only=True)
     at_sun = sun.evaluate(45.0, 180.0, quantity="luminance")
     away = sun.evaluate(10.0, 0.0, quantity="luminance")
     assert at_sun[0] > 1e8 and away[0] == 0.0
 
 
 def test_bad_values_raise_invalid_argument_naming_the_parameter():
-    with pytest.raises(skylight.InvalidArgument, match=r"turbidity = 100 is outside"):
-        skylight.Sky("preetham", turbidity=100)
-    with pytest.raises(ValueError, match=r"turbidty is not a parameter of model 'preetham'; "
-                                         r"did you mean 'turbidity'\?"):
-        skylight.Sky("preetham", turbidty=3)
-    with pytest.raises(skylight.InvalidArgument, match=r"unknown model 'preethm'"):
-        skylight.Sky("preethm")
-    with pytest.raises(skylight.InvalidArgument, match=r"turbidity must be a number"):
-        skylight.Sky("preetham", turbidity="3")
-    with pytest.raises(skylight.InvalidArgument, match=r"time gives the sun"):
-        skylight.Sky("preetham", time="2024-06-21T12:00:00Z", lat=1, lon=2, sun_zenith=3)
-    sky = skylight.Sky("cie", cie_type=7)
-    with pytest.raises(skylight.InvalidArgument, match=r"zenith_deg\[1\] = 181 is outside"):
+    with pytest.raises(pyskylight.InvalidArgument, match=r"turbidity = 100 is outside"):
+        pyskylight.Sky("preetham", turbidity=100)
+    with pytest.raises(ValueError, match=r"turbidty is not a parameter of Sky or of model "
+                                         r"'preetham'; did you mean 'turbidity'\?"):
+        pyskylight.Sky("preetham", turbidty=3)
+    with pytest.raises(pyskylight.InvalidArgument, match=r"unknown model 'preethm'"):
+        pyskylight.Sky("preethm")
+    with pytest.raises(pyskylight.InvalidArgument, match=r"turbidity must be a number"):
+        pyskylight.Sky("preetham", turbidity="3")
+    with pytest.raises(pyskylight.InvalidArgument, match=r"time gives the sun"):
+        pyskylight.Sky("preetham", time="2024-06-21T12:00:00Z", lat=1, lon=2, sun_zenith=3)
+    sky = pyskylight.Sky("cie", cie_type=7)
+    with pytest.raises(pyskylight.InvalidArgument, match=r"zenith_deg\[1\] = 181 is outside"):
         sky.evaluate([0, 181], [0, 0])
-    with pytest.raises(skylight.InvalidArgument, match=r"spectral"):
+    with pytest.raises(pyskylight.InvalidArgument, match=r"spectral"):
         sky.evaluate(0, 0, quantity="spectral", wavelengths=[550])
-    with pytest.raises(skylight.InvalidArgument, match=r"quantity = 'lum'"):
+    with pytest.raises(pyskylight.InvalidArgument, match=r"quantity = 'lum'"):
         sky.evaluate(0, 0, quantity="lum")
 
 
@@ -167,7 +167,7 @@ def read_pfm(path):
 
 
 def test_render_is_the_clis_image(tmp_path):
-    sky = skylight.Sky("hosek", turbidity=3, albedo=0.3, sun_zenith=50, sun_azimuth=120)
+    sky = pyskylight.Sky("hosek", turbidity=3, albedo=0.3, sun_zenith=50, sun_azimuth=120)
     img = sky.render(64, 32)
     assert img.shape == (32, 64, 3) and img.dtype == np.float32
     out = tmp_path / "sky.pfm"
@@ -188,6 +188,6 @@ def test_render_is_the_clis_image(tmp_path):
     # A fisheye image masks the corners outside its circle.
     fish, mask = sky.render(32, 32, projection="fisheye", return_mask=True)
     assert mask[0, 0] and not mask[16, 16]
-    with pytest.raises(skylight.InvalidArgument, match=r"lense is not a parameter of render; "
+    with pytest.raises(pyskylight.InvalidArgument, match=r"lense is not a parameter of render; "
                                                        r"did you mean 'lens'\?"):
         sky.render(32, 32, projection="fisheye", lense="equisolid")

@@ -21,7 +21,7 @@ import time
 
 import numpy as np
 
-import skylight
+import pyskylight
 
 MODELS = [("preetham", {"turbidity": 3}), ("hosek", {"turbidity": 3, "albedo": 0.3}),
           ("nn", {"turbidity": 3})]
@@ -53,7 +53,7 @@ def main():
           f"{'soa py':>7} {'C++':>7} {'kernel':>7} {'ratio':>6} {'/kernel':>7} | "
           f"{'rows/kernel':>11}   (ms)")
     for name, kw in MODELS:
-        sky = skylight.Sky(name, sun_zenith=45, sun_azimuth=180, **kw)
+        sky = pyskylight.Sky(name, sun_zenith=45, sun_azimuth=180, **kw)
         out = np.empty((args.n, 3))
         out32 = np.empty((3, args.n), dtype=np.float32)
         t = {k: [] for k in ("py", "py_out", "rows", "soa", "checked", "kernel")}
@@ -74,7 +74,7 @@ def main():
               f"{m['checked']:7.2f} {m['kernel']:7.2f} {m['soa'] / m['checked']:6.3f} "
               f"{m['soa'] / m['kernel']:7.3f} | {m['rows'] / m['kernel']:11.2f}")
     # The cost of a call itself: 16 directions.
-    sky = skylight.Sky("preetham", sun_zenith=45, sun_azimuth=180, turbidity=3)
+    sky = pyskylight.Sky("preetham", sun_zenith=45, sun_azimuth=180, turbidity=3)
     few = v[:16]
     calls = []
     for _ in range(args.repeat):

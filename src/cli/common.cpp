@@ -140,8 +140,6 @@ std::string HelpFormatter::make_description(const CLI::App* app) const {
 
 // ---- flags from the schema ----------------------------------------------------------------------
 
-namespace {}  // namespace
-
 std::string flag_spelling(std::string_view name) {
   return name == "output" ? "-o" : "--" + std::string(name);
 }
@@ -171,6 +169,8 @@ std::string value_label(const ParameterSpec& spec) {
       return label;
     }
     case ParameterKind::text:
+      if (spec.file != FileRole::none)
+        return spec.file == FileRole::output_directory ? "DIR" : "FILE";
       return spec.choices.empty() ? "TEXT" : fmt::format("{{{}}}", fmt::join(spec.choices, "|"));
     case ParameterKind::flag:
       return {};
@@ -182,33 +182,22 @@ void SchemaFlags::add(CLI::App& app, const std::vector<ParameterSpec>& specs) {
   for (const ParameterSpec& spec : specs) {
     specs_.push_back(spec);
     auto& raw = raw_[spec.name];
+    const std::string names = spec.name == "output" ? "-o,--output" : spec.flag();
     CLI::Option* opt = nullptr;
     if (spec.kind == ParameterKind::flag) {
       opt = app.add_flag_callback(
-          spec.flag(), [&raw] { raw = "true"; }, spec.help());
+          names, [&raw] { raw = "true"; }, spec.help());
     } else if (spec.repeated) {
       opt = app.add_option_function<std::vector<std::string>>(
-          spec.flag(), [&raw](const std::vector<std::string>& v) { raw = join_repeated(v); },
+          names, [&raw](const std::vector<std::string>& v) { raw = join_repeated(v); },
           spec.help());
     } else {
       opt = app.add_option_function<std::string>(
-          spec.flag(), [&raw](const std::string& s) { raw = s; }, spec.help());
+          names, [&raw](const std::string& s) { raw = s; }, spec.help());
       if (spec.kind != ParameterKind::text || !spec.choices.empty()) opt->check(schema_check(spec));
     }
     if (spec.kind != ParameterKind::flag) opt->type_name(value_label(spec));
-    options_[spec.name] = opt;
   }
-}
-
-CLI::Option* SchemaFlags::option(std::string_view name) const {
-  const auto it = options_.find(name);
-  SKYLIGHT_CHECK(it != options_.end(), "SchemaFlags: no such flag");
-  return it->second;
-}
-
-bool SchemaFlags::given(std::string_view name) const {
-  const auto it = raw_.find(name);
-  return it != raw_.end() && it->second.has_value();
 }
 
 ParameterValues SchemaFlags::values() const {
@@ -216,27 +205,6 @@ ParameterValues SchemaFlags::values() const {
   for (const ParameterSpec& spec : specs_)
     if (const auto& raw = raw_.at(spec.name)) v.set(spec.name, spec.parse(*raw));
   return v;
-}
-
-std::optional<sun::SpaInput> solar_position_input(const ParameterValues& given) {
-  return operations::solar_position_input(given);
-}
-
-void warn_unread_layout(const ImageOptions& layout, const ParameterValues& given) {
-  for (const std::string& name : layout.unread(given))
-    warn(fmt::format("{} is not read ({}); ignored", flag_spelling(name),
-                     layout.calibration.empty()
-                         ? "not a parameter of this projection"
-                         : flag_spelling(layout.calibration_flag) + " gives the layout"));
-}
-
-void wire_solar_position(const SchemaFlags& flags, const std::vector<std::string>& angles,
-                         bool spa_needs_time) {
-  CLI::Option* time = flags.option("time");
-  for (const std::string& a : angles) time->excludes(flags.option(a));
-  if (!spa_needs_time) return;
-  for (const auto& spec : sun::spa_parameter_specs())
-    if (flags.has(spec.name)) flags.option(spec.name)->needs(time);
 }
 
 // ---- model flags --------------------------------------------------------------------------------
@@ -258,135 +226,8 @@ model_parameter_names() {
   return out;
 }
 
-namespace {
-
-// Help for a parameter several models declare: the first description, then each model's range
-// and default.
-std::string model_flag_help(const std::vector<std::pair<std::string, ParameterSpec>>& specs) {
-  const ParameterSpec& first = specs.front().second;
-  std::string h = first.description;
-  if (!first.unit.empty() && first.unit != "1") h += fmt::format(" [{}]", first.unit);
-  for (const auto& [model, spec] : specs) {
-    h += fmt::format("; {}: ", model);
-    if (spec.kind == ParameterKind::numbers) h += fmt::format("{} values, each ", spec.count);
-    h += fmt::format("{}, default {}", spec.range_text(), spec.default_text());
-  }
-  return h;
-}
-
-}  // namespace
-
-void ModelOptions::add(CLI::App& app) {
-  // --model without CLI11's membership check: an unknown name is the registry's error, which
-  // lists the models.
-  const ParameterSpec model = model_spec();
-  app.add_option(model.flag(), model_, model.description)->required();
-  std::vector<ParameterSpec> specs = operations::model_specs();
-  specs.erase(std::remove_if(specs.begin(), specs.end(),
-                             [&](const ParameterSpec& s) { return s.name == model.name; }),
-              specs.end());
-  flags_.add(app, specs);
-  flags_.option("sun-zenith")->excludes(flags_.option("sun-elevation"));
-  wire_solar_position(flags_, {"sun-zenith", "sun-elevation", "sun-azimuth"});
-  flags_.option("include-sun")->excludes(flags_.option("sun-only"));
-  for (const auto& [name, specs] : model_parameter_names()) {
-    const bool flag = std::all_of(specs.begin(), specs.end(), [](const auto& s) {
-      return s.second.kind == ParameterKind::flag;
-    });
-    if (flag) {
-      // A switch (no value): present = true.
-      raw_[name];
-      app.add_flag_callback(
-          "--" + name, [this, n = name] { raw_[n] = "true"; }, model_flag_help(specs));
-    } else {
-      app.add_option("--" + name, raw_[name], model_flag_help(specs))
-          ->type_name(value_label(specs.front().second));
-    }
-  }
-}
-
-std::string ModelOptions::model_name() const {
-  return model_;
-}
-
-SunMode ModelOptions::sun_mode() const {
-  return flags_.bind(SolarDisc::schema(), SolarDisc{}, "solar disc").mode;
-}
-
-const ModelInfo& ModelOptions::info() const {
-  return require_model(model_name());
-}
-
-SkyParameters ModelOptions::parameters() const {
-  const ModelInfo& m = info();
-  ParameterValues given = flags_.values();
-  for (const auto& [name, text] : raw_) {
-    if (!text) continue;
-    const ParameterSpec* spec = m.find_parameter(name);
-    if (spec == nullptr) {
-      warn(fmt::format("--{} is not a parameter of model '{}'; ignored", name, m.name));
-      continue;
-    }
-    given.set(name, spec->parse(*text));
-  }
-  return operations::sky_request(m, given).parameters;
-}
-
-std::unique_ptr<SkyModel> ModelOptions::make() const {
-  const SkyParameters p = parameters();
-  auto model = make_sky_model(info().name, p);
-  // A parameter of the schema that this model, with these values, does not read (e.g. nn's
-  // turbidity for a network trained without one): said, and not recorded (parameter_values()).
-  const ParameterValues read = model->parameter_values();
-  for (const auto& [name, value] : p.values.all())
-    if (!read.has(name))
-      warn(fmt::format("--{} is not read by model '{}' with these parameters; ignored", name,
-                       model->name()));
-  check_sun_mode(*model, sun_mode());
-  return model;
-}
-
-io::Metadata ModelOptions::solar_position_metadata() const {
-  const auto spa = solar_position_input(flags_.values());
-  if (!spa) return {};
-  const sun::SpaInput& in = *spa;
-  return {
-      {"skylight:time", sun::format_iso8601(in.time, 3)},
-      {"skylight:latitude_deg", fmt::format("{}", rad_to_deg(in.latitude))},
-      {"skylight:longitude_deg", fmt::format("{}", rad_to_deg(in.longitude))},
-      {"skylight:elevation_m", fmt::format("{}", in.elevation)},
-      {"skylight:pressure_mbar", fmt::format("{}", in.pressure)},
-      {"skylight:temperature_degC", fmt::format("{}", in.temperature)},
-      {"skylight:delta_t_s", fmt::format("{}", in.delta_t)},
-  };
-}
-
 void warn(std::string_view message) {
   std::cerr << "skylight: warning: " << message << "\n";
-}
-
-void warn_domain(const SkyModel& model, bool spectral) {
-  for (const auto& issue : model.domain().issues)
-    if (spectral || !issue.spectral_only)
-      warn(fmt::format("{} ({}): {}", model.name(), to_string(issue.validity), issue.message));
-}
-
-io::Metadata model_metadata(const SkyModel& model, std::string_view sun_mode) {
-  const auto& sun = sun_parameter_specs();
-  io::Metadata md{
-      {"skylight:version", kVersion},
-      {"skylight:model", std::string(model.name())},
-      {sun[0].metadata_key(), fmt::format("{}", rad_to_deg(model.sun().zenith))},
-      {sun[1].metadata_key(), fmt::format("{}", rad_to_deg(model.sun().azimuth))},
-  };
-  const ParameterValues values = model.parameter_values();
-  const ModelInfo& info = require_model(model.name());
-  for (const auto& spec : info.parameters)
-    if (const ParameterValue* v = values.find(spec.name))
-      md.emplace_back(spec.metadata_key(), spec.format(*v));
-  md.emplace_back("skylight:sun", std::string(sun_mode));
-  md.emplace_back("skylight:colour", info.colour_note());
-  return md;
 }
 
 // ---- output -------------------------------------------------------------------------------------
@@ -399,28 +240,6 @@ void write_stdout(std::string_view text) {
     std::cout.clear();
     throw IoError(fmt::format("cannot write to standard output: {}",
                               err != 0 ? io::errno_message(err) : "write failed"));
-  }
-}
-
-namespace {
-std::vector<std::pair<std::string, bool>>& commit_notices() {
-  static std::vector<std::pair<std::string, bool>> notices;
-  return notices;
-}
-}  // namespace
-
-void announce_after_commit(std::string line, bool to_stderr) {
-  commit_notices().emplace_back(std::move(line), to_stderr);
-}
-
-void print_commit_notices() {
-  std::vector<std::pair<std::string, bool>> notices;
-  notices.swap(commit_notices());
-  for (const auto& [line, to_stderr] : notices) {
-    if (to_stderr)
-      std::cerr << line << "\n";
-    else
-      write_stdout(line + "\n");
   }
 }
 
@@ -449,17 +268,30 @@ double Progress::elapsed_s() const {
 }
 
 void Progress::operator()(int done, int total, std::string_view step) {
+  const double now = elapsed_s();
+  const bool last = total > 0 && done == total;
+  if (!last && now - last_shown_ < (tty_ ? kRedrawSeconds : kLineSeconds)) return;
+  if (!tty_ && now < kQuietSeconds) return;
+  last_shown_ = now;
+  if (total <= 0) {
+    // Steps without a known end: their count.
+    if (tty_)
+      std::cerr << fmt::format("\r\x1b[K[{}] {:5.1f} s  {}", done, now, step) << std::flush;
+    else
+      std::cerr << fmt::format("skylight {}: [{}] {:.1f} s {}\n", command_, done, now, step);
+    return;
+  }
   if (tty_) {
     constexpr int kBar = 30;
-    const int filled = total > 0 ? done * kBar / total : kBar;
+    const int filled = done * kBar / total;
     std::cerr << fmt::format("\r\x1b[K[{}{}] {:>2}/{} {:5.1f} s  {}", std::string(filled, '#'),
-                             std::string(kBar - filled, ' '), done, total, elapsed_s(), step)
+                             std::string(kBar - filled, ' '), done, total, now, step)
               << std::flush;
-    if (done == total) std::cerr << "\n";
-  } else if (elapsed_s() >= kQuietSeconds) {
-    // A log (not a terminal): one line per step, none while the command is still short.
-    std::cerr << fmt::format("skylight {}: [{}/{}] {:.1f} s {}\n", command_, done, total,
-                             elapsed_s(), step);
+    if (last) std::cerr << "\n";
+  } else {
+    // A log (not a terminal): one line per shown step.
+    std::cerr << fmt::format("skylight {}: [{}/{}] {:.1f} s {}\n", command_, done, total, now,
+                             step);
   }
 }
 

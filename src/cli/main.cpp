@@ -1,5 +1,6 @@
-// skylight command-line tool: a table of subcommands, one file per family (common.h). main()
-// wires them, parses, and maps errors to exit statuses:
+// skylight command-line tool: the listings (models_cmd.cpp) and one command per operation of the
+// library, generated from its declaration (operation_cmd.cpp). main() wires them, parses, and
+// maps errors to exit statuses:
 // 0 success, 2 usage error or invalid value, 1 runtime failure (I/O etc.).
 #include <fmt/format.h>
 
@@ -9,12 +10,11 @@
 #include <new>
 
 #include "common.h"
+#include "gpu_backend.h"
 #include "skylight/core/error.h"
 #include "skylight/core/numbers.h"
 #include "skylight/core/parallel.h"
 #include "skylight/core/parameters.h"
-#include "skylight/core/progress.h"
-#include "skylight/io/file.h"
 #include "skylight/version.h"
 
 namespace cli = skylight::cli;
@@ -44,18 +44,11 @@ int main(int argc, char** argv) {
   // Global options (--threads) are accepted after the subcommand too.
   app.fallthrough();
 
+  // The GL paths of the operations, when this build has the GPU module.
+  skylight::frontend::install_gpu_backend();
   cli::Commands commands;
   cli::add_models_command(app, commands);
-  cli::add_render_command(app, commands);
-  cli::add_eval_command(app, commands);
-  cli::add_bench_command(app, commands);
-  cli::add_report_command(app, commands);
-  cli::add_sun_command(app, commands);
-  cli::add_daylight_command(app, commands);
-  cli::add_nn_command(app, commands);
-  cli::add_estimate_command(app, commands);
-  cli::add_sh_command(app, commands);
-  cli::add_haze_command(app, commands);
+  cli::add_operation_commands(app, commands);
   // Each subcommand's --help, a group's (nn, sh, haze) too, also lists the global option (CLI11
   // shows only the page's own options).
   const std::string global =
@@ -76,6 +69,9 @@ int main(int argc, char** argv) {
     std::cerr << "skylight: error: cannot write to standard output\n";
     return cli::kExitRuntime;
   };
+  // Flags no command knows are collected (they fall through to here) and handed to the operation
+  // of the command line, whose own check refuses them naming the nearest parameter.
+  app.allow_extras();
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -109,21 +105,23 @@ int main(int argc, char** argv) {
                       skylight::excerpt(env), skylight::kMaxThreads));
     if (!threads.empty())
       skylight::set_thread_count(static_cast<int>(std::get<double>(threads_spec.parse(threads))));
+    // The command given (its outputs are one transaction: operations::execute).
+    const std::vector<std::string> extras = app.remaining(true);
     for (const auto& c : commands) {
       if (!c.app->parsed()) continue;
-      // A command's files are all-or-nothing: written to temporaries, renamed when it succeeds.
-      skylight::io::OutputTransaction outputs;
-      // What the library precomputes on the command's behalf (a model's tables) shows its steps
-      // as the command's progress.
-      cli::Progress precomputation(c.app->get_name() + " (precomputation)");
-      const skylight::ScopedProgressSink sink(
-          [&](int done, int total, std::string_view step) { precomputation(done, total, step); });
-      const int status = c.run();
-      if (status == cli::kExitOk) {
-        outputs.commit();
-        cli::print_commit_notices();
+      if (!extras.empty() && !c.takes_extras) {
+        const auto unknown = cli::unknown_name_error(app, argc, argv);
+        throw skylight::InvalidArgument(
+            unknown ? *unknown
+                    : fmt::format("unexpected argument '{}'", skylight::excerpt(extras.front())));
       }
-      return status;
+      return c.run(extras);
+    }
+    if (!extras.empty()) {
+      const auto unknown = cli::unknown_name_error(app, argc, argv);
+      throw skylight::InvalidArgument(
+          unknown ? *unknown
+                  : fmt::format("unexpected argument '{}'", skylight::excerpt(extras.front())));
     }
   } catch (const std::bad_alloc&) {
     std::cerr << "skylight: error: out of memory\n";

@@ -40,10 +40,16 @@ int run_operations(bool json, bool markdown) {
   } else {
     for (const auto& op : operations::registry()) {
       out += fmt::format("{}\n  {}\n  result: {}\n  parameters:\n", op.name, op.description,
-                         op.result);
+                         op.result_type);
       for (const auto& p : op.parameters)
         out += fmt::format("    --{:<22} [{}] {}, default {}: {}\n", p.name, p.unit, p.range_text(),
                            p.default_text(), p.description);
+      for (const auto& r : op.relations)
+        out += fmt::format("    relation: --{} {} --{}{}\n", r.a, operations::to_string(r.kind),
+                           r.b, r.unread ? " (unread otherwise)" : "");
+      out += "  result fields:";
+      for (const auto& f : op.result) out += " " + f.name;
+      out += "\n";
     }
   }
   write_stdout(out);
@@ -59,7 +65,7 @@ void add_models_command(CLI::App& app, Commands& commands) {
   cmd->add_flag("--json", (*flags)[0], "machine-readable JSON");
   cmd->add_flag("--markdown", (*flags)[1],
                 "the parameter tables of docs/MODELS.md (generated from the schema)");
-  commands.push_back({cmd, [flags] { return run_models((*flags)[0], (*flags)[1]); }});
+  commands.push_back({cmd, [flags](const auto&) { return run_models((*flags)[0], (*flags)[1]); }});
 
   auto op_flags = std::make_shared<std::array<bool, 2>>();
   auto* ops = app.add_subcommand(
@@ -69,7 +75,8 @@ void add_models_command(CLI::App& app, Commands& commands) {
       "(unit, range, default) and results; the models' parameters: `skylight models`.");
   ops->add_flag("--json", (*op_flags)[0], "machine-readable JSON");
   ops->add_flag("--markdown", (*op_flags)[1], "the parameter tables of docs/OPERATIONS.md");
-  commands.push_back({ops, [op_flags] { return run_operations((*op_flags)[0], (*op_flags)[1]); }});
+  commands.push_back(
+      {ops, [op_flags](const auto&) { return run_operations((*op_flags)[0], (*op_flags)[1]); }});
 }
 
 }  // namespace skylight::cli

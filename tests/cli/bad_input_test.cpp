@@ -114,12 +114,13 @@ std::vector<Case> cases() {
       {"render --model cie --width 32769 -o OUT.exr", "", 2, e},
       {"render --model cie --width 32768 --height 32768 -o OUT.exr", "", 1,
        e + "rendering a 32768x32768 image needs about"},
-      // Files.
-      {"eval --model cie --input /nonexistent/dirs.csv", "", 1,
-       e + "cannot read '/nonexistent/dirs.csv': No such file or directory"},
-      {"render --model cie --width 8 --height 4 -o OUT.txt", "", 2, e + "unsupported image file"},
-      {"report --quick --measurements /nonexistent/scan.csv -o OUT", "", 1,
-       e + "cannot read '/nonexistent/scan.csv'"},
+      // Files: a missing input and an output's format are usage errors found before any work.
+      {"eval --model cie --input /nonexistent/dirs.csv", "", 2,
+       e + "--input '/nonexistent/dirs.csv': no such file"},
+      {"render --model cie --width 8 --height 4 -o OUT.txt", "", 2,
+       e + "-o 'OUT.txt': write .exr, .hdr, .pfm or .png"},
+      {"report --quick --measurements /nonexistent/scan.csv -o OUT", "", 2,
+       e + "--measurements '/nonexistent/scan.csv': no such file"},
       // EXR headers that OpenEXR and our walk would read differently (issue 28 item 10).
       {"estimate --image IN", "", 1,
        e + "cannot read 'IN': not a valid OpenEXR file: attribute 'pixelAspectRatio' of type "
@@ -160,6 +161,9 @@ TEST_F(Cli, BadInputMatrix) {
     const std::string out = fmt::format("'{}'", (dir_ / "out").string());
     for (std::size_t at; (at = args.find("OUT")) != std::string::npos;) args.replace(at, 3, out);
     std::string message = c.message;
+    // OUT in a message: the output's path as messages show it (no quotes of the shell).
+    for (std::size_t at; (at = message.find("OUT")) != std::string::npos;)
+      message.replace(at, 3, (dir_ / "out").string());
     const fs::path inputs = dir_.parent_path() / (dir_.filename().string() + "-inputs");
     if (!c.file_name.empty()) {
       fs::create_directories(inputs);
@@ -209,10 +213,18 @@ TEST_F(Cli, AFailedCommandLeavesExistingOutputsUntouched) {
   EXPECT_EQ(slurp(out), before);
   for (const auto& e : fs::directory_iterator(dir_))
     EXPECT_EQ(e.path().filename(), "k.exr") << "left behind: " << e.path();
-  // A report that fails leaves no directory behind.
+  // A report that fails leaves no directory behind: before any work (a missing input) and during
+  // it (a scan that does not parse, read after the directory was made).
   const auto rep = dir_ / "report";
   EXPECT_EQ(run("report --quick --measurements /nonexistent.csv -o '" + rep.string() + "'").status,
-            1);
+            2);
+  EXPECT_FALSE(fs::exists(rep));
+  const auto scan = dir_.parent_path() / (dir_.filename().string() + "-scan.csv");
+  std::ofstream(scan) << "azimuth_deg,elevation_deg,luminance_cd_m2\n0,6,x\n";
+  EXPECT_EQ(
+      run("report --quick --measurements '" + scan.string() + "' -o '" + rep.string() + "'").status,
+      2);
+  fs::remove(scan);
   EXPECT_FALSE(fs::exists(rep));
 }
 
@@ -225,8 +237,8 @@ TEST_F(Cli, LegalLongFileNamesAndDirectoriesAsInputs) {
   const auto sub = dir_ / "d";
   fs::create_directories(sub);
   auto r = run("eval --model cie --input '" + sub.string() + "'");
-  EXPECT_EQ(r.status, 1);
-  EXPECT_EQ(r.err, "skylight: error: cannot read '" + sub.string() + "': is a directory\n");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_EQ(r.err, "skylight: error: --input '" + sub.string() + "': is a directory\n");
   const std::string line = std::string("'") + SKYLIGHT_CLI_PATH + "' eval --model cie < '" +
                            sub.string() + "' 2> '" + (dir_ / "err.txt").string() + "'";
   const int raw = std::system(line.c_str());
@@ -235,7 +247,7 @@ TEST_F(Cli, LegalLongFileNamesAndDirectoriesAsInputs) {
             "skylight: error: cannot read standard input: Is a directory\n");
   r = run("report --quick --measurements '" + sub.string() + "' -o '" + (dir_ / "r").string() +
           "'");
-  EXPECT_EQ(r.status, 1);
+  EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.err.find("is a directory"), std::string::npos) << r.err;
 }
 

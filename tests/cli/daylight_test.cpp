@@ -67,8 +67,10 @@ TEST_F(Cli, DaylightRefusesMissingAndContradictoryInputs) {
             "skylight: error: --dni = 50 with the sun 5 deg below the horizon: no direct light "
             "can reach the ground\n");
   EXPECT_EQ(err("--epw " + kSampleEpw + " -o " + (dir_ / "m.txt").string()),
-            "skylight: error: -o/--output '" + (dir_ / "m.txt").string() +
-                "': the matrix is written as .csv or .npy\n");
+            "skylight: error: -o '" + (dir_ / "m.txt").string() + "': write .csv or .npy\n");
+  EXPECT_EQ(
+      err("--dni 700 --dhi 120 --sun-zenith 30 --day-of-year 5 -o " + (dir_ / "m.csv").string()),
+      "skylight: error: -o needs --epw (one sky prints its values)\n");
 }
 
 TEST_F(Cli, DaylightMatrixOfTheSampleYear) {

@@ -178,12 +178,13 @@ TEST_F(Cli, EstimateUsesAUserMaskAndRefusesBadInputs) {
   EXPECT_NE(r.err.find("100 x 60"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("120 x 60"), std::string::npos) << r.err;
 
+  // Missing inputs: usage errors found before any work.
   r = run("estimate --image '" + (dir_ / "missing.exr").string() + "' " + kSun);
-  EXPECT_EQ(r.status, 1);
+  EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.err.find("missing.exr"), std::string::npos) << r.err;
   r = run("estimate --image '" + exr.string() + "' --mask '" + (dir_ / "nomask.png").string() +
           "' " + kSun);
-  EXPECT_EQ(r.status, 1);
+  EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.err.find("nomask.png"), std::string::npos) << r.err;
   r = run("estimate --image '" + exr.string() + "' --sun-zenith 40");
   EXPECT_EQ(r.status, 2) << "zenith without azimuth";

@@ -77,7 +77,7 @@ TEST_F(Cli, EvalReferenceAddsStandardErrorColumns) {
   EXPECT_EQ(r.out.substr(0, r.out.find('\n')), "zenith_deg,azimuth_deg,x,y,z,x_se,y_se,z_se");
   r = run("eval --model hillaire --quantity luminance --paths 10", in);
   EXPECT_EQ(r.status, 0) << r.err;
-  EXPECT_NE(r.err.find("warning: --paths is read only with --reference; ignored"),
+  EXPECT_NE(r.err.find("warning: --paths is not read without --reference; ignored"),
             std::string::npos)
       << r.err;
   for (const char* bad : {"eval --model preetham --reference", "eval --model hillaire --reference",

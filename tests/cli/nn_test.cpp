@@ -90,8 +90,10 @@ TEST_F(Cli, NnTrainPietrasChecksHeldOutDaySamples) {
           "sky-dome --max-error 1e6 -o '" +
           w + "'");
   ASSERT_EQ(r.status, 0) << r.err;
-  EXPECT_NE(r.out.find("region sky-dome\nheld-out check (20000 day samples, seed "),
-            std::string::npos)
+  using testing_support::text_field;
+  EXPECT_EQ(text_field(r.out, "region"), "sky-dome") << r.out;
+  EXPECT_EQ(
+      text_field(r.out, "held out check").rfind("held-out check (20000 day samples, seed ", 0), 0u)
       << r.out;
   std::ifstream in(w);
   const auto j = nlohmann::json::parse(in);
@@ -107,8 +109,11 @@ TEST_F(Cli, NnTrainValidateEval) {
           "--view-azimuths 6 --seed 2 --max-error 1e6 -o '" +
           w + "' --log '" + log + "'");
   ASSERT_EQ(r.status, 0) << r.err;
-  EXPECT_NE(r.out.find("validation: RMSE"), std::string::npos) << r.out;
-  EXPECT_NE(r.out.find("held-out check: relative error median"), std::string::npos) << r.out;
+  using testing_support::text_field;
+  EXPECT_NE(text_field(r.out, "validation rmse"), "") << r.out;
+  EXPECT_EQ(text_field(r.out, "held out check").rfind("held-out check: relative error median", 0),
+            0u)
+      << r.out;
   ASSERT_TRUE(fs::exists(w));
   std::ifstream ls(log);
   std::string header;
@@ -153,7 +158,7 @@ TEST_F(Cli, NnBadWeightsAndFlags) {
   EXPECT_EQ(r.status, 2) << r.err;
   EXPECT_NE(r.err.find("bad.json: field 'version'"), std::string::npos) << r.err;
   r = run("nn validate --weights '" + (dir_ / "none.json").string() + "'");
-  EXPECT_EQ(r.status, 1) << r.err;
+  EXPECT_EQ(r.status, 2) << r.err;  // a missing input: found before any work
   r = run("nn train --trainer magic -o '" + (dir_ / "x.json").string() + "'");
   EXPECT_EQ(r.status, 2) << r.err;
   EXPECT_FALSE(fs::exists(dir_ / "x.json"));
@@ -204,7 +209,7 @@ TEST_F(Cli, NnExportGlslIsValidAndAtomic) {
   EXPECT_FALSE(fs::exists(out));
   r = run("nn export --weights '" + (dir_ / "missing.json").string() + "' --glsl '" + out.string() +
           "'");
-  EXPECT_EQ(r.status, 1) << r.err;
+  EXPECT_EQ(r.status, 2) << r.err;  // a missing input: found before any work
   EXPECT_FALSE(fs::exists(out));
 }
 
@@ -237,26 +242,24 @@ TEST_F(Cli, NnTrainImagesKfoldAndAnimate) {
       run("nn train --images '" + (dir_ / "seq.csv").string() +
           "' --lat 48 --lon 11 --kfold 4 --hidden 8 --iterations 40 --samples 300 --max-error 1000 "
           "-o '" +
-          w + "'");
+          w + "' --json");
   ASSERT_EQ(r.status, 0) << r.err;
-  EXPECT_NE(r.out.find("4 images, 1200 examples"), std::string::npos) << r.out;
-  EXPECT_NE(r.out.find("4-fold cross-validation"), std::string::npos) << r.out;
-  // 40 iterations are not enough for the held-out capture (line 3): measured and printed, the
+  const auto tj = nlohmann::json::parse(r.out);
+  EXPECT_EQ(tj["images"].size(), 4u);
+  EXPECT_EQ(tj["examples"].get<int>(), 1200);
+  EXPECT_EQ(tj["folds"].size(), 4u);
+  // 40 iterations are not enough for the held-out capture (line 3): measured and reported, the
   // bound lifted (NnTrainImagesChecksTheCapturesBetween tests it).
-  EXPECT_NE(r.out.find("held-out captures (lines 3; the network trained on the other 3)"),
+  EXPECT_NE(tj["held_out_check"].get<std::string>().find(
+                "held-out captures (lines 3; the network trained on the other 3)"),
             std::string::npos)
       << r.out;
-  EXPECT_NE(r.out.find("mean  RMSE"), std::string::npos) << r.out;
   // The time row's sun is the SPA's; the last row's is found in the image.
-  std::istringstream lines(r.out);
-  std::string line;
   int found = 0;
-  while (std::getline(lines, line)) {
-    std::istringstream ls(line);
-    int row = 0;
-    double z = 0, a = 0;
-    std::string from;
-    if (line.find(".exr") == std::string::npos || !(ls >> row >> z >> a >> from)) continue;
+  for (const auto& image : tj["images"]) {
+    const int row = image["line"];
+    const double z = image["sun_zenith_deg"], a = image["sun_azimuth_deg"];
+    const std::string from = image["sun_from"];
     if (row == 4) {
       EXPECT_EQ(from, "time");
       EXPECT_NEAR(z, rad_to_deg(spa.zenith), kPrintedDeg);
@@ -278,9 +281,12 @@ TEST_F(Cli, NnTrainImagesKfoldAndAnimate) {
 
   r = run("nn animate --weights '" + w +
           "' --from 30,100 --to 70,200 --frames 3 --width 32 --height 16 -o '" + dir_.string() +
-          "/f_#.exr' --strip '" + dir_.string() + "/strip.png'");
+          "/f_#.exr' --strip '" + dir_.string() + "/strip.png' --json");
   ASSERT_EQ(r.status, 0) << r.err;
-  EXPECT_NE(r.out.find("    1          50.000          150.000"), std::string::npos) << r.out;
+  // Frame 1 is halfway.
+  const auto frame1 = nlohmann::json::parse(r.out)["frames"][1];
+  EXPECT_DOUBLE_EQ(frame1["sun_zenith_deg"].get<double>(), 50.0) << r.out;
+  EXPECT_DOUBLE_EQ(frame1["sun_azimuth_deg"].get<double>(), 150.0) << r.out;
   for (const char* f : {"f_0.exr", "f_1.exr", "f_2.exr", "strip.png"})
     EXPECT_TRUE(fs::exists(dir_ / f)) << f;
   EXPECT_FALSE(fs::exists(dir_ / "f_3.exr"));
@@ -360,10 +366,13 @@ TEST_F(Cli, NnAnimatePietrasThroughTwilight) {
       run("nn animate --weights '" + w +
           "' --observer-altitude 1000 --from 80,250 --to 110,270 --frames 3 --width 32 "
           "--height 16 -o '" +
-          dir_.string() + "/p_#.exr'");
+          dir_.string() + "/p_#.exr' --json");
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_EQ(r.err.find("below the horizon"), std::string::npos) << r.err;
-  EXPECT_NE(r.out.find("    1          95.000          260.000"), std::string::npos) << r.out;
+  const auto frame1 = nlohmann::json::parse(r.out)["frames"][1];
+  EXPECT_DOUBLE_EQ(frame1["sun_zenith_deg"].get<double>(), 95.0) << r.out;
+  EXPECT_DOUBLE_EQ(frame1["sun_azimuth_deg"].get<double>(), 260.0) << r.out;
+  EXPECT_EQ(nlohmann::json::parse(r.out)["dark_frames"].get<int>(), 0);
   render::RenderSettings s;
   s.width = 32;
   s.height = 16;
@@ -415,7 +424,11 @@ TEST_F(Cli, NnTrainImagesListErrorsNameTheRow) {
   for (const char* flag : {"--suns 3", "--view-zeniths 4", "--view-azimuths 5", "--network log3"}) {
     r = run("nn train --images '" + (dir_ / "bad.csv").string() + "' " + flag + " -o w.json");
     EXPECT_EQ(r.status, 2) << flag << ": " << r.err;
-    EXPECT_NE(r.err.find("excludes"), std::string::npos) << flag << ": " << r.err;
+    EXPECT_NE(r.err.find("--images and --" +
+                         std::string(flag).substr(2, std::string(flag).find(' ') - 2) +
+                         " exclude each other"),
+              std::string::npos)
+        << flag << ": " << r.err;
   }
 }
 
@@ -424,16 +437,30 @@ TEST_F(Cli, NnStudyTabulatesEfficiency) {
       run("nn study --source preetham --hidden 2,4 --iterations 5 --suns 2 "
           "--view-zeniths 3 --view-azimuths 4 --repeats 1");
   ASSERT_EQ(r.status, 0) << r.err;
-  EXPECT_NE(r.out.find("eps=1/(var*T)"), std::string::npos) << r.out;
-  EXPECT_NE(r.out.find("most efficient: "), std::string::npos) << r.out;
+  // One row per width; the most efficient is the width of the highest eps = 1 / (Var T).
+  EXPECT_NE(r.out.find("widths:\n  hidden "), std::string::npos) << r.out;
+  const auto j =
+      nlohmann::json::parse(run("nn study --source preetham --hidden 2,4 --iterations 5 --suns 2 "
+                                "--view-zeniths 3 --view-azimuths 4 --repeats 1 --json")
+                                .out);
+  ASSERT_EQ(j["widths"].size(), 2u);
+  const auto& w = j["widths"];
+  const int best = w[0]["efficiency"] > w[1]["efficiency"] ? 2 : 4;
+  EXPECT_EQ(j["most_efficient"].get<int>(), best);
+  for (const auto& row : w)
+    EXPECT_NEAR(row["efficiency"].get<double>(),
+                1.0 / (row["variance"].get<double>() * 1e-3 * row["t_ms"].get<double>()),
+                1e-9 * row["efficiency"].get<double>());
 }
 
 TEST_F(Cli, NnTrainValidateEvalPietras) {
   const std::string w = (dir_ / "p.json").string();
   testing_support::CliResult r = run(kQuickPietrasTraining + " -o '" + w + "'");
   ASSERT_EQ(r.status, 0) << r.err;
-  EXPECT_NE(r.out.find("pietras network (324 weights)"), std::string::npos) << r.out;
-  EXPECT_NE(r.out.find("trainer lbfgs"), std::string::npos) << r.out;  // --network's default
+  using testing_support::text_field;
+  EXPECT_EQ(text_field(r.out, "network"), "pietras") << r.out;
+  EXPECT_EQ(text_field(r.out, "weights"), "324") << r.out;
+  EXPECT_EQ(text_field(r.out, "trainer"), "lbfgs") << r.out;  // --network's default
   r = run("nn validate --weights '" + w + "' --json --samples 300");
   ASSERT_EQ(r.status, 0) << r.err;
   const auto j = nlohmann::json::parse(r.out);
@@ -450,8 +477,9 @@ TEST_F(Cli, NnTrainValidateEvalPietras) {
       << r.out;
   r = run("nn validate --weights '" + w + "' --samples 300");
   ASSERT_EQ(r.status, 0) << r.err;
-  EXPECT_NE(r.out.find("\nnote: the paper network's luminance error is its M output's"),
-            std::string::npos)
+  EXPECT_EQ(
+      text_field(r.out, "note").rfind("the paper network's luminance error is its M output's", 0),
+      0u)
       << r.out;
 
   // eval --model pietras on a Pietras file is the network's forward pass (the library's rgb_at).
@@ -535,7 +563,9 @@ TEST_F(Cli, NnTrainPietrasOnAnotherPlanet) {
   r = run("nn train --source nishita --network log3 --samples 2000 --init '" + w + "' -o '" + w +
           "'");
   EXPECT_EQ(r.status, 2);
-  EXPECT_NE(r.err.find("also the --init file"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("is the input --init: an output never overwrites an input"),
+            std::string::npos)
+      << r.err;
   r = run("nn train --source nishita --network log3 --samples 2000 --mie-g 0.7 --init '" + w +
           "' -o '" + more + "'");
   EXPECT_EQ(r.status, 2);
@@ -557,8 +587,10 @@ TEST_F(Cli, NnPlanetRendersFromOrbitAndFromTheGround) {
           "'");
 #ifdef SKYLIGHT_HAVE_GPU
   ASSERT_EQ(r.status, 0) << r.err;
-  EXPECT_NE(r.out.find("icosphere level 2: 324 vertices, 640 triangles"), std::string::npos)
-      << r.out;
+  using testing_support::text_field;
+  EXPECT_EQ(text_field(r.out, "subdivisions"), "2") << r.out;
+  EXPECT_EQ(text_field(r.out, "vertices"), "324") << r.out;
+  EXPECT_EQ(text_field(r.out, "triangles"), "640") << r.out;
   const io::ImageF img = io::read_image(orbit);
   ASSERT_EQ(img.width, 48);
   for (float x : img.data) EXPECT_TRUE(std::isfinite(x) && x >= 0.0f);

@@ -168,20 +168,23 @@ TEST_F(Cli, CubemapWidthDefaultsToSixTimesTheHeight) {
 
 TEST_F(Cli, FlagsOfAnotherProjectionAreIgnoredWithOneWarning) {
   const std::string out = " --width 8 --height 4 -o '" + (dir_ / "a.pfm").string() + "'";
+  const std::string wrote = "skylight: wrote " + (dir_ / "a.pfm").string() + "\n";
   testing_support::CliResult r =
       run("render --model cie --lens equisolid --fov 100 --look-azimuth 3" + out);
   EXPECT_EQ(r.status, 0) << r.err;
   EXPECT_EQ(r.err,
             "skylight: warning: --lens, --fov, --look-azimuth not used by --projection equirect; "
-            "ignored\n");
+            "ignored\n" +
+                wrote);
   r = run("render --model cie --projection camera --north-angle 10 --look-elevation 5 --fov 50" +
           out);
   EXPECT_EQ(r.status, 0) << r.err;
-  EXPECT_EQ(r.err, "skylight: warning: --north-angle not used by --projection camera; ignored\n");
+  EXPECT_EQ(r.err,
+            "skylight: warning: --north-angle not used by --projection camera; ignored\n" + wrote);
   r = run("render --model cie --projection fisheye --lens equisolid --fov 100 --north-angle 5" +
           out);
   EXPECT_EQ(r.status, 0) << r.err;
-  EXPECT_EQ(r.err, "");
+  EXPECT_EQ(r.err, wrote);
 }
 
 // A flag the chosen model does not read is a warning and is not recorded: a parameter of another

@@ -24,43 +24,55 @@ const std::string kSmallFit =
 // Both sides print shortest round-trip doubles of the same sums, in different orders.
 constexpr double kSameSumRelTol = 1e-12;
 
+// The Y coefficient of (l, m) in an `sh eval --json` record.
+double y_of(const nlohmann::json& record, int l, int m) {
+  for (const auto& c : record["coefficients"])
+    if (c["l"] == l && c["m"] == m) return c["values"][1].get<double>();
+  ADD_FAILURE() << "no coefficient (" << l << ", " << m << ")";
+  return 0.0;
+}
+
 TEST_F(Cli, ShFitEvalAndTheShModelAgree) {
   const std::string table = (dir_ / "t.json").string();
   const auto fit = run(kSmallFit + " -o " + table);
   ASSERT_EQ(fit.status, 0) << fit.err;
-  const auto eval =
-      run("sh eval --table " + table + " --sun-zenith 30 --sun-azimuth 90 --turbidity 3");
+  const std::string sky = " --sun-zenith 30 --sun-azimuth 90 --turbidity 3";
+  const auto eval = run("sh eval --table " + table + sky + " --json");
   ASSERT_EQ(eval.status, 0) << eval.err;
-  std::string header;
-  const auto rows = parse_csv_numbers(eval.out, &header);
-  EXPECT_EQ(header, "l,m,X,Y,Z");
-  ASSERT_EQ(rows.size(), 9u);
+  const auto je = nlohmann::json::parse(eval.out);
+  EXPECT_EQ(je["channel_names"], (nlohmann::json{"X", "Y", "Z"}));
+  ASSERT_EQ(je["coefficients"].size(), 9u);
   // At the zenith only the zonal Y_l0 = sqrt((2l + 1) / (4 pi)) are non-zero.
   double zenith_y = 0.0;
-  for (const auto& r : rows)
-    if (r[1] == 0.0) zenith_y += r[3] * std::sqrt((2 * r[0] + 1) / (4 * kPi));
-  const auto model = run("eval --model sh --table " + table +
-                             " --sun-zenith 30 --sun-azimuth 90 --turbidity 3 --quantity xyz",
+  for (const auto& c : je["coefficients"])
+    if (c["m"] == 0)
+      zenith_y += c["values"][1].get<double>() * std::sqrt((2 * c["l"].get<int>() + 1) / (4 * kPi));
+  std::string header;
+  const auto model = run("eval --model sh --table " + table + sky + " --quantity xyz",
                          "zenith_deg,azimuth_deg\n0,0\n150,20\n");
   ASSERT_EQ(model.status, 0) << model.err;
   const auto values = parse_csv_numbers(model.out, &header);
   ASSERT_EQ(values.size(), 2u);
   EXPECT_NEAR(values[0][3], zenith_y, kSameSumRelTol * std::abs(zenith_y)) << header;
   EXPECT_NE(values[1][3], 0.0) << "below the horizon: the unclamped reconstruction";
-  // --json: the same coefficients per channel; --no-ringing-filter changes the zonal ones only.
-  const auto json = run("sh eval --table " + table +
-                        " --sun-zenith 30 --sun-azimuth 90 --turbidity 3 --json --bands 2");
-  ASSERT_EQ(json.status, 0) << json.err;
-  const auto j = nlohmann::json::parse(json.out);
-  ASSERT_EQ(j["coefficients"]["Y"].size(), 4u);
-  EXPECT_EQ(j["coefficients"]["Y"][0].get<double>(), rows[0][3]);
-  EXPECT_TRUE(j["ringing_filter"].get<bool>());
-  const auto off = run("sh eval --table " + table +
-                       " --sun-zenith 30 --sun-azimuth 90 --turbidity 3 --no-ringing-filter");
-  const auto rows_off = parse_csv_numbers(off.out, &header);
-  EXPECT_EQ(rows_off[0][3], rows[0][3]);  // l = 0: sinc(0) = 1
-  EXPECT_NE(rows_off[2][3], rows[2][3]);  // (1, 0)
-  EXPECT_EQ(rows_off[1][3], rows[1][3]);  // (1, -1)
+  // Fewer bands: the first of the same coefficients; --no-ringing-filter changes the zonal ones
+  // only.
+  const auto two =
+      nlohmann::json::parse(run("sh eval --table " + table + sky + " --json --bands 2").out);
+  ASSERT_EQ(two["coefficients"].size(), 4u);
+  EXPECT_TRUE(two["ringing_filter"].get<bool>());
+  const auto off = nlohmann::json::parse(
+      run("sh eval --table " + table + sky + " --no-ringing-filter --json").out);
+  EXPECT_FALSE(off["ringing_filter"].get<bool>());
+  EXPECT_EQ(y_of(off, 0, 0), y_of(je, 0, 0));  // l = 0: sinc(0) = 1
+  EXPECT_NE(y_of(off, 1, 0), y_of(je, 1, 0));
+  EXPECT_EQ(y_of(off, 1, -1), y_of(je, 1, -1));
+  // The text form: a table of the coefficients, one row each.
+  const auto text = run("sh eval --table " + table + sky);
+  ASSERT_EQ(text.status, 0) << text.err;
+  const auto table_at = text.out.find("coefficients:\n");
+  ASSERT_NE(table_at, std::string::npos) << text.out;
+  EXPECT_NE(text.out.find("values", table_at), std::string::npos) << text.out;
 }
 
 TEST_F(Cli, ShFitOtherModelsFromTheirSchema) {
@@ -132,7 +144,7 @@ TEST_F(Cli, ShExportRenderAndErrors) {
   // The error table: one row per band count and channel.
   const auto err = run("sh error --table " + table + " --points 2,2 --json");
   ASSERT_EQ(err.status, 0) << err.err;
-  const auto rows = nlohmann::json::parse(err.out);
+  const auto rows = nlohmann::json::parse(err.out)["rows"];
   EXPECT_EQ(rows.size(), 9u);
   for (const auto& r : rows) {
     EXPECT_GE(r["e_max_worst_percent"].get<double>(), r["e_mean_worst_percent"].get<double>());
@@ -141,7 +153,7 @@ TEST_F(Cli, ShExportRenderAndErrors) {
   // the worst lies inside the ranges.
   const auto mid = run("sh error --table " + table + " --points 2,2 --midpoints-only --json");
   ASSERT_EQ(mid.status, 0) << mid.err;
-  const auto mid_rows = nlohmann::json::parse(mid.out);
+  const auto mid_rows = nlohmann::json::parse(mid.out)["rows"];
   ASSERT_EQ(mid_rows.size(), rows.size());
   for (std::size_t i = 0; i < rows.size(); ++i) {
     EXPECT_GE(rows[i]["e_mean_worst_percent"].get<double>(),
@@ -150,9 +162,10 @@ TEST_F(Cli, ShExportRenderAndErrors) {
     EXPECT_GE(z, 0.0);
     EXPECT_LE(z, 90.0);
   }
-  // Bad inputs: a missing table is an I/O error, a malformed one names the field.
+  // Bad inputs: a missing table is a usage error before any work, a malformed one names the
+  // field.
   const auto missing = run("sh eval --table " + (dir_ / "none.json").string());
-  EXPECT_EQ(missing.status, 1) << missing.err;
+  EXPECT_EQ(missing.status, 2) << missing.err;
   std::ofstream(dir_ / "bad.json") << "{\"format\": \"skylight-sh-polynomial-table\"}";
   const auto bad = run("sh eval --table " + (dir_ / "bad.json").string());
   EXPECT_EQ(bad.status, 2);

@@ -79,9 +79,12 @@ TEST_F(Cli, SunWorkedExampleAsJson) {
 TEST_F(Cli, SunTextOutput) {
   const testing_support::CliResult r = run("sun " + kExampleFlags);
   ASSERT_EQ(r.status, 0) << r.err;
-  EXPECT_NE(r.out.find("zenith            50.111622 deg"), std::string::npos) << r.out;
-  EXPECT_NE(r.out.find("azimuth           194.340241 deg"), std::string::npos) << r.out;
-  EXPECT_NE(r.out.find("sunrise           2003-10-17T06:12:43-07:00"), std::string::npos) << r.out;
+  // The record's labelled lines, each value with its unit (the declared fields' decimals).
+  using testing_support::text_field;
+  EXPECT_EQ(text_field(r.out, "zenith"), "50.111622 deg") << r.out;
+  EXPECT_EQ(text_field(r.out, "azimuth"), "194.340241 deg") << r.out;
+  EXPECT_EQ(text_field(r.out, "sunrise"), "2003-10-17T06:12:43-07:00") << r.out;
+  EXPECT_EQ(text_field(r.out, "polar"), "") << "a normal day has no polar line";
 }
 
 // The SPA's range, -2000 .. 6000, is reachable: years before 0 in ISO 8601's expanded form.

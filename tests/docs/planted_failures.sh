@@ -44,7 +44,7 @@ write() { mkdir -p "$work/$1" && cat >"$work/$1/README.md"; }
 write correct <<EOF
 ${fence}sh
 ./build/skylight sun --time 2026-06-21T12:00:00+02:00 --lat 48.14 --lon 11.58
-# => zenith            28.877203 deg
+# => zenith                   28.877203 deg
 ./build/skylight sun --time 2026-06-21T12:00:00+02:00 --lat 91 --lon 0   # exit 2
 ./build/skylight render --model cie --width 8 --height 4 -o sky.exr
 ${fence}
@@ -61,10 +61,10 @@ check removed_command 1 "exit 2, the docs say 0"
 write stale_quote <<EOF
 ${fence}sh
 ./build/skylight sun --time 2026-06-21T12:00:00+02:00 --lat 48.14 --lon 11.58
-# => zenith            29.9
+# => zenith                   29.9
 ${fence}
 EOF
-check stale_quote 1 "output lacks zenith            29.9"
+check stale_quote 1 "output lacks zenith                   29.9"
 
 write stale_json_quote <<EOF
 ${fence}sh
@@ -81,9 +81,9 @@ ${fence}
 
 <!-- doc-test: stdout of \`sun --time\` -->
 ${fence}text
-time              2026-06-21T12:00:00.000+02:00
-place             lat 48.14 deg, lon 11.58 deg, 0 m
-zenith            30.000000 deg (topocentric, with refraction)
+time                     2026-06-21T12:00:00.000+02:00
+julian day               2461212.916667 d
+zenith                   30.000000 deg
 ${fence}
 EOF
 check stale_output_block 1 "differs from what it prints"

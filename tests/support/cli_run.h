@@ -26,6 +26,23 @@ inline std::string example_flags(const ModelInfo& m) {
   return flags;
 }
 
+// The value of the labelled line `label` of a record's text form (operations::text_of: the label,
+// two or more spaces, the value with its unit): "zenith      50.111622 deg" -> "50.111622 deg";
+// "" when there is no such line.
+inline std::string text_field(const std::string& out, const std::string& label) {
+  std::size_t at = 0;
+  while (at < out.size()) {
+    const std::size_t nl = std::min(out.find('\n', at), out.size());
+    const std::string line = out.substr(at, nl - at);
+    if (line.rfind(label + "  ", 0) == 0) {
+      const std::size_t v = line.find_first_not_of(' ', label.size());
+      return v == std::string::npos ? std::string() : line.substr(v);
+    }
+    at = nl + 1;
+  }
+  return {};
+}
+
 struct CliResult {
   int status = -1;
   std::string out, err;

@@ -86,6 +86,9 @@ std::string ParameterSpec::range_text() const {
   if (kind == ParameterKind::text) {
     std::string out;
     for (const auto& c : choices) out += (out.empty() ? "" : "|") + c;
+    // A file's accepted endings ("-": the standard stream).
+    for (const auto& f : formats) out += (out.empty() ? "" : "/") + f;
+    if (standard_stream) out += out.empty() ? "-" : "/-";
     return out;
   }
   if (kind == ParameterKind::flag) return {};
@@ -111,6 +114,7 @@ std::string ParameterSpec::help() const {
   // (A text's choices are the front end's to show: CLI11 lists them beside the flag.)
   if (const std::string r = range_text(); !r.empty() && kind != ParameterKind::text)
     h += fmt::format(", {}{}", kind == ParameterKind::numbers ? "each " : "", r);
+  if (!formats.empty()) h += fmt::format(", {}", range_text());
   if (kind != ParameterKind::flag) h += "; default " + default_text();
   return h;
 }

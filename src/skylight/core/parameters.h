@@ -48,6 +48,11 @@ struct Absent {
 };
 using ParameterDefault = std::variant<Required, Absent, ParameterValue>;
 
+// A parameter that names a file: one the operation reads, writes, or a directory it writes into
+// (operations/operation.h checks them before any work: inputs exist, outputs collide with
+// nothing).
+enum class FileRole { none, input, output, output_directory };
+
 struct ParameterSpec {
   std::string name{};  // flag name without dashes, e.g. "turbidity", "sun-zenith"
   std::string unit{};  // "1" (dimensionless), "deg", "m", "cd/m^2", "W m^-2 nm^-1", "DU", "" (text)
@@ -61,6 +66,11 @@ struct ParameterSpec {
   // A text parameter that may be given more than once: its values joined by '\n'
   // (join_repeated, split_repeated).
   bool repeated = false;
+  // A file's role, the endings it may have (".exr", ...; empty: any) and whether "-" names the
+  // standard input or output.
+  FileRole file = FileRole::none;
+  std::vector<std::string> formats{};
+  bool standard_stream = false;
 
   // The command line's flag, "--" + name (the CLI's flags and the docs' tables of them).
   std::string flag() const { return "--" + name; }
@@ -69,7 +79,8 @@ struct ParameterSpec {
   // "_DU"; none for "1" and ""): e.g. skylight:zenith_luminance_cd_m2.
   std::string metadata_key() const;
   // "1 .. 64" for numbers (an integer's bounds whole: "0 .. 2147483647"); "a|b|c" for a text of
-  // choices; "" for other text and flags.
+  // choices; a file's endings ".exr/.png" ("/-" with the standard stream); "" for other text and
+  // flags.
   std::string range_text() const;
   // The default as the user sees it: "3", "-1,-0.32,10,-3,0.45", "required", "none (<meaning>)".
   std::string default_text() const;
@@ -94,19 +105,6 @@ struct ParameterSpec {
 using ParameterSpelling = std::string (*)(std::string_view name);
 void set_parameter_spelling(ParameterSpelling spelling);
 std::string spelled(std::string_view name);
-
-// An operation of the library with options (render, estimate, sh fit, nn train, haze add, ...):
-// its name as the command line spells it, what it does, and its parameters, built from the
-// schemas of the settings it takes (docs/ARCHITECTURE.md, "Operations"). Front ends (the CLI, the
-// Python package) derive their flags and arguments from it; `skylight operations --json` lists
-// every operation.
-struct OperationInfo {
-  std::string name;  // e.g. "sh fit"
-  std::string description;
-  std::vector<ParameterSpec> parameters;
-  // What the library fills (its types, in words), e.g. "fit::LuminanceFit".
-  std::string result;
-};
 
 // The specs as a Markdown table (flag, unit, range, default, description), as docs/MODELS.md shows
 // them (a test keeps the two equal; `skylight models --markdown` prints them).

@@ -479,17 +479,38 @@ std::string CaptureCheck::summary(const std::vector<LoadedImage>& images) const 
       100.0 * max_relative_p95);
 }
 
+namespace {
+
+std::vector<estimate::SequenceEntry> read_list(const ImageTrainingOptions& o) {
+  const std::filesystem::path list_path(o.list);
+  const std::vector<char> text = io::read_file(list_path);
+  return estimate::parse_sequence_list(std::string_view(text.data(), text.size()),
+                                       excerpt(o.list, kListNameChars), list_path.parent_path());
+}
+
+}  // namespace
+
+void check_image_list(const ImageTrainingOptions& o) {
+  for (const estimate::SequenceEntry& e : read_list(o)) {
+    std::string source;
+    (void)entry_sun(o, e, source);
+    for (const std::filesystem::path* f : {&e.file, &e.mask}) {
+      std::error_code ec;
+      if (!f->empty() && !std::filesystem::is_regular_file(*f, ec))
+        throw InvalidArgument(fmt::format("{}:{}: no such file '{}'",
+                                          excerpt(o.list, kListNameChars), e.line,
+                                          io::shown_path(*f)));
+    }
+  }
+}
+
 ImageTrainingResult train_on_images(
     const ImageTrainingOptions& o, const NeuralTraining& t, int samples_per_image,
     const std::function<void(int, int, const std::string&)>& progress) {
   const auto report = [&](int done, int total, const std::string& step) {
     if (progress) progress(done, total, step);
   };
-  const std::filesystem::path list_path(o.list);
-  const std::vector<char> text = io::read_file(list_path);
-  const std::vector<estimate::SequenceEntry> entries =
-      estimate::parse_sequence_list(std::string_view(text.data(), text.size()),
-                                    excerpt(o.list, kListNameChars), list_path.parent_path());
+  const std::vector<estimate::SequenceEntry> entries = read_list(o);
   std::optional<io::ImageF> common_mask;
   if (!o.mask.empty()) common_mask = estimate::load_mask(o.mask);
   estimate::SequenceSampling sampling;

@@ -120,6 +120,10 @@ struct ImageTrainingResult {
 // training.max_relative_p95 (default kImageMaxRelativeP95), else the final network continues from
 // it on all images. With two images there is nothing between them to hold out: the starts are
 // judged on the training error and nothing is checked.
+// The list's checks that read no image: its rows, each row's sun (a time needs --lat and --lon),
+// and that every image and mask it names is a file. InvalidArgument "<list>:<line>: ...".
+void check_image_list(const ImageTrainingOptions& options);
+
 ImageTrainingResult train_on_images(
     const ImageTrainingOptions& options, const NeuralTraining& training, int samples_per_image,
     const std::function<void(int, int, const std::string&)>& progress = {});

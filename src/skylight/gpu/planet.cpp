@@ -3,10 +3,12 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 
 #include "skylight/core/error.h"
 #include "skylight/core/icosphere.h"
+#include "skylight/core/math.h"
 #include "skylight/core/parallel.h"
 #include "skylight/gpu/context.h"
 #include "skylight/nn/glsl.h"
@@ -283,6 +285,42 @@ std::vector<float> shade_planet_vertices_gpu(const nn::PietrasNetwork& net,
   for (std::size_t i = 0; i < n; ++i)
     for (std::size_t k = 0; k < 3; ++k) out[3 * i + k] = img.data[4 * i + k];
   return out;
+}
+
+PlanetFrame render_planet_view(const nn::PietrasNetwork& net, const PlanetViewOptions& f) {
+  const NishitaParameters planet = nishita_parameters_of(net);
+  const SunPosition sun = sun_from_degrees(f.sun_zenith_deg, f.sun_azimuth_deg);
+  PlanetFrame frame;
+  frame.altitude_m = f.altitude(planet.ground_radius_m);
+  PlanetView view = f.orbit ? orbit_view(planet, frame.altitude_m, sun.zenith)
+                            : ground_view(planet, frame.altitude_m, sun.zenith, sun.azimuth,
+                                          deg_to_rad(f.look_elevation_deg));
+  if (const auto fov = f.vertical_fov_deg()) view.vertical_fov = deg_to_rad(*fov);
+  view.albedo = f.albedo;
+  view.subdivisions = f.subdivisions;
+  view.width = f.width;
+  view.height = f.height;
+  const auto seconds_since = [](std::chrono::steady_clock::time_point t) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+  };
+  const auto t0 = std::chrono::steady_clock::now();
+  const NishitaSampler atmosphere(planet);
+  const PlanetMesh mesh = planet_mesh(net, atmosphere, view);
+  frame.mesh_seconds = seconds_since(t0);
+  frame.vertices = mesh.vertices.size();
+  frame.triangles = mesh.indices.size() / 3;
+  Context context;
+  frame.renderer = context.renderer();
+  const auto t1 = std::chrono::steady_clock::now();
+  const io::ImageF rgba = render_planet(net, mesh, f.width, f.height);
+  frame.gl_seconds = seconds_since(t1);
+  frame.rgb = io::ImageF(f.width, f.height, 3);
+  for (std::size_t i = 0; i < frame.rgb.data.size() / 3; ++i)
+    for (std::size_t k = 0; k < 3; ++k) {
+      const float v = rgba.data[4 * i + k];
+      frame.rgb.data[3 * i + k] = std::isfinite(v) ? v : 0.0f;
+    }
+  return frame;
 }
 
 }  // namespace skylight::gpu

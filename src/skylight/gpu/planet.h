@@ -102,4 +102,9 @@ io::ImageF render_planet(const nn::PietrasNetwork& net, const PlanetMesh& mesh, 
 // Context. Returns r, g, b per vertex.
 std::vector<float> shade_planet_vertices_gpu(const nn::PietrasNetwork& net, const PlanetMesh& mesh);
 
+// `nn planet`: the network's planet (its training planet, nishita_parameters_of) seen as the
+// options say, from orbit or from the ground, in a context of its own: the linear sRGB frame
+// (space black), the vertex terms' CPU time and the GL draw's.
+PlanetFrame render_planet_view(const nn::PietrasNetwork& net, const PlanetViewOptions& options);
+
 }  // namespace skylight::gpu

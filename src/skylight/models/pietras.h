@@ -13,6 +13,7 @@
 #include <memory>
 #include <string>
 
+#include "skylight/io/image.h"
 #include "skylight/models/nishita.h"
 #include "skylight/models/sky_model.h"
 #include "skylight/nn/pietras.h"
@@ -73,6 +74,17 @@ struct PlanetViewOptions {
   // The vertical field of view [deg]: the given one, 60 from the ground; absent from orbit (the
   // orbit view's own, the atmosphere's disc filling 85 %).
   std::optional<double> vertical_fov_deg() const;
+};
+
+// A planet drawn by a Pietras network (`nn planet`, gpu/planet.h: render_planet_view): the linear
+// sRGB image and what it took.
+struct PlanetFrame {
+  io::ImageF rgb;
+  double altitude_m = 0.0;  // the camera's, above the ground
+  std::size_t vertices = 0, triangles = 0;
+  double mesh_seconds = 0.0;  // the vertex terms (CPU)
+  double gl_seconds = 0.0;    // GL draw and readback
+  std::string renderer;       // the GL renderer's name
 };
 
 // The nishita parameters a network was trained with, from its provenance (its schema's names;

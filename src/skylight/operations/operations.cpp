@@ -8,6 +8,8 @@
 #include "skylight/core/camera.h"
 #include "skylight/core/error.h"
 #include "skylight/core/math.h"
+#include "skylight/core/numbers.h"
+#include "skylight/core/text.h"
 #include "skylight/daylight/daylight.h"
 #include "skylight/estimate/capture.h"
 #include "skylight/estimate/photo.h"
@@ -21,6 +23,7 @@
 #include "skylight/models/pietras.h"
 #include "skylight/models/sh.h"
 #include "skylight/models/sky_model.h"
+#include "skylight/operations/detail/families.h"
 #include "skylight/perf/bench.h"
 #include "skylight/render/animation.h"
 #include "skylight/render/false_colour.h"
@@ -28,11 +31,13 @@
 #include "skylight/sh/irradiance.h"
 #include "skylight/sun/spa.h"
 #include "skylight/sun/time.h"
+#include "skylight/version.h"
 
 namespace skylight::operations {
-namespace {
 
 using Specs = std::vector<ParameterSpec>;
+
+namespace detail {
 
 Specs concat(std::initializer_list<Specs> parts) {
   Specs out;
@@ -40,47 +45,40 @@ Specs concat(std::initializer_list<Specs> parts) {
   return out;
 }
 
-OperationInfo render_operation() {
-  ImageSchemaOptions image;
-  return {"render",
-          "a sky model drawn into an image in one of the project's layouts (the batch path on all "
-          "threads, or the network models by GL); the chosen model's own parameters are its "
-          "registry entry's (`skylight models`)",
-          concat({model_specs(),
-                  image_schema(image).specs(),
-                  render::FalseColourOptions::schema().specs(),
-                  {gpu_spec("render with OpenGL (headless EGL; the network models nn and pietras, "
-                            "docs/GPU.md) instead of the CPU")}}),
-          "render::SkyImage (XYZ and linear sRGB images, the mask of pixels without a direction)"};
+namespace {
+ParameterSpec file_spec(std::string name, std::string description, std::vector<std::string> formats,
+                        std::string absent, FileRole role) {
+  ParameterSpec s{
+      .name = std::move(name), .kind = ParameterKind::text, .description = std::move(description)};
+  if (!absent.empty()) s.default_value = Absent{std::move(absent)};
+  s.file = role;
+  s.formats = std::move(formats);
+  return s;
 }
-
-OperationInfo eval_operation() {
-  return {"eval",
-          "a sky model evaluated in given directions (zenith, azimuth): linear sRGB, XYZ, "
-          "luminance or spectral radiance, of the sky, the solar disc or both",
-          concat({model_specs(), EvaluationOptions::schema().specs(),
-                  ReferenceOptions::schema().specs()}),
-          "one value per quantity column (models/evaluation.h, quantity_columns); with "
-          "--reference a standard-error column after each"};
-}
-
-OperationInfo estimate_operation() {
-  return {"estimate",
-          "the turbidity of a clear sky (or another model's fitted parameters) from an HDR photo: "
-          "the sun (given, from a time, or found), the sky mask, random sky samples and the fit "
-          "(docs/ESTIMATE.md)",
-          concat({{fit::estimation_model_spec()},
-                  image_schema(estimate::photo_image_options()).specs(),
-                  sun_specs("from --time, or found in the image"),
-                  solar_position_specs("the sun from the angles, the EXIF time (--exif), or "
-                                       "found in the image"),
-                  estimate::CaptureOptions::schema().specs(),
-                  estimate::MaskSettings::schema().specs(),
-                  fit::EstimateSettings::schema().specs()}),
-          "fit::LuminanceFit"};
-}
-
 }  // namespace
+
+ParameterSpec input_file(std::string name, std::string description,
+                         std::vector<std::string> formats, std::string absent) {
+  return file_spec(std::move(name), std::move(description), std::move(formats), std::move(absent),
+                   FileRole::input);
+}
+
+ParameterSpec output_file(std::string name, std::string description,
+                          std::vector<std::string> formats, std::string absent) {
+  return file_spec(std::move(name), std::move(description), std::move(formats), std::move(absent),
+                   FileRole::output);
+}
+
+std::vector<Relation> solar_position_relations(const std::vector<std::string>& angles) {
+  std::vector<Relation> r;
+  for (const std::string& a : angles) r.push_back(excludes("time", a, "time gives the sun"));
+  for (const char* name : kSolarPositionNames) r.push_back(needs(name, "time"));
+  return r;
+}
+
+}  // namespace detail
+
+using detail::concat;
 
 std::vector<ParameterSpec> sun_specs(const std::string& absent) {
   Specs s = sun_parameter_specs();
@@ -91,8 +89,11 @@ std::vector<ParameterSpec> sun_specs(const std::string& absent) {
 
 std::vector<ParameterSpec> solar_position_specs(const std::string& time_absent) {
   Specs s{sun::time_spec(time_absent)};
-  for (const char* name : {"lat", "lon", "elevation", "pressure", "temperature", "delta-t"})
+  for (const char* name : detail::kSolarPositionNames) {
     s.push_back(sun::spa_parameter_spec(name));
+    // The place is required with a time only (the relations say so: each needs --time).
+    if (s.back().required()) s.back().default_value = Absent{"required with a time"};
+  }
   return s;
 }
 
@@ -120,141 +121,31 @@ ParameterSpec gpu_spec(const std::string& what) {
           .description = what};
 }
 
-// The sh model's table, bands, filter and tau, and the sun, as `sh eval` and `sh render` take
-// them.
-Specs sh_sky_specs() {
-  return concat({sun_parameter_specs(), ShParameters::schema().specs()});
-}
-
-OperationInfo sh_fit_operation() {
-  return {"sh fit",
-          "an SH polynomial table (Habel et al. 2008 eq. 1) fitted to a registry model's "
-          "converged projections; the model's fit policy gives tau, its range and the table's "
-          "structure (docs/SH.md)",
-          fit::ShFitRequest::schema().specs(), "sh::PolynomialTable"};
-}
-
-std::vector<OperationInfo> sh_operations() {
-  const Specs table{*ShParameters::schema().find("table")};
-  return {
-      sh_fit_operation(),
-      {"sh eval",
-       "the SH coefficients of a table's sky (eq. 1, rotation eq. 4, ringing filter eq. 5), "
-       "or of its irradiance",
-       concat({sh_sky_specs(), ShEvalOptions::schema().specs()}), "sh::Coefficients"},
-      {"sh export", "a table as JSON or as a C header",
-       concat({table, sh::ExportOptions::schema().specs()}), "text"},
-      {"sh render", "a table's sky as an equirect environment map, and a diffuse sphere lit by it",
-       concat({sh_sky_specs(), ShRenderOptions::schema().specs(),
-               sh::SphereOptions::schema().specs()}),
-       "render::SkyImage, and the sphere's linear sRGB image"},
-      {"sh error", "E_mean (eq. 3) and E_max (eq. 2) of a table per band count",
-       concat({table, fit::ShErrorOptions::schema().specs()}), "fit::ShTableError"}};
-}
-
-// The sky photo of `haze sky-mask` and of --sky: its path and projection.
-Specs sky_photo_specs() {
-  const auto& a = haze::AirlightOptions::schema();
-  return concat({{*a.find("sky")},
-                 image_schema(estimate::photo_image_options(Projection::fisheye, "sky-projection",
-                                                            "--sky: the sky photo's layout"))
-                     .specs()});
-}
-
-std::vector<OperationInfo> haze_operations() {
-  const Specs air = haze::atmosphere_schema().specs();
-  const Specs camera = haze::SensitivityOptions::schema().specs();
-  const auto& h = haze::HazeOptions::schema();
-  const Specs image = concat({air,
-                              camera,
-                              {*h.find("near"), *h.find("far")},
-                              haze::AirlightOptions::schema().specs(),
-                              haze::ImageCameraOptions::schema().specs()});
-  const ParameterSpec gpu =
-      gpu_spec("run the operation as a fragment shader on the headless GL context (docs/GPU.md)");
-  const ParameterSpec min_t = *h.find("min-transmission");
-  ParameterSpec target = *h.find("target-turbidity");
-  target.default_value = Required{};
-  return {{"haze coefficients", "Rayleigh and Mie scattering coefficients and the weather class",
-           concat({air, haze::CoefficientsOptions::schema().specs()}), "per-km coefficients"},
-          {"haze attenuation", "the attenuation factor Gamma_c (eq. 11) of a horizontal path",
-           concat({air, camera, haze::AttenuationOptions::schema().specs()}), "haze::Rgb3"},
-          {"haze add", "haze added to an image with depth (eq. 10)", concat({image, {min_t, gpu}}),
-           "io::ImageF"},
-          {"haze retarget", "haze re-targeted from T to T_t (eq. 26)",
-           concat({image, {target, min_t, gpu}}), "io::ImageF"},
-          {"haze remove", "haze removed (eq. 10 inverted)", concat({image, {min_t, gpu}}),
-           "io::ImageF"},
-          {"haze composite", "a virtual object given the haze of T over a background photo",
-           concat({image, {gpu}}), "io::ImageF"},
-          {"haze sky-mask", "the sky of a photo by a marker-controlled watershed (eq. 12)",
-           sky_photo_specs(), "estimate::SkyMask"}};
-}
-
-// The network options of `nn animate`: a sky network's turbidity, a Pietras network's altitude.
-Specs animate_network_specs() {
-  ParameterSpec turbidity = *NeuralSkyParameters::schema().find("turbidity");
-  turbidity.default_value = Absent{"3; sky networks only"};
-  ParameterSpec altitude = *PietrasParameters::schema().find("observer-altitude");
-  altitude.default_value = Absent{"0; Pietras networks only"};
-  altitude.description = "observer above the ground, a Pietras network's density input";
-  return {turbidity, altitude};
-}
-
-std::vector<OperationInfo> nn_operations() {
-  return {
-      {"nn train",
-       "a neural sky network trained on a registered model (the paper's protocol) or on a "
-       "sequence of HDR sky images, or a Pietras network on nishita (docs/NN.md, "
-       "docs/PIETRAS.md)",
-       concat({fit::NetworkTrainingRequest::schema().specs(),
-               fit::ImageTrainingOptions::schema().specs()}),
-       "nn::SkyNetwork or nn::PietrasNetwork (the weights file)"},
-      {"nn validate", "the errors of a weights file on the validation sets of its source",
-       fit::ValidationOptions::schema().specs(), "fit::NeuralValidation or fit::PietrasValidation"},
-      {"nn animate", "an environment-map sequence of a sky or Pietras network with the sun moving",
-       concat({animate_network_specs(), render::AnimationOptions::schema().specs()}),
-       "one render::SkyImage per frame"},
-      {"nn study", "the hidden-layer study of Satilmis et al. 2016 (Fig. 5, eq. 8)",
-       fit::HiddenLayerStudy::schema().specs(), "fit::StudyRow per width"},
-      {"nn planet",
-       "a Pietras network shading an icosphere planet in a GL vertex shader (the GPU module)",
-       PlanetViewOptions::schema().specs(), "linear sRGB image"}};
-}
-
 const std::vector<OperationInfo>& registry() {
   static const std::vector<OperationInfo> ops = [] {
-    std::vector<OperationInfo> ops{render_operation(), eval_operation(), estimate_operation()};
-    Specs spa{sun::time_spec("")};
-    spa.front().default_value = Required{};
-    for (const auto& spec : sun::spa_parameter_specs()) spa.push_back(spec);
-    ops.push_back({"sun",
-                   "the solar position of the NREL SPA (Reda & Andreas 2004) for a time and "
-                   "place: topocentric zenith and azimuth, and the day's sunrise, transit, sunset",
-                   spa, "sun::SpaResult and sun::SunEvents"});
-    ops.push_back(
-        {"daylight",
-         "the Perez all-weather sky from measured direct and diffuse light (Perez et al. 1990, "
-         "1993): epsilon, delta, the bin, a..e, the zenith luminance and the illuminances; with "
-         "--epw, the annual sky matrix of a weather file (docs/DAYLIGHT.md)",
-         concat({sun_specs("from --time (one sky); from each record (--epw)"),
-                 solar_position_specs("the sun from the angles"),
-                 daylight::DaylightRequest::schema().specs()}),
-         "models::PerezSky, or daylight::SkyMatrix"});
-    ops.push_back({"bench",
-                   "each model's batch path timed against its scalar loop, with the comparisons "
-                   "and workloads its registry entry declares; --estimate, --haze",
-                   perf::BenchSettings::schema().specs(), "text: medians and ratios"});
-    ops.push_back({"report",
-                   "the validation and comparison report: Zotti et al. 2007's analyses for every "
-                   "model, a sky-luminance scan (docs/REPORT.md)",
-                   report::ReportOptions::schema().specs(), "report::ReportSummary"});
-    for (auto& op : sh_operations()) ops.push_back(std::move(op));
-    for (auto& op : haze_operations()) ops.push_back(std::move(op));
-    for (auto& op : nn_operations()) ops.push_back(std::move(op));
+    std::vector<OperationInfo> ops;
+    for (auto family : {detail::sky_operations, detail::estimate_operations, detail::sun_operations,
+                        detail::report_operations, detail::sh_operations, detail::haze_operations,
+                        detail::nn_operations})
+      for (OperationInfo& op : family()) ops.push_back(std::move(op));
     return ops;
   }();
   return ops;
+}
+
+const std::vector<Family>& families() {
+  static const std::vector<Family> f{
+      {"sh", "spherical-harmonics sky lighting: fit, eval, export, render, error",
+       "Spherical-harmonics sky lighting: polynomial tables of SH coefficients over the sun's "
+       "zenith and turbidity (Habel et al. 2008; docs/SH.md)."},
+      {"haze", "aerial perspective: add, remove or retarget the haze of a photo",
+       "Aerial perspective (Morales et al. 2017; docs/HAZE.md): scattering coefficients, "
+       "attenuation, cameras, add/retarget/remove haze on an image with depth, composite, "
+       "sky-mask."},
+      {"nn", "neural sky models: train, validate, export, animate, study, planet",
+       "Neural sky models (Satilmis et al. 2016; docs/NN.md) and the per-vertex network of the "
+       "atmosphere (Pietras; docs/PIETRAS.md)."}};
+  return f;
 }
 
 const OperationInfo& find(std::string_view name) {
@@ -262,6 +153,16 @@ const OperationInfo& find(std::string_view name) {
     if (op.name == name) return op;
   SKYLIGHT_CHECK(false, "operations::find: no such operation");
   return registry().front();
+}
+
+const OperationInfo& require_operation(std::string_view name) {
+  std::vector<std::string> names;
+  for (const OperationInfo& op : registry()) {
+    if (op.name == name) return op;
+    names.push_back(op.name);
+  }
+  throw InvalidArgument(fmt::format("'{}' is not an operation{} (operations: {})", excerpt(name),
+                                    did_you_mean(name, names), fmt::join(names, ", ")));
 }
 
 std::vector<ParameterSpec> select(const OperationInfo& op, const std::vector<std::string>& names) {
@@ -275,9 +176,41 @@ std::vector<ParameterSpec> select(const OperationInfo& op, const std::vector<std
   return out;
 }
 
+namespace {
+
+// "`a` excludes `b`", "`a` requires `b` (unread without it)".
+std::string relation_text(const Relation& r) {
+  return fmt::format("`--{}` {} `--{}`{}{}", r.a, to_string(r.kind), r.b,
+                     r.unread ? (r.kind == RelationKind::excludes ? " (not read with it)"
+                                                                  : " (not read without it)")
+                              : "",
+                     r.why.empty() ? "" : ": " + r.why);
+}
+
+std::string fields_table(const std::vector<FieldSpec>& fields, const std::string& prefix) {
+  std::string out;
+  for (const FieldSpec& f : fields) {
+    out += fmt::format("| `{}{}` | {} | {} | {}{} |\n", prefix, f.name, f.unit, to_string(f.kind),
+                       f.meaning, f.nullable ? " (may be null)" : "");
+    if (!f.fields.empty()) out += fields_table(f.fields, prefix + f.name + "[].");
+  }
+  return out;
+}
+
+}  // namespace
+
 std::string markdown(const OperationInfo& op) {
-  return fmt::format("<!-- operation {0} -->\n{1}<!-- end operation {0} -->\n", op.name,
-                     markdown_table(op.parameters));
+  std::string out =
+      fmt::format("<!-- operation {} -->\n{}", op.name, markdown_table(op.parameters));
+  if (!op.relations.empty()) {
+    out += "\nRelations: ";
+    for (std::size_t i = 0; i < op.relations.size(); ++i)
+      out += (i == 0 ? "" : "; ") + relation_text(op.relations[i]);
+    out += ".\n";
+  }
+  out += "\n| result field | unit | kind | meaning |\n|---|---|---|---|\n" +
+         fields_table(op.result, "");
+  return out + fmt::format("<!-- end operation {} -->\n", op.name);
 }
 
 namespace {
@@ -310,7 +243,29 @@ nlohmann::ordered_json spec_json(const ParameterSpec& s) {
   }
   j["description"] = s.description;
   if (!s.choices.empty()) j["choices"] = s.choices;
+  if (s.file != FileRole::none) {
+    j["file"] = s.file == FileRole::input    ? "input"
+                : s.file == FileRole::output ? "output"
+                                             : "output_directory";
+    j["formats"] = s.formats;
+    j["standard_stream"] = s.standard_stream;
+  }
+  if (s.repeated) j["repeated"] = true;
   return j;
+}
+
+nlohmann::ordered_json fields_json(const std::vector<FieldSpec>& fields) {
+  nlohmann::ordered_json list = nlohmann::ordered_json::array();
+  for (const FieldSpec& f : fields) {
+    nlohmann::ordered_json j{{"name", f.name},
+                             {"unit", f.unit},
+                             {"kind", std::string(to_string(f.kind))},
+                             {"meaning", f.meaning},
+                             {"nullable", f.nullable}};
+    if (!f.fields.empty()) j["fields"] = fields_json(f.fields);
+    list.push_back(j);
+  }
+  return list;
 }
 
 }  // namespace
@@ -338,10 +293,19 @@ std::string operations_json() {
   for (const auto& op : registry()) {
     nlohmann::ordered_json params = nlohmann::ordered_json::array();
     for (const auto& p : op.parameters) params.push_back(spec_json(p));
+    nlohmann::ordered_json relations = nlohmann::ordered_json::array();
+    for (const Relation& r : op.relations)
+      relations.push_back({{"kind", std::string(to_string(r.kind))},
+                           {"parameters", {r.a, r.b}},
+                           {"unread", r.unread},
+                           {"why", r.why}});
     list.push_back({{"name", op.name},
+                    {"summary", op.summary},
                     {"description", op.description},
                     {"parameters", params},
-                    {"result", op.result}});
+                    {"model_parameters", op.model_parameters},
+                    {"relations", relations},
+                    {"result", {{"type", op.result_type}, {"fields", fields_json(op.result)}}}});
   }
   return list.dump(2);
 }
@@ -451,6 +415,54 @@ PhotoEstimate estimate_photo(const io::ImageF& image, const ParameterValues& giv
   r.fit = fit::fit_luminance(r.model, r.samples.samples, r.samples.sun, r.settings);
   if (r.samples.sun_detected) r.sun_source = "image";
   return r;
+}
+
+std::unique_ptr<SkyModel> make_sky(const Request& request) {
+  const ModelInfo& info = require_model(*request.text("model"), "model");
+  ParameterValues values = request.values().only(model_specs());
+  const ParameterValues own = request.values().only(info.parameters);
+  for (const auto& [name, value] : own.all()) values.set(name, value);
+  const SkyRequest r = sky_request(info, values);
+  auto model = make_sky_model(info.name, r.parameters);
+  // A parameter of the schema that this model, with these values, does not read (e.g. nn's
+  // turbidity for a network trained without one): said, and not recorded (parameter_values()).
+  const ParameterValues read = model->parameter_values();
+  for (const auto& [name, value] : r.parameters.values.all())
+    if (!read.has(name))
+      request.warn(fmt::format("{} is not read by model '{}' with these parameters; ignored",
+                               spelled(name), model->name()));
+  check_sun_mode(*model, r.sun_mode);
+  return model;
+}
+
+io::Metadata model_metadata(const SkyModel& model, std::string_view sun_mode) {
+  const auto& sun = sun_parameter_specs();
+  io::Metadata md{
+      {"skylight:version", kVersion},
+      {"skylight:model", std::string(model.name())},
+      {sun[0].metadata_key(), fmt::format("{}", rad_to_deg(model.sun().zenith))},
+      {sun[1].metadata_key(), fmt::format("{}", rad_to_deg(model.sun().azimuth))},
+  };
+  const ParameterValues values = model.parameter_values();
+  const ModelInfo& info = require_model(model.name());
+  for (const auto& spec : info.parameters)
+    if (const ParameterValue* v = values.find(spec.name))
+      md.emplace_back(spec.metadata_key(), spec.format(*v));
+  md.emplace_back("skylight:sun", std::string(sun_mode));
+  md.emplace_back("skylight:colour", info.colour_note());
+  return md;
+}
+
+io::Metadata solar_position_metadata(const sun::SpaInput& in) {
+  return {
+      {"skylight:time", sun::format_iso8601(in.time, 3)},
+      {"skylight:latitude_deg", fmt::format("{}", rad_to_deg(in.latitude))},
+      {"skylight:longitude_deg", fmt::format("{}", rad_to_deg(in.longitude))},
+      {"skylight:elevation_m", fmt::format("{}", in.elevation)},
+      {"skylight:pressure_mbar", fmt::format("{}", in.pressure)},
+      {"skylight:temperature_degC", fmt::format("{}", in.temperature)},
+      {"skylight:delta_t_s", fmt::format("{}", in.delta_t)},
+  };
 }
 
 }  // namespace skylight::operations

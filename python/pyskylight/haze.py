@@ -1,15 +1,17 @@
 """Aerial perspective on images with depth (Morales, Oishi & Ikeuchi 2017; docs/HAZE.md): add,
-re-target or remove haze, or composite a virtual object into a hazy photo, as ``skylight haze
-add|retarget|remove|composite`` does, on numpy arrays."""
+re-target or remove haze, or composite a virtual object into a hazy photo, on numpy arrays: the
+``haze add|retarget|remove|composite`` operations with the images in memory."""
 
 import numpy as _np
 
-from . import _skylight
+
+def _image(a):
+    return a if isinstance(a, str) or hasattr(a, "__fspath__") else _np.asarray(a, _np.float32)
 
 
 def _apply(name, image, depth, options):
-    return _skylight.haze_apply(name, _np.asarray(image, dtype=_np.float32),
-                                _np.asarray(depth, dtype=_np.float32), options)
+    from . import run
+    return run("haze " + name, image=_image(image), depth=_image(depth), **options)["output"]
 
 
 def add(image, depth, **options):
@@ -17,7 +19,7 @@ def add(image, depth, **options):
     ``depth`` (H, W) metres (or normalised with ``near``/``far``), eq. 10. ``options``: the haze
     add operation's (turbidity, altitude, variant, camera or camera_csv, the airlight: airlight
     R,G,B, sky_model, or sky with its layout; the image's camera: vfov/hfov, heading, pitch,
-    roll; min_transmission; ``skylight.operations()``). Returns (H, W, 3) float32."""
+    roll; min_transmission; ``pyskylight.operations()``). Returns (H, W, 3) float32."""
     return _apply("add", image, depth, options)
 
 
@@ -38,7 +40,7 @@ def composite(background, obj, depth, alpha=None, **options):
     background (Morales 2017 §6.2). ``alpha``: (H, W) coverage in [0, 1]; None: 1 where the
     depth is > 0. ``options``: the haze composite operation's (as add). Returns (H, W, 3)
     float32."""
-    return _skylight.haze_composite(
-        _np.asarray(background, dtype=_np.float32), _np.asarray(obj, dtype=_np.float32),
-        _np.asarray(depth, dtype=_np.float32),
-        None if alpha is None else _np.asarray(alpha, dtype=_np.float32), options)
+    from . import run
+    return run("haze composite", background=_image(background), object=_image(obj),
+               object_depth=_image(depth),
+               object_alpha=None if alpha is None else _image(alpha), **options)["output"]

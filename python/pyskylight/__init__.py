@@ -1,25 +1,40 @@
-"""skylight: daylight sky models, the physical atmosphere and the sky tools of the C++ library.
+"""pyskylight: the Python package of skylight (daylight sky models, the physical atmosphere and the
+sky tools of the C++ library). Its import name is ``pyskylight`` (another, unrelated package on PyPI
+is called ``skylight``; docs/PYTHON.md).
 
 Every parameter comes from the library's schemas: names, units, ranges and defaults are those of
-``skylight models --json`` (``skylight.models()``), with ``-`` spelled ``_``. A bad value raises
-``skylight.InvalidArgument`` (a ``ValueError``) with the library's message naming the parameter;
-I/O errors raise ``OSError``. docs/PYTHON.md in the repository has the guide.
+``skylight models --json`` (``pyskylight.models()``), with ``-`` spelled ``_``. Every operation of
+the library runs through :func:`run` (``skylight operations --json``, ``pyskylight.operations()``),
+with the command line's checks and messages. A bad value raises ``pyskylight.InvalidArgument`` (a
+``ValueError``) with the library's message naming the parameter; I/O errors raise ``OSError``; what
+the command line prints as a warning is a ``pyskylight.SkylightWarning``. docs/PYTHON.md in the
+repository has the guide.
 """
 
 import datetime as _dt
 import json as _json
+import keyword as _keyword
+import os as _os
 
 import numpy as _np
 
-from ._skylight import InvalidArgument, __version__
-from . import _skylight
+try:
+    from ._skylight import InvalidArgument, SkylightWarning, __version__
+    from . import _skylight
+except ImportError as _e:  # the message is the point: what to build
+    raise ImportError(
+        "pyskylight's extension module pyskylight._skylight is not built here "
+        f"({_os.path.dirname(__file__)}): build it with `cmake --build build --target "
+        "skylight_python` (the README's main job, ./scripts/main.sh, builds it; docs/PYTHON.md), "
+        f"or install the package with `pip install --no-build-isolation .` ({_e})") from None
 from . import estimate
 from . import haze
 from . import io
 from . import nn
 from . import sh
 
-__all__ = ["InvalidArgument", "Sky", "estimate", "haze", "io", "nn", "sh", "models", "operations", "report", "sun_position", "__version__"]
+__all__ = ["InvalidArgument", "SkylightWarning", "Sky", "estimate", "haze", "io", "nn", "sh",
+           "models", "operations", "run", "report", "sun_position", "sun_events", "__version__"]
 
 QUANTITIES = ("rgb", "xyz", "luminance", "spectral")
 
@@ -34,13 +49,55 @@ def operations():
     return _json.loads(_skylight.operations_json())
 
 
-def report(output_dir, **options):
-    """Writes the validation and comparison report (``skylight report``: index.html, figures,
-    report.json) into ``output_dir`` (created if needed; all files or none) and returns the
-    names of the files written. ``options``: the report operation's (measurements, epw,
-    sun_azimuth, sun_elevation, quick; ``skylight.operations()``)."""
-    import os
-    return _skylight.write_report(os.fspath(output_dir), options)
+class _Text(str):
+    """Text given to an operation's text input in memory, instead of the path of a file (e.g. a
+    table's JSON)."""
+
+
+def _argument(value):
+    if isinstance(value, _dt.datetime):
+        return _iso8601(value)
+    return value
+
+
+def run(operation, progress=None, **arguments):
+    """Runs the library's operation ``operation`` (its name as the command line spells it:
+    "render", "haze add", "sh fit", ...; ``pyskylight.operations()`` lists them with their
+    parameters, relations and result fields) and returns its record as a dict: the fields the
+    operation declares, as ``skylight <operation> --json`` prints them.
+
+    ``arguments``: the operation's parameters with ``-`` spelled ``_`` (one that is a Python
+    keyword with ``_`` after it: ``from_``; files as paths or path-likes; a time as ISO 8601 text
+    or an aware datetime). An image input may be a numpy array (H, W, C) instead of a path. An
+    output not given a path is returned in the dict under its name: an image as a float32 array
+    (H, W, C), a text as str (bytes where it is not text, e.g. a .npy matrix); an optional output
+    not given is not made. The request is checked before
+    any work exactly as the command line checks it (the same errors and warnings: warnings are
+    ``SkylightWarning``s). ``progress(done, total, step)`` is called between steps (total 0:
+    unknown); Ctrl-C stops the operation there (KeyboardInterrupt), writing nothing."""
+    kwargs, inputs = {}, {}
+    for key, value in arguments.items():
+        if key.endswith("_") and _keyword.iskeyword(key[:-1]):
+            key = key[:-1]  # a parameter named as a Python keyword (nn animate's from): from_
+        if isinstance(value, _np.ndarray):
+            a = _np.asarray(value, dtype=_np.float32)
+            inputs[key] = a[:, :, None] if a.ndim == 2 else a
+        elif isinstance(value, _Text):
+            inputs[key] = str(value)
+        else:
+            kwargs[key] = _argument(value)
+    record, outputs = _skylight.run_operation(operation, kwargs, inputs, progress)
+    result = _json.loads(record)
+    result.update(outputs)
+    return result
+
+
+def report(output_dir, progress=None, **options):
+    """Writes the validation and comparison report (the ``report`` operation: index.html,
+    figures, report.json) into ``output_dir`` (created if needed; all files or none) and returns
+    its record (``index``, ``files``). ``options``: the operation's (measurements, epw,
+    sun_azimuth, sun_elevation, quick; ``pyskylight.operations()``)."""
+    return run("report", progress=progress, output=output_dir, **options)
 
 
 def _iso8601(t):
@@ -75,7 +132,7 @@ def _sky_doc():
     lines = [
         "A sky of one registered model.",
         "",
-        "Sky(model, **parameters): the keyword names are the schema's (``skylight.models()``).",
+        "Sky(model, **parameters): the keyword names are the schema's (``pyskylight.models()``).",
         "Common to every model: sun_zenith or sun_elevation, sun_azimuth [deg]; or time (ISO 8601",
         "text or an aware datetime) with lat, lon [deg] and the SPA's elevation, pressure,",
         "temperature, delta_t; include_sun / sun_only (models with a solar disc).",
@@ -174,14 +231,14 @@ class Sky:
         """The sky drawn as ``skylight render`` draws it (CPU): an (H, W, 3) float32 array of
         linear sRGB (``quantity="rgb"``; Y = luminance in cd/m^2) or XYZ, row 0 at the top.
         ``image``: the image options of the render operation (lens, fov, north_angle,
-        look_elevation, look_azimuth; ``skylight.operations()``). ``return_mask=True`` also
+        look_elevation, look_azimuth; ``pyskylight.operations()``). ``return_mask=True`` also
         returns the (H, W) bool mask of pixels without a direction (outside a fisheye circle)."""
         image = dict(image, projection=projection, width=width, height=height)
         pixels, mask = self._sky.render(image, quantity, _threads(threads))
         return (pixels, mask) if return_mask else pixels
 
     def __repr__(self):
-        return (f"skylight.Sky({self.model!r}, sun_zenith={self.sun_zenith:g}, "
+        return (f"pyskylight.Sky({self.model!r}, sun_zenith={self.sun_zenith:g}, "
                 f"sun_azimuth={self.sun_azimuth:g}, parameters={self.parameters()!r})")
 
 
@@ -223,7 +280,7 @@ def sun_position(times, lat, lon, **spa):
 
     ``times``: numpy datetime64 (taken as UTC), timezone-aware datetimes or ISO 8601 text with an
     offset; ``lat``, ``lon`` [deg]; ``spa``: elevation [m], pressure [mbar], temperature [degC],
-    delta_t [s] and the other parameters of ``skylight sun`` (``skylight.operations()``)."""
+    delta_t [s] and the other parameters of ``skylight sun`` (``pyskylight.operations()``)."""
     ns, shape = _epoch_ns(times)
     out = _skylight.sun_position(_np.ascontiguousarray(ns.reshape(-1)),
                                  dict(spa, lat=lat, lon=lon))

@@ -3,5 +3,6 @@ from typing import Any
 
 import numpy.typing as npt
 
-def turbidity(image: npt.ArrayLike | str | PathLike[str], mask: npt.ArrayLike | None = ...,
+def turbidity(image: npt.ArrayLike | str | PathLike[str],
+              mask: npt.ArrayLike | str | PathLike[str] | None = ...,
               **options: Any) -> dict[str, Any]: ...

@@ -12,7 +12,7 @@ from . import _skylight
 
 
 def project(sky, bands=3, channels="rgb", ground_albedo=None, tolerance=1e-6):
-    """The SH coefficients of ``sky`` (a skylight.Sky; the solar disc excluded) on the upper
+    """The SH coefficients of ``sky`` (a pyskylight.Sky; the solar disc excluded) on the upper
     hemisphere, the lower one black or, with ``ground_albedo``, a Lambertian ground lit by the
     sky and the sun. ``channels``: "rgb" (linear sRGB) or "xyz". Raises InvalidArgument when
     the projection does not converge to ``tolerance`` (relative change of any coefficient)."""
@@ -64,7 +64,7 @@ class Table:
     """An SH polynomial table (Habel et al. 2008 eq. 1; docs/SH.md): per stored coefficient and
     channel a Chebyshev polynomial in the sun zenith and the table's parameter tau (turbidity for
     preetham and hosek). Made by :func:`fit` or :func:`load_table`; the ``sh`` model renders one
-    (``skylight.Sky("sh", table=path)`` after :meth:`save`)."""
+    (``pyskylight.Sky("sh", table=path)`` after :meth:`save`)."""
 
     def __init__(self, table):
         self._table = table
@@ -91,31 +91,37 @@ class Table:
         self._table.save(_os.fspath(path))
 
     def c_header(self, name="skylight_sh_table", monomial=False):
-        """The table as a C header (``skylight sh export --c-header``): its Chebyshev
+        """The table as a C header (the ``sh export`` operation with ``c_header``): its Chebyshev
         coefficients and, with ``monomial``, the published monomial form."""
-        return self._table.c_header(name, bool(monomial))
+        from . import run, _Text
+        return run("sh export", c_header=True, name=name, monomial=bool(monomial),
+                   table=_Text(self._table.to_json()))["output"]
 
     def error(self, progress=None, **options):
         """E_mean (eq. 3) and E_max (eq. 2) against converged projections of the table's model,
-        per band count and channel, worst and median over the test points (``skylight sh error
-        --json``'s rows). ``options``: points (theta, tau), midpoints_only. ``progress(done,
-        total)`` after each projection; Ctrl-C stops (KeyboardInterrupt)."""
-        return self._table.error(options, progress)
+        per band count and channel, worst and median over the test points: the ``sh error``
+        operation's record (``rows``, ``points``, ...). ``options``: points (theta, tau),
+        midpoints_only. ``progress(done, total, step)`` between projections; Ctrl-C stops
+        (KeyboardInterrupt)."""
+        from . import run, _Text
+        return run("sh error", progress=progress, table=_Text(self._table.to_json()), **options)
 
     def __repr__(self):
         d = self.describe()
-        return (f"skylight.sh.Table(model={d['model']!r}, parameter={d['parameter']!r}, "
+        return (f"pyskylight.sh.Table(model={d['model']!r}, parameter={d['parameter']!r}, "
                 f"bands={d['bands']}, degrees={d['degrees']})")
 
 
 def fit(model, progress=None, **options):
-    """Fits an SH polynomial table to a registered model as ``skylight sh fit`` does (its
+    """Fits an SH polynomial table to a registered model: the ``sh fit`` operation (its
     converged projections on a grid of suns and tau; the model's fit policy gives tau, its range
-    and the table's structure). ``options``: the sh fit operation's (bands, degrees, parameter,
-    range, theta_range, grid, set, channels, tolerance, theta_axis, tau_pieces, ground_albedo;
-    ``skylight.operations()``). ``progress(done, total)`` after each projection; Ctrl-C stops
-    between projections (KeyboardInterrupt). Returns a :class:`Table`."""
-    return Table(_skylight._ShTable.fit(dict(options, model=model), progress))
+    and the table's structure). ``options``: the operation's (bands, degrees, parameter, range,
+    theta_range, grid, set, channels, tolerance, theta_axis, tau_pieces, ground_albedo;
+    ``pyskylight.operations()``). ``progress(done, total, step)`` after each projection; Ctrl-C
+    stops between projections (KeyboardInterrupt). Returns a :class:`Table`."""
+    from . import run
+    return Table(_skylight._ShTable.from_json(run("sh fit", progress=progress, model=model,
+                                                  **options)["output"]))
 
 
 def load_table(path):
