@@ -1,16 +1,17 @@
 // The error of the multiple-scattering models against the Monte Carlo path tracer
 // (docs/ATMOSPHERE.md): for each sun elevation, 10 view directions (zenith; elevations 45, 20,
 // 5 deg at azimuths 0, 90 and 180, the sun at azimuth 180) and 450, 550,
-// 650 nm, the relative error of `bruneton` (default orders), `hillaire` (and of `nishita`,
-// single scattering, for scale)
-// against path_trace (segments estimator, Earth defaults with 300 DU of ozone, black ground),
-// over the cases whose path-traced standard error is below 0.5 %. Prints the median, the 95th
-// percentile and the maximum per sun elevation and over day (>= 10 deg: sun zenith <= 80 deg), the
-// low sun (3 deg) and twilight (< 0).
+// 650 nm, the relative error of `bruneton` (its default, converged orders), `hillaire` (and of
+// `nishita`, single scattering, for scale) against path_trace (segments estimator, Earth defaults
+// with 300 DU of ozone, black ground), over the cases whose path-traced standard error is below 0.5
+// %. Prints the median, the 95th percentile and the maximum per sun elevation and over day (>= 10
+// deg: sun zenith <= 80 deg), the low sun (3 deg) and twilight (< 0).
 //
-// `skylight_atmosphere_error orders VIEW_ZENITH SUN_ELEVATION VIEW_AZIMUTH` (deg; the sun at
-// azimuth 180) prints instead bruneton's orders 1-5 one by one against the path tracer's tallies
-// (100 000 paths) at 450, 550 and 650 nm.
+// `skylight_atmosphere_error orders VIEW_ZENITH SUN_ELEVATION VIEW_AZIMUTH [ALBEDO OZONE]` (deg;
+// the sun at azimuth 180; the ground's albedo, 0: black; ozone [DU]) prints instead bruneton's
+// orders 1-5 one by one against the path tracer's tallies (100 000 paths) at 450, 550 and 650 nm
+// (with ALBEDO: 440, 550 and 680 nm). `truncation [PATHS]` and `day-set [PATHS] [ORDERS]`: below
+// (docs/ATMOSPHERE.md, "Scattering orders").
 // Observers on the ground and at 20 km.
 //
 // `skylight_atmosphere_error xyz` prints instead the spectral sampling's error (docs/ATMOSPHERE.md,
@@ -20,8 +21,9 @@
 // elevations 90, 30, 5, 1 deg and azimuths 0, 90, 180: the quadrature alone (the model's XYZ
 // weights on its exact spectral radiance) and tristimulus() (with the sky-view LUT). Usage:
 // skylight_atmosphere_error [PATHS (default 100000; twilight x 16)] [ORDERS (bruneton's
-// --scattering-orders, default 4)] [CACHE.csv (the path tracer's results: read where a line has
-// the case, else computed and appended; for comparing changes of the models on the same paths)]
+// --scattering-orders; 0 or none: its default, converged)] [CACHE.csv (the path tracer's results:
+// read where a line has the case, else computed and appended; for comparing changes of the models
+// on the same paths)]
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -39,6 +41,7 @@
 #include "skylight/core/math.h"
 #include "skylight/models/bruneton.h"
 #include "skylight/models/hillaire.h"
+#include "skylight/models/nishita.h"
 
 namespace {
 
@@ -159,21 +162,160 @@ int xyz_sampling() {
   return 0;
 }
 
+// `truncation [PATHS]`: what the orders above N carry, from the path tracer's radiance by order
+// (issue 45's set: 440, 550, 680 nm; observers at 0, 10, 50 and 100 km; ground albedo 0 and 0.3;
+// ozone 0 and 300 DU; the sun at 60, 30 and 10 deg; the ten views), as a share of each case's
+// radiance: the truncation error of N orders, and what is left after the orders above N are
+// estimated as a geometric series from orders N - 1 and N (each node's ratio, as bruneton's
+// converged default does: atmosphere/scattering_orders.h). Per wavelength and albedo, the
+// median and maximum over the cases whose standard error is below 0.5 %.
+int truncation(std::uint64_t paths) {
+  const std::vector<double> nm{440, 550, 680};
+  constexpr int kMaxN = 12;
+  // [albedo][wavelength][N]: the shares cut, and left after the geometric estimate.
+  std::map<double, std::array<std::array<std::vector<double>, kMaxN + 1>, 3>> cut, left;
+  int skipped = 0;
+  for (const double albedo : {0.0, 0.3})
+    for (const double ozone : {0.0, 300.0})
+      for (const double altitude : {0.0, 10000.0, 50000.0, 100000.0})
+        for (const double sun_el : {60.0, 30.0, 10.0}) {
+          NishitaParameters p;
+          p.sun = {.zenith = deg_to_rad(90 - sun_el), .azimuth = deg_to_rad(180)};
+          p.observer_altitude_m = altitude;
+          if (albedo > 0) p.albedo = albedo;
+          if (ozone > 0) p.ozone_du = ozone;
+          const NishitaModel n(p);
+          const auto spec = n.spectral_at(nm);
+          atmosphere::PathTracerSettings s;
+          s.paths = paths;
+          for (const double el : {90.0, 45.0, 20.0, 5.0, -30.0})
+            for (const double az : {0.0, 90.0, 180.0}) {
+              if (std::abs(el) == 90 && az > 0) continue;
+              const Vec3 v = direction_from_angles(deg_to_rad(90 - el), deg_to_rad(az));
+              const auto r = atmosphere::path_trace(n.atmosphere().parameters(), n.observer(), v,
+                                                    n.sun().direction(), spec, s);
+              for (std::size_t l = 0; l < nm.size(); ++l) {
+                if (!(r.radiance[l] > 0) || r.standard_error[l] > 0.005 * r.radiance[l]) {
+                  ++skipped;
+                  continue;
+                }
+                for (int N = 2; N <= kMaxN; ++N) {
+                  double tail = 0;
+                  for (std::size_t k = N; k < r.order_radiance.size(); ++k)
+                    tail += r.order_radiance[k][l];
+                  const double last = r.order_radiance[N - 1][l];
+                  const double before = r.order_radiance[N - 2][l];
+                  const double q = before > 0 ? std::clamp(last / before, 0.0, 0.95) : 0.0;
+                  cut[albedo][l][N].push_back(tail / r.radiance[l]);
+                  left[albedo][l][N].push_back(std::abs(tail - last * q / (1 - q)) / r.radiance[l]);
+                }
+              }
+            }
+        }
+  const auto median_max = [](std::vector<double> e) {
+    std::sort(e.begin(), e.end());
+    return fmt::format("{:.2f}/{:.2f}", 100 * e[e.size() / 2], 100 * e.back());
+  };
+  fmt::print(
+      "share of the radiance in the orders above N [%], median/max over the cases ({} "
+      "wavelength-cases skipped: standard error above 0.5 %)\n",
+      skipped);
+  for (const auto& [albedo, by_nm] : cut)
+    for (std::size_t l = 0; l < nm.size(); ++l) {
+      fmt::print("albedo {:.1f} {} nm (n {}):\n  cut      ", albedo, nm[l], by_nm[l][2].size());
+      for (int N = 3; N <= kMaxN; ++N) fmt::print(" N={:<2} {:<11}", N, median_max(by_nm[l][N]));
+      fmt::print("\n  geometric");
+      for (int N = 3; N <= kMaxN; ++N)
+        fmt::print(" N={:<2} {:<11}", N, median_max(left.at(albedo)[l][N]));
+      fmt::print("\n");
+    }
+  return 0;
+}
+
+// `day-set [PATHS] [ORDERS]`: bruneton (default orders; ORDERS > 0: exactly that many) against
+// the path tracer over issue 45's day set (440, 550, 680 nm; observers at 0, 10, 50 and 100 km;
+// ground albedo 0 and 0.3; ozone 0 and 300 DU; the sun at 60, 30 and 10 deg; views at elevations
+// 90, 45, 20, 5 and -30 deg, azimuths 0, 90 and 180 from the sun's opposite): the signed relative
+// error's median, 95th percentile and maximum of its size, per albedo and wavelength and over
+// all, the worst cases, and the tables' set-up time, over the cases whose standard error is below
+// 0.5 %.
+int day_set(std::uint64_t paths, int orders) {
+  const std::vector<double> nm{440, 550, 680};
+  std::map<std::string, std::vector<double>> errors;
+  std::vector<std::pair<double, std::string>> worst;
+  int skipped = 0;
+  for (const double albedo : {0.0, 0.3})
+    for (const double ozone : {0.0, 300.0})
+      for (const double altitude : {0.0, 10000.0, 50000.0, 100000.0})
+        for (const double sun_el : {60.0, 30.0, 10.0}) {
+          BrunetonParameters p;
+          p.sun = {.zenith = deg_to_rad(90 - sun_el), .azimuth = deg_to_rad(180)};
+          p.observer_altitude_m = altitude;
+          p.albedo = albedo > 0 ? std::optional<double>(albedo) : std::nullopt;
+          p.ozone_du = ozone > 0 ? std::optional<double>(ozone) : std::nullopt;
+          if (orders > 0) p.scattering_orders = orders;
+          const auto t0 = std::chrono::steady_clock::now();
+          const BrunetonModel b(p);
+          if (altitude == 0.0 && sun_el == 60.0)
+            fmt::print(
+                "albedo {} ozone {}: tables {:.1f} s CPU, {:.1f} s wall (with the LUT)\n", albedo,
+                ozone, b.tables() ? b.tables()->cpu_seconds : 0.0,
+                std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+          const NishitaModel& n = b.single_scattering();
+          const auto spec = n.spectral_at(nm);
+          atmosphere::PathTracerSettings s;
+          s.paths = paths;
+          for (const double el : {90.0, 45.0, 20.0, 5.0, -30.0})
+            for (const double az : {0.0, 90.0, 180.0}) {
+              if (std::abs(el) == 90 && az > 0) continue;
+              const Vec3 v = direction_from_angles(deg_to_rad(90 - el), deg_to_rad(az));
+              const auto r = atmosphere::path_trace(n.atmosphere().parameters(), n.observer(), v,
+                                                    n.sun().direction(), spec, s);
+              for (std::size_t l = 0; l < nm.size(); ++l) {
+                if (!(r.radiance[l] > 0) || r.standard_error[l] > 0.005 * r.radiance[l]) {
+                  ++skipped;
+                  continue;
+                }
+                const double e = *b.spectral_radiance(v, nm[l]) / r.radiance[l] - 1;
+                errors[fmt::format("albedo {:.1f} {} nm", albedo, nm[l])].push_back(std::abs(e));
+                errors["all"].push_back(std::abs(e));
+                worst.emplace_back(
+                    std::abs(e),
+                    fmt::format("{:+.2f} % (path tracer +- {:.2f} %): {} nm, albedo {}, ozone {}, "
+                                "observer {} km, sun {} deg, view elevation {} azimuth {}",
+                                100 * e, 100 * r.standard_error[l] / r.radiance[l], nm[l], albedo,
+                                ozone, altitude / 1000, sun_el, el, az));
+              }
+            }
+        }
+  for (const auto& [name, e] : errors) fmt::print("{:<20} {}\n", name, stats(e));
+  std::sort(worst.rbegin(), worst.rend());
+  for (std::size_t i = 0; i < std::min<std::size_t>(8, worst.size()); ++i)
+    fmt::print("  {}\n", worst[i].second);
+  fmt::print("{} wavelength-cases skipped (standard error above 0.5 %)\n", skipped);
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   const std::uint64_t paths = argc > 1 ? std::strtoull(argv[1], nullptr, 10) : 100000;
-  const int orders = argc > 2 ? std::atoi(argv[2]) : 4;
+  const int orders = argc > 2 ? std::atoi(argv[2]) : 0;
   constexpr double kMaxStandardError = 0.005;
   constexpr double kShownError = 0.03;  // bruneton's cases above it are printed one by one
   Errors day, low, twilight;
-  if (argc == 5 && std::string(argv[1]) == "orders") {
-    const std::vector<double> nm{450, 550, 650};
+  if (argc >= 5 && std::string(argv[1]) == "orders") {
+    const std::vector<double> nm =
+        argc > 5 ? std::vector<double>{440, 550, 680} : std::vector<double>{450, 550, 650};
     const double vz = std::atof(argv[2]), se = std::atof(argv[3]), az = std::atof(argv[4]);
     const Vec3 v = direction_from_angles(deg_to_rad(vz), deg_to_rad(az));
     std::vector<double> prev(3, 0.0);
     BrunetonParameters bp;
     bp.sun = {.zenith = deg_to_rad(90 - se), .azimuth = deg_to_rad(180)};
+    if (argc > 5 && std::atof(argv[5]) > 0) bp.albedo = std::atof(argv[5]);
+    if (argc > 6)
+      bp.ozone_du =
+          std::atof(argv[6]) > 0 ? std::optional<double>(std::atof(argv[6])) : std::nullopt;
     const BrunetonModel b1(bp);
     const auto spec = b1.single_scattering().spectral_at(nm);
     atmosphere::PathTracerSettings s;
@@ -194,6 +336,11 @@ int main(int argc, char** argv) {
     return 0;
   }
   if (argc == 2 && std::string(argv[1]) == "xyz") return xyz_sampling();
+  if (argc >= 2 && std::string(argv[1]) == "day-set")
+    return day_set(argc > 2 ? std::strtoull(argv[2], nullptr, 10) : 100000,
+                   argc > 3 ? std::atoi(argv[3]) : 0);
+  if (argc >= 2 && std::string(argv[1]) == "truncation")
+    return truncation(argc > 2 ? std::strtoull(argv[2], nullptr, 10) : 20000);
   TraceCache cache(argc > 3 ? argv[3] : "");
   for (const double altitude : {0.0, 20000.0})
     for (const double sun_el : {60.0, 30.0, 10.0, 3.0, -1.0, -3.0, -6.0}) {
@@ -204,7 +351,7 @@ int main(int argc, char** argv) {
       BrunetonParameters bp;
       bp.sun = hp.sun;
       bp.observer_altitude_m = altitude;
-      bp.scattering_orders = orders;
+      if (orders > 0) bp.scattering_orders = orders;
       const auto t0 = std::chrono::steady_clock::now();
       const BrunetonModel b(bp);
       if (sun_el == 60.0 && altitude == 0.0 && b.tables())

@@ -93,13 +93,14 @@ if [ "${SKYLIGHT_SKIP_SANITIZERS:-0}" != "1" ]; then
   # they rerun CLI commands the Cli.* tests cover, and took 528 of the pass's 1 789 test-seconds
   # under the sanitizers (docs/TESTING.md, "Build and test time"); nor the edge sweeps of the
   # models with a costly set-up (ModelInfo::costly_setup: 350 test-seconds under ASan; their own
-  # tests run here).
+  # tests run here), nor BrunetonCostly.* (three sets of bruneton's tables: 30 s of CPU in
+  # Release).
   rm -rf build-asan/test-table-cache
   ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
     warm_table_cache build-asan "$root/build-asan/test-table-cache"
   SKYLIGHT_TABLE_CACHE="$root/build-asan/test-table-cache" \
   ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
     ctest --test-dir build-asan --output-on-failure -j "$(nproc)" \
-      -E '^(Docs|ReportBrowser)\.|^Registry/CostlyEdgeSweeps\.'
+      -E '^(Docs|ReportBrowser)\.|^Registry/CostlyEdgeSweeps\.|^BrunetonCostly\.'
   rm -rf build-asan/test-table-cache
 fi

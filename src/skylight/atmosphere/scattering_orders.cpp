@@ -365,8 +365,21 @@ void integrate_ray(const RaySource& src, Vec3 x, Vec3 view, Vec3 sun, int ray_no
   for (std::size_t l = 0; l < nl; ++l) out[l] += tr[l] * at(e, l) * spec.solar[l];
 }
 
+// Adds to `sum` the geometric remainder of the orders above the last: last r / (1 - r) with
+// r = last / before at each entry (0 where `before` is 0; at most kMaxRemainderRatio).
+template <class T>
+void add_remainder(std::span<const T> last, std::span<const T> before, std::span<T> sum) {
+  for (std::size_t x = 0; x < sum.size(); ++x) {
+    const double r = before[x] > 0 ? std::clamp(static_cast<double>(last[x]) / before[x], 0.0,
+                                                kMaxRemainderRatio)
+                                   : 0.0;
+    sum[x] += static_cast<T>(last[x] * r / (1.0 - r));
+  }
+}
+
 ScatteringOrderTables compute_tables(const Atmosphere& atm, const std::vector<double>& lut_nm,
-                                     int orders) {
+                                     OrderSettings settings) {
+  const int orders = settings.computed;
   const double cpu0 = process_cpu_s();
   const AtmosphereParameters& a = atm.parameters();
   const std::size_t nl = lut_nm.size();
@@ -402,15 +415,28 @@ ScatteringOrderTables compute_tables(const Atmosphere& atm, const std::vector<do
   const double albedo = a.ground_albedo.value_or(0.0);
   t.ground_irradiance.assign(static_cast<std::size_t>(kNs) * nl, 0.0);
   std::vector<NodeTable> q(ncs, NodeTable(nl)), sum(ncs, NodeTable(nl));
+  // The orders before the last (the remainder's ratio).
+  std::vector<NodeTable> q_before;
+  std::vector<double> e_before;
   for (int n = 2; n <= orders; ++n) {
     // E_{n-1} and J_n = sum_c beta_c rho_c (P_c L_{n-1}).
     const std::vector<double> e = ground_irradiance(grid, l);
     for (std::size_t x = 0; x < e.size(); ++x) t.ground_irradiance[x] += e[x];
+    if (settings.remainder && n == orders) q_before = q;
     for (std::size_t c = 0; c < ncs; ++c) {
       apply_phase(p[c], l, q[c]);
       for (std::size_t x = 0; x < q[c].v.size(); ++x) sum[c].v[x] += q[c].v[x];
     }
-    if (n == orders) break;
+    if (n == orders) {
+      // The orders above N: J from J_N / J_{N-1}, E from E_{N-1} / E_{N-2} (none for N = 2:
+      // J_1 is not tabulated, and E_1 alone has no ratio).
+      if (settings.remainder && n >= 3) {
+        for (std::size_t c = 0; c < ncs; ++c) add_remainder<float>(q[c].v, q_before[c].v, sum[c].v);
+        add_remainder<double>(e, e_before, t.ground_irradiance);
+      }
+      break;
+    }
+    e_before = e;
     report_progress(n - 1, orders, fmt::format("bruneton's tables: order {}", n));
     // L_n at every node.
     RaySource src{grid, atm, t.components, {}, nl, &e, albedo};
@@ -433,8 +459,9 @@ ScatteringOrderTables compute_tables(const Atmosphere& atm, const std::vector<do
   }
   for (NodeTable& s : sum) t.q.push_back(std::move(s.v));
   t.cpu_seconds = process_cpu_s() - cpu0;
-  report_progress(orders, orders,
-                  fmt::format("bruneton's tables: {} orders, {:.1f} s CPU", orders, t.cpu_seconds));
+  report_progress(
+      orders, orders,
+      fmt::format("bruneton's tables: {}, {:.1f} s CPU", settings.text(), t.cpu_seconds));
   return t;
 }
 
@@ -514,13 +541,19 @@ AtmosphereTableCache<ScatteringOrderTables>& tables_cache() {
 
 }  // namespace
 
-std::string order_tables_key(const Atmosphere& atm, int orders) {
-  return atmosphere_key(atm.parameters()) + fmt::format(" orders {}", orders);
+std::string OrderSettings::text() const {
+  return fmt::format("{} orders{}", computed, remainder ? " and the geometric remainder" : "");
+}
+
+std::string order_tables_key(const Atmosphere& atm, OrderSettings orders) {
+  return atmosphere_key(atm.parameters()) + " " + orders.text();
 }
 
 ScatteringOrderTables load_or_compute_order_tables(const Atmosphere& atm,
-                                                   const std::vector<double>& lut_nm, int orders) {
-  const std::string fk = file_key(order_tables_key(atm, orders), lut_nm);
+                                                   const std::vector<double>& lut_nm,
+                                                   OrderSettings settings) {
+  const int orders = settings.computed;
+  const std::string fk = file_key(order_tables_key(atm, settings), lut_nm);
   const auto file = io::table_cache_file("bruneton", fk);
   std::size_t components = 0;
   for (const auto& c : atm.parameters().components) components += c.scattering_per_m > 0.0;
@@ -530,14 +563,14 @@ ScatteringOrderTables load_or_compute_order_tables(const Atmosphere& atm,
         report_progress(orders, orders, "bruneton's tables: read from the table cache");
         return std::move(*t);
       }
-  ScatteringOrderTables t = compute_tables(atm, lut_nm, orders);
+  ScatteringOrderTables t = compute_tables(atm, lut_nm, settings);
   if (file) io::write_cached_table(*file, fk, serialise(t));
   return t;
 }
 
 std::shared_ptr<const ScatteringOrderTables> shared_order_tables(const Atmosphere& atm,
                                                                  const std::vector<double>& nm,
-                                                                 int orders) {
+                                                                 OrderSettings orders) {
   return tables_cache().get(file_key(order_tables_key(atm, orders), nm),
                             [&] { return load_or_compute_order_tables(atm, nm, orders); });
 }

@@ -31,7 +31,8 @@ TEST(ScatteringOrders, TablesAreStoredInTheTableCacheAndReadBackEqual) {
   const std::vector<double> nm{400.0, 550.0, 700.0};
   std::vector<std::string> steps;
   const ScopedProgressSink sink([&](int, int, std::string_view s) { steps.emplace_back(s); });
-  const ScatteringOrderTables computed = load_or_compute_order_tables(atm, nm, 2);
+  const ScatteringOrderTables computed =
+      load_or_compute_order_tables(atm, nm, OrderSettings::exactly(2));
   EXPECT_GE(steps.size(), 2u);  // the orders one by one, then done
   ASSERT_EQ(dir.entries().size(), 1u);
   const auto file = dir.path() / dir.entries()[0];
@@ -43,7 +44,7 @@ TEST(ScatteringOrders, TablesAreStoredInTheTableCacheAndReadBackEqual) {
     EXPECT_EQ(t.cpu_seconds, computed.cpu_seconds);  // the stored precomputation's
   };
   steps.clear();
-  same(load_or_compute_order_tables(atm, nm, 2));
+  same(load_or_compute_order_tables(atm, nm, OrderSettings::exactly(2)));
   EXPECT_EQ(steps, std::vector<std::string>{"bruneton's tables: read from the table cache"});
   std::vector<char> bytes = io::read_file(file);
   bytes[bytes.size() / 2] = static_cast<char>(bytes[bytes.size() / 2] ^ 1);
@@ -53,7 +54,8 @@ TEST(ScatteringOrders, TablesAreStoredInTheTableCacheAndReadBackEqual) {
     // As inside a CLI command: the cache file is neither an input nor an output of the command's
     // transaction (reading the damaged file and replacing it is not "an output naming an input").
     io::OutputTransaction command;
-    const ScatteringOrderTables again = load_or_compute_order_tables(atm, nm, 2);
+    const ScatteringOrderTables again =
+        load_or_compute_order_tables(atm, nm, OrderSettings::exactly(2));
     EXPECT_GE(steps.size(), 2u);  // computed
     EXPECT_EQ(again.q, computed.q);
     EXPECT_NE(io::read_file(file), bytes);  // replaced by an intact file before the commit

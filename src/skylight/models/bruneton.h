@@ -2,13 +2,15 @@
 // Bruneton 2017 ("A Qualitative and Quantitative Evaluation of 8 Clear Sky Models", and its
 // reference implementation), in `nishita`'s atmosphere (atmosphere.h) with `nishita`'s parameters
 // and `--scattering-orders N`. The view sees L_1 (exactly, as nishita: integrated along each view
-// ray, within 0.2 % of the brute force) plus the orders 2 .. N of the precomputed tables
+// ray, within 0.2 % of the brute force) plus the orders 2 .. N of the precomputed tables (by
+// default 6 and the geometric remainder of the orders above: atmosphere::kConvergedOrders)
 // (atmosphere/scattering_orders.h, where the equations and the differences from Bruneton 2017
 // are), held per observer and sun in the sky-view LUT of physical_sky.h (Hillaire 2020), not in a
 // 4D table lookup per pixel.
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "skylight/atmosphere/scattering_orders.h"
@@ -19,9 +21,13 @@ namespace skylight {
 inline constexpr int kMaxScatteringOrders = 10;
 
 // `nishita`'s parameters, with the ozone layer on by default (Earth's 300 DU), and the number of
-// scattering orders.
+// scattering orders (none: converged, atmosphere::kConvergedOrders).
 struct BrunetonParameters : NishitaParameters {
-  int scattering_orders = 4;
+  std::optional<int> scattering_orders;
+  atmosphere::OrderSettings orders() const {
+    return scattering_orders ? atmosphere::OrderSettings::exactly(*scattering_orders)
+                             : atmosphere::kConvergedOrders;
+  }
   BrunetonParameters() { ozone_du = atmosphere::kEarthOzoneColumn; }
   static const ParameterSchema<BrunetonParameters>& schema();
 };
@@ -36,8 +42,8 @@ class BrunetonModel final : public PhysicalSkyModel {
   ParameterValues parameter_values() const override;
   Domain domain() const override;
 
-  // Orders 2 .. N along the view ray: the ray integral of T (J_2 + ... + J_N) and the ground's
-  // reflection of E_1 + ... + E_{N-1} (0 for N = 1).
+  // Orders 2 .. N (and the remainder) along the view ray: the ray integral of T (J_2 + ... + J_N)
+  // and the ground's reflection of E_1 + ... + E_{N-1} (0 for N = 1).
   void multiple_scattering(Vec3 view, const atmosphere::Spectral& spec,
                            const std::vector<LutWeight>& weights,
                            std::span<double> out) const override;

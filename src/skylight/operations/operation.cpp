@@ -516,7 +516,8 @@ std::string text_of(const std::vector<FieldSpec>& fields, const Record& record) 
   // The labels' column as wide as the longest shown (a null field is not shown).
   std::size_t width = 0;
   for (std::size_t i = 0; i < fields.size(); ++i)
-    if (!record.at(fields[i].name).is_null()) width = std::max(width, labels[i].size());
+    if (!record.at(fields[i].name).is_null() && !fields[i].verbatim)
+      width = std::max(width, labels[i].size());
   std::string out;
   for (std::size_t i = 0; i < fields.size(); ++i) {
     const FieldSpec& f = fields[i];
@@ -524,7 +525,9 @@ std::string text_of(const std::vector<FieldSpec>& fields, const Record& record) 
     // A field that does not apply, an empty list.
     if (v.is_null() || (f.kind == FieldKind::records && v.empty())) continue;
     const std::string& label = labels[i];
-    if (f.kind == FieldKind::records) {
+    if (f.verbatim) {
+      for (const auto& line : v) out += line.get<std::string>() + "\n";
+    } else if (f.kind == FieldKind::records) {
       out += label + ":\n";
       append_table(out, f, v);
     } else if (f.kind == FieldKind::record) {

@@ -70,6 +70,9 @@ struct FieldSpec {
   bool nullable = false;            // null where it does not apply (said in `meaning`)
   int decimals = -1;                // the text form's digits after the point; -1: shortest
   std::vector<FieldSpec> fields{};  // a record's or records' sub-fields
+  // A list of texts whose text form is its lines, verbatim and without a label (text the work
+  // lays out itself, e.g. bench's table); other lists are one labelled, comma-separated line.
+  bool verbatim = false;
 };
 
 // A result's values: an ordered JSON object whose keys are the declared fields'.
@@ -144,6 +147,13 @@ class ResultSchema {
     const bool nullable = returns_optional<G>();
     return field({std::move(name), "", FieldKind::texts, std::move(meaning), nullable, -1, {}},
                  getter(std::move(get)));
+  }
+  // Lines of text the work lays out itself (FieldSpec::verbatim).
+  template <class G>
+  ResultSchema& lines(std::string name, std::string meaning, G get) {
+    FieldSpec spec{std::move(name), "", FieldKind::texts, std::move(meaning), false, -1, {}};
+    spec.verbatim = true;
+    return field(std::move(spec), getter(std::move(get)));
   }
   // A list of records of `inner`'s fields: get(r) returns a container of S.
   template <class S, class G>

@@ -267,6 +267,14 @@ TEST(Operation, TextOfLabelsFieldsWithoutTheirUnitSuffixAndSkipsNulls) {
                                   {.name = "elevation_deg", .unit = "deg"}};
   Record rec = {{"elevation_m", 500}, {"elevation_deg", 30.5}};
   EXPECT_EQ(text_of(alike, rec), "elevation m    500 m\nelevation deg  30.5 deg\n");
+  // Lines the work lays out itself come verbatim, without a label.
+  struct Table {
+    std::vector<std::string> lines;
+  };
+  ResultSchema<Table> table;
+  table.lines("lines", "a table", &Table::lines);
+  EXPECT_EQ(text_of(table.fields(), table.record(Table{{"model  ms", "cie    0.5"}})),
+            "model  ms\ncie    0.5\n");
 }
 
 }  // namespace

@@ -26,7 +26,7 @@ struct BenchResult {
 const ResultSchema<BenchResult>& bench_result() {
   static const ResultSchema<BenchResult> s = [] {
     ResultSchema<BenchResult> s;
-    s.texts("lines",
+    s.lines("lines",
             "the measurements, one line each: medians of the repeats, wall and CPU time, ratios "
             "against the in-run baselines",
             &BenchResult::lines);
