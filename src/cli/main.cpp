@@ -8,6 +8,9 @@
 #include <cstdlib>
 #include <iostream>
 #include <new>
+#include <optional>
+#include <string>
+#include <vector>
 
 #include "common.h"
 #include "gpu_backend.h"
@@ -19,17 +22,11 @@
 
 namespace cli = skylight::cli;
 
-int main(int argc, char** argv) {
-  // The library's messages name parameters; here they read as the flags the user typed.
-  skylight::set_parameter_spelling(cli::flag_spelling);
-  CLI::App app{"skylight: daylight sky models, renders and checks"};
-  // Before the subcommands: they take their parent's formatter.
-  const auto formatter = std::make_shared<cli::HelpFormatter>();
-  app.formatter(formatter);
-  app.set_version_flag("--version", std::string("skylight ") + skylight::kVersion);
-  app.require_subcommand(1);
-  // Checked by its spec like every flag (strict decimal integer: no 0x10, no 1e3).
-  const skylight::ParameterSpec threads_spec{
+namespace {
+
+// --threads: checked by its spec like every flag (strict decimal integer: no 0x10, no 1e3).
+const skylight::ParameterSpec& threads_spec() {
+  static const skylight::ParameterSpec spec{
       .name = "threads",
       .unit = "1",
       .kind = skylight::ParameterKind::integer,
@@ -37,41 +34,34 @@ int main(int argc, char** argv) {
       .max = skylight::kMaxThreads,
       .default_value = skylight::Absent{"SKYLIGHT_THREADS, else all cores"},
       .description = "worker threads"};
-  std::string threads;
-  app.add_option("--threads", threads, threads_spec.help())
-      ->type_name(cli::value_label(threads_spec))
-      ->check(cli::schema_check(threads_spec));
-  // Global options (--threads) are accepted after the subcommand too.
-  app.fallthrough();
+  return spec;
+}
 
-  // The GL paths of the operations, when this build has the GPU module.
-  skylight::frontend::install_gpu_backend();
-  cli::Commands commands;
-  cli::add_models_command(app, commands);
-  cli::add_operation_commands(app, commands);
-  // Each subcommand's --help, a group's (nn, sh, haze) too, also lists the global option (CLI11
-  // shows only the page's own options).
-  const std::string global =
-      fmt::format("Global option (before or after the subcommand):\n{}",
-                  formatter->make_option(app.get_option("--threads"), false));
+// Each subcommand's --help, a group's (nn, sh, haze) too, also lists the global option (CLI11
+// shows only the page's own options).
+void add_global_footers(CLI::App& app, const cli::HelpFormatter& formatter) {
+  const std::string global = fmt::format("Global option (before or after the subcommand):\n{}",
+                                         formatter.make_option(app.get_option("--threads"), false));
   const auto add_footer = [&global](CLI::App* sub, auto& self) -> void {
     sub->footer(global);
     for (CLI::App* s : sub->get_subcommands([](const CLI::App*) { return true; })) self(s, self);
   };
   for (CLI::App* sub : app.get_subcommands([](const CLI::App*) { return true; }))
     add_footer(sub, add_footer);
+}
 
-  // --help and --version print to standard output like any command: a failed write (closed
-  // stdout, full disk) is an error, not a silent success.
-  const auto printed = [](int status) {
-    std::cout.flush();
-    if (std::cout) return status;
-    std::cerr << "skylight: error: cannot write to standard output\n";
-    return cli::kExitRuntime;
-  };
-  // Flags no command knows are collected (they fall through to here) and handed to the operation
-  // of the command line, whose own check refuses them naming the nearest parameter.
-  app.allow_extras();
+// --help and --version print to standard output like any command: a failed write (closed stdout,
+// full disk) is an error, not a silent success.
+int printed(int status) {
+  std::cout.flush();
+  if (std::cout) return status;
+  std::cerr << "skylight: error: cannot write to standard output\n";
+  return cli::kExitRuntime;
+}
+
+// Parses the command line: nullopt when a command is to run, else the exit status (help, version,
+// a usage error).
+std::optional<int> parse(CLI::App& app, int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -96,7 +86,20 @@ int main(int argc, char** argv) {
     std::cerr << "skylight: error: " << msg << " (see --help)\n";
     return cli::kExitUsage;
   }
+  return std::nullopt;
+}
 
+// Runs the command given (its outputs are one transaction: operations::execute), with the thread
+// count of --threads or SKYLIGHT_THREADS; extras (flags no command knows) go to an operation, whose
+// own check refuses them naming the nearest parameter.
+int run(const CLI::App& app, const cli::Commands& commands, const std::string& threads, int argc,
+        char** argv) {
+  const auto unexpected = [&](const std::vector<std::string>& extras) {
+    const auto unknown = cli::unknown_name_error(app, argc, argv);
+    return skylight::InvalidArgument(
+        unknown ? *unknown
+                : fmt::format("unexpected argument '{}'", skylight::excerpt(extras.front())));
+  };
   try {
     if (const char* env = std::getenv("SKYLIGHT_THREADS");
         env && !skylight::parse_thread_count(env))
@@ -104,25 +107,14 @@ int main(int argc, char** argv) {
           fmt::format("SKYLIGHT_THREADS = '{}' is not an integer in [1, {}]",
                       skylight::excerpt(env), skylight::kMaxThreads));
     if (!threads.empty())
-      skylight::set_thread_count(static_cast<int>(std::get<double>(threads_spec.parse(threads))));
-    // The command given (its outputs are one transaction: operations::execute).
+      skylight::set_thread_count(static_cast<int>(std::get<double>(threads_spec().parse(threads))));
     const std::vector<std::string> extras = app.remaining(true);
     for (const auto& c : commands) {
       if (!c.app->parsed()) continue;
-      if (!extras.empty() && !c.takes_extras) {
-        const auto unknown = cli::unknown_name_error(app, argc, argv);
-        throw skylight::InvalidArgument(
-            unknown ? *unknown
-                    : fmt::format("unexpected argument '{}'", skylight::excerpt(extras.front())));
-      }
+      if (!extras.empty() && !c.takes_extras) throw unexpected(extras);
       return c.run(extras);
     }
-    if (!extras.empty()) {
-      const auto unknown = cli::unknown_name_error(app, argc, argv);
-      throw skylight::InvalidArgument(
-          unknown ? *unknown
-                  : fmt::format("unexpected argument '{}'", skylight::excerpt(extras.front())));
-    }
+    if (!extras.empty()) throw unexpected(extras);
   } catch (const std::bad_alloc&) {
     std::cerr << "skylight: error: out of memory\n";
     return cli::kExitRuntime;
@@ -134,4 +126,34 @@ int main(int argc, char** argv) {
     return cli::kExitRuntime;
   }
   return cli::kExitUsage;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  // The library's messages name parameters; here they read as the flags the user typed.
+  skylight::set_parameter_spelling(cli::flag_spelling);
+  CLI::App app{"skylight: daylight sky models, renders and checks"};
+  // Before the subcommands: they take their parent's formatter.
+  const auto formatter = std::make_shared<cli::HelpFormatter>();
+  app.formatter(formatter);
+  app.set_version_flag("--version", std::string("skylight ") + skylight::kVersion);
+  app.require_subcommand(1);
+  std::string threads;
+  app.add_option("--threads", threads, threads_spec().help())
+      ->type_name(cli::value_label(threads_spec()))
+      ->check(cli::schema_check(threads_spec()));
+  // Global options (--threads) are accepted after the subcommand too.
+  app.fallthrough();
+  // The GL paths of the operations, when this build has the GPU module.
+  skylight::frontend::install_gpu_backend();
+  cli::Commands commands;
+  cli::add_models_command(app, commands);
+  cli::add_operation_commands(app, commands);
+  add_global_footers(app, *formatter);
+  // Flags no command knows are collected (they fall through to here) and handed to the operation
+  // of the command line.
+  app.allow_extras();
+  if (const auto status = parse(app, argc, argv)) return *status;
+  return run(app, commands, threads, argc, argv);
 }

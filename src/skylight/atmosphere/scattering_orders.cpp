@@ -377,6 +377,37 @@ void add_remainder(std::span<const T> last, std::span<const T> before, std::span
   }
 }
 
+// A table of `nl` wavelengths filled at every node (altitude row, direction, sun cosine) by
+// radiance(node, out), on the library's threads.
+template <class F>
+NodeTable at_every_node(const Grid& grid, std::size_t nl, const F& radiance) {
+  NodeTable table(nl);
+  parallel_for(static_cast<std::size_t>(kNr) * kDirs * kNs, 64, [&](std::size_t b, std::size_t e) {
+    std::vector<double> out(nl);
+    for (std::size_t job = b; job < e; ++job) {
+      const int i = static_cast<int>(job / (kDirs * kNs));
+      const int d = static_cast<int>(job / kNs % kDirs), j = static_cast<int>(job % kNs);
+      radiance(node_at(grid, i, d, j), out);
+      float* dst = &table.v[table.row(i, d) + static_cast<std::size_t>(j) * nl];
+      for (std::size_t x = 0; x < nl; ++x) dst[x] = static_cast<float>(out[x]);
+    }
+  });
+  return table;
+}
+
+// The phase matrices per scattering component (of `components`) and altitude row.
+std::vector<std::vector<std::vector<float>>> phase_matrices(
+    const Grid& grid, const AtmosphereParameters& a, const std::vector<std::size_t>& components) {
+  std::vector<std::vector<std::vector<float>>> p(components.size(),
+                                                 std::vector<std::vector<float>>(kNr));
+  parallel_for(components.size() * kNr, 1, [&](std::size_t b, std::size_t e) {
+    for (std::size_t job = b; job < e; ++job)
+      p[job / kNr][job % kNr] =
+          phase_matrix(grid, static_cast<int>(job % kNr), a.components[components[job / kNr]]);
+  });
+  return p;
+}
+
 ScatteringOrderTables compute_tables(const Atmosphere& atm, const std::vector<double>& lut_nm,
                                      OrderSettings settings) {
   const int orders = settings.computed;
@@ -392,27 +423,11 @@ ScatteringOrderTables compute_tables(const Atmosphere& atm, const std::vector<do
   const std::size_t ncs = t.components.size();
   // Steps: L_1 with the phase matrices, then each order.
   report_progress(0, orders, "bruneton's tables: phase matrices, order 1");
-  // The phase matrices per scattering component and altitude row.
-  std::vector<std::vector<std::vector<float>>> p(ncs, std::vector<std::vector<float>>(kNr));
-  parallel_for(ncs * kNr, 1, [&](std::size_t b, std::size_t e) {
-    for (std::size_t job = b; job < e; ++job)
-      p[job / kNr][job % kNr] =
-          phase_matrix(grid, static_cast<int>(job % kNr), a.components[t.components[job / kNr]]);
-  });
+  const auto p = phase_matrices(grid, a, t.components);
   // L_1: the single scattering (with the ground's reflection of the direct sun) at every node.
-  NodeTable l(nl);
-  parallel_for(static_cast<std::size_t>(kNr) * kDirs * kNs, 64, [&](std::size_t b, std::size_t e) {
-    std::vector<double> out(nl);
-    for (std::size_t job = b; job < e; ++job) {
-      const int i = static_cast<int>(job / (kDirs * kNs));
-      const int d = static_cast<int>(job / kNs % kDirs), j = static_cast<int>(job % kNs);
-      const Node n = node_at(grid, i, d, j);
-      atm.single_scattering(n.x, n.view, n.sun, unit, out);
-      float* dst = &l.v[l.row(i, d) + static_cast<std::size_t>(j) * nl];
-      for (std::size_t x = 0; x < nl; ++x) dst[x] = static_cast<float>(out[x]);
-    }
+  NodeTable l = at_every_node(grid, nl, [&](const Node& n, std::vector<double>& out) {
+    atm.single_scattering(n.x, n.view, n.sun, unit, out);
   });
-  const double albedo = a.ground_albedo.value_or(0.0);
   t.ground_irradiance.assign(static_cast<std::size_t>(kNs) * nl, 0.0);
   std::vector<NodeTable> q(ncs, NodeTable(nl)), sum(ncs, NodeTable(nl));
   // The orders before the last (the remainder's ratio).
@@ -439,23 +454,11 @@ ScatteringOrderTables compute_tables(const Atmosphere& atm, const std::vector<do
     e_before = e;
     report_progress(n - 1, orders, fmt::format("bruneton's tables: order {}", n));
     // L_n at every node.
-    RaySource src{grid, atm, t.components, {}, nl, &e, albedo};
+    RaySource src{grid, atm, t.components, {}, nl, &e, a.ground_albedo.value_or(0.0)};
     for (const NodeTable& qc : q) src.q.push_back(qc.v.data());
-    NodeTable next(nl);
-    parallel_for(
-        static_cast<std::size_t>(kNr) * kDirs * kNs, 64, [&](std::size_t b, std::size_t e2) {
-          std::vector<double> out(nl);
-          for (std::size_t job = b; job < e2; ++job) {
-            const int i = static_cast<int>(job / (kDirs * kNs));
-            const int d = static_cast<int>(job / kNs % kDirs);
-            const int j = static_cast<int>(job % kNs);
-            const Node nd = node_at(grid, i, d, j);
-            integrate_ray(src, nd.x, nd.view, nd.sun, kOrderTableRayNodes, unit, nullptr, out);
-            float* dst = &next.v[next.row(i, d) + static_cast<std::size_t>(j) * nl];
-            for (std::size_t x = 0; x < nl; ++x) dst[x] = static_cast<float>(out[x]);
-          }
-        });
-    l = std::move(next);
+    l = at_every_node(grid, nl, [&](const Node& nd, std::vector<double>& out) {
+      integrate_ray(src, nd.x, nd.view, nd.sun, kOrderTableRayNodes, unit, nullptr, out);
+    });
   }
   for (NodeTable& s : sum) t.q.push_back(std::move(s.v));
   t.cpu_seconds = process_cpu_s() - cpu0;

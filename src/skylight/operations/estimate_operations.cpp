@@ -97,46 +97,110 @@ const ResultSchema<ExifRecord>& exif_record() {
   return s;
 }
 
-// The record's fields: the fitted parameters of every model with an estimation policy
-// (registry order; null for the other models), a turbidity always (null when the model fitted
-// has none), each ranking policy's list.
-const ResultSchema<EstimateResult>& estimate_result() {
+using EstimateSchema = ResultSchema<EstimateResult>;
+
+// The fitted parameters of every model with an estimation policy (registry order; null for the
+// other models), a turbidity always (null when the model fitted has none).
+void add_fitted_parameters(EstimateSchema& s) {
   using R = EstimateResult;
-  static const ResultSchema<R> s = [] {
-    ResultSchema<R> s;
-    s.text("model", "the model fitted", [](const R& r) { return r.pe.model; });
-    std::set<std::string> keys;
-    const auto fitted = [](const std::string& parameter, bool sigma) {
-      return [parameter, sigma](const R& r) -> std::optional<double> {
-        for (const fit::FittedParameter& p : r.pe.fit.parameters)
-          if (p.name == parameter) return sigma ? p.sigma : p.value;
-        return std::nullopt;
-      };
+  std::set<std::string> keys;
+  const auto fitted = [](const std::string& parameter, bool sigma) {
+    return [parameter, sigma](const R& r) -> std::optional<double> {
+      for (const fit::FittedParameter& p : r.pe.fit.parameters)
+        if (p.name == parameter) return sigma ? p.sigma : p.value;
+      return std::nullopt;
     };
-    std::vector<std::pair<std::string, std::string>> axes;  // (parameter, label)
-    bool turbidity = false;
-    for (const ModelInfo& m : model_registry()) {
-      if (!m.estimation) continue;
-      for (const EstimationPolicy::Axis& a : m.estimation->axes) {
-        const std::string key = key_of(a.parameter);
-        if (!keys.insert(key).second) continue;
-        turbidity = turbidity || a.parameter == "turbidity";
-        if (m.estimation->method == EstimationPolicy::Method::ranking) {
-          s.integer(key, "1", fmt::format("{} (the best ranked; {})", a.label, m.name),
-                    [parameter = a.parameter](const R& r) -> std::optional<long long> {
-                      for (const fit::FittedParameter& p : r.pe.fit.parameters)
-                        if (p.name == parameter) return std::lround(p.value);
-                      return std::nullopt;
-                    });
-        } else {
-          s.number(key, "1", fmt::format("{} ({})", a.label, m.name), fitted(a.parameter, false), 4)
-              .number(key + "_sigma", "1",
-                      fmt::format("its standard deviation over bootstrap resamples ({})", m.name),
-                      fitted(a.parameter, true), 4);
-        }
+  };
+  bool turbidity = false;
+  for (const ModelInfo& m : model_registry()) {
+    if (!m.estimation) continue;
+    for (const EstimationPolicy::Axis& a : m.estimation->axes) {
+      const std::string key = key_of(a.parameter);
+      if (!keys.insert(key).second) continue;
+      turbidity = turbidity || a.parameter == "turbidity";
+      if (m.estimation->method == EstimationPolicy::Method::ranking) {
+        s.integer(key, "1", fmt::format("{} (the best ranked; {})", a.label, m.name),
+                  [parameter = a.parameter](const R& r) -> std::optional<long long> {
+                    for (const fit::FittedParameter& p : r.pe.fit.parameters)
+                      if (p.name == parameter) return std::lround(p.value);
+                    return std::nullopt;
+                  });
+      } else {
+        s.number(key, "1", fmt::format("{} ({})", a.label, m.name), fitted(a.parameter, false), 4)
+            .number(key + "_sigma", "1",
+                    fmt::format("its standard deviation over bootstrap resamples ({})", m.name),
+                    fitted(a.parameter, true), 4);
       }
     }
-    SKYLIGHT_CHECK(turbidity, "an estimation policy fits the turbidity");
+  }
+  SKYLIGHT_CHECK(turbidity, "an estimation policy fits the turbidity");
+}
+
+// Each ranking policy's list of every value it ranked.
+void add_rankings(EstimateSchema& s) {
+  for (const ModelInfo& m : model_registry()) {
+    if (!m.estimation || m.estimation->method != EstimationPolicy::Method::ranking) continue;
+    ResultSchema<Ranked> ranked;
+    ranked.integer(m.estimation->ranking_key, "1", "the value", &Ranked::value)
+        .number("inlier_fraction", "1", "inliers / samples at it", &Ranked::inlier_fraction, 3)
+        .number("residual", "1", "RMS of ln luminance", &Ranked::residual, 5);
+    s.records(m.estimation->ranking_field,
+              fmt::format("every value, best first ({}; empty for the other models)", m.name),
+              ranked, [name = m.name](const EstimateResult& r) {
+                std::vector<Ranked> out;
+                if (r.pe.model == name)
+                  for (const fit::RankedValue& v : r.pe.fit.ranking)
+                    out.push_back({static_cast<int>(v.value), v.inlier_fraction, v.residual});
+                return out;
+              });
+  }
+}
+
+// The sun, the samples, the calibration and the EXIF the fit used.
+void add_inputs(EstimateSchema& s) {
+  using R = EstimateResult;
+  s.number(
+       "sun_zenith_deg", "deg", "the sun used",
+       [](const R& r) { return rad_to_deg(r.pe.samples.sun.zenith); }, 3)
+      .number(
+          "sun_azimuth_deg", "deg", "from north towards east",
+          [](const R& r) { return rad_to_deg(r.pe.samples.sun.azimuth); }, 3)
+      .text("sun_source", "given, time, exif or image", [](const R& r) { return r.pe.sun_source; })
+      .integer("samples", "1", "sky pixels sampled",
+               [](const R& r) { return static_cast<long long>(r.pe.samples.samples.size()); })
+      .integer("sky_pixels", "1", "pixels of the sky mask",
+               [](const R& r) { return static_cast<long long>(r.pe.samples.sky_pixels); })
+      .text("calibration", "the camera calibration file, if one was given",
+            [](const R& r) -> std::optional<std::string> {
+              if (r.calibration.empty()) return std::nullopt;
+              return r.calibration;
+            })
+      .nested("exif", "what the capture's EXIF held (with --exif)", exif_record(),
+              [](const R& r) -> std::optional<ExifRecord> {
+                if (!r.capture) return std::nullopt;
+                const io::ExifInfo& e = r.capture->exif;
+                return ExifRecord{r.exif_file,
+                                  fmt::format("{}{}{}", e.make, e.make.empty() ? "" : " ", e.model),
+                                  e.date_time,
+                                  e.utc_offset,
+                                  e.focal_length_mm,
+                                  r.capture->focal_length_px,
+                                  e.latitude_deg,
+                                  e.longitude_deg};
+              })
+      .flag("ransac", "clouds rejected by RANSAC", [](const R& r) { return r.pe.settings.ransac; })
+      .integer("seed", "1", "of the sampling, RANSAC and bootstrap",
+               [](const R& r) { return static_cast<long long>(r.pe.settings.seed); });
+}
+
+// The record's fields: the model, its fitted parameters, the fit's quality, the rankings and
+// what the fit used.
+const EstimateSchema& estimate_result() {
+  using R = EstimateResult;
+  static const EstimateSchema s = [] {
+    EstimateSchema s;
+    s.text("model", "the model fitted", [](const R& r) { return r.pe.model; });
+    add_fitted_parameters(s);
     s.number(
          "inlier_fraction", "1", "inliers / samples",
          [](const R& r) { return r.pe.fit.inlier_fraction; }, 3)
@@ -149,57 +213,8 @@ const ResultSchema<EstimateResult>& estimate_result() {
               [](const R& r) { return r.pe.fit.method; })
         .number("luminance_scale", "1", "s: the photo's Y = s x the model's luminance",
                 [](const R& r) { return std::exp(r.pe.fit.log_scale); });
-    for (const ModelInfo& m : model_registry()) {
-      if (!m.estimation || m.estimation->method != EstimationPolicy::Method::ranking) continue;
-      ResultSchema<Ranked> ranked;
-      ranked.integer(m.estimation->ranking_key, "1", "the value", &Ranked::value)
-          .number("inlier_fraction", "1", "inliers / samples at it", &Ranked::inlier_fraction, 3)
-          .number("residual", "1", "RMS of ln luminance", &Ranked::residual, 5);
-      s.records(m.estimation->ranking_field,
-                fmt::format("every value, best first ({}; empty for the other models)", m.name),
-                ranked, [name = m.name](const R& r) {
-                  std::vector<Ranked> out;
-                  if (r.pe.model == name)
-                    for (const fit::RankedValue& v : r.pe.fit.ranking)
-                      out.push_back({static_cast<int>(v.value), v.inlier_fraction, v.residual});
-                  return out;
-                });
-    }
-    s.number(
-         "sun_zenith_deg", "deg", "the sun used",
-         [](const R& r) { return rad_to_deg(r.pe.samples.sun.zenith); }, 3)
-        .number(
-            "sun_azimuth_deg", "deg", "from north towards east",
-            [](const R& r) { return rad_to_deg(r.pe.samples.sun.azimuth); }, 3)
-        .text("sun_source", "given, time, exif or image",
-              [](const R& r) { return r.pe.sun_source; })
-        .integer("samples", "1", "sky pixels sampled",
-                 [](const R& r) { return static_cast<long long>(r.pe.samples.samples.size()); })
-        .integer("sky_pixels", "1", "pixels of the sky mask",
-                 [](const R& r) { return static_cast<long long>(r.pe.samples.sky_pixels); })
-        .text("calibration", "the camera calibration file, if one was given",
-              [](const R& r) -> std::optional<std::string> {
-                if (r.calibration.empty()) return std::nullopt;
-                return r.calibration;
-              })
-        .nested("exif", "what the capture's EXIF held (with --exif)", exif_record(),
-                [](const R& r) -> std::optional<ExifRecord> {
-                  if (!r.capture) return std::nullopt;
-                  const io::ExifInfo& e = r.capture->exif;
-                  return ExifRecord{
-                      r.exif_file,
-                      fmt::format("{}{}{}", e.make, e.make.empty() ? "" : " ", e.model),
-                      e.date_time,
-                      e.utc_offset,
-                      e.focal_length_mm,
-                      r.capture->focal_length_px,
-                      e.latitude_deg,
-                      e.longitude_deg};
-                })
-        .flag("ransac", "clouds rejected by RANSAC",
-              [](const R& r) { return r.pe.settings.ransac; })
-        .integer("seed", "1", "of the sampling, RANSAC and bootstrap",
-                 [](const R& r) { return static_cast<long long>(r.pe.settings.seed); });
+    add_rankings(s);
+    add_inputs(s);
     return s;
   }();
   return s;
