@@ -198,6 +198,66 @@ struct Tracer {
   }
 };
 
+// Per chunk and wavelength: sums of each order's estimate and of its square, of the total and of
+// its square, and the truncated paths.
+struct Sums {
+  std::vector<double> order, order2;
+  double total = 0, total2 = 0, truncated = 0;
+};
+
+// One job's paths (a chunk at one wavelength of nl) from `position` along v with the sun along sn,
+// summed into `out`; `orders` is the buffer of one path's estimates.
+void trace_job(const Tracer& tracer, const PathTracerSettings& settings, Vec3 position, Vec3 v,
+               Vec3 sn, std::size_t job, std::size_t nl, std::vector<double>& orders, Sums& out) {
+  const std::size_t no = static_cast<std::size_t>(settings.max_orders);
+  const std::uint64_t chunk = job / nl;
+  const std::size_t l = job % nl;
+  SplitMix64 seeder(settings.seed * 0x9e3779b97f4a7c15ULL + job);
+  SplitMix64 rng(seeder.next() ^ (chunk << 20) ^ l);
+  out.order.assign(no, 0.0);
+  out.order2.assign(no, 0.0);
+  const std::uint64_t first = chunk * kChunkPaths;
+  const std::uint64_t last = std::min(settings.paths, first + kChunkPaths);
+  for (std::uint64_t k = first; k < last; ++k) {
+    std::fill(orders.begin(), orders.end(), 0.0);
+    out.truncated += tracer.trace(position, v, sn, l, rng, orders) ? 1.0 : 0.0;
+    double total = 0.0;
+    for (std::size_t o = 0; o < no; ++o) {
+      total += orders[o];
+      out.order[o] += orders[o];
+      out.order2[o] += orders[o] * orders[o];
+    }
+    out.total += total;
+    out.total2 += total * total;
+  }
+}
+
+// The sums of all chunks at wavelength l (of nl), added in chunk order.
+Sums wavelength_sums(const std::vector<Sums>& sums, std::uint64_t chunks, std::size_t nl,
+                     std::size_t l, std::size_t no) {
+  Sums all;
+  all.order.assign(no, 0.0);
+  all.order2.assign(no, 0.0);
+  for (std::uint64_t c = 0; c < chunks; ++c) {
+    const Sums& s = sums[c * nl + l];
+    all.total += s.total;
+    all.total2 += s.total2;
+    all.truncated += s.truncated;
+    for (std::size_t o = 0; o < no; ++o) {
+      all.order[o] += s.order[o];
+      all.order2[o] += s.order2[o];
+    }
+  }
+  return all;
+}
+
+// The mean and its standard error from a sum and a sum of squares over n paths.
+std::pair<double, double> moments(double sum, double sum2, double n) {
+  const double mean = sum / n;
+  const double var = std::max(0.0, (sum2 / n - mean * mean) * n / (n - 1.0));
+  return std::pair{mean, std::sqrt(var / n)};
+}
+
 }  // namespace
 
 PathTracerResult path_trace(const AtmosphereParameters& p, Vec3 position, Vec3 view, Vec3 sun,
@@ -220,47 +280,16 @@ PathTracerResult path_trace(const AtmosphereParameters& p, Vec3 position, Vec3 v
   const std::uint64_t chunks = (settings.paths + kChunkPaths - 1) / kChunkPaths;
   // Per chunk and wavelength: sums of each order's estimate and of its square, of the total and
   // of its square, and the truncated paths (summed in chunk order below: thread-independent).
-  struct Sums {
-    std::vector<double> order, order2;
-    double total = 0, total2 = 0, truncated = 0;
-  };
   std::vector<Sums> sums(chunks * nl);
   const Vec3 v = normalize(view), sn = normalize(sun);
   parallel_for(chunks * nl, 1, [&](std::size_t b, std::size_t e) {
     std::vector<double> orders(no);
-    for (std::size_t job = b; job < e; ++job) {
-      const std::uint64_t chunk = job / nl;
-      const std::size_t l = job % nl;
-      SplitMix64 seeder(settings.seed * 0x9e3779b97f4a7c15ULL + job);
-      SplitMix64 rng(seeder.next() ^ (chunk << 20) ^ l);
-      Sums& out = sums[job];
-      out.order.assign(no, 0.0);
-      out.order2.assign(no, 0.0);
-      const std::uint64_t first = chunk * kChunkPaths;
-      const std::uint64_t last = std::min(settings.paths, first + kChunkPaths);
-      for (std::uint64_t k = first; k < last; ++k) {
-        std::fill(orders.begin(), orders.end(), 0.0);
-        out.truncated += tracer.trace(position, v, sn, l, rng, orders) ? 1.0 : 0.0;
-        double total = 0.0;
-        for (std::size_t o = 0; o < no; ++o) {
-          total += orders[o];
-          out.order[o] += orders[o];
-          out.order2[o] += orders[o] * orders[o];
-        }
-        out.total += total;
-        out.total2 += total * total;
-      }
-    }
+    for (std::size_t job = b; job < e; ++job)
+      trace_job(tracer, settings, position, v, sn, job, nl, orders, sums[job]);
   });
   PathTracerResult r;
   r.paths = settings.paths;
   const double n = static_cast<double>(settings.paths);
-  // The mean and its standard error from a sum and a sum of squares.
-  const auto moments = [n](double sum, double sum2) {
-    const double mean = sum / n;
-    const double var = std::max(0.0, (sum2 / n - mean * mean) * n / (n - 1.0));
-    return std::pair{mean, std::sqrt(var / n)};
-  };
   r.radiance.assign(nl, 0.0);
   r.standard_error.assign(nl, 0.0);
   r.truncated_fraction.assign(nl, 0.0);
@@ -275,25 +304,13 @@ PathTracerResult path_trace(const AtmosphereParameters& p, Vec3 position, Vec3 v
     atm.single_scattering_reference(position, v, sn, spec, r.order_radiance[0], rs);
   }
   for (std::size_t l = 0; l < nl; ++l) {
-    Sums all;
-    all.order.assign(no, 0.0);
-    all.order2.assign(no, 0.0);
-    for (std::uint64_t c = 0; c < chunks; ++c) {
-      const Sums& s = sums[c * nl + l];
-      all.total += s.total;
-      all.total2 += s.total2;
-      all.truncated += s.truncated;
-      for (std::size_t o = 0; o < no; ++o) {
-        all.order[o] += s.order[o];
-        all.order2[o] += s.order2[o];
-      }
-    }
-    std::tie(r.radiance[l], r.standard_error[l]) = moments(all.total, all.total2);
+    const Sums all = wavelength_sums(sums, chunks, nl, l, no);
+    std::tie(r.radiance[l], r.standard_error[l]) = moments(all.total, all.total2, n);
     if (segments) r.radiance[l] += r.order_radiance[0][l];
     r.truncated_fraction[l] = all.truncated / n;
     for (std::size_t o = segments ? 1 : 0; o < no; ++o)
       std::tie(r.order_radiance[o][l], r.order_standard_error[o][l]) =
-          moments(all.order[o], all.order2[o]);
+          moments(all.order[o], all.order2[o], n);
   }
   return r;
 }

@@ -50,6 +50,91 @@ sun::DateTime midpoint(const io::EpwRecord& r, double time_zone_h) {
   return t;
 }
 
+// The SPA's input for a record: the midpoint of its hour at the file's location, with the
+// record's pressure and temperature where it has them.
+sun::SpaInput spa_input(const io::EpwRecord& r, const io::EpwLocation& loc) {
+  sun::SpaInput spa;
+  spa.time = midpoint(r, loc.time_zone_h);
+  spa.latitude = deg_to_rad(loc.latitude_deg);
+  spa.longitude = deg_to_rad(loc.longitude_deg);
+  spa.elevation = loc.elevation_m;
+  if (r.pressure_pa) spa.pressure = *r.pressure_pa / 100.0;
+  if (r.dry_bulb_c) spa.temperature = *r.dry_bulb_c;
+  return spa;
+}
+
+// The matrix's row header of record k: its date, sun and the sky's parameters.
+MatrixHour matrix_hour(std::size_t k, const io::EpwRecord& r, int day_of_year,
+                       const sun::SpaResult& sp, const PerezSky& sky) {
+  MatrixHour h;
+  h.record = k;
+  h.line = r.line;
+  h.month = r.month;
+  h.day = r.day;
+  h.hour = r.hour;
+  h.day_of_year = day_of_year;
+  h.dew_point_c = r.dew_point_c;
+  h.sun_zenith_deg = rad_to_deg(sp.zenith);
+  h.sun_azimuth_deg = rad_to_deg(sp.azimuth);
+  h.dni_w_m2 = sky.dni_w_m2;
+  h.dhi_w_m2 = sky.dhi_w_m2;
+  h.direct_normal_lux = sky.direct_normal_lux;
+  h.diffuse_horizontal_lux = sky.diffuse_horizontal_lux;
+  h.epsilon = sky.epsilon;
+  h.delta = sky.delta;
+  h.bin = sky.bin;
+  h.measured_diffuse_lux = r.diffuse_horizontal_lux;
+  return h;
+}
+
+// The sky at the patch centres, normalised on the patches (gendaymtx's normalisation), into the
+// row starting at `row` (lv: a buffer of one value per patch).
+void add_sky(const std::vector<SkyPatch>& ps, const PerezSky& sky, std::vector<double>& lv,
+             SkyMatrix& m, std::size_t row) {
+  const std::size_t n = ps.size();
+  const Vec3 sun_dir = sky.sun.direction();
+  double sum = 0.0;
+  for (std::size_t i = 1; i < n; ++i) {
+    const Vec3 c = ps[i].centre;
+    lv[i] = std::max(0.0, allweather_relative_luminance(sky.coefficients, std::acos(c.z),
+                                                        angle_between(c, sun_dir)));
+    sum += lv[i] * ps[i].solid_angle * c.z;
+  }
+  if (sum > 0.0) {
+    for (std::size_t i = 1; i < n; ++i) {
+      m.radiance[row + i] = sky.dhi_w_m2 * lv[i] / sum;
+      m.luminance[row + i] = sky.diffuse_horizontal_lux * lv[i] / sum;
+    }
+  }
+}
+
+// The sun in the patch that holds it and the next nearest (weights 1 / (1.002 - cos)), added to
+// the row starting at `row`.
+void add_sun(const sun::SpaResult& sp, const PerezSky& sky, int sun_patches, SkyMatrix& m,
+             std::size_t row) {
+  const std::vector<SkyPatch>& ps = m.patches.patches();
+  const std::size_t n = ps.size();
+  const Vec3 s = SunPosition{sp.zenith, sp.azimuth}.direction();
+  const std::size_t holder = m.patches.find(s);
+  std::vector<std::size_t> order(n - 1);
+  std::iota(order.begin(), order.end(), std::size_t{1});
+  const auto k_sun = std::min<std::size_t>(static_cast<std::size_t>(sun_patches), n - 1);
+  std::partial_sort(order.begin(), order.begin() + static_cast<std::ptrdiff_t>(k_sun), order.end(),
+                    [&](std::size_t a, std::size_t b) {
+                      if ((a == holder) != (b == holder)) return a == holder;
+                      return dot(ps[a].centre, s) > dot(ps[b].centre, s);
+                    });
+  double wsum = 0.0;
+  std::vector<double> w(k_sun);
+  for (std::size_t j = 0; j < k_sun; ++j)
+    wsum += w[j] = 1.0 / (kSunWeightOffset - dot(ps[order[j]].centre, s));
+  for (std::size_t j = 0; j < k_sun; ++j) {
+    const std::size_t i = order[j];
+    m.radiance[row + i] += sky.dni_w_m2 * w[j] / wsum / ps[i].solid_angle;
+    m.luminance[row + i] += sky.direct_normal_lux * w[j] / wsum / ps[i].solid_angle;
+  }
+}
+
 }  // namespace
 
 const ParameterSchema<MatrixSettings>& MatrixSettings::schema() {
@@ -109,13 +194,7 @@ SkyMatrix sky_matrix(const io::EpwFile& epw, const MatrixSettings& settings,
     auto fail = [&](const std::string& what) -> InvalidArgument {
       return InvalidArgument(fmt::format("{} line {}: {}", source, r.line, what));
     };
-    sun::SpaInput spa;
-    spa.time = midpoint(r, loc.time_zone_h);
-    spa.latitude = deg_to_rad(loc.latitude_deg);
-    spa.longitude = deg_to_rad(loc.longitude_deg);
-    spa.elevation = loc.elevation_m;
-    if (r.pressure_pa) spa.pressure = *r.pressure_pa / 100.0;
-    if (r.dry_bulb_c) spa.temperature = *r.dry_bulb_c;
+    const sun::SpaInput spa = spa_input(r, loc);
     sun::SpaResult sp;
     try {
       sun::validate(spa.time, "date");
@@ -146,25 +225,7 @@ SkyMatrix sky_matrix(const io::EpwFile& epw, const MatrixSettings& settings,
     } catch (const InvalidArgument& e) {
       throw fail(e.what());
     }
-    MatrixHour h;
-    h.record = k;
-    h.line = r.line;
-    h.month = r.month;
-    h.day = r.day;
-    h.hour = r.hour;
-    h.day_of_year = in.day_of_year;
-    h.dew_point_c = r.dew_point_c;
-    h.sun_zenith_deg = rad_to_deg(sp.zenith);
-    h.sun_azimuth_deg = rad_to_deg(sp.azimuth);
-    h.dni_w_m2 = sky.dni_w_m2;
-    h.dhi_w_m2 = sky.dhi_w_m2;
-    h.direct_normal_lux = sky.direct_normal_lux;
-    h.diffuse_horizontal_lux = sky.diffuse_horizontal_lux;
-    h.epsilon = sky.epsilon;
-    h.delta = sky.delta;
-    h.bin = sky.bin;
-    h.measured_diffuse_lux = r.diffuse_horizontal_lux;
-    m.hours.push_back(h);
+    m.hours.push_back(matrix_hour(k, r, in.day_of_year, sp, sky));
     const std::size_t row = m.radiance.size();
     m.radiance.resize(row + n, 0.0);
     m.luminance.resize(row + n, 0.0);
@@ -173,48 +234,15 @@ SkyMatrix sky_matrix(const io::EpwFile& epw, const MatrixSettings& settings,
       continue;
     }
     // The sky at the patch centres, normalised on the patches (gendaymtx's normalisation).
-    const Vec3 sun_dir = sky.sun.direction();
-    double sum = 0.0;
-    for (std::size_t i = 1; i < n; ++i) {
-      const Vec3 c = ps[i].centre;
-      lv[i] = std::max(0.0, allweather_relative_luminance(sky.coefficients, std::acos(c.z),
-                                                          angle_between(c, sun_dir)));
-      sum += lv[i] * ps[i].solid_angle * c.z;
-    }
-    if (sum > 0.0) {
-      for (std::size_t i = 1; i < n; ++i) {
-        m.radiance[row + i] = sky.dhi_w_m2 * lv[i] / sum;
-        m.luminance[row + i] = sky.diffuse_horizontal_lux * lv[i] / sum;
-      }
-    }
+    add_sky(ps, sky, lv, m, row);
     // The ground: a Lambertian reflector of the global horizontal light.
     const double albedo = settings.ground_albedo.value_or(r.albedo.value_or(kDefaultGroundAlbedo));
     const double cos_z = std::cos(sp.zenith);
     m.radiance[row] = albedo * (sky.dhi_w_m2 + sky.dni_w_m2 * cos_z) / kPi;
     m.luminance[row] = albedo * (sky.diffuse_horizontal_lux + sky.direct_normal_lux * cos_z) / kPi;
     // The sun in the patch that holds it and the next nearest (weights 1 / (1.002 - cos)).
-    if (settings.sun_patches > 0 && sky.dni_w_m2 > 0.0) {
-      const Vec3 s = SunPosition{sp.zenith, sp.azimuth}.direction();
-      const std::size_t holder = m.patches.find(s);
-      std::vector<std::size_t> order(n - 1);
-      std::iota(order.begin(), order.end(), std::size_t{1});
-      const auto k_sun =
-          std::min<std::size_t>(static_cast<std::size_t>(settings.sun_patches), n - 1);
-      std::partial_sort(order.begin(), order.begin() + static_cast<std::ptrdiff_t>(k_sun),
-                        order.end(), [&](std::size_t a, std::size_t b) {
-                          if ((a == holder) != (b == holder)) return a == holder;
-                          return dot(ps[a].centre, s) > dot(ps[b].centre, s);
-                        });
-      double wsum = 0.0;
-      std::vector<double> w(k_sun);
-      for (std::size_t j = 0; j < k_sun; ++j)
-        wsum += w[j] = 1.0 / (kSunWeightOffset - dot(ps[order[j]].centre, s));
-      for (std::size_t j = 0; j < k_sun; ++j) {
-        const std::size_t i = order[j];
-        m.radiance[row + i] += sky.dni_w_m2 * w[j] / wsum / ps[i].solid_angle;
-        m.luminance[row + i] += sky.direct_normal_lux * w[j] / wsum / ps[i].solid_angle;
-      }
-    }
+    if (settings.sun_patches > 0 && sky.dni_w_m2 > 0.0)
+      add_sun(sp, sky, settings.sun_patches, m, row);
   }
   return m;
 }

@@ -26,6 +26,63 @@ std::vector<std::string_view> split_cells(std::string_view line) {
   }
 }
 
+// The error of line `line` of the list `where`.
+InvalidArgument line_error(const std::string& where, int line, const std::string& why) {
+  return InvalidArgument(fmt::format("{}:{}: {}", where, line, why));
+}
+
+// The header's columns: per cell, its index into kColumns (each known, none twice, 'file' among
+// them).
+std::vector<int> header_columns(const std::vector<std::string_view>& cells,
+                                const std::string& where, int line) {
+  std::vector<int> column;
+  for (std::string_view c : cells) {
+    const auto it = std::find(kColumns.begin(), kColumns.end(), c);
+    if (it == kColumns.end())
+      throw line_error(where, line,
+                       fmt::format("unknown column '{}' (file, sun_zenith_deg, sun_azimuth_deg, "
+                                   "time, mask)",
+                                   excerpt(c)));
+    const int k = static_cast<int>(it - kColumns.begin());
+    if (std::find(column.begin(), column.end(), k) != column.end())
+      throw line_error(where, line, fmt::format("column '{}' given twice", excerpt(c)));
+    column.push_back(k);
+  }
+  if (std::find(column.begin(), column.end(), 0) == column.end())
+    throw line_error(where, line, "the header has no 'file' column");
+  return column;
+}
+
+// An angle cell `c` of column `name`: a number within [lo, hi].
+double angle_cell(std::string_view c, std::string_view name, double lo, double hi,
+                  const std::string& where, int line) {
+  const auto v = parse_number(c);
+  if (!v)
+    throw line_error(where, line, fmt::format("{} '{}' {}", name, excerpt(c), number_problem(c)));
+  if (*v < lo || *v > hi)
+    throw line_error(where, line,
+                     fmt::format("{} '{}' is outside [{}, {}]", name, excerpt(c), lo, hi));
+  return *v;
+}
+
+// A file or mask cell names a file: not a folder (trailing '/', '.', '..'; found by the
+// fuzz target sequence_list: "b.exr../" was a folder) and no control character (a NUL
+// would cut the name the system sees).
+std::filesystem::path file_cell(std::string_view c, std::string_view name,
+                                const std::filesystem::path& folder, const std::string& where,
+                                int line) {
+  if (std::any_of(c.begin(), c.end(),
+                  [](char ch) { return static_cast<unsigned char>(ch) < 0x20 || ch == 0x7f; }))
+    throw line_error(where, line,
+                     fmt::format("{} '{}' holds a control character", name, excerpt(c)));
+  const std::filesystem::path cell{std::string(c)};
+  const std::string last = cell.filename().string();
+  if (last.empty() || last == "." || last == "..")
+    throw line_error(where, line,
+                     fmt::format("{} '{}' names a folder, not a file", name, excerpt(c)));
+  return folder / cell;
+}
+
 }  // namespace
 
 std::vector<SequenceEntry> parse_sequence_list(std::string_view text, const std::string& where,
@@ -43,24 +100,9 @@ std::vector<SequenceEntry> parse_sequence_list(std::string_view text, const std:
     const std::string_view t = trim(raw);
     if (t.empty() || t.front() == '#') continue;
     const auto cells = split_cells(t);
-    auto fail = [&](const std::string& why) {
-      return InvalidArgument(fmt::format("{}:{}: {}", where, line, why));
-    };
+    auto fail = [&](const std::string& why) { return line_error(where, line, why); };
     if (column.empty()) {
-      for (std::string_view c : cells) {
-        const auto it = std::find(kColumns.begin(), kColumns.end(), c);
-        if (it == kColumns.end())
-          throw fail(
-              fmt::format("unknown column '{}' (file, sun_zenith_deg, sun_azimuth_deg, "
-                          "time, mask)",
-                          excerpt(c)));
-        const int k = static_cast<int>(it - kColumns.begin());
-        if (std::find(column.begin(), column.end(), k) != column.end())
-          throw fail(fmt::format("column '{}' given twice", excerpt(c)));
-        column.push_back(k);
-      }
-      if (std::find(column.begin(), column.end(), 0) == column.end())
-        throw fail("the header has no 'file' column");
+      column = header_columns(cells, where, line);
       continue;
     }
     if (cells.size() != column.size())
@@ -70,42 +112,21 @@ std::vector<SequenceEntry> parse_sequence_list(std::string_view text, const std:
     for (std::size_t i = 0; i < cells.size(); ++i) {
       const std::string_view c = cells[i];
       if (c.empty()) continue;
-      auto angle = [&](std::string_view name, double lo, double hi) {
-        const auto v = parse_number(c);
-        if (!v) throw fail(fmt::format("{} '{}' {}", name, excerpt(c), number_problem(c)));
-        if (*v < lo || *v > hi)
-          throw fail(fmt::format("{} '{}' is outside [{}, {}]", name, excerpt(c), lo, hi));
-        return *v;
-      };
-      // A file or mask cell names a file: not a folder (trailing '/', '.', '..'; found by the
-      // fuzz target sequence_list: "b.exr../" was a folder) and no control character (a NUL
-      // would cut the name the system sees).
-      auto file_cell = [&](std::string_view name) {
-        if (std::any_of(c.begin(), c.end(), [](char ch) {
-              return static_cast<unsigned char>(ch) < 0x20 || ch == 0x7f;
-            }))
-          throw fail(fmt::format("{} '{}' holds a control character", name, excerpt(c)));
-        const std::filesystem::path cell{std::string(c)};
-        const std::string last = cell.filename().string();
-        if (last.empty() || last == "." || last == "..")
-          throw fail(fmt::format("{} '{}' names a folder, not a file", name, excerpt(c)));
-        return folder / cell;
-      };
       switch (column[i]) {
         case 0:
-          e.file = file_cell("file");
+          e.file = file_cell(c, "file", folder, where, line);
           break;
         case 1:
-          e.sun_zenith_deg = angle("sun_zenith_deg", 0.0, 90.0);
+          e.sun_zenith_deg = angle_cell(c, "sun_zenith_deg", 0.0, 90.0, where, line);
           break;
         case 2:
-          e.sun_azimuth_deg = angle("sun_azimuth_deg", -360.0, 360.0);
+          e.sun_azimuth_deg = angle_cell(c, "sun_azimuth_deg", -360.0, 360.0, where, line);
           break;
         case 3:
           e.time = std::string(c);
           break;
         default:
-          e.mask = file_cell("mask");
+          e.mask = file_cell(c, "mask", folder, where, line);
           break;
       }
     }

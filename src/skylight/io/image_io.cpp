@@ -200,6 +200,25 @@ std::optional<std::int32_t> exr_fixed_attribute_size(std::string_view type) {
   return std::nullopt;
 }
 
+constexpr std::int64_t kMaxSmallTilePixels = 256 * 256;
+
+// Refuses an EXR whose largest tile (tile_pixels) is too large for its data window (width,
+// height).
+void check_tile_size(const fs::path& path, const std::pair<std::int64_t, std::int64_t>& window,
+                     std::int64_t tile_pixels) {
+  // OpenEXR allocates a tile's buffer (tile width x height x pixel size) before reading any: a
+  // tile may hold no more pixels than the image or a 256 x 256 tile, whichever is larger (found
+  // by the fuzz target image_exr: an 8192 x 8192 tile in a 376-byte file asked for 268 MB).
+  const std::int64_t cap = std::int64_t{1} << 31;
+  const std::int64_t image_pixels = window.first > 0 && window.second > 0
+                                        ? std::min(window.first, cap) * std::min(window.second, cap)
+                                        : 0;
+  if (tile_pixels > std::max(image_pixels, kMaxSmallTilePixels))
+    throw_read_error(
+        path, "not a valid OpenEXR file: " +
+                  fmt::format("tiles of {} pixels for an image of {}", tile_pixels, image_pixels));
+}
+
 // The first part's data window, read from the header bytes without OpenEXR: Imf::InputFile sizes
 // its line buffers from the data window, and Imf::Header allocates each attribute of an unknown
 // type at the size the file states before reading it (2 GB for a 100-byte file), so both are
@@ -210,8 +229,6 @@ std::optional<std::int32_t> exr_fixed_attribute_size(std::string_view type) {
 // size field, so those must agree with it (else the walk and OpenEXR part ways and a later size
 // goes unchecked: found by the fuzz target image_exr). Returns the data window's width and height;
 // throws read errors naming the path.
-constexpr std::int64_t kMaxSmallTilePixels = 256 * 256;
-
 std::pair<std::int64_t, std::int64_t> exr_data_window(const fs::path& path) {
   FilePtr f = open_for_read(path);
   std::error_code ec;
@@ -282,16 +299,7 @@ std::pair<std::int64_t, std::int64_t> exr_data_window(const fs::path& path) {
     if (!multi_part || empty_header) break;
   }
   if (!window) corrupt("no dataWindow attribute");
-  // OpenEXR allocates a tile's buffer (tile width x height x pixel size) before reading any: a
-  // tile may hold no more pixels than the image or a 256 x 256 tile, whichever is larger (found
-  // by the fuzz target image_exr: an 8192 x 8192 tile in a 376-byte file asked for 268 MB).
-  const std::int64_t cap = std::int64_t{1} << 31;
-  const std::int64_t image_pixels =
-      window->first > 0 && window->second > 0
-          ? std::min(window->first, cap) * std::min(window->second, cap)
-          : 0;
-  if (tile_pixels > std::max(image_pixels, kMaxSmallTilePixels))
-    corrupt(fmt::format("tiles of {} pixels for an image of {}", tile_pixels, image_pixels));
+  check_tile_size(path, *window, tile_pixels);
   return *window;
 }
 

@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
+#include <string_view>
 
 #include "skylight/core/error.h"
 #include "skylight/core/math.h"
@@ -220,12 +222,24 @@ double zenith_luminance_model(int bin, double dhi, double zenith, double delta) 
   return dhi * (k[0] + k[1] * std::cos(zenith) + k[2] * std::exp(-3.0 * zenith) + k[3] * delta);
 }
 
-PerezSky perez_sky_from_irradiance(const PerezIrradianceInput& in) {
-  const bool radiance = in.compat == PerezCompat::radiance;
-  PerezSky s;
-  s.sun = in.sun;
-  const bool irradiance = in.dni_w_m2.has_value() || in.dhi_w_m2.has_value();
-  const bool illuminance = in.dni_lux.has_value() || in.dhi_lux.has_value();
+namespace {
+
+// Notes are appended from views (GCC 12 warns falsely about string literals moved into a
+// vector<string> here).
+void note(PerezSky& s, std::string_view why) {
+  s.notes.emplace_back(why);
+}
+
+// The sky made dark, with the reason among its notes.
+PerezSky dark(PerezSky& s, std::string_view why) {
+  s.dark = true;
+  note(s, why);
+  return s;
+}
+
+// Refuses an input without either irradiance or illuminance, with only half of a pair, or with a
+// day of the year outside [1, 366].
+void check_input(const PerezIrradianceInput& in, bool irradiance, bool illuminance) {
   if (irradiance == illuminance)
     throw InvalidArgument(fmt::format("the Perez sky needs either {} and {} or {} and {}, not {}",
                                       spelled("dni"), spelled("dhi"), spelled("dni-illuminance"),
@@ -239,24 +253,19 @@ PerezSky perez_sky_from_irradiance(const PerezIrradianceInput& in) {
   if (in.day_of_year < 1 || in.day_of_year > 366)
     throw InvalidArgument(
         fmt::format("{} = {} is outside [1, 366]", spelled("day-of-year"), in.day_of_year));
-  // Notes are appended from views (GCC 12 warns falsely about string literals moved into a
-  // vector<string> here).
-  auto note = [&](std::string_view why) { s.notes.emplace_back(why); };
-  auto dark = [&](std::string_view why) {
-    s.dark = true;
-    note(why);
-    return s;
-  };
+}
 
-  // The air's water (eq. 3).
+// The air's water (eq. 3): given, from the dew point (Radiance's mode: gendaylit's default
+// outside [-40, 40] degC), or the default.
+void set_precipitable_water(const PerezIrradianceInput& in, bool radiance, PerezSky& s) {
   if (in.precipitable_water_cm) {
     s.precipitable_water_cm = *in.precipitable_water_cm;
   } else if (in.dew_point_c) {
     double td = *in.dew_point_c;
     if (radiance && (td < -40.0 || td > 40.0)) {
-      note(fmt::format(
-          "dew point {:g} degC outside gendaylit's [-40, 40]: its default {:g} degC used", td,
-          kRadianceDefaultDewPointC));
+      note(s, fmt::format(
+                  "dew point {:g} degC outside gendaylit's [-40, 40]: its default {:g} degC used",
+                  td, kRadianceDefaultDewPointC));
       td = kRadianceDefaultDewPointC;
     }
     s.precipitable_water_cm = precipitable_water_from_dew_point(td);
@@ -265,6 +274,130 @@ PerezSky perez_sky_from_irradiance(const PerezIrradianceInput& in) {
                                   ? precipitable_water_from_dew_point(kRadianceDefaultDewPointC)
                                   : kDefaultPrecipitableWaterCm;
   }
+}
+
+// Radiance's mode: epsilon and delta within gendaylit's limits (with `say`, a note when they
+// change).
+void clamp_parameters(PerezSky& s, bool radiance, bool say) {
+  if (!radiance) return;
+  const double e0 = s.epsilon, d0 = s.delta;
+  if (s.epsilon < 1.0) s.epsilon = 1.0;
+  if (s.epsilon > kRadianceClearnessMax) s.epsilon = kRadianceClearnessMax - 0.001;
+  s.delta = std::clamp(s.delta, kRadianceBrightnessMin, kRadianceBrightnessMax);
+  if (say && (e0 != s.epsilon || d0 != s.delta))
+    note(s, fmt::format(
+                "epsilon {:.6g} and delta {:.6g} clamped to {:.6g} and {:.6g} (gendaylit's limits "
+                "[1, 12.01) and [0.01, 0.6])",
+                e0, d0, s.epsilon, s.delta));
+}
+
+// Delta and epsilon from the sky's irradiance (i0: the extraterrestrial irradiance).
+void parameters_from_irradiance(PerezSky& s, double i0, double zenith) {
+  s.delta = s.dhi_w_m2 * s.air_mass / i0;
+  s.epsilon = s.dhi_w_m2 > 0.0 ? sky_clearness(s.dhi_w_m2, s.dni_w_m2, zenith) : HUGE_VAL;
+}
+
+// The sky from irradiance: its parameters, efficacies and illuminance; why the sky is dark, if it
+// is.
+std::optional<std::string_view> sky_from_irradiance(const PerezIrradianceInput& in, bool radiance,
+                                                    double i0, double w, double zenith,
+                                                    PerezSky& s) {
+  s.dni_w_m2 = *in.dni_w_m2;
+  s.dhi_w_m2 = *in.dhi_w_m2;
+  if (radiance) {
+    if (s.dni_w_m2 + s.dhi_w_m2 == 0.0)
+      return "zero irradiance with the sun above the horizon (gendaylit: error sky)";
+    if (s.dni_w_m2 > kSolarConstantWm2)
+      return "direct irradiance exceeds the solar constant (gendaylit: error sky)";
+  } else {
+    if (s.dni_w_m2 > i0)
+      throw InvalidArgument(fmt::format(
+          "{} = {:g} W/m^2 exceeds the extraterrestrial irradiance {:.1f} W/m^2 of day {}",
+          spelled("dni"), s.dni_w_m2, i0, in.day_of_year));
+    if (s.dhi_w_m2 > i0)
+      throw InvalidArgument(fmt::format(
+          "{} = {:g} W/m^2 exceeds the extraterrestrial irradiance {:.1f} W/m^2 of day {}",
+          spelled("dhi"), s.dhi_w_m2, i0, in.day_of_year));
+    if (s.dhi_w_m2 == 0.0) return "no diffuse light (dhi = 0): sky is 0";
+  }
+  parameters_from_irradiance(s, i0, zenith);
+  clamp_parameters(s, radiance, true);
+  s.bin = clearness_bin(s.epsilon);
+  s.diffuse_efficacy = diffuse_luminous_efficacy(s.bin, w, zenith, s.delta);
+  s.direct_efficacy = direct_luminous_efficacy(s.bin, w, zenith, s.delta);
+  s.diffuse_horizontal_lux = std::max(0.0, s.dhi_w_m2 * s.diffuse_efficacy);
+  s.direct_normal_lux = s.dni_w_m2 * s.direct_efficacy;
+  return std::nullopt;
+}
+
+// The sky from illuminance: its irradiance, parameters and efficacies; why the sky is dark, if it
+// is.
+std::optional<std::string_view> sky_from_illuminance(const PerezIrradianceInput& in, bool radiance,
+                                                     double i0, double w, double zenith,
+                                                     PerezSky& s) {
+  s.direct_normal_lux = *in.dni_lux;
+  s.diffuse_horizontal_lux = *in.dhi_lux;
+  if (radiance && s.direct_normal_lux > kSolarConstantLux)
+    return "direct illuminance exceeds the solar constant (gendaylit: error sky)";
+  if (s.diffuse_horizontal_lux == 0.0) {
+    if (radiance && s.direct_normal_lux == 0.0)
+      return "zero illuminance with the sun above the horizon (gendaylit: error sky)";
+    if (!radiance) return "no diffuse light (dhi-illuminance = 0): sky is 0";
+  }
+  // Irradiance from illuminance through the efficacies, which depend on epsilon and delta:
+  // gendaylit starts at the solar constants' ratio and takes 9 steps; the papers' mode
+  // iterates to the fixed point.
+  s.dhi_w_m2 = s.diffuse_horizontal_lux * kSolarConstantWm2 / kSolarConstantLux;
+  s.dni_w_m2 = s.direct_normal_lux * kSolarConstantWm2 / kSolarConstantLux;
+  parameters_from_irradiance(s, i0, zenith);
+  clamp_parameters(s, radiance, false);
+  constexpr int kRadianceSteps = 9, kMaxSteps = 200;
+  constexpr double kConverged = 1e-12;
+  bool converged = false;
+  for (int step = 0; step < (radiance ? kRadianceSteps : kMaxSteps); ++step) {
+    s.bin = clearness_bin(s.epsilon);
+    const double dhi =
+        s.diffuse_horizontal_lux / diffuse_luminous_efficacy(s.bin, w, zenith, s.delta);
+    const double eb = direct_luminous_efficacy(s.bin, w, zenith, s.delta);
+    const double dni = eb < 0.1 ? 0.0 : s.direct_normal_lux / eb;
+    converged = std::abs(dhi - s.dhi_w_m2) <= kConverged * dhi &&
+                std::abs(dni - s.dni_w_m2) <= kConverged * std::max(dni, 1.0);
+    s.dhi_w_m2 = dhi;
+    s.dni_w_m2 = dni;
+    parameters_from_irradiance(s, i0, zenith);
+    clamp_parameters(s, radiance, false);
+    if (!radiance && converged) break;
+  }
+  if (!radiance && !converged)
+    throw InvalidArgument(fmt::format(
+        "{} {:g} lx and {} {:g} lx: the irradiance from the efficacy models did not converge "
+        "in {} steps",
+        spelled("dni-illuminance"), s.direct_normal_lux, spelled("dhi-illuminance"),
+        s.diffuse_horizontal_lux, kMaxSteps));
+  if (!radiance && !(s.dhi_w_m2 > 0.0 && s.dhi_w_m2 <= i0 && s.dni_w_m2 <= i0))
+    throw InvalidArgument(fmt::format(
+        "{} {:g} lx and {} {:g} lx give {:.4g} and {:.4g} W/m^2 through the efficacy models, "
+        "beyond the extraterrestrial {:.1f} W/m^2",
+        spelled("dni-illuminance"), s.direct_normal_lux, spelled("dhi-illuminance"),
+        s.diffuse_horizontal_lux, s.dni_w_m2, s.dhi_w_m2, i0));
+  s.bin = clearness_bin(s.epsilon);
+  s.diffuse_efficacy = s.diffuse_horizontal_lux / s.dhi_w_m2;
+  s.direct_efficacy = s.dni_w_m2 > 0.0 ? s.direct_normal_lux / s.dni_w_m2 : 0.0;
+  return std::nullopt;
+}
+
+}  // namespace
+
+PerezSky perez_sky_from_irradiance(const PerezIrradianceInput& in) {
+  const bool radiance = in.compat == PerezCompat::radiance;
+  PerezSky s;
+  s.sun = in.sun;
+  const bool irradiance = in.dni_w_m2.has_value() || in.dhi_w_m2.has_value();
+  const bool illuminance = in.dni_lux.has_value() || in.dhi_lux.has_value();
+  check_input(in, irradiance, illuminance);
+
+  // The air's water (eq. 3).
+  set_precipitable_water(in, radiance, s);
   const double w = s.precipitable_water_cm;
   s.extraterrestrial_w_m2 = kSolarConstantWm2 * eccentricity_correction(in.day_of_year);
   const double i0 = s.extraterrestrial_w_m2;
@@ -279,121 +412,33 @@ PerezSky perez_sky_from_irradiance(const PerezIrradianceInput& in) {
           "ground",
           spelled(irradiance ? "dni" : "dni-illuminance"), direct_given,
           rad_to_deg(in.sun.zenith) - 90.0));
-    return dark("the sun is below the horizon: the Perez sky describes daylight; sky is 0");
+    return dark(s, "the sun is below the horizon: the Perez sky describes daylight; sky is 0");
   }
   double zenith = in.sun.zenith;
   if (radiance && zenith < deg_to_rad(90.0 - kRadianceMaxSunAltitudeDeg)) {
     zenith = deg_to_rad(90.0 - kRadianceMaxSunAltitudeDeg);
     s.sun.zenith = zenith;
-    note("sun altitude reduced to 87 deg (gendaylit: sun too close to the zenith)");
+    note(s, "sun altitude reduced to 87 deg (gendaylit: sun too close to the zenith)");
   }
   s.air_mass = kasten_air_mass(zenith);
 
-  auto clamp_parameters = [&](bool say) {
-    if (!radiance) return;
-    const double e0 = s.epsilon, d0 = s.delta;
-    if (s.epsilon < 1.0) s.epsilon = 1.0;
-    if (s.epsilon > kRadianceClearnessMax) s.epsilon = kRadianceClearnessMax - 0.001;
-    s.delta = std::clamp(s.delta, kRadianceBrightnessMin, kRadianceBrightnessMax);
-    if (say && (e0 != s.epsilon || d0 != s.delta))
-      note(fmt::format(
-          "epsilon {:.6g} and delta {:.6g} clamped to {:.6g} and {:.6g} (gendaylit's limits "
-          "[1, 12.01) and [0.01, 0.6])",
-          e0, d0, s.epsilon, s.delta));
-  };
-  auto parameters_from_irradiance = [&] {
-    s.delta = s.dhi_w_m2 * s.air_mass / i0;
-    s.epsilon = s.dhi_w_m2 > 0.0 ? sky_clearness(s.dhi_w_m2, s.dni_w_m2, zenith) : HUGE_VAL;
-  };
-
-  if (irradiance) {
-    s.dni_w_m2 = *in.dni_w_m2;
-    s.dhi_w_m2 = *in.dhi_w_m2;
-    if (radiance) {
-      if (s.dni_w_m2 + s.dhi_w_m2 == 0.0)
-        return dark("zero irradiance with the sun above the horizon (gendaylit: error sky)");
-      if (s.dni_w_m2 > kSolarConstantWm2)
-        return dark("direct irradiance exceeds the solar constant (gendaylit: error sky)");
-    } else {
-      if (s.dni_w_m2 > i0)
-        throw InvalidArgument(fmt::format(
-            "{} = {:g} W/m^2 exceeds the extraterrestrial irradiance {:.1f} W/m^2 of day {}",
-            spelled("dni"), s.dni_w_m2, i0, in.day_of_year));
-      if (s.dhi_w_m2 > i0)
-        throw InvalidArgument(fmt::format(
-            "{} = {:g} W/m^2 exceeds the extraterrestrial irradiance {:.1f} W/m^2 of day {}",
-            spelled("dhi"), s.dhi_w_m2, i0, in.day_of_year));
-      if (s.dhi_w_m2 == 0.0) return dark("no diffuse light (dhi = 0): sky is 0");
-    }
-    parameters_from_irradiance();
-    clamp_parameters(true);
-    s.bin = clearness_bin(s.epsilon);
-    s.diffuse_efficacy = diffuse_luminous_efficacy(s.bin, w, zenith, s.delta);
-    s.direct_efficacy = direct_luminous_efficacy(s.bin, w, zenith, s.delta);
-    s.diffuse_horizontal_lux = std::max(0.0, s.dhi_w_m2 * s.diffuse_efficacy);
-    s.direct_normal_lux = s.dni_w_m2 * s.direct_efficacy;
-  } else {
-    s.direct_normal_lux = *in.dni_lux;
-    s.diffuse_horizontal_lux = *in.dhi_lux;
-    if (radiance && s.direct_normal_lux > kSolarConstantLux)
-      return dark("direct illuminance exceeds the solar constant (gendaylit: error sky)");
-    if (s.diffuse_horizontal_lux == 0.0) {
-      if (radiance && s.direct_normal_lux == 0.0)
-        return dark("zero illuminance with the sun above the horizon (gendaylit: error sky)");
-      if (!radiance) return dark("no diffuse light (dhi-illuminance = 0): sky is 0");
-    }
-    // Irradiance from illuminance through the efficacies, which depend on epsilon and delta:
-    // gendaylit starts at the solar constants' ratio and takes 9 steps; the papers' mode
-    // iterates to the fixed point.
-    s.dhi_w_m2 = s.diffuse_horizontal_lux * kSolarConstantWm2 / kSolarConstantLux;
-    s.dni_w_m2 = s.direct_normal_lux * kSolarConstantWm2 / kSolarConstantLux;
-    parameters_from_irradiance();
-    clamp_parameters(false);
-    constexpr int kRadianceSteps = 9, kMaxSteps = 200;
-    constexpr double kConverged = 1e-12;
-    bool converged = false;
-    for (int step = 0; step < (radiance ? kRadianceSteps : kMaxSteps); ++step) {
-      s.bin = clearness_bin(s.epsilon);
-      const double dhi =
-          s.diffuse_horizontal_lux / diffuse_luminous_efficacy(s.bin, w, zenith, s.delta);
-      const double eb = direct_luminous_efficacy(s.bin, w, zenith, s.delta);
-      const double dni = eb < 0.1 ? 0.0 : s.direct_normal_lux / eb;
-      converged = std::abs(dhi - s.dhi_w_m2) <= kConverged * dhi &&
-                  std::abs(dni - s.dni_w_m2) <= kConverged * std::max(dni, 1.0);
-      s.dhi_w_m2 = dhi;
-      s.dni_w_m2 = dni;
-      parameters_from_irradiance();
-      clamp_parameters(false);
-      if (!radiance && converged) break;
-    }
-    if (!radiance && !converged)
-      throw InvalidArgument(fmt::format(
-          "{} {:g} lx and {} {:g} lx: the irradiance from the efficacy models did not converge "
-          "in {} steps",
-          spelled("dni-illuminance"), s.direct_normal_lux, spelled("dhi-illuminance"),
-          s.diffuse_horizontal_lux, kMaxSteps));
-    if (!radiance && !(s.dhi_w_m2 > 0.0 && s.dhi_w_m2 <= i0 && s.dni_w_m2 <= i0))
-      throw InvalidArgument(fmt::format(
-          "{} {:g} lx and {} {:g} lx give {:.4g} and {:.4g} W/m^2 through the efficacy models, "
-          "beyond the extraterrestrial {:.1f} W/m^2",
-          spelled("dni-illuminance"), s.direct_normal_lux, spelled("dhi-illuminance"),
-          s.diffuse_horizontal_lux, s.dni_w_m2, s.dhi_w_m2, i0));
-    s.bin = clearness_bin(s.epsilon);
-    s.diffuse_efficacy = s.diffuse_horizontal_lux / s.dhi_w_m2;
-    s.direct_efficacy = s.dni_w_m2 > 0.0 ? s.direct_normal_lux / s.dni_w_m2 : 0.0;
-  }
+  const std::optional<std::string_view> why_dark =
+      irradiance ? sky_from_irradiance(in, radiance, i0, w, zenith, s)
+                 : sky_from_illuminance(in, radiance, i0, w, zenith, s);
+  if (why_dark) return dark(s, *why_dark);
 
   // The luminance distribution (Perez 1993) and its normalisation.
   double delta_lum = s.delta;
   if (radiance && s.epsilon > 1.065 && s.epsilon < 2.8 && delta_lum < 0.2) {
     delta_lum = 0.2;
-    note(
-        "delta raised to 0.2 in the luminance coefficients (gendaylit's correction "
-        "for 1.065 < epsilon < 2.8)");
+    note(s,
+         "delta raised to 0.2 in the luminance coefficients (gendaylit's correction "
+         "for 1.065 < epsilon < 2.8)");
   }
   s.coefficients = allweather_coefficients(s.bin, zenith, delta_lum, in.compat);
   if (radiance && s.coefficients[1] > 0.0)
-    return dark(fmt::format("positive Perez b = {:.4g} (gendaylit: error sky)", s.coefficients[1]));
+    return dark(s,
+                fmt::format("positive Perez b = {:.4g} (gendaylit: error sky)", s.coefficients[1]));
   if (!in.normalise) return s;
   s.sky_integral = allweather_sky_integral(s.coefficients, zenith, in.compat);
   if (!(s.sky_integral > 0.0))

@@ -75,6 +75,105 @@ const ParameterSchema<ReportOptions>& ReportOptions::schema() {
 }
 namespace detail {
 
+namespace {
+
+// The full report's settings: its resolutions, steps and sun positions.
+void set_full(Config& c) {
+  c.yz_width = 540;
+  c.yz_height = 320;
+  c.root_step_deg = 1.0;
+  c.tile_px = 96;
+  c.tile_gap = 4;
+  c.map_sun_zeniths_deg = {0, 10, 20, 30, 40, 50, 60, 70, 80, 90};
+  c.map_preetham_t = {1.7, 1.9, 2.0, 2.2, 2.5, 3.0, 4.0, 5.0, 6.0, 8.0, 10.0, 12.0, 15.0};
+  c.map_hosek_t = {1.7, 1.9, 2.0, 2.2, 2.5, 3.0, 4.0, 5.0, 6.0, 8.0, 10.0};
+  for (double z : {20, 30, 40, 50, 60, 70}) c.comparison.sun_zeniths.push_back(z * kDegree);
+  c.comparison.n_theta = 36;
+  c.comparison.n_phi = 144;
+  c.match_turbidities = {1.7, 2.0, 2.5, 2.9, 3.0, 4.0, 5.0, 6.0, 8.0, 10.0, 12.0};
+  c.fit_t_step = 0.05;
+  c.antisolar_sun_zeniths_deg = {75, 80, 85};
+  c.antisolar_elevations_deg = {2, 3, 5};
+  c.vertical_step_deg = 0.5;
+  c.vertical_cases = {{1.8, 72}, {-1, 72}, {3.0, 45}};
+  c.illum_elevations_deg = {2, 5, 10, 15, 20, 30, 40, 50, 60, 70, 80, 90};
+  c.scan_t_step = 0.1;
+  c.validity_step_deg = 1.0;
+  c.validity_preetham_rows = 100;
+  c.validity_hosek_step = 0.1;
+  c.validity_nishita_deg = {0, 10, 20, 30, 40, 50, 60, 70, 80, 89, 89.9, 90.1, 91, 100, 110};
+  c.fit_per_sun_zeniths_deg = {10, 20, 30, 40, 50, 60, 70, 80, 85};
+  c.zone_sun_zeniths_deg = {60, 65, 70, 75, 80, 85};
+  c.pair_sun_zeniths_deg = {20, 30, 40, 50, 60, 65};
+  c.low_sun_zeniths_deg = {60, 70, 80};
+  c.zone_n_theta = 36;
+  c.zone_n_phi = 144;
+  c.trust_bands = {{"low sun", 5, 15, {7, 12}},
+                   {"mid sun", 15, 45, {20, 30, 40}},
+                   {"high sun", 45, 80, {50, 65, 80}}};
+  c.trust_n_theta = 24;
+  c.trust_n_phi = 96;
+  c.trust_axis_samples = 24;
+  c.trust_map_sun_zeniths_deg = {10, 15, 20, 25, 30, 35, 40, 45, 50, 55, 60, 65, 70, 75, 80, 85};
+  c.twilight_band = {"twilight", -6, 0, {-1, -3, -5}};
+  c.colour_n_theta = 12;
+  c.colour_n_phi = 48;
+  c.weather_stride = 16;
+  c.weather_n_theta = 90;
+  c.weather_n_phi = 180;
+}
+
+// The quick (test) report's settings: reduced resolution and fewer sun positions.
+void set_quick(Config& c) {
+  c.trust_bands = {{"low sun", 5, 15, {10}}, {"mid sun", 15, 45, {30}}, {"high sun", 45, 80, {60}}};
+  c.trust_n_theta = 12;
+  c.trust_n_phi = 48;
+  c.trust_axis_samples = 8;
+  c.trust_map_sun_zeniths_deg = {30, 60, 80};
+  c.twilight_band = {"twilight", -6, 0, {-3}};
+  c.colour_n_theta = 6;
+  c.colour_n_phi = 24;
+  c.weather_stride = 60;
+  c.weather_n_theta = 45;
+  c.weather_n_phi = 90;
+  c.fit_per_sun_zeniths_deg = {30, 80};
+  c.zone_sun_zeniths_deg = {60, 85};
+  c.pair_sun_zeniths_deg = {30, 60};
+  c.low_sun_zeniths_deg = {70};
+  c.zone_n_theta = 12;
+  c.zone_n_phi = 48;
+  c.yz_width = 180;
+  c.yz_height = 100;
+  c.root_step_deg = 10.0;
+  c.tile_px = 24;
+  c.tile_gap = 2;
+  c.map_sun_zeniths_deg = {0, 45, 85};
+  c.map_preetham_t = {2.0, 5.0};
+  c.map_hosek_t = {2.0, 5.0};
+  for (double z : {30, 60}) c.comparison.sun_zeniths.push_back(z * kDegree);
+  c.comparison.n_theta = 12;
+  c.comparison.n_phi = 48;
+  c.match_turbidities = {2.5, 5.0};
+  c.fit_t_step = 0.25;
+  c.antisolar_sun_zeniths_deg = {80};
+  c.antisolar_elevations_deg = {3};
+  c.vertical_step_deg = 2.0;
+  c.vertical_cases = {{-1, 72}};
+  c.illum_elevations_deg = {10, 45};
+  c.illum.n_theta = 30;
+  c.illum.n_phi = 60;
+  c.illum.n_theta_spectral = 8;
+  c.illum.n_phi_spectral = 16;
+  c.illum.nm_step = 20.0;
+  c.scan_t_step = 0.5;
+  c.validity_step_deg = 10.0;
+  c.validity_preetham_rows = 10;
+  c.validity_hosek_step = 1.0;
+  c.validity_nishita_deg = {0, 45, 89.9, 90.1, 100};
+}
+
+}  // namespace
+
 Config make_config(bool quick) {
   Config c;
   c.comparison.sun_exclusion = 5.0 * kDegree;
@@ -85,95 +184,9 @@ Config make_config(bool quick) {
   c.antisolar_headline_elevation_deg = 3.0;
   c.fig1_linear_t = {1.0, 12.0};  // Zotti's Fig. 1
   if (!quick) {
-    c.yz_width = 540;
-    c.yz_height = 320;
-    c.root_step_deg = 1.0;
-    c.tile_px = 96;
-    c.tile_gap = 4;
-    c.map_sun_zeniths_deg = {0, 10, 20, 30, 40, 50, 60, 70, 80, 90};
-    c.map_preetham_t = {1.7, 1.9, 2.0, 2.2, 2.5, 3.0, 4.0, 5.0, 6.0, 8.0, 10.0, 12.0, 15.0};
-    c.map_hosek_t = {1.7, 1.9, 2.0, 2.2, 2.5, 3.0, 4.0, 5.0, 6.0, 8.0, 10.0};
-    for (double z : {20, 30, 40, 50, 60, 70}) c.comparison.sun_zeniths.push_back(z * kDegree);
-    c.comparison.n_theta = 36;
-    c.comparison.n_phi = 144;
-    c.match_turbidities = {1.7, 2.0, 2.5, 2.9, 3.0, 4.0, 5.0, 6.0, 8.0, 10.0, 12.0};
-    c.fit_t_step = 0.05;
-    c.antisolar_sun_zeniths_deg = {75, 80, 85};
-    c.antisolar_elevations_deg = {2, 3, 5};
-    c.vertical_step_deg = 0.5;
-    c.vertical_cases = {{1.8, 72}, {-1, 72}, {3.0, 45}};
-    c.illum_elevations_deg = {2, 5, 10, 15, 20, 30, 40, 50, 60, 70, 80, 90};
-    c.scan_t_step = 0.1;
-    c.validity_step_deg = 1.0;
-    c.validity_preetham_rows = 100;
-    c.validity_hosek_step = 0.1;
-    c.validity_nishita_deg = {0, 10, 20, 30, 40, 50, 60, 70, 80, 89, 89.9, 90.1, 91, 100, 110};
-    c.fit_per_sun_zeniths_deg = {10, 20, 30, 40, 50, 60, 70, 80, 85};
-    c.zone_sun_zeniths_deg = {60, 65, 70, 75, 80, 85};
-    c.pair_sun_zeniths_deg = {20, 30, 40, 50, 60, 65};
-    c.low_sun_zeniths_deg = {60, 70, 80};
-    c.zone_n_theta = 36;
-    c.zone_n_phi = 144;
-    c.trust_bands = {{"low sun", 5, 15, {7, 12}},
-                     {"mid sun", 15, 45, {20, 30, 40}},
-                     {"high sun", 45, 80, {50, 65, 80}}};
-    c.trust_n_theta = 24;
-    c.trust_n_phi = 96;
-    c.trust_axis_samples = 24;
-    c.trust_map_sun_zeniths_deg = {10, 15, 20, 25, 30, 35, 40, 45, 50, 55, 60, 65, 70, 75, 80, 85};
-    c.twilight_band = {"twilight", -6, 0, {-1, -3, -5}};
-    c.colour_n_theta = 12;
-    c.colour_n_phi = 48;
-    c.weather_stride = 16;
-    c.weather_n_theta = 90;
-    c.weather_n_phi = 180;
+    set_full(c);
   } else {
-    c.trust_bands = {
-        {"low sun", 5, 15, {10}}, {"mid sun", 15, 45, {30}}, {"high sun", 45, 80, {60}}};
-    c.trust_n_theta = 12;
-    c.trust_n_phi = 48;
-    c.trust_axis_samples = 8;
-    c.trust_map_sun_zeniths_deg = {30, 60, 80};
-    c.twilight_band = {"twilight", -6, 0, {-3}};
-    c.colour_n_theta = 6;
-    c.colour_n_phi = 24;
-    c.weather_stride = 60;
-    c.weather_n_theta = 45;
-    c.weather_n_phi = 90;
-    c.fit_per_sun_zeniths_deg = {30, 80};
-    c.zone_sun_zeniths_deg = {60, 85};
-    c.pair_sun_zeniths_deg = {30, 60};
-    c.low_sun_zeniths_deg = {70};
-    c.zone_n_theta = 12;
-    c.zone_n_phi = 48;
-    c.yz_width = 180;
-    c.yz_height = 100;
-    c.root_step_deg = 10.0;
-    c.tile_px = 24;
-    c.tile_gap = 2;
-    c.map_sun_zeniths_deg = {0, 45, 85};
-    c.map_preetham_t = {2.0, 5.0};
-    c.map_hosek_t = {2.0, 5.0};
-    for (double z : {30, 60}) c.comparison.sun_zeniths.push_back(z * kDegree);
-    c.comparison.n_theta = 12;
-    c.comparison.n_phi = 48;
-    c.match_turbidities = {2.5, 5.0};
-    c.fit_t_step = 0.25;
-    c.antisolar_sun_zeniths_deg = {80};
-    c.antisolar_elevations_deg = {3};
-    c.vertical_step_deg = 2.0;
-    c.vertical_cases = {{-1, 72}};
-    c.illum_elevations_deg = {10, 45};
-    c.illum.n_theta = 30;
-    c.illum.n_phi = 60;
-    c.illum.n_theta_spectral = 8;
-    c.illum.n_phi_spectral = 16;
-    c.illum.nm_step = 20.0;
-    c.scan_t_step = 0.5;
-    c.validity_step_deg = 10.0;
-    c.validity_preetham_rows = 10;
-    c.validity_hosek_step = 1.0;
-    c.validity_nishita_deg = {0, 45, 89.9, 90.1, 100};
+    set_quick(c);
   }
   return c;
 }

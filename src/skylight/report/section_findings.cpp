@@ -250,41 +250,110 @@ void ReportWriter::finding_best_turbidity() {
   summary_.findings.push_back(f);
 }
 
-// 4-5. The antisolar half at low sun, absolute and zenith-normalised (shape).
-void ReportWriter::finding_antisolar(const HemisphereGrid& zone_grid) {
-  const double fit_t = summary_.best_turbidity_for_cie12.turbidity;
+namespace {
+
+// Preetham against CIE 12 over the antisolar half at each sun zenith of the zone: at the fitted
+// turbidity and at kLowTurbidity, the ranges of the absolute and zenith-normalised ratios, the
+// geometric means (and at how many low-sun positions Zotti's 2-5 holds), and report.json's rows.
+struct AntisolarZone {
   Range abs_fit, rel_fit, rel_low, abs_low, geomean;
   int geomean_in_range = 0, geomean_tested = 0;
   Json rows = Json::array();
-  for (double d : cfg_.zone_sun_zeniths_deg) {
+};
+AntisolarZone antisolar_zone(double fit_t, const std::vector<double>& zone_sun_zeniths_deg,
+                             const HemisphereGrid& zone_grid) {
+  AntisolarZone z;
+  for (double d : zone_sun_zeniths_deg) {
     const RegionRatio a = preetham_against_cie12(fit_t, d, zone_grid, in_antisolar_half);
-    geomean.add(a.absolute_geomean, a.absolute_geomean);
+    z.geomean.add(a.absolute_geomean, a.absolute_geomean);
     if (d >= kLowSunZenithDeg) {
-      ++geomean_tested;
-      geomean_in_range += antisolar_factor_holds(a.absolute_geomean);
+      ++z.geomean_tested;
+      z.geomean_in_range += antisolar_factor_holds(a.absolute_geomean);
     }
     const RegionRatio b = preetham_against_cie12(kLowTurbidity, d, zone_grid, in_antisolar_half);
-    abs_fit.add(a.absolute_min, a.absolute_max, rad_to_deg(a.absolute_min_elevation));
-    rel_fit.add(a.relative_min, a.relative_max, rad_to_deg(a.relative_min_elevation));
-    abs_low.add(b.absolute_min, b.absolute_max);
-    rel_low.add(b.relative_min, b.relative_max);
+    z.abs_fit.add(a.absolute_min, a.absolute_max, rad_to_deg(a.absolute_min_elevation));
+    z.rel_fit.add(a.relative_min, a.relative_max, rad_to_deg(a.relative_min_elevation));
+    z.abs_low.add(b.absolute_min, b.absolute_max);
+    z.rel_low.add(b.relative_min, b.relative_max);
     for (const auto* r : {&a, &b})
-      rows.push_back({{"turbidity", r == &a ? fit_t : kLowTurbidity},
-                      {"sun_zenith_deg", d},
-                      {"absolute_min", num(r->absolute_min)},
-                      {"absolute_max", num(r->absolute_max)},
-                      {"absolute_min_elevation_deg", num(rad_to_deg(r->absolute_min_elevation))},
-                      {"relative_min", num(r->relative_min)},
-                      {"relative_max", num(r->relative_max)},
-                      {"directions", r->directions}});
+      z.rows.push_back({{"turbidity", r == &a ? fit_t : kLowTurbidity},
+                        {"sun_zenith_deg", d},
+                        {"absolute_min", num(r->absolute_min)},
+                        {"absolute_max", num(r->absolute_max)},
+                        {"absolute_min_elevation_deg", num(rad_to_deg(r->absolute_min_elevation))},
+                        {"relative_min", num(r->relative_min)},
+                        {"relative_max", num(r->relative_max)},
+                        {"directions", r->directions}});
   }
+  return z;
+}
+
+// Finding 5: the antisolar dip in each model's own terms, the horizon-to-darkest contrast over
+// the antisolar half at low sun, Preetham at the fitted turbidity against CIE 12 (rel_low_max:
+// the largest zenith-normalised ratio at kLowTurbidity).
+Finding antisolar_shape_finding(double fit_t, const std::vector<double>& zone_sun_zeniths_deg,
+                                const HemisphereGrid& zone_grid, double rel_low_max) {
+  Range pr_contrast, cie_contrast, pr_depth, cie_depth;
+  int weaker = 0, tested = 0;
+  for (double d : zone_sun_zeniths_deg) {
+    if (d < kLowSunZenithDeg) continue;
+    const AntisolarDip p = antisolar_dip(comparison_spec(PreethamModel::kName, fit_t), d * kDegree,
+                                         zone_grid, kHorizonBandDeg * kDegree);
+    const AntisolarDip c = antisolar_dip(comparison_spec(CieSkyModel::kName, 12), d * kDegree,
+                                         zone_grid, kHorizonBandDeg * kDegree);
+    pr_contrast.add(p.contrast(), p.contrast());
+    cie_contrast.add(c.contrast(), c.contrast());
+    pr_depth.add(p.depth(), p.depth());
+    cie_depth.add(c.depth(), c.depth());
+    ++tested;
+    weaker += p.contrast() < c.contrast();
+  }
+  return {.id = "antisolar_shape",
+          .title = "Antisolar darkening too weak in shape at T ≈ 2.3-2.5",
+          .paper_statement =
+              "\"The CIE Clear Sky (Type 12) is best approximated with T ≈ 2.3...2.5, however, "
+              "differences remain, esp. the mentioned darkening is too weak when θs >~ 60\"; "
+              "\"The results for low turbidities T < 2 are definitely wrong\" (§6).",
+          .paper_value_text = "darkening too weak at T ≈ 2.3-2.5, θs >~ 60; T < 2 wrong",
+          .our_values =
+              {{fmt::format("horizon-to-darkest contrast over the antisolar half, Preetham T = "
+                            "{:.3g}, θs {:g}-{:g} deg: min",
+                            fit_t, kLowSunZenithDeg, zone_sun_zeniths_deg.back()),
+                pr_contrast.lo()},
+               {"the same: max", pr_contrast.hi()},
+               {"the same for CIE 12: min", cie_contrast.lo()},
+               {"the same for CIE 12: max", cie_contrast.hi()},
+               {"darkest / zenith, Preetham: min", pr_depth.lo()},
+               {"darkest / zenith, CIE 12: min", cie_depth.lo()},
+               {fmt::format("zenith-normalised Preetham/CIE 12 at T = {:g}: max", kLowTurbidity),
+                rel_low_max}},
+          .agreement = agreement_of(weaker, tested),
+          .cause = fmt::format(
+              "Seen from the horizon, Preetham's dip opposite the sun is {}-{} times darker than "
+              "its horizon against CIE 12's {}-{} times (θs {:g}-{:g} deg): weaker at {} of {} sun "
+              "positions, {}: the shape fault is mild, not the 2-5x, which comes from the absolute "
+              "level (antisolar_factor). Below T ≈ 2 the shape goes wrong: at T = {:g} the "
+              "zenith-normalised factor reaches {}.",
+              v3(pr_contrast.lo()), v3(pr_contrast.hi()), v3(cie_contrast.lo()),
+              v3(cie_contrast.hi()), kLowSunZenithDeg, zone_sun_zeniths_deg.back(), weaker, tested,
+              weaker == tested ? "so weaker, mildly" : "so not weaker everywhere", kLowTurbidity,
+              v3(rel_low_max))};
+}
+
+}  // namespace
+
+// 4-5. The antisolar half at low sun, absolute and zenith-normalised (shape).
+void ReportWriter::finding_antisolar(const HemisphereGrid& zone_grid) {
+  const double fit_t = summary_.best_turbidity_for_cie12.turbidity;
+  const AntisolarZone zone = antisolar_zone(fit_t, cfg_.zone_sun_zeniths_deg, zone_grid);
+  const Range &abs_fit = zone.abs_fit, &rel_fit = zone.rel_fit, &geomean = zone.geomean;
   json_["antisolar_zone"] = {
       {"region", "antisolar half: view azimuth at least 90 deg from the sun's, all elevations"},
       {"grid",
        fmt::format("{} zenith rings x {} azimuth sectors", cfg_.zone_n_theta, cfg_.zone_n_phi)},
       {"quantity",
        "Preetham / CIE 12 (Kittler-Darula typical): absolute, and zenith-normalised (shape)"},
-      {"rows", rows}};
+      {"rows", zone.rows}};
   const std::string zs = degrees_list(cfg_.zone_sun_zeniths_deg);
   summary_.findings.push_back(
       {.id = "antisolar_factor",
@@ -304,7 +373,7 @@ void ReportWriter::finding_antisolar(const HemisphereGrid& zone_grid) {
                       {"the same: max", geomean.hi()},
                       {"zenith-normalised (shape): min", rel_fit.lo()},
                       {"zenith-normalised (shape): max", rel_fit.hi()}},
-       .agreement = agreement_of(geomean_in_range, geomean_tested),
+       .agreement = agreement_of(zone.geomean_in_range, zone.geomean_tested),
        .cause = fmt::format(
            "In absolute luminance Preetham (T = {}) is {}-{} times CIE 12 over the antisolar half "
            "at θs {} deg (lowest at elevation {} deg); the solid-angle-weighted geometric mean "
@@ -313,55 +382,11 @@ void ReportWriter::finding_antisolar(const HemisphereGrid& zone_grid) {
            "deg). Normalised to each model's zenith the factor is only {}-{}: the excess is "
            "mostly Preetham's higher zenith luminance (absolute level), not the shape.",
            v3(fit_t), v3(abs_fit.lo()), v3(abs_fit.hi()), zs, v3(abs_fit.at_min), v3(geomean.lo()),
-           v3(geomean.hi()), geomean_in_range, geomean_tested, kLowSunZenithDeg, v3(rel_fit.lo()),
-           v3(rel_fit.hi()))});
+           v3(geomean.hi()), zone.geomean_in_range, zone.geomean_tested, kLowSunZenithDeg,
+           v3(rel_fit.lo()), v3(rel_fit.hi()))});
   // The dip in each model's own terms: horizon-to-darkest contrast over the antisolar half.
-  Range pr_contrast, cie_contrast, pr_depth, cie_depth;
-  int weaker = 0, tested = 0;
-  for (double d : cfg_.zone_sun_zeniths_deg) {
-    if (d < kLowSunZenithDeg) continue;
-    const AntisolarDip p = antisolar_dip(comparison_spec(PreethamModel::kName, fit_t), d * kDegree,
-                                         zone_grid, kHorizonBandDeg * kDegree);
-    const AntisolarDip c = antisolar_dip(comparison_spec(CieSkyModel::kName, 12), d * kDegree,
-                                         zone_grid, kHorizonBandDeg * kDegree);
-    pr_contrast.add(p.contrast(), p.contrast());
-    cie_contrast.add(c.contrast(), c.contrast());
-    pr_depth.add(p.depth(), p.depth());
-    cie_depth.add(c.depth(), c.depth());
-    ++tested;
-    weaker += p.contrast() < c.contrast();
-  }
   summary_.findings.push_back(
-      {.id = "antisolar_shape",
-       .title = "Antisolar darkening too weak in shape at T ≈ 2.3-2.5",
-       .paper_statement =
-           "\"The CIE Clear Sky (Type 12) is best approximated with T ≈ 2.3...2.5, however, "
-           "differences remain, esp. the mentioned darkening is too weak when θs >~ 60\"; "
-           "\"The results for low turbidities T < 2 are definitely wrong\" (§6).",
-       .paper_value_text = "darkening too weak at T ≈ 2.3-2.5, θs >~ 60; T < 2 wrong",
-       .our_values =
-           {{fmt::format("horizon-to-darkest contrast over the antisolar half, Preetham T = "
-                         "{:.3g}, θs {:g}-{:g} deg: min",
-                         fit_t, kLowSunZenithDeg, cfg_.zone_sun_zeniths_deg.back()),
-             pr_contrast.lo()},
-            {"the same: max", pr_contrast.hi()},
-            {"the same for CIE 12: min", cie_contrast.lo()},
-            {"the same for CIE 12: max", cie_contrast.hi()},
-            {"darkest / zenith, Preetham: min", pr_depth.lo()},
-            {"darkest / zenith, CIE 12: min", cie_depth.lo()},
-            {fmt::format("zenith-normalised Preetham/CIE 12 at T = {:g}: max", kLowTurbidity),
-             rel_low.hi()}},
-       .agreement = agreement_of(weaker, tested),
-       .cause = fmt::format(
-           "Seen from the horizon, Preetham's dip opposite the sun is {}-{} times darker than "
-           "its horizon against CIE 12's {}-{} times (θs {:g}-{:g} deg): weaker at {} of {} sun "
-           "positions, {}: the shape fault is mild, not the 2-5x, which comes from the absolute "
-           "level (antisolar_factor). Below T ≈ 2 the shape goes wrong: at T = {:g} the "
-           "zenith-normalised factor reaches {}.",
-           v3(pr_contrast.lo()), v3(pr_contrast.hi()), v3(cie_contrast.lo()), v3(cie_contrast.hi()),
-           kLowSunZenithDeg, cfg_.zone_sun_zeniths_deg.back(), weaker, tested,
-           weaker == tested ? "so weaker, mildly" : "so not weaker everywhere", kLowTurbidity,
-           v3(rel_low.hi()))});
+      antisolar_shape_finding(fit_t, cfg_.zone_sun_zeniths_deg, zone_grid, zone.rel_low.hi()));
 }
 
 // 6. Zotti's T <-> CIE type pairs, 15 < θs < 70: four readings of "k times as bright", each

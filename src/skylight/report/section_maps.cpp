@@ -283,6 +283,35 @@ void ReportWriter::mosaic_figures(const std::string& title, const std::string& w
   }
 }
 
+namespace {
+
+// The table of the Kittler-Darula zenith luminance band (cie_sky.h) of each CIE type at the sun
+// zenith angles [deg]; its numbers also go to `band` (report.json's rows).
+std::string zenith_band_table(const std::vector<double>& sun_zeniths_deg, Json& band) {
+  std::string t = "<table><tr><th>type</th>";
+  for (double d : sun_zeniths_deg) t += fmt::format("<th>θs {:g}</th>", d);
+  t += "</tr>\n";
+  for (int type = 1; type <= kCieTypeCount; ++type) {
+    t += fmt::format("<tr><td>{}</td>", type);
+    Json row = Json::array();
+    for (double d : sun_zeniths_deg) {
+      const ZenithLuminanceBand b =
+          kittler_darula_zenith_luminance_band(type, (90.0 - d) * kDegree);
+      t += fmt::format("<td>{} [{}, {}]</td>", g3(b.typical), g3(b.low), g3(b.high));
+      row.push_back({{"sun_zenith_deg", d},
+                     {"typical", num(b.typical)},
+                     {"low", num(b.low)},
+                     {"high", num(b.high)}});
+    }
+    t += "</tr>\n";
+    band.push_back({{"cie_type", type}, {"zenith_luminance_cd_m2", row}});
+  }
+  t += "</table>\n";
+  return t;
+}
+
+}  // namespace
+
 void ReportWriter::section_maps() {
   {
     std::vector<ModelSpec> rows;
@@ -303,26 +332,8 @@ void ReportWriter::section_maps() {
   }
   {
     // The Kittler-Darula zenith luminance band (cie_sky.h) at the maps' sun positions.
-    std::string t = "<table><tr><th>type</th>";
-    for (double d : cfg_.map_sun_zeniths_deg) t += fmt::format("<th>θs {:g}</th>", d);
-    t += "</tr>\n";
     Json band = Json::array();
-    for (int type = 1; type <= kCieTypeCount; ++type) {
-      t += fmt::format("<tr><td>{}</td>", type);
-      Json row = Json::array();
-      for (double d : cfg_.map_sun_zeniths_deg) {
-        const ZenithLuminanceBand b =
-            kittler_darula_zenith_luminance_band(type, (90.0 - d) * kDegree);
-        t += fmt::format("<td>{} [{}, {}]</td>", g3(b.typical), g3(b.low), g3(b.high));
-        row.push_back({{"sun_zenith_deg", d},
-                       {"typical", num(b.typical)},
-                       {"low", num(b.low)},
-                       {"high", num(b.high)}});
-      }
-      t += "</tr>\n";
-      band.push_back({{"cie_type", type}, {"zenith_luminance_cd_m2", row}});
-    }
-    t += "</table>\n";
+    const std::string t = zenith_band_table(cfg_.map_sun_zeniths_deg, band);
     json_["kittler_darula_zenith_luminance_band"] = band;
     html_abs_ += fmt::format(
         "<p>CIE zenith luminance Lz [cd/m2] used above (Kittler-Darula typical) and, in brackets, "

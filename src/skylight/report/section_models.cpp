@@ -39,6 +39,59 @@ svg::Plot cie12_fit_plot(const TurbidityFit& fit) {
   return p;
 }
 
+// For a Preetham turbidity of Zotti's pairs: our numbers for his pairing, as a row of the
+// pairs' table `pt` and a record in `pairs`; returns the pair as the matches' table cites it (empty
+// for any other turbidity).
+std::string zotti_pair_row(const CieTypeMatch& m, const ComparisonSettings& cs,
+                           const HemisphereGrid& grid, const std::map<double, RatioBand>& bands,
+                           HtmlTable& pt, Json& pairs) {
+  std::string z;
+  const auto it = std::find_if(kZottiPairs.begin(), kZottiPairs.end(),
+                               [&](const ZottiPair& p) { return p.t == m.turbidity; });
+  if (it != kZottiPairs.end()) {
+    const int type = it->type;
+    const std::string ratio = svg::escape(it->ratio);
+    z = fmt::format("CIE {}, Y_Pr/Y_CIE {}", type, ratio);
+    // Our numbers for Zotti's pairing.
+    const auto pr = relative_samples(comparison_spec(PreethamModel::kName, m.turbidity), cs, grid);
+    const auto ci = relative_samples(comparison_spec(CieSkyModel::kName, type), cs, grid);
+    const LuminanceRatio r = absolute_luminance_ratio(pr, ci, grid);
+    int rank = 1;
+    for (int k = 0; k < kCieTypeCount; ++k)
+      if (m.rms_by_type[k] < m.rms_by_type[type - 1]) ++rank;
+    const RatioBand& band = bands.at(m.turbidity);
+    pt.row({fmt::format("{:g}", m.turbidity), fmt::format("{}", type), f2(m.rms_by_type[type - 1]),
+            fmt::format("{} of 16", rank),
+            fmt::format("{} [{}, {}]", g3(r.mean), g3(r.min), g3(r.max)),
+            fmt::format("{} [{}, {}]", g3(band.typical), g3(band.against_cie_high),
+                        g3(band.against_cie_low)),
+            ratio});
+    pairs.push_back({{"turbidity", m.turbidity},
+                     {"cie_type", type},
+                     {"rms_log10", num(m.rms_by_type[type - 1])},
+                     {"rank_of_16", rank},
+                     {"luminance_ratio_preetham_over_cie", num(r.mean)},
+                     {"luminance_ratio_min", num(r.min)},
+                     {"luminance_ratio_max", num(r.max)}});
+  }
+  return z;
+}
+
+// report.json's record of the best-matching CIE types for a Preetham turbidity.
+Json match_json(const CieTypeMatch& m) {
+  Json rms = Json::object();
+  for (int k = 0; k < kCieTypeCount; ++k) rms[fmt::format("{}", k + 1)] = num(m.rms_by_type[k]);
+  return {{"turbidity", m.turbidity},
+          {"cie_type", m.best_type},
+          {"rms_log10", num(m.best_rms)},
+          {"second_cie_type", m.second_type},
+          {"second_rms_log10", num(m.second_rms)},
+          {"luminance_ratio_preetham_over_cie", num(m.ratio_best.mean)},
+          {"luminance_ratio_min", num(m.ratio_best.min)},
+          {"luminance_ratio_max", num(m.ratio_best.max)},
+          {"rms_log10_by_cie_type", rms}};
+}
+
 }  // namespace
 
 void ReportWriter::section_matching() {
@@ -74,52 +127,13 @@ std::string ReportWriter::matching_tables() {
   Json matches = Json::array(), pairs = Json::array();
   const HemisphereGrid grid = hemisphere_grid(cs.n_theta, cs.n_phi);
   for (const auto& m : summary_.cie_matches) {
-    std::string z;
-    const auto it = std::find_if(kZottiPairs.begin(), kZottiPairs.end(),
-                                 [&](const ZottiPair& p) { return p.t == m.turbidity; });
-    if (it != kZottiPairs.end()) {
-      const int type = it->type;
-      const std::string ratio = svg::escape(it->ratio);
-      z = fmt::format("CIE {}, Y_Pr/Y_CIE {}", type, ratio);
-      // Our numbers for Zotti's pairing.
-      const auto pr =
-          relative_samples(comparison_spec(PreethamModel::kName, m.turbidity), cs, grid);
-      const auto ci = relative_samples(comparison_spec(CieSkyModel::kName, type), cs, grid);
-      const LuminanceRatio r = absolute_luminance_ratio(pr, ci, grid);
-      int rank = 1;
-      for (int k = 0; k < kCieTypeCount; ++k)
-        if (m.rms_by_type[k] < m.rms_by_type[type - 1]) ++rank;
-      const RatioBand& band = pair_bands_.at(m.turbidity);
-      pt.row({fmt::format("{:g}", m.turbidity), fmt::format("{}", type),
-              f2(m.rms_by_type[type - 1]), fmt::format("{} of 16", rank),
-              fmt::format("{} [{}, {}]", g3(r.mean), g3(r.min), g3(r.max)),
-              fmt::format("{} [{}, {}]", g3(band.typical), g3(band.against_cie_high),
-                          g3(band.against_cie_low)),
-              ratio});
-      pairs.push_back({{"turbidity", m.turbidity},
-                       {"cie_type", type},
-                       {"rms_log10", num(m.rms_by_type[type - 1])},
-                       {"rank_of_16", rank},
-                       {"luminance_ratio_preetham_over_cie", num(r.mean)},
-                       {"luminance_ratio_min", num(r.min)},
-                       {"luminance_ratio_max", num(r.max)}});
-    }
+    const std::string z = zotti_pair_row(m, cs, grid, pair_bands_, pt, pairs);
     t.row({fmt::format("{:g}", m.turbidity), fmt::format("<b>{}</b>", m.best_type), f2(m.best_rms),
            fmt::format("{}", m.second_type), f2(m.second_rms),
            fmt::format("{} [{}, {}]", g3(m.ratio_best.mean), g3(m.ratio_best.min),
                        g3(m.ratio_best.max)),
            z});
-    Json rms = Json::object();
-    for (int k = 0; k < kCieTypeCount; ++k) rms[fmt::format("{}", k + 1)] = num(m.rms_by_type[k]);
-    matches.push_back({{"turbidity", m.turbidity},
-                       {"cie_type", m.best_type},
-                       {"rms_log10", num(m.best_rms)},
-                       {"second_cie_type", m.second_type},
-                       {"second_rms_log10", num(m.second_rms)},
-                       {"luminance_ratio_preetham_over_cie", num(m.ratio_best.mean)},
-                       {"luminance_ratio_min", num(m.ratio_best.min)},
-                       {"luminance_ratio_max", num(m.ratio_best.max)},
-                       {"rms_log10_by_cie_type", rms}});
+    matches.push_back(match_json(m));
   }
   json_["best_cie_type_per_preetham_turbidity"] = matches;
   json_["zotti_pairs"] = pairs;

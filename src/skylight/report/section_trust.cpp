@@ -74,6 +74,436 @@ StandardSkies standard_skies(const ComparisonSettings& settings, const Hemispher
   return r;
 }
 
+// The comparison settings with the sun elevations of a trust band (as sun zenith angles).
+ComparisonSettings with_band_suns(const ComparisonSettings& comparison, const TrustBand& band) {
+  ComparisonSettings s = comparison;
+  s.sun_zeniths.clear();
+  for (double e : band.sun_elevations_deg) s.sun_zeniths.push_back((90.0 - e) * kDegree);
+  return s;
+}
+
+// The settings of the trust table in a band: its sun elevations on the trust grid.
+ComparisonSettings trust_settings(const Config& cfg, const TrustBand& band) {
+  ComparisonSettings s = with_band_suns(cfg.comparison, band);
+  s.n_theta = cfg.trust_n_theta;
+  s.n_phi = cfg.trust_n_phi;
+  return s;
+}
+
+// The settings of the measured maps at one sun zenith [deg] on the trust grid.
+ComparisonSettings one_sun_settings(const Config& cfg, double deg) {
+  ComparisonSettings s = cfg.comparison;
+  s.sun_zeniths = {deg * kDegree};
+  s.n_theta = cfg.trust_n_theta;
+  s.n_phi = cfg.trust_n_phi;
+  return s;
+}
+
+// A band's column header: its name and its range of sun elevations.
+std::string band_header(const TrustBand& band) {
+  return fmt::format("{}<br/>{:g}–{:g}°", band.name, band.elevation_lo_deg, band.elevation_hi_deg);
+}
+
+// The CIE skies per trust band and type, and the measured step between neighbouring types per
+// class.
+struct BandStandards {
+  std::vector<std::vector<RelativeSamples>> cie;
+  std::vector<std::array<double, kSkyClasses.size()>> neighbour;
+};
+BandStandards band_standards(const Config& cfg, const HemisphereGrid& grid) {
+  BandStandards r;
+  r.cie.resize(cfg.trust_bands.size());
+  r.neighbour.resize(cfg.trust_bands.size());
+  for (std::size_t b = 0; b < cfg.trust_bands.size(); ++b) {
+    StandardSkies sky =
+        standard_skies(trust_settings(cfg, cfg.trust_bands[b]), grid, kCieTypeCount);
+    r.cie[b] = std::move(sky.types);
+    r.neighbour[b] = sky.neighbour;
+  }
+  return r;
+}
+
+// The list item of a model the trust table does not judge.
+std::string not_judged_item(const std::string& model) {
+  return fmt::format(
+      "<li><code>{}</code>: not judged (it has no report policy, ReportPolicy in its registry "
+      "entry)</li>\n",
+      model);
+}
+
+// A model's sky in a band that lies within its domain, with its RMS against every standard type
+// (1-15) and the class of its nearest type.
+struct Sky {
+  ModelSpec spec;
+  std::array<double, 15> rms;
+  std::size_t nearest_class;
+};
+
+// The model's skies in one band (settings s, the band's standard skies cie) that lie within its
+// domain and, for a model with a source, its own samples and its source's (for the comparison
+// with its source).
+struct BandSkies {
+  std::vector<Sky> skies;
+  std::vector<RelativeSamples> own, source;
+};
+BandSkies band_skies(const ModelInfo& info, const std::vector<std::optional<double>>& values,
+                     const ComparisonSettings& s, const HemisphereGrid& grid,
+                     const std::vector<RelativeSamples>& cie) {
+  BandSkies r;
+  for (const auto& v : values) {
+    const ModelSpec spec = comparison_spec(info.name, v);
+    if (!within_domain(spec, s.sun_zeniths, s.sun_azimuth)) continue;
+    RelativeSamples samples = relative_samples(spec, s, grid);
+    if (!info.report.source.empty()) {  // its source at the same sun and axis value
+      r.own.push_back(samples);
+      r.source.push_back(relative_samples(comparison_spec(info.report.source, v), s, grid));
+    }
+    Sky sky{spec, {}, 0};
+    int nearest = 1;
+    for (int t = 1; t <= 15; ++t) {
+      sky.rms[t - 1] = relative_log_rms(samples, cie[t - 1], grid);
+      if (sky.rms[t - 1] < sky.rms[nearest - 1]) nearest = t;
+    }
+    for (std::size_t k = 0; k < kSkyClasses.size(); ++k)
+      if (nearest >= kSkyClasses[k].first_type && nearest <= kSkyClasses[k].last_type)
+        sky.nearest_class = k;
+    r.skies.push_back(std::move(sky));
+  }
+  return r;
+}
+
+// A model's best sky for class k: the smallest RMS against a type of the class, its sky and that
+// type, and how many skies stand for the class. Only the skies whose nearest standard sky is of
+// this class stand for it: a clear sky is not judged as an overcast one because the overcast types
+// differ widely.
+struct ClassBest {
+  double rms = kInf;
+  std::string label;
+  int type = 0;
+  std::size_t members = 0;
+};
+ClassBest class_best(const std::vector<Sky>& skies, std::size_t k) {
+  const SkyClass& c = kSkyClasses[k];
+  ClassBest r;
+  for (const Sky& sky : skies) {
+    if (sky.nearest_class != k) continue;
+    ++r.members;
+    for (int t = c.first_type; t <= c.last_type; ++t)
+      if (sky.rms[t - 1] < r.rms) {
+        r.rms = sky.rms[t - 1];
+        r.label = sky.spec.label;
+        r.type = t;
+      }
+  }
+  return r;
+}
+
+// The trust table's cell of class c: the verdict on the model's best sky of the class, or why it
+// has none (in_domain: the number of its skies within its domain in the band).
+std::string class_cell(TrustVerdict verdict, const ClassBest& best, std::size_t in_domain,
+                       const SkyClass& c) {
+  if (verdict == TrustVerdict::reference) return "reference";
+  if (in_domain == 0)
+    return "<span class=\"verdict-avoid\">avoid</span><br/><small>outside its domain</small>";
+  if (best.members == 0)
+    return fmt::format(
+        "<span class=\"verdict-avoid\">avoid</span><br/><small>none of its "
+        "{} skies is nearest to a {} type</small>",
+        in_domain, c.name);
+  return fmt::format(
+      "<span class=\"verdict-{}\">{}</span><br/><small>{} ({}) · {} vs CIE {}</small>",
+      verdict == TrustVerdict::use    ? "use"
+      : verdict == TrustVerdict::care ? "care"
+                                      : "avoid",
+      trust_verdict_name(verdict), rms_text(best.rms), factor_text(best.rms), best.label,
+      best.type);
+}
+
+// report.json's record of a model in one regime (band and class) of the trust table.
+Json regime_json(const TrustBand& band, const SkyClass& c, const ClassBest& best, double neighbour,
+                 std::size_t in_domain, TrustVerdict verdict) {
+  return {{"sun_elevation_deg", {band.elevation_lo_deg, band.elevation_hi_deg}},
+          {"sky_class", c.name},
+          {"cie_types", {c.first_type, c.last_type}},
+          {"best_rms_log10", num(best.rms)},
+          {"best_sky", best.label},
+          {"best_cie_type", best.type},
+          {"neighbour_rms_log10", num(neighbour)},
+          {"skies_in_domain", in_domain},
+          {"skies_nearest_to_this_class", best.members},
+          {"verdict", trust_verdict_name(verdict)}};
+}
+
+// A table cell and its record in report.json.
+struct Cell {
+  std::string html;
+  Json json;
+};
+
+// A model against its source in a band: the error of its skies within its domain against its
+// source's at the same sun and axis values, judged against the band's smallest neighbour step
+// between CIE types.
+Cell source_cell(const std::string& source_name, const TrustBand& band, const BandSkies& sk,
+                 const std::array<double, kSkyClasses.size()>& neighbour,
+                 const HemisphereGrid& grid) {
+  std::vector<const RelativeSamples*> a, r;
+  for (std::size_t i = 0; i < sk.own.size(); ++i) {
+    a.push_back(&sk.own[i]);
+    r.push_back(&sk.source[i]);
+  }
+  const SourceError e = source_error(a, r, grid);
+  const double step = *std::min_element(neighbour.begin(), neighbour.end());
+  const TrustVerdict verdict =
+      sk.own.empty() ? TrustVerdict::avoid : trust_verdict(e.rms_log10, step);
+  Cell cell;
+  cell.html = sk.own.empty()
+                  ? "<span class=\"verdict-avoid\">avoid</span><br/><small>outside its "
+                    "domain</small>"
+                  : fmt::format(
+                        "<span class=\"verdict-{}\">{}</span><br/><small>median {:.1f} %, "
+                        "p95 {:.1f} %, RMS log<sub>10</sub> {} [{}]</small>",
+                        verdict_class(verdict), trust_verdict_name(verdict), 100.0 * e.median,
+                        100.0 * e.p95, rms_text(e.rms_log10), rms_text(step));
+  cell.json = {{"source", source_name},
+               {"sun_elevation_deg", {band.elevation_lo_deg, band.elevation_hi_deg}},
+               {"skies_in_domain", sk.own.size()},
+               {"relative_error_median", num(e.median)},
+               {"relative_error_p95", num(e.p95)},
+               {"rms_log10", num(e.rms_log10)},
+               {"smallest_neighbour_rms_log10", num(step)},
+               {"verdict", trust_verdict_name(verdict)}};
+  return cell;
+}
+
+// The plain-language summary's line of a judged model: the regimes of each verdict.
+std::string summary_line(const std::string& model,
+                         const std::map<TrustVerdict, std::vector<std::string>>& by_verdict) {
+  auto list = [&](TrustVerdict v) {
+    std::string t;
+    if (const auto it = by_verdict.find(v); it != by_verdict.end())
+      for (const auto& regime : it->second) t += (t.empty() ? "" : ", ") + regime;
+    return t.empty() ? std::string("none") : t;
+  };
+  return fmt::format("<b>{}</b>: use for {}; with care for {}; avoid elsewhere.", model,
+                     list(TrustVerdict::use), list(TrustVerdict::care));
+}
+
+// The neighbour steps of this run as the page lists them ("low sun overcast: 0.123; ...").
+std::string neighbour_steps_text(
+    const std::vector<TrustBand>& bands,
+    const std::vector<std::array<double, kSkyClasses.size()>>& neighbour) {
+  std::string neighbours;
+  for (std::size_t b = 0; b < bands.size(); ++b)
+    for (std::size_t k = 0; k < kSkyClasses.size(); ++k)
+      neighbours += fmt::format("{}{} {}: {}", neighbours.empty() ? "" : "; ", bands[b].name,
+                                kSkyClasses[k].name, rms_text(neighbour[b][k]));
+  return neighbours;
+}
+
+// The trust table's part of the page: its rule with this run's neighbour steps, the table, the
+// models not judged, and the approximations against their source with its rule.
+std::string trust_tables_html(double sun_exclusion_deg, const std::string& bands,
+                              const std::string& neighbours, const std::string& table,
+                              const std::string& not_judged, const std::string& source_tables) {
+  return fmt::format(
+      "<p>Each cell: the model's sky closest to a CIE standard sky of the class (CIE S 011/E:2003: "
+      "types 1–5 overcast, 6–10 intermediate, 11–15 clear), over the values of its report "
+      "parameter that lie within its own domain (<code>domain()</code> valid or extrapolated at "
+      "every sun elevation of the band) and whose nearest standard sky of all 15 is of that "
+      "class (a model none of whose skies is nearest to a type of the class cannot make that "
+      "sky: <i>avoid</i>), measured as the RMS of log<sub>10</sub> of the "
+      "zenith-normalised luminance ratio (solid-angle weighted, {:g}° around the sun left out; "
+      "sun elevations {}). <b>Rule</b>: <i>use</i> when that RMS is at most {:g} × the median RMS "
+      "between neighbouring CIE types of the class in the same band (the model reproduces a "
+      "standard sky more closely than the standard skies differ from each other); <i>use with "
+      "care</i> up to {:g} ×; otherwise <i>avoid</i>. The neighbour steps of this run: {}. The "
+      "distribution only: colour and twilight are judged in the tables below; absolute luminance "
+      "and spectrum have no verdict (<a href=\"#trust-not-judged\">why</a>).</p>\n{}{}"
+      "<h3 id=\"trust-source\">Approximations against their source</h3>\n<p>A model that "
+      "approximates another with its default data (its report policy's <code>source</code>: a "
+      "trained network, a fitted table) against that model at the same sun and parameter "
+      "values, within its domain: the solid-angle-weighted median and 95th percentile of the "
+      "relative luminance error, and the RMS of log<sub>10</sub> of the ratio (not normalised; "
+      "negative values count as 1000 times too dark). <b>Rule</b>: the same fractions ({:g} ×, "
+      "{:g} ×) of the band's smallest neighbour step between CIE types [in brackets]: below "
+      "them the approximation inherits its source's verdicts above.</p>\n{}",
+      sun_exclusion_deg, bands, kTrustUseFraction, kTrustCareFraction, neighbours, table,
+      not_judged.empty() ? "" : "<ul>\n" + not_judged + "</ul>\n", kTrustUseFraction,
+      kTrustCareFraction, source_tables);
+}
+
+// The model's sky closest to the physical atmosphere `reference` over its axis values within its
+// domain (in colour; at twilight in luminance) and its label (empty where none is).
+struct Closest {
+  ColourDifference best{kNaN, kNaN, kNaN, 0};
+  std::string label;
+};
+Closest closest_to_reference(const std::string& model,
+                             const std::vector<std::optional<double>>& values,
+                             const std::string& reference, const ComparisonSettings& s,
+                             const HemisphereGrid& grid, bool twilight) {
+  Closest r;
+  for (const auto& v : values) {
+    const ModelSpec spec = comparison_spec(model, v);
+    if (!within_domain(spec, s.sun_zeniths, s.sun_azimuth)) continue;
+    const ColourDifference d = colour_difference(spec, comparison_spec(reference), s, grid);
+    const double key = twilight ? d.rms_log10 : d.mean_duv;
+    const double best_key = twilight ? r.best.rms_log10 : r.best.mean_duv;
+    if (std::isfinite(key) && !(key >= best_key)) {
+      r.best = d;
+      r.label = spec.label;
+    }
+  }
+  return r;
+}
+
+// A model's cell in a band of the table against the physical atmosphere `reference`: the
+// reference itself, not judged (luminance only, or undefined at twilight), outside its domain, or
+// the verdict on its closest sky (colour; at twilight the worse of luminance against `step`, the
+// smallest CIE neighbour step, and colour).
+Cell physical_band_cell(const ModelInfo& info, const std::string& reference, const TrustBand& band,
+                        bool twilight, const std::vector<std::optional<double>>& values,
+                        const ComparisonSettings& s, const HemisphereGrid& grid, double step) {
+  if (info.name == reference)
+    return {"reference", Json{{"band", band.name}, {"verdict", "reference"}}};
+  if (!twilight && info.luminance_only)
+    return {"n/a<br/><small>grey by design (luminance only)</small>",
+            Json{{"band", band.name}, {"verdict", "not judged"}, {"reason", "luminance only"}}};
+  // The model's sky closest to the reference (in colour; at twilight in luminance).
+  const Closest closest = closest_to_reference(info.name, values, reference, s, grid, twilight);
+  const ColourDifference& best = closest.best;
+  const std::string& best_label = closest.label;
+  if (best_label.empty())
+    return {twilight ? "n/a<br/><small>undefined with the sun below the horizon</small>"
+                     : "<span class=\"verdict-avoid\">avoid</span><br/><small>outside "
+                       "its domain</small>",
+            Json{{"band", band.name},
+                 {"verdict", twilight ? "not judged" : "avoid"},
+                 {"reason", twilight ? "undefined below the horizon" : "outside domain"}}};
+  TrustVerdict verdict =
+      twilight ? trust_verdict(best.rms_log10, step) : colour_verdict(best.mean_duv);
+  if (twilight && !info.luminance_only)  // the worse of luminance and colour
+    verdict = std::max(verdict, colour_verdict(best.mean_duv));
+  return {fmt::format("<span class=\"verdict-{}\">{}</span><br/><small>Δu′v′ {} (p95 {}), RMS "
+                      "log<sub>10</sub> Y {} · {}</small>",
+                      verdict_class(verdict), trust_verdict_name(verdict),
+                      info.luminance_only ? "n/a" : fmt::format("{:.4f}", best.mean_duv),
+                      info.luminance_only ? "n/a" : fmt::format("{:.4f}", best.p95_duv),
+                      rms_text(best.rms_log10), best_label),
+          Json{{"band", band.name},
+               {"sun_elevation_deg", {band.elevation_lo_deg, band.elevation_hi_deg}},
+               {"best_sky", best_label},
+               {"mean_duv", info.luminance_only ? Json(nullptr) : num(best.mean_duv)},
+               {"p95_duv", info.luminance_only ? Json(nullptr) : num(best.p95_duv)},
+               {"rms_log10_luminance", num(best.rms_log10)},
+               {"verdict", trust_verdict_name(verdict)}}};
+}
+
+// The text of the table against the physical atmosphere `reference`: its measures and rules
+// (twilight's with `step`, the smallest CIE neighbour step), then the table.
+std::string physical_table_html(const Config& cfg, const std::string& reference, double step,
+                                const std::string& table) {
+  return fmt::format(
+      "<h3 id=\"trust-physical\">Colour and twilight against the physical atmosphere</h3>\n<p>"
+      "Each model's sky closest to <code>{}</code> (its report title: the physical atmosphere, "
+      "multiple scattering with its default orders; its own error against a path tracer in "
+      "docs/ATMOSPHERE.md) "
+      "over its parameter values within its "
+      "domain, on a {} × {} grid, {:g}° around the sun left out. Colour: the solid-angle-weighted "
+      "mean CIE 1976 chromaticity distance Δu′v′; <b>rule</b>: <i>use</i> up to {:g} (about "
+      "the size of MacAdam's just-noticeable ellipses in u′v′), <i>use with care</i> up to {:g}, "
+      "else <i>avoid</i>; a model that gives luminance only is not judged on colour. Twilight "
+      "(sun {} deg): the RMS of log<sub>10</sub> of the luminance, with the rule of the tables "
+      "above against the smallest neighbour step between CIE types above the horizon ({}), and "
+      "the worse of that and the colour verdict; a model undefined below the horizon says "
+      "so.</p>\n{}",
+      reference, cfg.colour_n_theta, cfg.colour_n_phi, cfg.comparison.sun_exclusion / kDegree,
+      kColourUseDuv, kColourCareDuv, degrees_list(cfg.twilight_band.sun_elevations_deg),
+      rms_text(step), table);
+}
+
+// What the tables cannot judge, and why (the physical atmosphere is `reference`): printed, and in
+// report.json, so that a missing verdict is a statement and not a gap.
+Cell quantities_without_verdict(const std::string& reference) {
+  const std::vector<std::pair<std::string, std::string>> without_verdict = {
+      {"absolute illuminance",
+       fmt::format(
+           "no reference the report trusts for the analytic skies' levels: the CIE absolute level "
+           "is the Kittler-Darula typical zenith luminance, whose own band spans a factor 3-4 "
+           "(section 3), and the physical atmosphere ({}) is one clean atmosphere (Earth "
+           "defaults, no turbidity), whose level the analytic models' more turbid skies are not "
+           "meant to match (its diffuse horizontal illuminance is about half the CIE clear "
+           "sky's); section 6 compares the levels without a verdict",
+           reference)},
+      {"spectrum",
+       fmt::format("no spectral reference for the analytic skies: the CIE standard skies give "
+                   "luminance only, and the physical atmosphere ({}) is spectral but one clean "
+                   "atmosphere; spectral irradiance is compared in section 6 without a verdict, "
+                   "and colour (above) is the spectrum's judged projection",
+                   reference)}};
+  std::string items;
+  Json json_items = Json::array();
+  for (const auto& [quantity, reason] : without_verdict) {
+    items += fmt::format("<li><b>{}</b>: {}.</li>\n", quantity, reason);
+    json_items.push_back({{"quantity", quantity}, {"reason", reason}});
+  }
+  return {
+      fmt::format("<h3 id=\"trust-not-judged\">Quantities without a verdict</h3>\n<ul>\n{}</ul>\n",
+                  items),
+      std::move(json_items)};
+}
+
+// Cell edges halfway between samples, from lo to hi.
+std::vector<double> cell_edges(const std::vector<double>& v, double lo, double hi) {
+  std::vector<double> e{lo};
+  for (std::size_t i = 1; i < v.size(); ++i) e.push_back(0.5 * (v[i - 1] + v[i]));
+  e.push_back(hi);
+  return e;
+}
+
+// The row edges of a model's measured map: one row without an axis, else halfway between its
+// values (in log10 on a log axis).
+std::vector<double> row_edges(const std::vector<double>& rows, bool has_axis, bool log_axis) {
+  std::vector<double> ye;
+  if (!has_axis) {
+    ye = {0.0, 1.0};
+  } else if (log_axis) {
+    std::vector<double> logs;
+    for (double r : rows) logs.push_back(std::log10(r));
+    const double step = logs.size() > 1 ? logs[1] - logs[0] : 1.0;
+    for (double e : cell_edges(logs, logs.front() - step / 2, logs.back() + step / 2))
+      ye.push_back(std::pow(10.0, e));
+  } else {
+    ye = cell_edges(rows, rows.front() - 0.5, rows.back() + 0.5);
+  }
+  return ye;
+}
+
+// A cell of a measured map (the sky of `spec` at the one sun of s): the trust rule's verdict
+// against the nearest of the 15 standard skies `cie` at that sun (0 use, 1 care, 2 avoid), or 3
+// outside its domain.
+int measured_class(const ModelSpec& spec, const ComparisonSettings& s, const HemisphereGrid& grid,
+                   const std::vector<RelativeSamples>& cie,
+                   const std::array<double, kSkyClasses.size()>& neighbour) {
+  int cls = 3;
+  if (within_domain(spec, s.sun_zeniths, s.sun_azimuth)) {
+    const RelativeSamples sky = relative_samples(spec, s, grid);
+    int nearest = 1;
+    double best = kInf;
+    for (int t = 1; t <= 15; ++t) {
+      const double rms = relative_log_rms(sky, cie[t - 1], grid);
+      if (rms < best) {
+        best = rms;
+        nearest = t;
+      }
+    }
+    std::size_t k = 0;
+    while (nearest > kSkyClasses[k].last_type) ++k;
+    cls = static_cast<int>(trust_verdict(best, neighbour[k]));  // use, care, avoid
+  }
+  return cls;
+}
+
 }  // namespace
 
 std::string trust_verdict_name(TrustVerdict v) {
@@ -107,33 +537,18 @@ TrustVerdict trust_verdict(double best_rms, double neighbour_rms) {
 
 void ReportWriter::section_trust() {
   const HemisphereGrid grid = hemisphere_grid(cfg_.trust_n_theta, cfg_.trust_n_phi);
-  auto settings_for = [&](const TrustBand& band) {
-    ComparisonSettings s = cfg_.comparison;
-    s.sun_zeniths.clear();
-    for (double e : band.sun_elevations_deg) s.sun_zeniths.push_back((90.0 - e) * kDegree);
-    s.n_theta = cfg_.trust_n_theta;
-    s.n_phi = cfg_.trust_n_phi;
-    return s;
-  };
   const std::string reference(CieSkyModel::kName);
 
   // The CIE skies per band and type, and the measured step between neighbouring types per class.
-  std::vector<std::vector<RelativeSamples>> cie(cfg_.trust_bands.size());
-  std::vector<std::array<double, kSkyClasses.size()>> neighbour(cfg_.trust_bands.size());
-  for (std::size_t b = 0; b < cfg_.trust_bands.size(); ++b) {
-    StandardSkies sky = standard_skies(settings_for(cfg_.trust_bands[b]), grid, kCieTypeCount);
-    cie[b] = std::move(sky.types);
-    neighbour[b] = sky.neighbour;
-  }
+  const BandStandards standards = band_standards(cfg_, grid);
+  const auto& neighbour = standards.neighbour;
 
   trust_min_neighbour_step_ = kInf;
   for (const auto& n : neighbour)
     for (double v : n) trust_min_neighbour_step_ = std::min(trust_min_neighbour_step_, v);
   Json models = Json::array();
   std::vector<std::string> headers = {"model", "sky class"};
-  for (const TrustBand& band : cfg_.trust_bands)
-    headers.push_back(
-        fmt::format("{}<br/>{:g}–{:g}°", band.name, band.elevation_lo_deg, band.elevation_hi_deg));
+  for (const TrustBand& band : cfg_.trust_bands) headers.push_back(band_header(band));
   HtmlTable table(headers, {true, true});
   std::vector<std::string> source_headers = {"model", "against"};
   source_headers.insert(source_headers.end(), headers.begin() + 2, headers.end());
@@ -143,10 +558,7 @@ void ReportWriter::section_trust() {
   std::vector<std::string> summary;  // the plain-language summary: one line per judged model
   for (const ModelInfo& info : model_registry()) {
     if (info.report.title.empty()) {
-      not_judged += fmt::format(
-          "<li><code>{}</code>: not judged (it has no report policy, ReportPolicy in its registry "
-          "entry)</li>\n",
-          info.name);
+      not_judged += not_judged_item(info.name);
       models.push_back({{"model", info.name}, {"judged", false}});
       continue;
     }
@@ -162,165 +574,37 @@ void ReportWriter::section_trust() {
       rows[k] = {fmt::format("<code>{}</code>", info.name), kSkyClasses[k].name};
     for (std::size_t b = 0; b < cfg_.trust_bands.size(); ++b) {
       const TrustBand& band = cfg_.trust_bands[b];
-      const ComparisonSettings s = settings_for(band);
-      // The model's skies in this band that lie within its domain, each with its RMS against
-      // every standard type (1-15) and the class of its nearest type.
-      struct Sky {
-        ModelSpec spec;
-        std::array<double, 15> rms;
-        std::size_t nearest_class;
-      };
-      std::vector<Sky> skies;
-      std::vector<RelativeSamples> own, source;  // for the comparison with its source
-      for (const auto& v : values) {
-        const ModelSpec spec = comparison_spec(info.name, v);
-        if (!within_domain(spec, s.sun_zeniths, s.sun_azimuth)) continue;
-        RelativeSamples samples = relative_samples(spec, s, grid);
-        if (!info.report.source.empty()) {  // its source at the same sun and axis value
-          own.push_back(samples);
-          source.push_back(relative_samples(comparison_spec(info.report.source, v), s, grid));
-        }
-        Sky sky{spec, {}, 0};
-        int nearest = 1;
-        for (int t = 1; t <= 15; ++t) {
-          sky.rms[t - 1] = relative_log_rms(samples, cie[b][t - 1], grid);
-          if (sky.rms[t - 1] < sky.rms[nearest - 1]) nearest = t;
-        }
-        for (std::size_t k = 0; k < kSkyClasses.size(); ++k)
-          if (nearest >= kSkyClasses[k].first_type && nearest <= kSkyClasses[k].last_type)
-            sky.nearest_class = k;
-        skies.push_back(std::move(sky));
-      }
+      // The model's skies in this band that lie within its domain.
+      const BandSkies sk =
+          band_skies(info, values, trust_settings(cfg_, band), grid, standards.cie[b]);
       for (std::size_t k = 0; k < kSkyClasses.size(); ++k) {
         const SkyClass& c = kSkyClasses[k];
-        // Only the skies whose nearest standard sky is of this class stand for it: a clear sky
-        // is not judged as an overcast one because the overcast types differ widely.
-        double best = kInf;
-        std::string best_label;
-        int best_type = 0;
-        std::size_t members = 0;
-        for (const Sky& sky : skies) {
-          if (sky.nearest_class != k) continue;
-          ++members;
-          for (int t = c.first_type; t <= c.last_type; ++t)
-            if (sky.rms[t - 1] < best) {
-              best = sky.rms[t - 1];
-              best_label = sky.spec.label;
-              best_type = t;
-            }
-        }
-        TrustVerdict verdict =
-            info.name == reference ? TrustVerdict::reference : trust_verdict(best, neighbour[b][k]);
-        std::string cell;
-        if (verdict == TrustVerdict::reference) {
-          cell = "reference";
-        } else if (skies.empty()) {
-          cell = "<span class=\"verdict-avoid\">avoid</span><br/><small>outside its domain</small>";
-        } else if (members == 0) {
-          cell = fmt::format(
-              "<span class=\"verdict-avoid\">avoid</span><br/><small>none of its "
-              "{} skies is nearest to a {} type</small>",
-              skies.size(), c.name);
-        } else {
-          cell = fmt::format(
-              "<span class=\"verdict-{}\">{}</span><br/><small>{} ({}) · {} vs CIE {}</small>",
-              verdict == TrustVerdict::use    ? "use"
-              : verdict == TrustVerdict::care ? "care"
-                                              : "avoid",
-              trust_verdict_name(verdict), rms_text(best), factor_text(best), best_label,
-              best_type);
-        }
-        rows[k].push_back(cell);
+        const ClassBest best = class_best(sk.skies, k);
+        TrustVerdict verdict = info.name == reference ? TrustVerdict::reference
+                                                      : trust_verdict(best.rms, neighbour[b][k]);
+        rows[k].push_back(class_cell(verdict, best, sk.skies.size(), c));
         by_verdict[verdict].push_back(fmt::format("{} at {}", c.name, band.name));
         model_json["regimes"].push_back(
-            {{"sun_elevation_deg", {band.elevation_lo_deg, band.elevation_hi_deg}},
-             {"sky_class", c.name},
-             {"cie_types", {c.first_type, c.last_type}},
-             {"best_rms_log10", num(best)},
-             {"best_sky", best_label},
-             {"best_cie_type", best_type},
-             {"neighbour_rms_log10", num(neighbour[b][k])},
-             {"skies_in_domain", skies.size()},
-             {"skies_nearest_to_this_class", members},
-             {"verdict", trust_verdict_name(verdict)}});
+            regime_json(band, c, best, neighbour[b][k], sk.skies.size(), verdict));
       }
       if (!info.report.source.empty()) {
-        std::vector<const RelativeSamples*> a, r;
-        for (std::size_t i = 0; i < own.size(); ++i) {
-          a.push_back(&own[i]);
-          r.push_back(&source[i]);
-        }
-        const SourceError e = source_error(a, r, grid);
-        const double step = *std::min_element(neighbour[b].begin(), neighbour[b].end());
-        const TrustVerdict verdict =
-            own.empty() ? TrustVerdict::avoid : trust_verdict(e.rms_log10, step);
-        source_row.push_back(
-            own.empty()
-                ? "<span class=\"verdict-avoid\">avoid</span><br/><small>outside its "
-                  "domain</small>"
-                : fmt::format("<span class=\"verdict-{}\">{}</span><br/><small>median {:.1f} %, "
-                              "p95 {:.1f} %, RMS log<sub>10</sub> {} [{}]</small>",
-                              verdict_class(verdict), trust_verdict_name(verdict), 100.0 * e.median,
-                              100.0 * e.p95, rms_text(e.rms_log10), rms_text(step)));
-        model_json["against_source"].push_back(
-            {{"source", info.report.source},
-             {"sun_elevation_deg", {band.elevation_lo_deg, band.elevation_hi_deg}},
-             {"skies_in_domain", own.size()},
-             {"relative_error_median", num(e.median)},
-             {"relative_error_p95", num(e.p95)},
-             {"rms_log10", num(e.rms_log10)},
-             {"smallest_neighbour_rms_log10", num(step)},
-             {"verdict", trust_verdict_name(verdict)}});
+        const Cell cell = source_cell(info.report.source, band, sk, neighbour[b], grid);
+        source_row.push_back(cell.html);
+        model_json["against_source"].push_back(cell.json);
       }
     }
     if (!source_row.empty()) source_table.row(source_row);
     if (!info.report.truncation.empty()) truncation_html += truncation_table(info);
     for (auto& r : rows) table.row(r);
     models.push_back(model_json);
-    if (by_verdict.count(TrustVerdict::reference) == 0) {
-      auto list = [&](TrustVerdict v) {
-        std::string t;
-        for (const auto& regime : by_verdict[v]) t += (t.empty() ? "" : ", ") + regime;
-        return t.empty() ? std::string("none") : t;
-      };
-      summary.push_back(fmt::format("<b>{}</b>: use for {}; with care for {}; avoid elsewhere.",
-                                    info.name, list(TrustVerdict::use), list(TrustVerdict::care)));
-    }
+    if (by_verdict.count(TrustVerdict::reference) == 0)
+      summary.push_back(summary_line(info.name, by_verdict));
   }
   step("which model to trust where");
 
-  std::string neighbours;
-  for (std::size_t b = 0; b < cfg_.trust_bands.size(); ++b)
-    for (std::size_t k = 0; k < kSkyClasses.size(); ++k)
-      neighbours +=
-          fmt::format("{}{} {}: {}", neighbours.empty() ? "" : "; ", cfg_.trust_bands[b].name,
-                      kSkyClasses[k].name, rms_text(neighbour[b][k]));
-  html_trust_ = fmt::format(
-      "<p>Each cell: the model's sky closest to a CIE standard sky of the class (CIE S 011/E:2003: "
-      "types 1–5 overcast, 6–10 intermediate, 11–15 clear), over the values of its report "
-      "parameter that lie within its own domain (<code>domain()</code> valid or extrapolated at "
-      "every sun elevation of the band) and whose nearest standard sky of all 15 is of that "
-      "class (a model none of whose skies is nearest to a type of the class cannot make that "
-      "sky: <i>avoid</i>), measured as the RMS of log<sub>10</sub> of the "
-      "zenith-normalised luminance ratio (solid-angle weighted, {:g}° around the sun left out; "
-      "sun elevations {}). <b>Rule</b>: <i>use</i> when that RMS is at most {:g} × the median RMS "
-      "between neighbouring CIE types of the class in the same band (the model reproduces a "
-      "standard sky more closely than the standard skies differ from each other); <i>use with "
-      "care</i> up to {:g} ×; otherwise <i>avoid</i>. The neighbour steps of this run: {}. The "
-      "distribution only: colour and twilight are judged in the tables below; absolute luminance "
-      "and spectrum have no verdict (<a href=\"#trust-not-judged\">why</a>).</p>\n{}{}"
-      "<h3 id=\"trust-source\">Approximations against their source</h3>\n<p>A model that "
-      "approximates another with its default data (its report policy's <code>source</code>: a "
-      "trained network, a fitted table) against that model at the same sun and parameter "
-      "values, within its domain: the solid-angle-weighted median and 95th percentile of the "
-      "relative luminance error, and the RMS of log<sub>10</sub> of the ratio (not normalised; "
-      "negative values count as 1000 times too dark). <b>Rule</b>: the same fractions ({:g} ×, "
-      "{:g} ×) of the band's smallest neighbour step between CIE types [in brackets]: below "
-      "them the approximation inherits its source's verdicts above.</p>\n{}",
-      cfg_.comparison.sun_exclusion / kDegree, trust_band_text(), kTrustUseFraction,
-      kTrustCareFraction, neighbours, table.html(),
-      not_judged.empty() ? "" : "<ul>\n" + not_judged + "</ul>\n", kTrustUseFraction,
-      kTrustCareFraction, source_table.html() + truncation_html);
+  html_trust_ = trust_tables_html(cfg_.comparison.sun_exclusion / kDegree, trust_band_text(),
+                                  neighbour_steps_text(cfg_.trust_bands, neighbour), table.html(),
+                                  not_judged, source_table.html() + truncation_html);
   trust_summary_ = summary;
   json_["which_model_to_trust_where"] = {
       {"rule",
@@ -344,94 +628,26 @@ void ReportWriter::physical_atmosphere_table() {
   // the lowest band above the horizon (the CIE skies themselves end at the horizon).
   const double step = trust_min_neighbour_step_;
   std::vector<std::string> headers = {"model"};
-  for (const TrustBand& band : bands)
-    headers.push_back(
-        fmt::format("{}<br/>{:g}–{:g}°", band.name, band.elevation_lo_deg, band.elevation_hi_deg));
+  for (const TrustBand& band : bands) headers.push_back(band_header(band));
   HtmlTable table(headers, {true});
   Json out = Json::object();
   for (const ModelInfo& info : model_registry()) {
     if (info.report.title.empty()) continue;
     std::vector<std::string> row = {fmt::format("<code>{}</code>", info.name)};
     Json cells = Json::array();
+    const std::vector<std::optional<double>> values = trust_axis_values(info);
     for (std::size_t b = 0; b < bands.size(); ++b) {
       const TrustBand& band = bands[b];
       const bool twilight = b == 0;
-      ComparisonSettings s = cfg_.comparison;
-      s.sun_zeniths.clear();
-      for (double e : band.sun_elevations_deg) s.sun_zeniths.push_back((90.0 - e) * kDegree);
-      if (info.name == reference) {
-        row.push_back("reference");
-        cells.push_back({{"band", band.name}, {"verdict", "reference"}});
-        continue;
-      }
-      if (!twilight && info.luminance_only) {
-        row.push_back("n/a<br/><small>grey by design (luminance only)</small>");
-        cells.push_back(
-            {{"band", band.name}, {"verdict", "not judged"}, {"reason", "luminance only"}});
-        continue;
-      }
-      // The model's sky closest to the reference (in colour; at twilight in luminance).
-      ColourDifference best{kNaN, kNaN, kNaN, 0};
-      std::string best_label;
-      for (const auto& v : trust_axis_values(info)) {
-        const ModelSpec spec = comparison_spec(info.name, v);
-        if (!within_domain(spec, s.sun_zeniths, s.sun_azimuth)) continue;
-        const ColourDifference d = colour_difference(spec, comparison_spec(reference), s, grid);
-        const double key = twilight ? d.rms_log10 : d.mean_duv;
-        const double best_key = twilight ? best.rms_log10 : best.mean_duv;
-        if (std::isfinite(key) && !(key >= best_key)) {
-          best = d;
-          best_label = spec.label;
-        }
-      }
-      if (best_label.empty()) {
-        row.push_back(twilight ? "n/a<br/><small>undefined with the sun below the horizon</small>"
-                               : "<span class=\"verdict-avoid\">avoid</span><br/><small>outside "
-                                 "its domain</small>");
-        cells.push_back({{"band", band.name},
-                         {"verdict", twilight ? "not judged" : "avoid"},
-                         {"reason", twilight ? "undefined below the horizon" : "outside domain"}});
-        continue;
-      }
-      TrustVerdict verdict =
-          twilight ? trust_verdict(best.rms_log10, step) : colour_verdict(best.mean_duv);
-      if (twilight && !info.luminance_only)  // the worse of luminance and colour
-        verdict = std::max(verdict, colour_verdict(best.mean_duv));
-      row.push_back(
-          fmt::format("<span class=\"verdict-{}\">{}</span><br/><small>Δu′v′ {} (p95 {}), RMS "
-                      "log<sub>10</sub> Y {} · {}</small>",
-                      verdict_class(verdict), trust_verdict_name(verdict),
-                      info.luminance_only ? "n/a" : fmt::format("{:.4f}", best.mean_duv),
-                      info.luminance_only ? "n/a" : fmt::format("{:.4f}", best.p95_duv),
-                      rms_text(best.rms_log10), best_label));
-      cells.push_back({{"band", band.name},
-                       {"sun_elevation_deg", {band.elevation_lo_deg, band.elevation_hi_deg}},
-                       {"best_sky", best_label},
-                       {"mean_duv", info.luminance_only ? Json(nullptr) : num(best.mean_duv)},
-                       {"p95_duv", info.luminance_only ? Json(nullptr) : num(best.p95_duv)},
-                       {"rms_log10_luminance", num(best.rms_log10)},
-                       {"verdict", trust_verdict_name(verdict)}});
+      const ComparisonSettings s = with_band_suns(cfg_.comparison, band);
+      const Cell cell = physical_band_cell(info, reference, band, twilight, values, s, grid, step);
+      row.push_back(cell.html);
+      cells.push_back(cell.json);
     }
     table.row(row);
     out[info.name] = cells;
   }
-  html_trust_ += fmt::format(
-      "<h3 id=\"trust-physical\">Colour and twilight against the physical atmosphere</h3>\n<p>"
-      "Each model's sky closest to <code>{}</code> (its report title: the physical atmosphere, "
-      "multiple scattering with its default orders; its own error against a path tracer in "
-      "docs/ATMOSPHERE.md) "
-      "over its parameter values within its "
-      "domain, on a {} × {} grid, {:g}° around the sun left out. Colour: the solid-angle-weighted "
-      "mean CIE 1976 chromaticity distance Δu′v′; <b>rule</b>: <i>use</i> up to {:g} (about "
-      "the size of MacAdam's just-noticeable ellipses in u′v′), <i>use with care</i> up to {:g}, "
-      "else <i>avoid</i>; a model that gives luminance only is not judged on colour. Twilight "
-      "(sun {} deg): the RMS of log<sub>10</sub> of the luminance, with the rule of the tables "
-      "above against the smallest neighbour step between CIE types above the horizon ({}), and "
-      "the worse of that and the colour verdict; a model undefined below the horizon says "
-      "so.</p>\n{}",
-      reference, cfg_.colour_n_theta, cfg_.colour_n_phi, cfg_.comparison.sun_exclusion / kDegree,
-      kColourUseDuv, kColourCareDuv, degrees_list(cfg_.twilight_band.sun_elevations_deg),
-      rms_text(step), table.html());
+  html_trust_ += physical_table_html(cfg_, reference, step, table.html());
   json_["which_model_to_trust_where"]["against_physical_atmosphere"] = {
       {"reference", reference},
       {"colour_rule", fmt::format("use: mean du'v' <= {:g}; use with care: <= {:g}; else avoid",
@@ -442,31 +658,9 @@ void ReportWriter::physical_atmosphere_table() {
       {"models", out}};
   // What the tables above cannot judge, and why: printed, and in report.json, so that a
   // missing verdict is a statement and not a gap.
-  const std::vector<std::pair<std::string, std::string>> without_verdict = {
-      {"absolute illuminance",
-       fmt::format(
-           "no reference the report trusts for the analytic skies' levels: the CIE absolute level "
-           "is the Kittler-Darula typical zenith luminance, whose own band spans a factor 3-4 "
-           "(section 3), and the physical atmosphere ({}) is one clean atmosphere (Earth "
-           "defaults, no turbidity), whose level the analytic models' more turbid skies are not "
-           "meant to match (its diffuse horizontal illuminance is about half the CIE clear "
-           "sky's); section 6 compares the levels without a verdict",
-           reference)},
-      {"spectrum",
-       fmt::format("no spectral reference for the analytic skies: the CIE standard skies give "
-                   "luminance only, and the physical atmosphere ({}) is spectral but one clean "
-                   "atmosphere; spectral irradiance is compared in section 6 without a verdict, "
-                   "and colour (above) is the spectrum's judged projection",
-                   reference)}};
-  std::string items;
-  Json json_items = Json::array();
-  for (const auto& [quantity, reason] : without_verdict) {
-    items += fmt::format("<li><b>{}</b>: {}.</li>\n", quantity, reason);
-    json_items.push_back({{"quantity", quantity}, {"reason", reason}});
-  }
-  html_trust_ += fmt::format(
-      "<h3 id=\"trust-not-judged\">Quantities without a verdict</h3>\n<ul>\n{}</ul>\n", items);
-  json_["which_model_to_trust_where"]["quantities_without_verdict"] = std::move(json_items);
+  Cell without = quantities_without_verdict(reference);
+  html_trust_ += without.html;
+  json_["which_model_to_trust_where"]["quantities_without_verdict"] = std::move(without.json);
 }
 
 std::vector<std::optional<double>> ReportWriter::trust_axis_values(const ModelInfo& info) const {
@@ -498,26 +692,13 @@ void ReportWriter::measured_validity_maps() {
   // Per sun zenith: the 15 standard skies and the median neighbour step of each class.
   std::vector<std::vector<RelativeSamples>> cie(zen_deg.size());
   std::vector<std::array<double, kSkyClasses.size()>> neighbour(zen_deg.size());
-  auto one_sun = [&](double deg) {
-    ComparisonSettings s = cfg_.comparison;
-    s.sun_zeniths = {deg * kDegree};
-    s.n_theta = cfg_.trust_n_theta;
-    s.n_phi = cfg_.trust_n_phi;
-    return s;
-  };
   for (std::size_t z = 0; z < zen_deg.size(); ++z) {
-    StandardSkies sky = standard_skies(one_sun(zen_deg[z]), grid, 15);
+    StandardSkies sky = standard_skies(one_sun_settings(cfg_, zen_deg[z]), grid, 15);
     cie[z] = std::move(sky.types);
     neighbour[z] = sky.neighbour;
   }
   // Cell edges halfway between samples.
-  auto edges = [](const std::vector<double>& v, double lo, double hi) {
-    std::vector<double> e{lo};
-    for (std::size_t i = 1; i < v.size(); ++i) e.push_back(0.5 * (v[i - 1] + v[i]));
-    e.push_back(hi);
-    return e;
-  };
-  const std::vector<double> xe = edges(zen_deg, 0.0, 90.0);
+  const std::vector<double> xe = cell_edges(zen_deg, 0.0, 90.0);
   Json counts_json = Json::object();
   for (const ModelInfo& info : model_registry()) {
     if (info.report.title.empty() || info.name == reference) continue;
@@ -527,18 +708,7 @@ void ReportWriter::measured_validity_maps() {
     const bool has_axis = !info.report.axis.empty();
     const bool log_axis = has_axis && rows.front() > 0.0 &&
                           info.find_parameter(info.report.axis)->kind != ParameterKind::integer;
-    std::vector<double> ye;
-    if (!has_axis) {
-      ye = {0.0, 1.0};
-    } else if (log_axis) {
-      std::vector<double> logs;
-      for (double r : rows) logs.push_back(std::log10(r));
-      const double step = logs.size() > 1 ? logs[1] - logs[0] : 1.0;
-      for (double e : edges(logs, logs.front() - step / 2, logs.back() + step / 2))
-        ye.push_back(std::pow(10.0, e));
-    } else {
-      ye = edges(rows, rows.front() - 0.5, rows.back() + 0.5);
-    }
+    const std::vector<double> ye = row_edges(rows, has_axis, log_axis);
     svg::Plot p;
     p.id = "measured-" + info.name;
     p.title = fmt::format("{}: measured against the CIE standard skies", info.name);
@@ -555,23 +725,8 @@ void ReportWriter::measured_validity_maps() {
     for (std::size_t r = 0; r < values.size(); ++r) {
       const ModelSpec spec = comparison_spec(info.name, values[r]);
       for (std::size_t z = 0; z < zen_deg.size(); ++z) {
-        const ComparisonSettings s = one_sun(zen_deg[z]);
-        int cls = 3;
-        if (within_domain(spec, s.sun_zeniths, s.sun_azimuth)) {
-          const RelativeSamples sky = relative_samples(spec, s, grid);
-          int nearest = 1;
-          double best = kInf;
-          for (int t = 1; t <= 15; ++t) {
-            const double rms = relative_log_rms(sky, cie[z][t - 1], grid);
-            if (rms < best) {
-              best = rms;
-              nearest = t;
-            }
-          }
-          std::size_t k = 0;
-          while (nearest > kSkyClasses[k].last_type) ++k;
-          cls = static_cast<int>(trust_verdict(best, neighbour[z][k]));  // use, care, avoid
-        }
+        const int cls =
+            measured_class(spec, one_sun_settings(cfg_, zen_deg[z]), grid, cie[z], neighbour[z]);
         ++counts[static_cast<std::size_t>(cls)];
         p.regions.push_back(
             {xe[z], xe[z + 1], ye[r], ye[r + 1], std::string(kValidityColours[cls])});

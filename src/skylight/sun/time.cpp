@@ -99,6 +99,44 @@ class Iso8601Reader {
   std::size_t pos_ = 0;
 };
 
+// The fraction of a second after the '.' at the reader's position: 1 to 9 digits.
+double fraction_of_second(Iso8601Reader& in) {
+  in.skip();
+  const std::size_t first = in.pos();
+  int n = 0;
+  while (in.peek() >= '0' && in.peek() <= '9') {
+    if (++n > kMaxFractionDigits) in.fail("fraction of second", "more than 9 digits");
+    in.skip();
+  }
+  if (n == 0) in.fail("fraction of second", "expected digits after '.'");
+  const long long fraction = parse_integer(in.since(first), "fraction of second");
+  return static_cast<double>(fraction) / static_cast<double>(pow10(n));
+}
+
+// The UTC offset [min] at the reader's position: 'Z', '+hh:mm' or '-hh:mm', at most 18:00.
+int utc_offset_minutes(Iso8601Reader& in) {
+  const char sign = in.peek();
+  if (sign == 'Z') {
+    in.skip();
+    return 0;
+  }
+  if (sign == '+' || sign == '-') {
+    in.skip();
+    const int hh = in.digits(2, "UTC offset hours");
+    in.expect(':', "UTC offset separator");
+    const int mm = in.digits(2, "UTC offset minutes");
+    if (mm > 59) in.fail("UTC offset minutes", std::to_string(mm) + " is out of range [00, 59]");
+    const int minutes = 60 * hh + mm;
+    if (minutes > kMaxOffsetMinutes) {
+      in.fail("UTC offset", fmt::format("{}{:02}:{:02} is beyond +-18:00", sign, hh, mm));
+    }
+    return sign == '-' ? -minutes : minutes;
+  }
+  if (in.at_end()) in.fail("UTC offset", "missing (expected 'Z', '+hh:mm' or '-hh:mm')");
+  in.fail("UTC offset", std::string("expected 'Z', '+hh:mm' or '-hh:mm' at position ") +
+                            std::to_string(in.pos() + 1) + ", found " + shown(sign));
+}
+
 void add_one_minute(DateTime& t) {
   if (++t.minute < 60) return;
   t.minute = 0;
@@ -204,39 +242,8 @@ DateTime parse_iso8601(std::string_view text) {
   }
   t.second = whole_seconds;
   if (in.peek() == ',') in.fail("fraction of second", "use '.' as the decimal separator");
-  if (in.peek() == '.') {
-    in.skip();
-    const std::size_t first = in.pos();
-    int n = 0;
-    while (in.peek() >= '0' && in.peek() <= '9') {
-      if (++n > kMaxFractionDigits) in.fail("fraction of second", "more than 9 digits");
-      in.skip();
-    }
-    if (n == 0) in.fail("fraction of second", "expected digits after '.'");
-    const long long fraction = parse_integer(in.since(first), "fraction of second");
-    t.second += static_cast<double>(fraction) / static_cast<double>(pow10(n));
-  }
-  const char sign = in.peek();
-  if (sign == 'Z') {
-    in.skip();
-    t.utc_offset_minutes = 0;
-  } else if (sign == '+' || sign == '-') {
-    in.skip();
-    const int hh = in.digits(2, "UTC offset hours");
-    in.expect(':', "UTC offset separator");
-    const int mm = in.digits(2, "UTC offset minutes");
-    if (mm > 59) in.fail("UTC offset minutes", std::to_string(mm) + " is out of range [00, 59]");
-    const int minutes = 60 * hh + mm;
-    if (minutes > kMaxOffsetMinutes) {
-      in.fail("UTC offset", fmt::format("{}{:02}:{:02} is beyond +-18:00", sign, hh, mm));
-    }
-    t.utc_offset_minutes = sign == '-' ? -minutes : minutes;
-  } else if (in.at_end()) {
-    in.fail("UTC offset", "missing (expected 'Z', '+hh:mm' or '-hh:mm')");
-  } else {
-    in.fail("UTC offset", std::string("expected 'Z', '+hh:mm' or '-hh:mm' at position ") +
-                              std::to_string(in.pos() + 1) + ", found " + shown(sign));
-  }
+  if (in.peek() == '.') t.second += fraction_of_second(in);
+  t.utc_offset_minutes = utc_offset_minutes(in);
   if (!in.at_end()) {
     in.fail("end",
             "unexpected text after the UTC offset at position " + std::to_string(in.pos() + 1));
