@@ -38,9 +38,20 @@ Spectral spectral_of(const AtmosphereParameters& p, std::vector<double> nm) {
   return make_spectral(p, nm, solar);
 }
 
+// An observer above Earth's ground, a view and the sun in the south (degrees).
 struct Case {
   double altitude_m, view_el, view_az, sun_el;
+
+  Vec3 position(const AtmosphereParameters& p) const {
+    return {0, 0, p.ground_radius_m + altitude_m};
+  }
+  Vec3 view() const { return tracer_dir(view_el, view_az); }
+  Vec3 sun() const { return tracer_dir(sun_el, 180); }
 };
+
+std::ostream& operator<<(std::ostream& o, const Case& c) {
+  return o << c.altitude_m << " m, view " << c.view_el << "/" << c.view_az << ", sun " << c.sun_el;
+}
 
 AtmosphereParameters earth_with_ozone_and_ground() {
   AtmosphereParameters earth;
@@ -67,8 +78,7 @@ TEST(PathTracer, CollisionEstimatesOfTheFirstOrderAreSingleScattering) {
   s.estimator = PathEstimator::collisions;
   s.paths = 20000;
   for (const Case& c : kDayCases) {
-    const Vec3 p{0, 0, earth.ground_radius_m + c.altitude_m};
-    const Vec3 v = tracer_dir(c.view_el, c.view_az), sun = tracer_dir(c.sun_el, 180);
+    const Vec3 p = c.position(earth), v = c.view(), sun = c.sun();
     const PathTracerResult r = path_trace(earth, p, v, sun, spec, s);
     std::vector<double> ref(spec.nm.size());
     atm.single_scattering_reference(p, v, sun, spec, ref);
@@ -76,8 +86,7 @@ TEST(PathTracer, CollisionEstimatesOfTheFirstOrderAreSingleScattering) {
       const double first = r.order_radiance[0][l], se = r.order_standard_error[0][l];
       EXPECT_LT(se, 0.05 * ref[l]) << "too few paths to test";
       EXPECT_NEAR(first, ref[l], kStandardErrors * se + kReferenceRelTol * ref[l])
-          << c.altitude_m << " m, view " << c.view_el << "/" << c.view_az << ", sun " << c.sun_el
-          << ", " << spec.nm[l] << " nm";
+          << c << ", " << spec.nm[l] << " nm";
       double sum = 0.0;
       for (const auto& o : r.order_radiance) sum += o[l];
       EXPECT_NEAR(r.radiance[l], sum, 1e-9 * sum);
@@ -99,8 +108,7 @@ TEST(PathTracer, TheTwoEstimatorsAgreeOnMultipleScattering) {
   col.estimator = PathEstimator::collisions;
   col.paths = 20000;
   for (const Case& c : kDayCases) {
-    const Vec3 p{0, 0, earth.ground_radius_m + c.altitude_m};
-    const Vec3 v = tracer_dir(c.view_el, c.view_az), sun = tracer_dir(c.sun_el, 180);
+    const Vec3 p = c.position(earth), v = c.view(), sun = c.sun();
     const PathTracerResult a = path_trace(earth, p, v, sun, spec, seg);
     const PathTracerResult b = path_trace(earth, p, v, sun, spec, col);
     std::vector<double> ref(spec.nm.size());
@@ -117,8 +125,7 @@ TEST(PathTracer, TheTwoEstimatorsAgreeOnMultipleScattering) {
           std::hypot(a.standard_error[l], b.standard_error[l] + b.order_standard_error[0][l]);
       EXPECT_GT(ms_a, 0.02 * ref[l]) << "multiple scattering is a visible part of the sky";
       EXPECT_NEAR(ms_a, ms_b, kStandardErrors * se + kFastLegRelTol * ms_a)
-          << c.altitude_m << " m, view " << c.view_el << "/" << c.view_az << ", sun " << c.sun_el
-          << ", " << spec.nm[l] << " nm";
+          << c << ", " << spec.nm[l] << " nm";
     }
     // Per path, the segments estimator's variance is the smaller.
     EXPECT_LT(a.standard_error[0] * std::sqrt(double(seg.paths)),

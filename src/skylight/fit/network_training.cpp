@@ -393,9 +393,6 @@ const ParameterSchema<ImageTrainingOptions>& ImageTrainingOptions::schema() {
   static const ParameterSchema<ImageTrainingOptions> s = [] {
     using O = ImageTrainingOptions;
     ParameterSchema<O> s;
-    ParameterSpec lat = sun::spa_parameter_spec("lat"), lon = sun::spa_parameter_spec("lon");
-    lat.default_value = Absent{"needed by rows with a time"};
-    lon.default_value = Absent{"needed by rows with a time"};
     s.text(
          &O::list,
          {.name = "images",
@@ -410,8 +407,8 @@ const ParameterSchema<ImageTrainingOptions>& ImageTrainingOptions::schema() {
                .default_value = Absent{"the automatic rules"},
                .description = "sky mask for every image without its own (.png, .pfm, .exr, .hdr): "
                               "nonzero = sky"})
-        .optional_number(&O::lat_deg, lat)
-        .optional_number(&O::lon_deg, lon)
+        .optional_number(&O::lat_deg, sun::spa_parameter_spec("lat", "needed by rows with a time"))
+        .optional_number(&O::lon_deg, sun::spa_parameter_spec("lon", "needed by rows with a time"))
         .integer(&O::kfold,
                  {.name = "kfold",
                   .unit = "1",

@@ -67,63 +67,80 @@ std::array<float, 3> to_float(Vec3 v) {
 
 }  // namespace
 
-std::string glsl_pixel_direction(const render::RenderSettings& s) {
-  std::string g = kDirectionFromAngles;
-  g += "uniform vec2 skylight_size;  // width, height [px]\n";
+namespace {
+
+// A projection's part of glsl_pixel_direction: what it declares before the function, and the
+// function's body up to its last statement (each body ends in `dir = ...;`).
+struct PixelDirectionGlsl {
+  std::string declarations, body;
+};
+
+PixelDirectionGlsl pixel_direction_glsl(const render::RenderSettings& s) {
+  PixelDirectionGlsl g;
   switch (s.projection) {
     case Projection::equirect:
     case Projection::hemisphere:
       // theta = pi (row + 0.5) / height (hemisphere: pi/2 ...), phi = 2 pi (col + 0.5) / width.
-      g += "bool skylight_pixel_direction(vec2 pixel, out vec3 dir) {\n";
-      g += fmt::format("  float theta = {} * {} * pixel.y / skylight_size.y;\n",
-                       s.projection == Projection::hemisphere ? "0.5" : "1.0", pi_literal());
-      g += fmt::format("  float phi = 2.0 * {} * pixel.x / skylight_size.x;\n", pi_literal());
-      g += "  dir = skylight_direction(theta, phi);\n  return true;\n}\n";
+      g.body += fmt::format("  float theta = {} * {} * pixel.y / skylight_size.y;\n",
+                            s.projection == Projection::hemisphere ? "0.5" : "1.0", pi_literal());
+      g.body += fmt::format("  float phi = 2.0 * {} * pixel.x / skylight_size.x;\n", pi_literal());
+      g.body += "  dir = skylight_direction(theta, phi);\n";
       break;
     case Projection::fisheye:
       // The GL port draws the centred image circle of render; a calibrated layout (a photo's
       // camera, io/camera_calibration.h) is read on the CPU only.
       if (s.fisheye.calibrated())
         throw InvalidArgument("the GPU renders the centred fisheye layout, not a calibrated one");
-      g += "uniform float skylight_g_max;        // lens g(fov / 2)\n";
-      g += "uniform float skylight_north_angle;  // [rad]\n";
-      g += "bool skylight_pixel_direction(vec2 pixel, out vec3 dir) {\n";
-      g += "  float radius_px = 0.5 * min(skylight_size.x, skylight_size.y);\n";
-      g += "  float dx = (pixel.x - 0.5 * skylight_size.x) / radius_px;\n";
-      g += "  float dy = (pixel.y - 0.5 * skylight_size.y) / radius_px;\n";
-      g += "  float r = length(vec2(dx, dy));\n";
-      g += "  dir = vec3(0.0, 0.0, 1.0);\n  if (r > 1.0) return false;\n";
-      g += "  float g = r * skylight_g_max;\n";
-      g += fmt::format("  float theta = {};\n", fisheye_theta_glsl(s.fisheye.lens));
-      g += "  float phi = r > 0.0 ? atan(-dx, -dy) - skylight_north_angle : 0.0;\n";
-      g += "  dir = skylight_direction(theta, phi);\n  return true;\n}\n";
+      g.declarations += "uniform float skylight_g_max;        // lens g(fov / 2)\n";
+      g.declarations += "uniform float skylight_north_angle;  // [rad]\n";
+      g.body += "  float radius_px = 0.5 * min(skylight_size.x, skylight_size.y);\n";
+      g.body += "  float dx = (pixel.x - 0.5 * skylight_size.x) / radius_px;\n";
+      g.body += "  float dy = (pixel.y - 0.5 * skylight_size.y) / radius_px;\n";
+      g.body += "  float r = length(vec2(dx, dy));\n";
+      g.body += "  dir = vec3(0.0, 0.0, 1.0);\n  if (r > 1.0) return false;\n";
+      g.body += "  float g = r * skylight_g_max;\n";
+      g.body += fmt::format("  float theta = {};\n", fisheye_theta_glsl(s.fisheye.lens));
+      g.body += "  float phi = r > 0.0 ? atan(-dx, -dy) - skylight_north_angle : 0.0;\n";
+      g.body += "  dir = skylight_direction(theta, phi);\n";
       break;
     case Projection::cubemap:
-      g += "const vec3 kFaceForward[6] = vec3[6](vec3(1, 0, 0), vec3(-1, 0, 0), vec3(0, 1, 0),\n"
-           "    vec3(0, -1, 0), vec3(0, 0, 1), vec3(0, 0, -1));\n";
-      g += "const vec3 kFaceRight[6] = vec3[6](vec3(0, -1, 0), vec3(0, 1, 0), vec3(1, 0, 0),\n"
-           "    vec3(-1, 0, 0), vec3(-1, 0, 0), vec3(1, 0, 0));\n";
-      g += "const vec3 kFaceUp[6] = vec3[6](vec3(0, 0, 1), vec3(0, 0, 1), vec3(0, 0, 1),\n"
-           "    vec3(0, 0, 1), vec3(0, 1, 0), vec3(0, 1, 0));\n";
-      g += "bool skylight_pixel_direction(vec2 pixel, out vec3 dir) {\n";
-      g += "  float size = skylight_size.y;\n";
-      g += "  int face = clamp(int(pixel.x / size), 0, 5);\n";
-      g += "  float a = 2.0 * (pixel.x - float(face) * size) / size - 1.0;\n";
-      g += "  float b = 1.0 - 2.0 * pixel.y / size;\n";
-      g += "  dir = normalize(kFaceForward[face] + a * kFaceRight[face] + b * kFaceUp[face]);\n";
-      g += "  return true;\n}\n";
+      g.declarations +=
+          "const vec3 kFaceForward[6] = vec3[6](vec3(1, 0, 0), vec3(-1, 0, 0), vec3(0, 1, 0),\n"
+          "    vec3(0, -1, 0), vec3(0, 0, 1), vec3(0, 0, -1));\n"
+          "const vec3 kFaceRight[6] = vec3[6](vec3(0, -1, 0), vec3(0, 1, 0), vec3(1, 0, 0),\n"
+          "    vec3(-1, 0, 0), vec3(-1, 0, 0), vec3(1, 0, 0));\n"
+          "const vec3 kFaceUp[6] = vec3[6](vec3(0, 0, 1), vec3(0, 0, 1), vec3(0, 0, 1),\n"
+          "    vec3(0, 0, 1), vec3(0, 1, 0), vec3(0, 1, 0));\n";
+      g.body += "  float size = skylight_size.y;\n";
+      g.body += "  int face = clamp(int(pixel.x / size), 0, 5);\n";
+      g.body += "  float a = 2.0 * (pixel.x - float(face) * size) / size - 1.0;\n";
+      g.body += "  float b = 1.0 - 2.0 * pixel.y / size;\n";
+      g.body +=
+          "  dir = normalize(kFaceForward[face] + a * kFaceRight[face] + b * kFaceUp[face]);\n";
       break;
     case Projection::camera:
-      g += "uniform vec3 skylight_forward, skylight_right, skylight_up;\n";
-      g += "uniform float skylight_tan_half_fov;\n";
-      g += "bool skylight_pixel_direction(vec2 pixel, out vec3 dir) {\n";
-      g += "  float x = (2.0 * pixel.x / skylight_size.y - skylight_size.x / skylight_size.y) *\n"
-           "            skylight_tan_half_fov;\n";
-      g += "  float y = (1.0 - 2.0 * pixel.y / skylight_size.y) * skylight_tan_half_fov;\n";
-      g += "  dir = normalize(skylight_forward + x * skylight_right + y * skylight_up);\n";
-      g += "  return true;\n}\n";
+      g.declarations += "uniform vec3 skylight_forward, skylight_right, skylight_up;\n";
+      g.declarations += "uniform float skylight_tan_half_fov;\n";
+      g.body +=
+          "  float x = (2.0 * pixel.x / skylight_size.y - skylight_size.x / skylight_size.y) *\n"
+          "            skylight_tan_half_fov;\n";
+      g.body += "  float y = (1.0 - 2.0 * pixel.y / skylight_size.y) * skylight_tan_half_fov;\n";
+      g.body += "  dir = normalize(skylight_forward + x * skylight_right + y * skylight_up);\n";
       break;
   }
+  return g;
+}
+
+}  // namespace
+
+std::string glsl_pixel_direction(const render::RenderSettings& s) {
+  const PixelDirectionGlsl parts = pixel_direction_glsl(s);
+  std::string g = kDirectionFromAngles;
+  g += "uniform vec2 skylight_size;  // width, height [px]\n";
+  g += parts.declarations;
+  g += "bool skylight_pixel_direction(vec2 pixel, out vec3 dir) {\n";
+  g += parts.body;
+  g += "  return true;\n}\n";
   return g;
 }
 

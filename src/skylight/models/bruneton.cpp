@@ -17,10 +17,7 @@ constexpr double kCheckedDepression = 6.0 * kDegree;
 const ParameterSchema<BrunetonParameters>& BrunetonParameters::schema() {
   static const auto s = [] {
     ParameterSchema<BrunetonParameters> s;
-    s.inherit(NishitaParameters::schema())
-        .redefault("ozone", ParameterValue(atmosphere::kEarthOzoneColumn),
-                   "ozone column of an absorbing layer at 10-40 km (Bruneton 2017 profile; 0: "
-                   "none)")
+    s.inherit(OzoneLayerParameters::schema())
         .optional_integer(
             &BrunetonParameters::scattering_orders,
             {.name = "scattering-orders",
@@ -71,32 +68,18 @@ Domain BrunetonModel::domain() const {
 }
 
 ModelInfo BrunetonModel::registry_entry() {
-  ModelInfo info = NishitaModel::registry_entry();
-  info.name = std::string(kName);
+  ModelInfo info = registry_entry_of(
+      kName, "orders 1..N (--scattering-orders; the ground reflects in every order)",
+      "the error against the Monte Carlo path tracer (observers at 0 and 20 km; day median "
+      "0.16 %, max 1.5 %, 1.9 % over a reflecting ground at 440 nm; twilight to 6 deg below the "
+      "horizon median 0.17 %, max 4.6 %)");
   info.description =
       "Physically based multiple scattering: nishita's single scattering plus the orders 2..N "
       "precomputed one after the other (Bruneton & Neyret 2008, Bruneton 2017) on tables over "
       "altitude, sun and view angles (by default 6 and the geometric remainder of the orders "
       "above), in nishita's atmosphere; ozone on by default";
-  info.output =
-      "XYZ with Y [cd/m^2] for the ASTM G-173 extraterrestrial sun (41 wavelengths, 10 nm "
-      "apart, 380-780 nm, spline weights: docs/ATMOSPHERE.md); "
-      "spectral radiance [W m^-2 sr^-1 nm^-1] 360-830 nm; with --solar-irradiance E both per flat "
-      "irradiance E; in-scattered light of orders 1..N (--scattering-orders), the ground reflects "
-      "(in every order) only with an explicit --albedo; --include-sun / --sun-only: the solar "
-      "disc (0.2665 deg, limb-darkened, through the atmosphere's transmittance)";
   info.parameters = BrunetonParameters::schema().specs();
-  info.domain =
-      "nishita's: any observer altitude 0-10000 km, any view direction and sun elevation; the "
-      "error against the Monte Carlo path tracer (observers at 0 and 20 km; day median 0.16 %, "
-      "max 1.5 %, 1.9 % over a reflecting ground at 440 nm; twilight to 6 deg below the horizon "
-      "median 0.17 %, max 4.6 %): docs/ATMOSPHERE.md";
   info.make = model_factory<BrunetonModel, BrunetonParameters>();
-  // The Monte Carlo path tracer of the same atmosphere (the entry starts as nishita's).
-  info.reference = path_tracer_reference();
-  info.reference_description = path_tracer_reference_description();
-  info.bench = BenchPolicy{.extra = BenchPolicy::Extra::precomputation};
-  info.costly_setup = true;
   info.sweep.set("scattering-orders", 2.0);
   // The report's physical atmosphere: against the path tracer, day median 0.16 % (max 1.5 %),
   // twilight median 0.17 % (max 4.6 %); hillaire's day median 1.8 % (max 6.4 %)

@@ -20,15 +20,14 @@ namespace skylight {
 
 inline constexpr int kMaxScatteringOrders = 10;
 
-// `nishita`'s parameters, with the ozone layer on by default (Earth's 300 DU), and the number of
-// scattering orders (none: converged, atmosphere::kConvergedOrders).
-struct BrunetonParameters : NishitaParameters {
+// `nishita`'s parameters, with the ozone layer on by default (OzoneLayerParameters), and the
+// number of scattering orders (none: converged, atmosphere::kConvergedOrders).
+struct BrunetonParameters : OzoneLayerParameters {
   std::optional<int> scattering_orders;
   atmosphere::OrderSettings orders() const {
     return scattering_orders ? atmosphere::OrderSettings::exactly(*scattering_orders)
                              : atmosphere::kConvergedOrders;
   }
-  BrunetonParameters() { ozone_du = atmosphere::kEarthOzoneColumn; }
   static const ParameterSchema<BrunetonParameters>& schema();
 };
 

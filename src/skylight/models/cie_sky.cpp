@@ -233,13 +233,9 @@ ParameterValues CieSkyModel::parameter_values() const {
 }
 
 Domain CieSkyModel::domain() const {
-  Domain d;
-  if (!sun_up_) {
-    d.issues.push_back(
-        {"sun_zenith", Validity::undefined,
-         "sun below the horizon: the CIE general sky describes daylight only; sky is 0"});
-    return d;
-  }
+  Domain d = sun_below_horizon(Validity::undefined,
+                               "the CIE general sky describes daylight only; sky is 0");
+  if (!sun_up_) return d;
   const double gs = sun().elevation();
   if (typical_luminance_ && (gs < kKittlerDarulaMinElevation || gs > kKittlerDarulaMaxElevation)) {
     d.issues.push_back({"sun_elevation", Validity::extrapolated,

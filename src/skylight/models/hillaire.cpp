@@ -44,10 +44,7 @@ double lut_mu_s_coordinate(double mu_s) {
 const ParameterSchema<HillaireParameters>& HillaireParameters::schema() {
   static const auto s = [] {
     ParameterSchema<HillaireParameters> s;
-    s.inherit(NishitaParameters::schema())
-        .redefault("ozone", ParameterValue(atmosphere::kEarthOzoneColumn),
-                   "ozone column of an absorbing layer at 10-40 km (Bruneton 2017 profile; 0: "
-                   "none)");
+    s.inherit(OzoneLayerParameters::schema());
     return s;
   }();
   return s;
@@ -159,39 +156,19 @@ ParameterValues HillaireModel::parameter_values() const {
 }
 
 Domain HillaireModel::domain() const {
-  Domain d;
-  if (sun().zenith > kPi / 2)
-    d.issues.push_back({"sun_zenith", Validity::extrapolated,
-                        "sun below the horizon: the approximation's error grows in twilight "
-                        "(docs/ATMOSPHERE.md)"});
-  return d;
+  return sun_below_horizon(Validity::extrapolated,
+                           "the approximation's error grows in twilight (docs/ATMOSPHERE.md)");
 }
 
 ModelInfo HillaireModel::registry_entry() {
-  ModelInfo info = NishitaModel::registry_entry();
-  info.name = std::string(kName);
+  ModelInfo info = registry_entry_of(
+      kName, "every order", "the approximation's error against the Monte Carlo path tracer");
   info.description =
       "Physically based single scattering plus Hillaire's (2020) multiple-scattering LUT "
       "(orders >= 2 as isotropic in-scattering from a 32 x 32 table over altitude and sun "
       "angle) in nishita's atmosphere; ozone on by default";
-  info.output =
-      "XYZ with Y [cd/m^2] for the ASTM G-173 extraterrestrial sun (41 wavelengths, 10 nm "
-      "apart, 380-780 nm, spline weights: docs/ATMOSPHERE.md); "
-      "spectral radiance [W m^-2 sr^-1 nm^-1] 360-830 nm; with --solar-irradiance E both per flat "
-      "irradiance E; in-scattered light of every order, the ground reflects only with an "
-      "explicit --albedo; --include-sun / --sun-only: the solar disc (0.2665 deg, limb-darkened, "
-      "through the atmosphere's transmittance)";
   info.parameters = HillaireParameters::schema().specs();
-  info.domain =
-      "nishita's: any observer altitude 0-10000 km, any view direction and sun elevation; the "
-      "approximation's error against the Monte Carlo path tracer: docs/ATMOSPHERE.md";
   info.make = model_factory<HillaireModel, HillaireParameters>();
-  // The Monte Carlo path tracer of the same atmosphere (the entry starts as nishita's: its
-  // reference, the single scattering, is replaced here).
-  info.reference = path_tracer_reference();
-  info.reference_description = path_tracer_reference_description();
-  info.bench = BenchPolicy{.extra = BenchPolicy::Extra::precomputation};
-  info.costly_setup = true;
   info.report = ReportPolicy{
       .title = "Hillaire 2020 (Earth defaults)", .colour = "#17becf", .physical_atmosphere = true};
   return info;

@@ -38,10 +38,8 @@ inline constexpr int kHillaireLutAzimuths = 6;
 // piece's lower end; its f_ms, ~0.1-0.3, needs fewer than a view ray's kSkyViewRayNodes).
 inline constexpr int kHillaireLutRayNodes = 8;
 
-// `nishita`'s parameters, with the ozone layer on by default (Earth's 300 DU: the blue zenith of
-// twilight, the Chappuis band).
-struct HillaireParameters : NishitaParameters {
-  HillaireParameters() { ozone_du = atmosphere::kEarthOzoneColumn; }
+// `nishita`'s parameters, with the ozone layer on by default (OzoneLayerParameters).
+struct HillaireParameters : OzoneLayerParameters {
   static const ParameterSchema<HillaireParameters>& schema();
 };
 

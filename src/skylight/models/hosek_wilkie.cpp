@@ -667,12 +667,8 @@ ParameterValues HosekWilkieModel::parameter_values() const {
 }
 
 Domain HosekWilkieModel::domain() const {
-  Domain d;
-  if (!sun_up_)
-    d.issues.push_back({"sun_zenith", Validity::undefined,
-                        "sun below the horizon: the Hosek-Wilkie model has no twilight; sky and "
-                        "sun are 0"});
-  return d;
+  return sun_below_horizon(Validity::undefined,
+                           "the Hosek-Wilkie model has no twilight; sky and sun are 0");
 }
 
 namespace {

@@ -221,12 +221,9 @@ ReferenceValue NishitaModel::reference_value(const EvaluationOptions& o,
 }
 
 Domain NishitaModel::domain() const {
-  Domain d;
-  if (sun().zenith > kPi / 2)
-    d.issues.push_back({"sun_zenith", Validity::extrapolated,
-                        "sun below the horizon: single scattering only (planet shadow included); "
-                        "twilight skies are dominated by multiple scattering, not modelled"});
-  return d;
+  return sun_below_horizon(Validity::extrapolated,
+                           "single scattering only (planet shadow included); twilight skies are "
+                           "dominated by multiple scattering, not modelled");
 }
 
 namespace {

@@ -21,6 +21,18 @@ using atmosphere::AtmosphereParameters;
 using atmosphere::AtmosphereTableCache;
 using atmosphere::Spectral;
 
+const ParameterSchema<OzoneLayerParameters>& OzoneLayerParameters::schema() {
+  static const auto s = [] {
+    ParameterSchema<OzoneLayerParameters> s;
+    s.inherit(NishitaParameters::schema())
+        .redefault("ozone", ParameterValue(atmosphere::kEarthOzoneColumn),
+                   "ozone column of an absorbing layer at 10-40 km (Bruneton 2017 profile; 0: "
+                   "none)");
+    return s;
+  }();
+  return s;
+}
+
 PhysicalSkyModel::PhysicalSkyModel(const NishitaParameters& params) : SkyModel(params.sun) {
   single_ = std::make_unique<NishitaModel>(params);
   observer_ = single_->observer();
@@ -236,8 +248,24 @@ std::optional<double> PhysicalSkyModel::spectral_radiance(Vec3 view, double nm) 
   return single[0] + ms[0];
 }
 
-ReferencePath PhysicalSkyModel::path_tracer_reference() {
-  return [](const SkyModel& m, Vec3 view, const EvaluationOptions& o, const ReferenceRequest& rq) {
+ModelInfo PhysicalSkyModel::registry_entry_of(std::string_view name, std::string_view orders,
+                                              std::string_view error) {
+  ModelInfo info = NishitaModel::registry_entry();
+  info.name = std::string(name);
+  info.output = fmt::format(
+      "XYZ with Y [cd/m^2] for the ASTM G-173 extraterrestrial sun (41 wavelengths, 10 nm apart, "
+      "380-780 nm, spline weights: docs/ATMOSPHERE.md); spectral radiance [W m^-2 sr^-1 nm^-1] "
+      "360-830 nm; with --solar-irradiance E both per flat irradiance E; in-scattered light of {}; "
+      "the ground reflects only with an explicit --albedo; --include-sun / --sun-only: the solar "
+      "disc (0.2665 deg, limb-darkened, through the atmosphere's "
+      "transmittance)",
+      orders);
+  info.domain = fmt::format(
+      "nishita's: any observer altitude 0-10000 km, any view direction and sun elevation; {}: "
+      "docs/ATMOSPHERE.md",
+      error);
+  info.reference = [](const SkyModel& m, Vec3 view, const EvaluationOptions& o,
+                      const ReferenceRequest& rq) {
     const auto& p = static_cast<const PhysicalSkyModel&>(m);
     const NishitaModel& n = p.single_scattering();
     const std::vector<double> nm = p.reference_wavelengths(o);
@@ -249,11 +277,12 @@ ReferencePath PhysicalSkyModel::path_tracer_reference() {
                                           normalize(view), p.sun().direction(), spec, s);
     return p.reference_value(o, r.radiance, r.standard_error);
   };
-}
-
-std::string PhysicalSkyModel::path_tracer_reference_description() {
-  return "the Monte Carlo path tracer of the same atmosphere (atmosphere/path_tracer.h: every "
-         "order of scattering, segments estimator; standard errors)";
+  info.reference_description =
+      "the Monte Carlo path tracer of the same atmosphere (atmosphere/path_tracer.h: every order "
+      "of scattering, segments estimator; standard errors)";
+  info.bench = BenchPolicy{.extra = BenchPolicy::Extra::precomputation};
+  info.costly_setup = true;
+  return info;
 }
 
 }  // namespace skylight

@@ -43,6 +43,14 @@ inline constexpr int kPhysicalXyzCount = 41;
 inline constexpr double kPhysicalXyzFirst = 380.0;  // [nm]
 inline constexpr double kPhysicalXyzStep = 10.0;    // [nm]
 
+// `nishita`'s parameters with the ozone layer on by default (Earth's 300 DU, Bruneton 2017's
+// profile: the blue zenith of twilight, the Chappuis band): the base of `hillaire`'s and
+// `bruneton`'s.
+struct OzoneLayerParameters : NishitaParameters {
+  OzoneLayerParameters() { ozone_du = atmosphere::kEarthOzoneColumn; }
+  static const ParameterSchema<OzoneLayerParameters>& schema();
+};
+
 class PhysicalSkyModel : public SkyModel {
  public:
   // The single scattering alone: nishita with the same parameters.
@@ -78,10 +86,13 @@ class PhysicalSkyModel : public SkyModel {
   Xyz sun_tristimulus(Vec3 view) const override;
   std::optional<double> sun_spectral_radiance(Vec3 view, double nm) const override;
 
-  // `eval --reference` of these models: the Monte Carlo path tracer of the same atmosphere, at the
-  // XYZ quadrature's wavelengths (or the spectral ones).
-  static ReferencePath path_tracer_reference();
-  static std::string path_tracer_reference_description();
+  // The start of a registry entry of these models, `name`: nishita's, with their output (the XYZ
+  // quadrature, the spectral range, the solar disc; `orders`: the orders of in-scattered light it
+  // holds), their domain (nishita's, and `error`: the error against the path tracer), the path
+  // tracer of the same atmosphere as `eval --reference` (at the XYZ quadrature's wavelengths, or
+  // the spectral ones), the bench of the precomputation and a costly set-up.
+  static ModelInfo registry_entry_of(std::string_view name, std::string_view orders,
+                                     std::string_view error);
   // Its wavelengths for the options and the quantity's values from the spectral radiances there
   // (as NishitaModel's, with this model's XYZ quadrature).
   std::vector<double> reference_wavelengths(const EvaluationOptions& options) const;

@@ -282,13 +282,9 @@ ParameterValues PreethamModel::parameter_values() const {
 }
 
 Domain PreethamModel::domain() const {
-  Domain d;
+  Domain d = sun_below_horizon(Validity::undefined, "the Preetham model has no twilight; sky is 0");
   const double T = params_.turbidity;
-  if (!sun_up_) {
-    d.issues.push_back({"sun_zenith", Validity::undefined,
-                        "sun below the horizon: the Preetham model has no twilight; sky is 0"});
-    return d;
-  }
+  if (!sun_up_) return d;
   if (T < kPreethamUsableTurbidityMin || T > kPreethamUsableTurbidityMax) {
     d.issues.push_back({"turbidity", Validity::unphysical,
                         fmt::format("T = {} is outside [{}, {}], where Zotti et al. 2007 show the "

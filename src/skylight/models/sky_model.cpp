@@ -80,6 +80,14 @@ SkyModel::SkyModel(const SunPosition& sun) : sun_(sun) {
   validate_sun(sun);
 }
 
+Domain SkyModel::sun_below_horizon(Validity validity, std::string_view consequence) const {
+  Domain d;
+  if (sun_.zenith > 0.5 * kPi)
+    d.issues.push_back(
+        {"sun_zenith", validity, "sun below the horizon: " + std::string(consequence)});
+  return d;
+}
+
 std::optional<double> SkyModel::spectral_radiance(Vec3, double) const {
   return std::nullopt;
 }

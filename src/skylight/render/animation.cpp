@@ -24,9 +24,6 @@ const ParameterSchema<AnimationOptions>& AnimationOptions::schema() {
   static const ParameterSchema<AnimationOptions> s = [] {
     using A = AnimationOptions;
     ParameterSchema<A> s;
-    ParameterSpec lat = sun::spa_parameter_spec("lat"), lon = sun::spa_parameter_spec("lon");
-    lat.default_value = Absent{"needed with --from-time"};
-    lon.default_value = Absent{"needed with --from-time"};
     s.numbers(&A::from, {.name = "from",
                          .unit = "deg",
                          .kind = ParameterKind::numbers,
@@ -53,8 +50,8 @@ const ParameterSchema<AnimationOptions>& AnimationOptions::schema() {
                             .kind = ParameterKind::text,
                             .default_value = Absent{"--to"},
                             .description = "the last frame's time (times interpolated linearly)"})
-        .optional_number(&A::lat_deg, lat)
-        .optional_number(&A::lon_deg, lon)
+        .optional_number(&A::lat_deg, sun::spa_parameter_spec("lat", "needed with --from-time"))
+        .optional_number(&A::lon_deg, sun::spa_parameter_spec("lon", "needed with --from-time"))
         .integer(&A::frames, {.name = "frames",
                               .unit = "1",
                               .kind = ParameterKind::integer,

@@ -347,25 +347,22 @@ void ReportWriter::section_maps() {
         kKittlerDarulaBandTvMin, kKittlerDarulaBandTvMax, t);
   }
   step("CIE luminance maps");
-  {
+  // A model with a turbidity, one row per value.
+  const auto turbidity_rows = [&](std::string_view model, const std::vector<double>& turbidities,
+                                  const std::string& title, const std::string& what) {
     std::vector<ModelSpec> rows;
     std::vector<std::string> labels;
-    for (double T : cfg_.map_preetham_t) {
-      rows.push_back(comparison_spec(PreethamModel::kName, T));
+    for (double T : turbidities) {
+      rows.push_back(comparison_spec(model, T));
       labels.push_back(fmt::format("{:.1f}", T));
     }
-    mosaic("Preetham", "Preetham (Zotti Figs. 6, 7, upper halves)", "T", rows, labels);
-  }
+    mosaic(title, what, "T", rows, labels);
+  };
+  turbidity_rows(PreethamModel::kName, cfg_.map_preetham_t, "Preetham",
+                 "Preetham (Zotti Figs. 6, 7, upper halves)");
   step("Preetham luminance maps");
-  {
-    std::vector<ModelSpec> rows;
-    std::vector<std::string> labels;
-    for (double T : cfg_.map_hosek_t) {
-      rows.push_back(comparison_spec(HosekWilkieModel::kName, T));
-      labels.push_back(fmt::format("{:.1f}", T));
-    }
-    mosaic("Hosek-Wilkie", "Hosek-Wilkie (ground albedo 0.3)", "T", rows, labels);
-  }
+  turbidity_rows(HosekWilkieModel::kName, cfg_.map_hosek_t, "Hosek-Wilkie",
+                 "Hosek-Wilkie (ground albedo 0.3)");
   {
     // The physical atmospheres, one row each: single scattering, then multiple scattering.
     std::vector<ModelSpec> rows;

@@ -357,6 +357,12 @@ const ParameterSpec& spa_parameter_spec(std::string_view name) {
   return *spec;
 }
 
+ParameterSpec spa_parameter_spec(std::string_view name, std::string absent) {
+  ParameterSpec spec = spa_parameter_spec(name);
+  spec.default_value = Absent{std::move(absent)};
+  return spec;
+}
+
 void validate(const SpaInput& in) {
   validate(in.time, "SpaInput.time");
   if (in.time.year < -2000 || in.time.year > 6000) {

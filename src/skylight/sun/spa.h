@@ -51,6 +51,9 @@ ParameterSpec time_spec(std::string absent);
 const std::vector<ParameterSpec>& spa_parameter_specs();
 // The spec named `name` (a programming error if there is none).
 const ParameterSpec& spa_parameter_spec(std::string_view name);
+// The same spec without a default, for an operation that needs it only sometimes: `absent` says
+// when (e.g. "needed with --from-time").
+ParameterSpec spa_parameter_spec(std::string_view name, std::string absent);
 
 // Checks in.time (validate(DateTime), year in [-2000, 6000]) and every number against
 // spa_parameter_specs(); throws InvalidArgument naming the field.
