@@ -30,10 +30,11 @@ except ImportError as _e:  # the message is the point: what to build
 from . import estimate
 from . import haze
 from . import io
+from . import measured
 from . import nn
 from . import sh
 
-__all__ = ["InvalidArgument", "SkylightWarning", "Sky", "estimate", "haze", "io", "nn", "sh",
+__all__ = ["InvalidArgument", "SkylightWarning", "Sky", "estimate", "haze", "io", "measured", "nn", "sh",
            "models", "operations", "run", "report", "sun_position", "sun_events", "__version__"]
 
 QUANTITIES = ("rgb", "xyz", "luminance", "spectral")

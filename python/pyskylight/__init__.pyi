@@ -10,6 +10,7 @@ import numpy.typing as npt
 from . import estimate as estimate
 from . import haze as haze
 from . import io as io
+from . import measured as measured
 from . import nn as nn
 from . import sh as sh
 
@@ -41,6 +42,8 @@ def run(operation: Literal['render'], progress: Progress | None = ..., *, model:
 def run(operation: Literal['eval'], progress: Progress | None = ..., *, model: Literal['perez', 'preetham', 'cie', 'hosek', 'nishita', 'hillaire', 'bruneton', 'nn', 'pietras', 'sh'] | None = ..., sun_zenith: float | None = ..., sun_elevation: float | None = ..., sun_azimuth: float | None = ..., time: str | datetime | None = ..., lat: float | None = ..., lon: float | None = ..., elevation: float | None = ..., pressure: float | None = ..., temperature: float | None = ..., delta_t: float | None = ..., include_sun: bool | None = ..., sun_only: bool | None = ..., quantity: Literal['rgb', 'xyz', 'luminance', 'spectral'] | None = ..., wavelengths: Sequence[float] | None = ..., reference: bool | None = ..., paths: int | None = ..., seed: int | None = ..., input: str | PathLike[str] | None = ..., output: str | PathLike[str] | None = ..., **model_parameters: Any) -> dict[str, Any]: ...
 @overload
 def run(operation: Literal['estimate'], progress: Progress | None = ..., *, image: str | PathLike[str] | np.ndarray | None = ..., mask: str | PathLike[str] | np.ndarray | None = ..., model: Literal['preetham', 'cie', 'hosek'] | None = ..., projection: Literal['fisheye', 'equirect'] | None = ..., lens: Literal['equidistant', 'equisolid', 'orthographic', 'stereographic'] | None = ..., fov: float | None = ..., north_angle: float | None = ..., calibration: str | PathLike[str] | None = ..., sun_zenith: float | None = ..., sun_azimuth: float | None = ..., time: str | datetime | None = ..., lat: float | None = ..., lon: float | None = ..., elevation: float | None = ..., pressure: float | None = ..., temperature: float | None = ..., delta_t: float | None = ..., exif: str | PathLike[str] | None = ..., utc_offset: str | None = ..., min_elevation: float | None = ..., sun_exclusion: float | None = ..., saturation: float | None = ..., samples: int | None = ..., seed: int | None = ..., ransac_iterations: int | None = ..., inlier_threshold: float | None = ..., bootstrap: int | None = ..., no_ransac: bool | None = ..., compare: str | PathLike[str] | None = ...) -> dict[str, Any]: ...
+@overload
+def run(operation: Literal['measured'], progress: Progress | None = ..., *, kider: str | None = ..., model: Literal['preetham', 'cie', 'hosek'] | None = ..., exclude_sun_deg: float | None = ..., sun_azimuth_from: Literal['spa', 'symmetry'] | None = ..., site_lat: float | None = ..., site_lon: float | None = ..., utc_offset: str | None = ..., output: str | PathLike[str] | None = ...) -> dict[str, Any]: ...
 @overload
 def run(operation: Literal['sun'], progress: Progress | None = ..., *, time: str | datetime | None = ..., lat: float | None = ..., lon: float | None = ..., elevation: float | None = ..., pressure: float | None = ..., temperature: float | None = ..., delta_t: float | None = ..., delta_ut1: float | None = ..., atmos_refract: float | None = ..., slope: float | None = ..., azimuth_rotation: float | None = ...) -> dict[str, Any]: ...
 @overload

@@ -39,6 +39,7 @@
 #include "skylight/io/camera_calibration.h"
 #include "skylight/io/file.h"
 #include "skylight/io/image.h"
+#include "skylight/io/kider.h"
 #include "skylight/models/evaluation.h"
 #include "skylight/models/neural_sky.h"
 #include "skylight/models/sky_model.h"
@@ -786,6 +787,53 @@ py::array_t<double> sh_rotate_about_zenith(
 }
 
 // (record JSON, {output: array or text}) of the operation `name`.
+// The captures of Kider et al. 2014 under `path` (None: the shipped subset), io::read_kider: one
+// dict per capture, its samples as arrays in index order.
+py::list read_kider(const std::optional<std::string>& path) {
+  const std::vector<sl::io::KiderCapture> captures =
+      path ? sl::io::read_kider(*path) : sl::io::shipped_kider_subset();
+  py::list out;
+  for (const sl::io::KiderCapture& c : captures) {
+    const std::size_t n = c.samples.size(), w = c.wavelengths_nm.size();
+    py::array_t<int> index(static_cast<py::ssize_t>(n));
+    py::array_t<double> zenith(static_cast<py::ssize_t>(n)), azimuth(static_cast<py::ssize_t>(n)),
+        luminance(static_cast<py::ssize_t>(n));
+    py::array_t<bool> replaced(static_cast<py::ssize_t>(n));
+    py::array_t<double> radiance({static_cast<py::ssize_t>(n), static_cast<py::ssize_t>(w)});
+    for (std::size_t i = 0; i < n; ++i) {
+      const sl::io::KiderSample& s = c.samples[i];
+      index.mutable_at(i) = s.index;
+      zenith.mutable_at(i) = sl::rad_to_deg(s.zenith);
+      azimuth.mutable_at(i) = sl::rad_to_deg(s.azimuth);
+      luminance.mutable_at(i) = s.luminance;
+      replaced.mutable_at(i) = s.replaced;
+      for (std::size_t k = 0; k < w; ++k) radiance.mutable_at(i, k) = s.radiance[k];
+    }
+    std::vector<double> ghi;
+    py::list times;
+    for (const auto& r : c.pyranometer) {
+      ghi.push_back(r.global_horizontal_w_m2);
+      times.append(r.time);
+    }
+    py::dict d;
+    d["name"] = c.name;
+    d["local_time"] = c.local_time;
+    d["wavelengths_nm"] = py::array_t<double>(static_cast<py::ssize_t>(w), c.wavelengths_nm.data());
+    d["index"] = index;
+    d["zenith_deg"] = zenith;
+    d["azimuth_deg"] = azimuth;
+    d["luminance"] = luminance;
+    d["radiance"] = radiance;
+    d["replaced"] = replaced;
+    d["pyranometer_w_m2"] = py::array_t<double>(static_cast<py::ssize_t>(ghi.size()), ghi.data());
+    d["pyranometer_time"] = times;
+    const auto g = c.global_horizontal_w_m2();
+    d["global_horizontal_w_m2"] = g ? py::object(py::float_(*g)) : py::object(py::none());
+    out.append(d);
+  }
+  return out;
+}
+
 py::tuple run_operation(const std::string& name, const py::dict& kwargs, const py::dict& inputs,
                         py::object progress) {
   const sl::operations::OperationInfo& op = sl::operations::require_operation(name);
@@ -889,6 +937,7 @@ PYBIND11_MODULE(_skylight, m) {
   m.def("operations_json", &sl::operations::operations_json);
   m.def("sun_position", &sun_position, py::arg("ns"), py::arg("kwargs"));
   m.def("read_image", &read_image, py::arg("path"));
+  m.def("read_kider", &read_kider, py::arg("path"));
   m.def("sh_project", &sh_project);
   m.def("run_operation", &run_operation, py::arg("name"), py::arg("kwargs"), py::arg("inputs"),
         py::arg("progress"));

@@ -68,6 +68,12 @@ CASES = [
      ["utc_offset is not read without exif; ignored"]),
     ("estimate", dict(image="@fish.exr", lat=48), "error", "lat needs time, or exif", []),
     ("estimate", dict(image="@fish.exr", compare="@c.exr"), "error", "write .png", []),
+    # measured
+    ("measured", dict(model="preetham", exclude_sun_deg=20), "success", None, []),
+    ("measured", dict(model="hosek", kider="@missing"), "error", "missing': no such folder", []),
+    ("measured", dict(model="preetham", utc_offset="EDT"), "error", "is not a UTC offset", []),
+    ("measured", dict(model="nishita"), "error", "nishita", []),
+    ("measured", dict(model="cie", output="@m.txt"), "error", "write .csv", []),
     # sun, daylight
     ("sun", dict(time="2026-06-21T12:00:00+02:00", lat=48, lon=11), "success", None, []),
     ("sun", dict(time="2026-06-21T12:00:00+02:00", lat=91, lon=11), "error",

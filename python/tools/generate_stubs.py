@@ -76,6 +76,7 @@ def stub():
         "from . import estimate as estimate",
         "from . import haze as haze",
         "from . import io as io",
+        "from . import measured as measured",
         "from . import nn as nn",
         "from . import sh as sh",
         "",

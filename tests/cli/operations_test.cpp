@@ -96,6 +96,9 @@ TEST_F(Cli, EveryCommandRefusesAUsageErrorBeforeAnyWork) {
        "--image D/sky.exr --bootstrap 10000 --ransac-iterations 100000 --samples 1000000 "
        "--sun-zenith 30",
        "--sun-zenith needs --sun-azimuth"},
+      {"measured", "--model hosek --kider D/missing -o D/m.csv", "--kider"},
+      {"measured", "--model preetham --utc-offset EDT -o D/m.csv", "is not a UTC offset"},
+      {"measured", "--model hosek -o D/m.txt", "write .csv"},
       {"sun", "--time 2026-06-21T12:00:00Z --lat 91 --lon 11", "--lat = 91 is outside"},
       {"daylight", "--epw D/c.csv -o D/c.csv", "an output never overwrites an input"},
       {"bench", "--width 32768 --height 32768 --repeats 1000 --models preetham,nope", "nope"},

@@ -1,6 +1,7 @@
 #include "skylight/operations/operation.h"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -487,15 +488,35 @@ std::vector<std::string> labels_of(const std::vector<FieldSpec>& fields) {
   return out;
 }
 
+// A table's cell of a nested list of records: each row's values joined by '=' ("turbidity=3.1"),
+// the rows by spaces. A nested list with more than kMaxCellFields fields is not a column of the
+// text table (the JSON holds it).
+constexpr std::size_t kMaxCellFields = 2;
+std::string cell_text(const FieldSpec& f, const Record& v) {
+  if (f.kind != FieldKind::records || v.is_null()) return value_text(f, v);
+  std::vector<std::string> rows;
+  for (const auto& row : v) {
+    std::vector<std::string> values;
+    for (const FieldSpec& c : f.fields) values.push_back(value_text(c, row.at(c.name)));
+    rows.push_back(fmt::format("{}", fmt::join(values, "=")));
+  }
+  return fmt::format("{}", fmt::join(rows, " "));
+}
+bool in_table(const FieldSpec& c) {
+  return c.kind != FieldKind::records || c.fields.size() <= kMaxCellFields;
+}
+
 void append_table(std::string& out, const FieldSpec& f, const Record& rows) {
   std::vector<std::vector<std::string>> cells;
   std::vector<std::string> header;
   for (const FieldSpec& c : f.fields)
-    header.push_back(c.unit.empty() || c.unit == "1" ? c.name : c.name + " [" + c.unit + "]");
+    if (in_table(c))
+      header.push_back(c.unit.empty() || c.unit == "1" ? c.name : c.name + " [" + c.unit + "]");
   cells.push_back(header);
   for (const auto& row : rows) {
     std::vector<std::string> line;
-    for (const FieldSpec& c : f.fields) line.push_back(value_text(c, row.at(c.name)));
+    for (const FieldSpec& c : f.fields)
+      if (in_table(c)) line.push_back(cell_text(c, row.at(c.name)));
     cells.push_back(std::move(line));
   }
   std::vector<std::size_t> width(header.size(), 0);

@@ -124,9 +124,10 @@ ParameterSpec gpu_spec(const std::string& what) {
 const std::vector<OperationInfo>& registry() {
   static const std::vector<OperationInfo> ops = [] {
     std::vector<OperationInfo> ops;
-    for (auto family : {detail::sky_operations, detail::estimate_operations, detail::sun_operations,
-                        detail::report_operations, detail::sh_operations, detail::haze_operations,
-                        detail::nn_operations})
+    for (auto family :
+         {detail::sky_operations, detail::estimate_operations, detail::measured_operations,
+          detail::sun_operations, detail::report_operations, detail::sh_operations,
+          detail::haze_operations, detail::nn_operations})
       for (OperationInfo& op : family()) ops.push_back(std::move(op));
     return ops;
   }();

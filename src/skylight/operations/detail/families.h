@@ -38,6 +38,7 @@ std::vector<ParameterSpec> concat(std::initializer_list<std::vector<ParameterSpe
 
 std::vector<OperationInfo> sky_operations();       // render, eval
 std::vector<OperationInfo> estimate_operations();  // estimate
+std::vector<OperationInfo> measured_operations();  // measured
 std::vector<OperationInfo> sun_operations();       // sun, daylight
 std::vector<OperationInfo> report_operations();    // bench, report
 std::vector<OperationInfo> sh_operations();        // sh fit|eval|export|render|error
