@@ -10,6 +10,7 @@
 #include "skylight/core/error.h"
 #include "skylight/core/parameters.h"
 #include "skylight/models/evaluation.h"
+#include "skylight/models/preetham.h"
 
 namespace skylight {
 namespace {
@@ -90,6 +91,37 @@ const ParameterSchema<NishitaParameters>& NishitaParameters::schema() {
                          .max = 0.999,
                          .default_value = ParameterValue(d.mie_g),
                          .description = "Cornette-Shanks asymmetry g"});
+    s.optional_number(&P::aerosol_optical_depth,
+                      {.name = "aerosol-optical-depth",
+                       .unit = "1",
+                       .min = 0.0,
+                       .max = 5.0,
+                       .default_value = Absent{"Earth's default Mie layer, 4.44e-6 m^-1 at the "
+                                               "ground (0.0053 for H_M = 1.2 km)"},
+                       .description = "aerosol optical depth at 550 nm (the Mie layer's column)"});
+    s.optional_number(&P::angstrom_exponent,
+                      {.name = "angstrom-exponent",
+                       .unit = "1",
+                       .min = -1.0,
+                       .max = 4.0,
+                       .default_value = Absent{"0 (grey), 1.3 with --turbidity"},
+                       .description = "Angstrom exponent alpha of the aerosols: beta ~ "
+                                      "(550 nm / lambda)^alpha"});
+    s.number(&P::aerosol_albedo, {.name = "aerosol-albedo",
+                                  .unit = "1",
+                                  .min = 0.0,
+                                  .max = 1.0,
+                                  .default_value = ParameterValue(d.aerosol_albedo),
+                                  .description = "the aerosols' single-scattering albedo "
+                                                 "beta_s / beta_e"});
+    s.optional_number(&P::turbidity,
+                      {.name = "turbidity",
+                       .unit = "1",
+                       .min = 1.0,
+                       .max = 20.0,
+                       .default_value = Absent{"the aerosol flags"},
+                       .description = "Preetham's turbidity as aerosols: tau_550 = beta "
+                                      "0.55^-1.3, beta = 0.04608 T - 0.04586, alpha = 1.3"});
     s.optional_number(
         &P::ozone_du,
         {.name = "ozone",
@@ -109,6 +141,34 @@ double NishitaParameters::top_radius() const {
                                (atmosphere::kEarthTopRadius - atmosphere::kEarthGroundRadius));
 }
 
+void NishitaParameters::set_aerosols(atmosphere::Component& mie) const {
+  mie.scale_height_m = mie_scale_height_m;
+  mie.g = mie_g;
+  if (turbidity && (aerosol_optical_depth || angstrom_exponent))
+    throw InvalidArgument(fmt::format(
+        "{} and {} exclude each other (the turbidity gives the aerosols' depth and exponent)",
+        spelled("turbidity"),
+        spelled(aerosol_optical_depth ? "aerosol-optical-depth" : "angstrom-exponent")));
+  const bool earth = !turbidity && !aerosol_optical_depth && !angstrom_exponent &&
+                     aerosol_albedo == NishitaParameters{}.aerosol_albedo;
+  if (earth) return;  // earth_mie() as it is
+  const double height = top_radius() - ground_radius_m;
+  // The column of the exponential layer up to the top: H_M (1 - exp(-height / H_M)).
+  const double column_m = mie_scale_height_m * -std::expm1(-height / mie_scale_height_m);
+  double tau = mie.extinction_per_m * column_m, alpha = angstrom_exponent.value_or(0.0);
+  if (turbidity) {
+    const PreethamAerosol p = preetham_aerosol(*turbidity);
+    tau = p.optical_depth(550.0);
+    alpha = p.alpha;
+  } else if (aerosol_optical_depth) {
+    tau = *aerosol_optical_depth;
+  }
+  mie.reference_nm = 550.0;
+  mie.extinction_per_m = tau / column_m;
+  mie.scattering_per_m = aerosol_albedo * mie.extinction_per_m;
+  mie.angstrom_exponent = alpha;
+}
+
 NishitaSetup NishitaParameters::setup() const {
   schema().validate(*this, model_context(NishitaModel::kName));
   NishitaSetup s;
@@ -122,8 +182,7 @@ NishitaSetup NishitaParameters::setup() const {
     throw InvalidArgument(fmt::format("{} {} must exceed {} {}", spelled("top-radius"),
                                       a.top_radius_m, spelled("ground-radius"), a.ground_radius_m));
   a.components[0].scale_height_m = rayleigh_scale_height_m;
-  a.components[1].scale_height_m = mie_scale_height_m;
-  a.components[1].g = mie_g;
+  set_aerosols(a.components[1]);
   if (ozone_du) a.components.push_back(atmosphere::earth_ozone(*ozone_du));
   a.ground_albedo = albedo;
   return s;

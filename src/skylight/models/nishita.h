@@ -62,7 +62,16 @@ struct NishitaParameters {
   double rayleigh_scale_height_m = atmosphere::kRayleighScaleHeight;  // [m]
   double mie_scale_height_m = atmosphere::kMieScaleHeight;            // [m]
   double mie_g = atmosphere::kMieG;  // Cornette-Shanks asymmetry [1], [-0.999, 0.999]
-  std::optional<double> ozone_du;    // --ozone column [DU], [0, 1000]; none: no ozone layer
+  // The aerosols (the Mie component; docs/MEASURED.md): their optical depth at 550 nm (the
+  // column of the exponential layer, tau = beta_e H_M; none: Earth's default beta_e = 4.44e-6 m^-1
+  // at the ground), the Angstrom exponent of beta(lambda) = beta_550 (550 / lambda)^alpha and the
+  // single-scattering albedo beta_s / beta_e; or --turbidity, Preetham's mapping (tau_550 and
+  // alpha = 1.3 of models/preetham.h), which excludes the first two.
+  std::optional<double> aerosol_optical_depth;  // [1] at 550 nm, [0, 5]
+  std::optional<double> angstrom_exponent;      // [1], [-1, 4]; none: 0 (grey), or 1.3
+  double aerosol_albedo = atmosphere::kMieScattering / atmosphere::kMieExtinction;  // [0, 1]
+  std::optional<double> turbidity;                                                  // [1], [1, 20]
+  std::optional<double> ozone_du;  // --ozone column [DU], [0, 1000]; none: no ozone layer
 
   static const ParameterSchema<NishitaParameters>& schema();
   // The top of the atmosphere used: top_radius_m, or the ground radius + 60 km.
@@ -70,6 +79,8 @@ struct NishitaParameters {
   // The planet and atmosphere these values describe (checked: throws InvalidArgument naming the
   // flag, e.g. a top radius not above the ground radius).
   NishitaSetup setup() const;
+  // The Mie component of these values: scale height, g and the aerosols above.
+  void set_aerosols(atmosphere::Component& mie) const;
 };
 
 class NishitaModel final : public SkyModel {

@@ -8,7 +8,9 @@
 #include <cstdio>
 #include <vector>
 
+#include "skylight/atmosphere/atmosphere.h"
 #include "skylight/core/error.h"
+#include "support/error_message.h"
 
 namespace skylight {
 namespace {
@@ -169,6 +171,82 @@ TEST(NishitaSampler, EqualsNishitaModel) {
       }
     }
   }
+}
+
+}  // namespace
+}  // namespace skylight
+
+namespace skylight {
+namespace {
+
+// The vertical transmittance of the whole atmosphere at nm, with and without the given aerosols:
+// their ratio is exp(-tau_aerosol(nm)) whatever the other components do.
+double aerosol_transmittance_ratio(const NishitaParameters& hazy, double nm) {
+  NishitaParameters clean = hazy;
+  clean.turbidity.reset();
+  clean.aerosol_optical_depth = 0.0;
+  clean.angstrom_exponent.reset();
+  double t[2];
+  int k = 0;
+  for (const NishitaParameters* p : {&hazy, static_cast<const NishitaParameters*>(&clean)}) {
+    const NishitaSetup s = p->setup();
+    const atmosphere::Atmosphere a(s.atmosphere);
+    const double solar[] = {1.0}, nms[] = {nm};
+    const atmosphere::Spectral spec = atmosphere::make_spectral(s.atmosphere, nms, solar);
+    double out[1];
+    const double r0 = s.atmosphere.ground_radius_m;
+    a.transmittance({0.0, 0.0, r0 + 1e-3}, {0.0, 0.0, 1.0}, s.atmosphere.top_radius_m - r0 - 2e-3,
+                    spec, out);
+    t[k++] = out[0];
+  }
+  return t[0] / t[1];
+}
+
+// --aerosol-optical-depth is the vertical optical depth of the aerosols at 550 nm, scaled by the
+// Angstrom law elsewhere (the optical-length tables integrate the profile: 1e-4 relative).
+TEST(NishitaAerosols, TheOpticalDepthIsTheColumnsAndFollowsAngstromsLaw) {
+  constexpr double kTableTolerance = 1e-4;
+  NishitaParameters p;
+  p.aerosol_optical_depth = 0.3;
+  p.angstrom_exponent = 1.2;
+  EXPECT_NEAR(-std::log(aerosol_transmittance_ratio(p, 550.0)), 0.3, 0.3 * kTableTolerance);
+  const double tau440 = 0.3 * std::pow(550.0 / 440.0, 1.2);
+  EXPECT_NEAR(-std::log(aerosol_transmittance_ratio(p, 440.0)), tau440, tau440 * kTableTolerance);
+  p.aerosol_albedo = 0.7;
+  const atmosphere::Component mie = p.setup().atmosphere.components[1];
+  EXPECT_DOUBLE_EQ(mie.scattering_per_m / mie.extinction_per_m, 0.7);
+  EXPECT_EQ(mie.angstrom_exponent, 1.2);
+}
+
+// --turbidity is Preetham's aerosol: tau_550 = (0.04608 T - 0.04586) 0.55^-1.3, alpha = 1.3
+// (Preetham et al. 1999, appendix A.3).
+TEST(NishitaAerosols, TurbidityIsPreethamsAngstromLaw) {
+  NishitaParameters p;
+  p.turbidity = 3.0;
+  const double tau550 = (0.04608 * 3.0 - 0.04586) * std::pow(0.55, -1.3);
+  EXPECT_NEAR(-std::log(aerosol_transmittance_ratio(p, 550.0)), tau550, tau550 * 1e-4);
+  EXPECT_EQ(p.setup().atmosphere.components[1].angstrom_exponent, 1.3);
+  p.aerosol_optical_depth = 0.1;
+  EXPECT_NE(testing_support::error_message([&] {
+              (void)p.setup();
+            }).find("turbidity and aerosol-optical-depth exclude each other"),
+            std::string::npos);
+}
+
+// Without aerosol flags the Mie layer is Earth's default, bit for bit.
+TEST(NishitaAerosols, WithoutThemTheMieLayerIsEarthsDefault) {
+  const atmosphere::Component mie = NishitaParameters{}.setup().atmosphere.components[1];
+  const atmosphere::Component earth = atmosphere::earth_mie();
+  EXPECT_EQ(mie.scattering_per_m, earth.scattering_per_m);
+  EXPECT_EQ(mie.extinction_per_m, earth.extinction_per_m);
+  EXPECT_EQ(mie.angstrom_exponent, earth.angstrom_exponent);
+  // More aerosols brighten the sky near the sun and darken the light of the sun's own direction.
+  NishitaParameters clean, hazy;
+  clean.sun = hazy.sun = {deg_to_rad(40.0), kPi};
+  hazy.turbidity = 4.0;
+  const NishitaModel a(clean), b(hazy);
+  const Vec3 near_sun = direction_from_angles(deg_to_rad(45.0), kPi);
+  EXPECT_GT(b.tristimulus(near_sun).Y, 1.5 * a.tristimulus(near_sun).Y);
 }
 
 }  // namespace

@@ -142,14 +142,20 @@ double relative_optical_mass(double sun_zenith) {
   return 1.0 / (std::cos(deg_to_rad(deg)) + 0.15 * std::pow(93.885 - deg, -1.253));
 }
 
+PreethamAerosol preetham_aerosol(double turbidity) {
+  return {0.04608 * turbidity - 0.04586, 1.3};
+}
+
+double PreethamAerosol::optical_depth(double nm) const {
+  return beta * std::pow(nm / 1000.0, -alpha);
+}
+
 SolarTransmittance preetham_solar_transmittance(double sun_zenith, double T, double nm) {
   const double m = relative_optical_mass(sun_zenith);
   const double um = nm / 1000.0;  // the appendix's formulas take lambda in micrometres
   SolarTransmittance t;
   t.rayleigh = std::exp(-0.008735 * std::pow(um, -4.08) * m);
-  const double alpha = 1.3;
-  const double beta = 0.04608 * T - 0.04586;  // Angstrom turbidity coefficient
-  t.aerosol = std::exp(-beta * std::pow(um, -alpha) * m);
+  t.aerosol = std::exp(-preetham_aerosol(T).optical_depth(nm) * m);
   const double ozone_cm = 0.35;
   t.ozone = std::exp(-ozone_table()(nm) * ozone_cm * m);
   const double kg = mixed_gas_table()(nm);

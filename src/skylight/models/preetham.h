@@ -40,6 +40,15 @@ Chromaticity preetham_zenith_chromaticity(double turbidity, double sun_zenith);
 // (Kasten 1966, as used by Preetham's appendix). Defined for theta_s <= 90 deg.
 double relative_optical_mass(double sun_zenith);
 
+// Preetham et al. 1999's aerosol for turbidity T (appendix A.3): the Angstrom law
+// tau(lambda) = beta lambda[um]^-alpha with beta = 0.04608 T - 0.04586 and alpha = 1.3. The
+// physical atmospheres' --turbidity is this mapping (docs/MEASURED.md).
+struct PreethamAerosol {
+  double beta = 0.0, alpha = 1.3;
+  double optical_depth(double nm) const;  // tau at nm
+};
+PreethamAerosol preetham_aerosol(double turbidity);
+
 // Transmittances of the direct solar beam (Preetham 1999 Appendix A.1 after Iqbal 1983), all
 // dimensionless, for solar zenith theta_s, turbidity T, wavelength nm.
 struct SolarTransmittance {
