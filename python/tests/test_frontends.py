@@ -72,7 +72,7 @@ CASES = [
     ("measured", dict(model="preetham", exclude_sun_deg=20), "success", None, []),
     ("measured", dict(model="hosek", kider="@missing"), "error", "missing': no such folder", []),
     ("measured", dict(model="preetham", utc_offset="EDT"), "error", "is not a UTC offset", []),
-    ("measured", dict(model="nishita"), "error", "nishita", []),
+    ("measured", dict(model="perez"), "error", "perez", []),
     ("measured", dict(model="cie", output="@m.txt"), "error", "write .csv", []),
     # sun, daylight
     ("sun", dict(time="2026-06-21T12:00:00+02:00", lat=48, lon=11), "success", None, []),
@@ -92,6 +92,7 @@ CASES = [
     ("bench", dict(turbidity=3), "error", "turbidity is not a parameter of bench", []),
     ("bench", dict(models="nope"), "error", "unknown model 'nope'", []),
     ("report", dict(measurements="@missing.csv", output="@rep"), "error", "no such file", []),
+    ("report", dict(kider="@missing", output="@rep"), "error", "missing': no such folder", []),
     ("report", dict(sun_azimuth=10, output="@rep"), "error", "sun_azimuth needs sun_elevation",
      []),
     ("report", dict(write_synthetic_measurements="@syn.csv", quick=True), "error",

@@ -490,6 +490,40 @@ LuminanceFit fit_by_grid(const Problem& pr, std::string_view model, const SunPos
   return out;
 }
 
+// The surrogate's fit (EstimationPolicy::surrogate), then this model at its parameters: ln s the
+// mean of the residuals over the samples (with RANSAC: over those within the threshold, found once
+// more with this model), the residual this model's. The sigmas are the surrogate's.
+LuminanceFit fit_by_surrogate(const Problem& pr, std::string_view model,
+                              std::span<const LuminanceSample> samples, const SunPosition& sun,
+                              const EstimateSettings& s) {
+  const EstimationPolicy& policy = pr.policy();
+  const EstimationPolicy& other = estimation_policy(policy.surrogate);
+  SKYLIGHT_CHECK(other.surrogate.empty() && other.axes.size() == policy.axes.size(),
+                 "a surrogate fits the same parameters itself");
+  for (std::size_t a = 0; a < policy.axes.size(); ++a)
+    SKYLIGHT_CHECK(other.axes[a].parameter == policy.axes[a].parameter,
+                   "a surrogate fits the same parameters");
+  const LuminanceFit found = fit_luminance(policy.surrogate, samples, sun, s);
+  std::vector<double> p, work;
+  for (const FittedParameter& q : found.parameters) p.push_back(q.value);
+  std::vector<std::size_t> inliers = all_indices(pr.size());
+  Point point = pr.profile(p, inliers, work);
+  if (s.ransac) {
+    if (auto again = pr.consensus(point, s.inlier_threshold, work).inliers;
+        again.size() >= policy.axes.size() + 1) {
+      inliers = std::move(again);
+      point = pr.profile(p, inliers, work);
+    }
+  }
+  LuminanceFit out =
+      result(pr, model, sun,
+             Fitted{point, found.method + ", searched with " + policy.surrogate, found.iterations},
+             inliers);
+  for (std::size_t a = 0; a < out.parameters.size(); ++a)
+    out.parameters[a].sigma = found.parameters[a].sigma;
+  return out;
+}
+
 // Every value of the one integer parameter: ln s starts as the median of ln Y_i - ln L_i (clouds
 // on less than half the samples do not move it), the inliers are |r_i| < threshold, ln s is
 // refitted as their mean (and the inliers found again once). Ranked by inlier count, then by
@@ -655,6 +689,7 @@ LuminanceFit fit_luminance(std::string_view model, std::span<const LuminanceSamp
                            const SunPosition& sun, const EstimateSettings& settings) {
   const EstimationPolicy& policy = estimation_policy(model);
   const Problem pr(policy, model, samples, sun);
+  if (!policy.surrogate.empty()) return fit_by_surrogate(pr, model, samples, sun, settings);
   switch (policy.method) {
     case Method::profile_scan:
       return fit_by_profile(pr, model, sun, settings);

@@ -46,13 +46,6 @@ Xyz measured_xyz(const io::KiderCapture& c, const io::KiderSample& s) {
   return spectral_radiance_to_xyz(nm, v);
 }
 
-std::unique_ptr<SkyModel> fitted_model(const LuminanceFit& fit, const SunPosition& sun) {
-  SkyParameters p;
-  p.sun = sun;
-  for (const FittedParameter& q : fit.parameters) p.values.set(q.name, q.value);
-  return make_sky_model(fit.model, p);
-}
-
 // Spectral and colour errors of the fitted model over the used samples.
 void colour_errors(const io::KiderCapture& c, const SkyModel& model, MeasuredCaptureResult& r) {
   double diff2 = 0.0, ref2 = 0.0, duv = 0.0;
@@ -131,6 +124,13 @@ const ParameterSchema<MeasuredSettings>& MeasuredSettings::schema() {
     return s;
   }();
   return s;
+}
+
+std::unique_ptr<SkyModel> fitted_model(const LuminanceFit& fit, const SunPosition& sun) {
+  SkyParameters p;
+  p.sun = sun;
+  for (const FittedParameter& q : fit.parameters) p.values.set(q.name, q.value);
+  return make_sky_model(fit.model, p);
 }
 
 std::vector<std::string> measured_models() {

@@ -6,6 +6,7 @@
 // the samples further than --exclude-sun-deg from the sun.
 #pragma once
 
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -69,6 +70,10 @@ struct MeasuredCaptureResult {
   int samples_used = 0;
   std::vector<MeasuredSampleResult> samples;
 };
+
+// The fitted model of a fit at the capture's sun (its parameters set, the others at their
+// defaults): its own absolute luminance (without the fit's scale).
+std::unique_ptr<SkyModel> fitted_model(const LuminanceFit& fit, const SunPosition& sun);
 
 // The models `measured` fits: those with an estimation policy (registry order).
 std::vector<std::string> measured_models();

@@ -111,6 +111,51 @@ TEST(MeasuredFit, NeverWorseThanABruteForceGridAndReproducible) {
   }
 }
 
+// The physical atmosphere with its aerosols fitted (docs/MEASURED.md): on the shipped subset
+// nishita's shape is 3.6-7.7 % off (median 5.0 %), better than every analytic model; its single
+// scattering leaves the sky darker than the scans (scale > 1). On one capture its fit is never
+// worse than a brute-force grid over the three parameters.
+TEST(MeasuredFit, ThePhysicalAtmosphereWithItsAerosolsFitted) {
+  MeasuredSettings settings;
+  settings.model = "nishita";
+  const auto captures = io::shipped_kider_subset();
+  const auto out = compare_to_measured(captures, settings);
+  for (const auto& r : out) {
+    EXPECT_LT(r.luminance_rms_shape, 0.09) << r.name;
+    EXPECT_GT(r.scale, 1.0) << r.name;
+  }
+  const MeasuredCaptureResult& r = out[4];
+  std::vector<Vec3> views;
+  std::vector<double> log_m;
+  for (const MeasuredSampleResult& m : r.samples)
+    if (m.used) {
+      views.push_back(direction_from_angles(deg_to_rad(m.zenith_deg), deg_to_rad(m.azimuth_deg)));
+      log_m.push_back(std::log(m.measured_luminance));
+    }
+  const auto cost = [&](double tau, double alpha, double g) {
+    SkyParameters p;
+    p.sun = r.sun.sun;
+    p.values.set("aerosol-optical-depth", tau);
+    p.values.set("angstrom-exponent", alpha);
+    p.values.set("mie-g", g);
+    const auto sky = make_sky_model("nishita", p);
+    std::vector<double> d;
+    for (std::size_t i = 0; i < views.size(); ++i)
+      d.push_back(log_m[i] - std::log(sky->tristimulus(views[i]).Y));
+    double mean = 0.0, var = 0.0;
+    for (double x : d) mean += x / static_cast<double>(d.size());
+    for (double x : d) var += (x - mean) * (x - mean);
+    return var;
+  };
+  const double fitted =
+      cost(r.fit.parameters[0].value, r.fit.parameters[1].value, r.fit.parameters[2].value);
+  double best = fitted * 10.0;
+  for (int i = 0; i <= 10; ++i)
+    for (int j = 0; j <= 5; ++j)
+      for (int k = 0; k <= 3; ++k) best = std::min(best, cost(0.1 * i, 0.5 * j, 0.5 + 0.15 * k));
+  EXPECT_LE(fitted, best * (1.0 + 1e-9));
+}
+
 TEST(MeasuredFit, EveryCaptureOfTheShippedSubset) {
   const auto captures = io::shipped_kider_subset();
   int steps = 0;
@@ -127,7 +172,7 @@ TEST(MeasuredFit, EveryCaptureOfTheShippedSubset) {
     EXPECT_LT(r.scale, 0.7) << r.name;
   }
   MeasuredSettings bad = preetham_settings();
-  bad.model = "nishita";
+  bad.model = "perez";
   EXPECT_THROW(compare_to_measured(captures, bad), InvalidArgument);
 }
 

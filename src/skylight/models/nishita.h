@@ -83,6 +83,11 @@ struct NishitaParameters {
   void set_aerosols(atmosphere::Component& mie) const;
 };
 
+// How the physical atmospheres are fitted to measured skies (`skylight measured`, docs/MEASURED.md)
+// and photos: the aerosols' optical depth at 550 nm, Angstrom exponent and Mie g of model `name`
+// (built by the registry with its other parameters at their defaults), free luminance scale.
+EstimationPolicy aerosol_estimation(std::string name);
+
 class NishitaModel final : public SkyModel {
  public:
   explicit NishitaModel(const NishitaParameters& params,

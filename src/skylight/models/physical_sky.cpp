@@ -282,6 +282,12 @@ ModelInfo PhysicalSkyModel::registry_entry_of(std::string_view name, std::string
       "of scattering, segments estimator; standard errors)";
   info.bench = BenchPolicy{.extra = BenchPolicy::Extra::precomputation};
   info.costly_setup = true;
+  // A table per parameter set (hillaire 0.5 s, bruneton 12 s of CPU): the search is nishita's
+  // (the same atmosphere, single scattering), this model gives the scale and the residual at the
+  // parameters found (docs/MEASURED.md, "Aerosols").
+  info.estimation = aerosol_estimation(info.name);
+  info.estimation->surrogate = std::string(NishitaModel::kName);
+  info.estimation->description += ", searched with nishita's single scattering";
   return info;
 }
 

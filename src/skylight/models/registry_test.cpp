@@ -4,6 +4,7 @@
 #include <cmath>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "skylight/core/error.h"
@@ -107,18 +108,22 @@ TEST(Registry, ModelsReportWhatTheyReadAsParameterValues) {
 // sun at the zenith, the horizon and below it; the scalar and the batch paths over directions
 // that include the horizon, the nadir and the sun. Nothing non-finite, no negative luminance
 // (except from the models that declare their output unclamped: `sh`).
-void sweep_edges(const std::string& model);
+// The sweep of part `part` of `parts` of the parameter variants (each variant of a costly model is
+// a table of its own: the parts keep each test under a minute).
+void sweep_edges(const std::string& model, int part = 0, int parts = 1);
 class EdgeSweeps : public ::testing::TestWithParam<std::string> {};
 TEST_P(EdgeSweeps, GiveFiniteNonNegativeOutput) {
   sweep_edges(GetParam());
 }
-// The same for the models whose set-up is costly (ModelInfo::costly_setup), a suite of their own.
-class CostlyEdgeSweeps : public ::testing::TestWithParam<std::string> {};
+// The same for the models whose set-up is costly (ModelInfo::costly_setup), a suite of their own,
+// in kCostlySweepParts parts each.
+constexpr int kCostlySweepParts = 3;
+class CostlyEdgeSweeps : public ::testing::TestWithParam<std::pair<std::string, int>> {};
 TEST_P(CostlyEdgeSweeps, GiveFiniteNonNegativeOutput) {
-  sweep_edges(GetParam());
+  sweep_edges(GetParam().first, GetParam().second, kCostlySweepParts);
 }
 
-void sweep_edges(const std::string& model) {
+void sweep_edges(const std::string& model, int part, int parts) {
   std::vector<Vec3> dirs;
   for (int it = 0; it <= 18; ++it)
     for (int ip = 0; ip < 8; ++ip)
@@ -140,7 +145,9 @@ void sweep_edges(const std::string& model) {
         variants.push_back(p);
       }
     }
-    for (const auto& values : variants) {
+    for (std::size_t k = 0; k < variants.size(); ++k) {
+      if (static_cast<int>(k % static_cast<std::size_t>(parts)) != part) continue;
+      const ParameterValues& values = variants[k];
       for (double sun_zenith_deg : {0.0, 45.0, 89.9, 90.0, 90.1, 120.0}) {
         SkyParameters sp;
         sp.sun = {sun_zenith_deg * kDegree, kPi};
@@ -191,8 +198,16 @@ std::vector<std::string> model_names(bool costly) {
 }
 INSTANTIATE_TEST_SUITE_P(Registry, EdgeSweeps, ::testing::ValuesIn(model_names(false)),
                          [](const auto& param) { return param.param; });
-INSTANTIATE_TEST_SUITE_P(Registry, CostlyEdgeSweeps, ::testing::ValuesIn(model_names(true)),
-                         [](const auto& param) { return param.param; });
+std::vector<std::pair<std::string, int>> costly_sweep_parts() {
+  std::vector<std::pair<std::string, int>> out;
+  for (const std::string& name : model_names(true))
+    for (int part = 0; part < kCostlySweepParts; ++part) out.emplace_back(name, part);
+  return out;
+}
+INSTANTIATE_TEST_SUITE_P(Registry, CostlyEdgeSweeps, ::testing::ValuesIn(costly_sweep_parts()),
+                         [](const auto& param) {
+                           return param.param.first + "_part" + std::to_string(param.param.second);
+                         });
 
 // Exactly one model is the report's physical atmosphere (its colour and twilight reference).
 TEST(Registry, OneModelIsThePhysicalReference) {

@@ -227,6 +227,10 @@ struct EstimationPolicy {
   std::function<LogLuminance(const SunPosition& sun, std::span<const Vec3> views)> prepare;
   std::string description;  // what is fitted, after which paper
   bool is_default = false;  // the model `skylight estimate` fits without --model (one model)
+  // A model whose policy (the same axes) searches the parameters in this one's place, for a model
+  // too costly to evaluate hundreds of times (a table per parameter set): its fit, then this
+  // model's own ln s and residual at the parameters found (fit/luminance_fit.h). Empty: none.
+  std::string surrogate{};
   // ranking: the JSON array of every value, best first, and the key of each entry's value (e.g.
   // "cie_ranking" of {"type": 12, ...}).
   std::string ranking_field{}, ranking_key{};

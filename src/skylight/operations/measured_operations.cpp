@@ -198,13 +198,7 @@ OperationInfo measured_operation() {
       .result_type = "fit::MeasuredCaptureResult per capture"};
   op.check = [](Request& r) {
     (void)r.bind(fit::MeasuredSettings::schema()).site();
-    if (const auto dir = r.text("kider")) {
-      std::error_code ec;
-      if (!std::filesystem::is_directory(*dir, ec))
-        throw InvalidArgument(
-            fmt::format("{} '{}': {}", spelled("kider"), io::shown_path(*dir),
-                        std::filesystem::exists(*dir, ec) ? "not a folder" : "no such folder"));
-    }
+    check_input_folder(r, "kider");
   };
   op.run = [](const Request& r, const ProgressSink& progress) { return run_measured(r, progress); };
   return op;

@@ -4,6 +4,7 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <filesystem>
 
 #include "skylight/core/camera.h"
 #include "skylight/core/error.h"
@@ -18,6 +19,7 @@
 #include "skylight/fit/sh_fit.h"
 #include "skylight/haze/request.h"
 #include "skylight/io/camera_calibration.h"
+#include "skylight/io/file.h"
 #include "skylight/models/evaluation.h"
 #include "skylight/models/neural_sky.h"
 #include "skylight/models/pietras.h"
@@ -67,6 +69,16 @@ ParameterSpec output_file(std::string name, std::string description,
                           std::vector<std::string> formats, std::string absent) {
   return file_spec(std::move(name), std::move(description), std::move(formats), std::move(absent),
                    FileRole::output);
+}
+
+void check_input_folder(const Request& r, const std::string& name) {
+  if (const auto dir = r.text(name)) {
+    std::error_code ec;
+    if (!std::filesystem::is_directory(*dir, ec))
+      throw InvalidArgument(
+          fmt::format("{} '{}': {}", spelled(name), io::shown_path(*dir),
+                      std::filesystem::exists(*dir, ec) ? "not a folder" : "no such folder"));
+  }
 }
 
 std::vector<Relation> solar_position_relations(const std::vector<std::string>& angles) {

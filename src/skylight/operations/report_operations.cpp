@@ -162,6 +162,7 @@ OperationInfo report_operation() {
       throw InvalidArgument(fmt::format("report needs {} DIR (or {} FILE)", spelled("output"),
                                         spelled("write-synthetic-measurements")));
     (void)r.bind(report::ReportOptions::schema());
+    check_input_folder(r, "kider");
   };
   op.run = run_report;
   return op;

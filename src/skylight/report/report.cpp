@@ -38,6 +38,18 @@ const ParameterSchema<ReportOptions>& ReportOptions::schema() {
               return o.epw->string();
             })
         .custom(
+            {.name = "kider",
+             .kind = ParameterKind::text,
+             .default_value = Absent{"the shipped subset, data/measured/kider2014/"},
+             .description = "Kider et al. 2014's captures for \"Against measured skies\" (the "
+                            "data set, a date, its RADIANCE folder or one capture; "
+                            "docs/MEASURED.md)"},
+            [](O& o, const ParameterValue& v) { o.kider = std::get<std::string>(v); },
+            [](const O& o) -> std::optional<ParameterValue> {
+              if (!o.kider) return std::nullopt;
+              return o.kider->string();
+            })
+        .custom(
             {.name = "sun-azimuth",
              .unit = "deg",
              .min = -360.0,
@@ -121,6 +133,7 @@ void set_full(Config& c) {
   c.weather_stride = 16;
   c.weather_n_theta = 90;
   c.weather_n_phi = 180;
+  c.measured_costly_captures = 1;
 }
 
 // The quick (test) report's settings: reduced resolution and fewer sun positions.
@@ -136,6 +149,7 @@ void set_quick(Config& c) {
   c.weather_stride = 60;
   c.weather_n_theta = 45;
   c.weather_n_phi = 90;
+  c.measured_costly_captures = 0;
   c.fit_per_sun_zeniths_deg = {30, 80};
   c.zone_sun_zeniths_deg = {60, 85};
   c.pair_sun_zeniths_deg = {30, 60};
@@ -333,6 +347,7 @@ void ReportWriter::write_html_and_json() {
   const std::vector<std::array<std::string, 3>> sections = {
       {"trust", "Which model to trust where", html_trust_},
       {"zotti", "Zotti et al.'s findings in brief", findings_summary_html()},
+      {"measured-skies", "Against measured skies", html_measured_},
       {"zenith", "1. Preetham's zenith luminance", html_zenith_},
       {"relative-maps", "2. Relative luminance maps (Zotti Figs. 4, 6)", html_rel_},
       {"absolute-maps", "3. Absolute luminance maps (Zotti Figs. 5, 7)", html_abs_},
@@ -368,8 +383,10 @@ void ReportWriter::write_html_and_json() {
   for (const std::string& line : trust_summary_) summary += "<li>" + line + "</li>\n";
   int agree = 0;
   for (const Finding& f : summary_.findings) agree += f.agrees() ? 1 : 0;
+  summary += "<li>" + measured_summary_line() + "</li>\n";
   summary += fmt::format(
-      "<li>Distribution only (<a href=\"#trust\">table and rule</a>); of Zotti et al.'s {} "
+      "<li>Distribution only (<a href=\"#trust\">table and rule</a>) but for the measured skies; "
+      "of Zotti et al.'s {} "
       "findings on Preetham, {} agree with our numbers (<a href=\"#zotti\">in brief</a>).</li>\n"
       "</ul>\n",
       summary_.findings.size(), agree);
@@ -379,8 +396,9 @@ void ReportWriter::write_html_and_json() {
       "<h1>skylight validation report: which sky model to trust where</h1>\n"
       "<p>skylight {} · models in the registry: {} · {} report. Judges every registered model "
       "against the CIE standard general sky, reproduces the analyses of Zotti, Wilkie &amp; "
-      "Purgathofer 2007, <i>A Critical Review of the Preetham Skylight Model</i> (WSCG), and "
-      "compares the models with a sky-luminance scan. Headline numbers: <a "
+      "Purgathofer 2007, <i>A Critical Review of the Preetham Skylight Model</i> (WSCG), "
+      "judges the models against measured clear skies (Kider et al. 2014) and compares them "
+      "with a sky-luminance scan. Headline numbers: <a "
       "href=\"report.json\">report.json</a>; methods: docs/REPORT.md in the repository. Angles "
       "in degrees; θ<sub>s</sub> = sun zenith angle, T = turbidity.</p>\n"
       "<p id=\"image-check\">images: not checked (needs JavaScript)</p>\n{}"
@@ -394,9 +412,9 @@ void ReportWriter::write_html_and_json() {
   j["quick"] = opt_.quick;
   j["angles"] = "degrees";
   // The headline numbers first, then the details in the order they were computed.
-  for (const char* key :
-       {"which_model_to_trust_where", "zotti_findings", "preetham_negative_zenith",
-        "best_preetham_turbidity_for_cie12", "best_cie_type_per_preetham_turbidity"})
+  for (const char* key : {"which_model_to_trust_where", "against_measured_skies", "zotti_findings",
+                          "preetham_negative_zenith", "best_preetham_turbidity_for_cie12",
+                          "best_cie_type_per_preetham_turbidity"})
     if (json_.contains(key)) j[key] = json_[key];
   for (auto it = json_.begin(); it != json_.end(); ++it)
     if (!j.contains(it.key())) j[it.key()] = it.value();
@@ -408,8 +426,9 @@ ReportSummary ReportWriter::run() {
   if (opt_.measurement_sun_azimuth.has_value() != opt_.measurement_sun_elevation.has_value())
     throw InvalidArgument(
         "report: give both the sun azimuth and elevation of the scan, or neither");
-  // The weather file before anything is written: a bad file fails fast.
+  // The weather file and the measured skies before anything is written: a bad file fails fast.
   load_weather();
+  load_kider();
   step("weather file");
   weather_hours();
   step("weather hours");
@@ -435,7 +454,10 @@ ReportSummary ReportWriter::run() {
   section_measurements();
   section_daylight();
   step("measurements and weather file");
+  measured_skies();
+  step("against measured skies");
   section_trust();
+  measured_table();
   physical_atmosphere_table();
   section_zenith();
   step("Preetham zenith luminance (Fig. 1)");

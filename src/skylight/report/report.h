@@ -35,12 +35,16 @@ struct ReportOptions {
   std::optional<double> measurement_sun_azimuth, measurement_sun_elevation;
   // An EnergyPlus weather file for the daylight section; nullopt: the shipped synthetic year.
   std::optional<std::filesystem::path> epw;
+  // Kider et al. 2014's captures for "Against measured skies" (a folder as io::read_kider takes);
+  // nullopt: the shipped subset (docs/MEASURED.md).
+  std::optional<std::filesystem::path> kider;
   // Reduced resolution and fewer sun positions: for tests (a few seconds instead of ~20 s).
   bool quick = false;
   // Progress: step `done` of `total` finished (called on the calling thread).
   std::function<void(int done, int total, std::string_view step)> progress;
 
-  // --measurements, --sun-azimuth, --sun-elevation (degrees; both or neither), --epw, --quick.
+  // --measurements, --sun-azimuth, --sun-elevation (degrees; both or neither), --epw, --kider,
+  // --quick.
   static const ParameterSchema<ReportOptions>& schema();
 };
 

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <set>
 #include <sstream>
 #include <string>
@@ -275,6 +276,76 @@ TEST(ReportTrust, VerdictRuleFailsOnPlantedCounterExamples) {
   EXPECT_EQ(detail::colour_verdict(std::nan("")), TrustVerdict::avoid);
 }
 
+// Against measured skies: every model with a fit and a report policy, its medians those of the
+// library's comparison (fit/measured_fit.h) on the same captures, its verdicts by the printed
+// rules, the trust table's measured column the same verdict, the figures written.
+TEST_F(ReportFiles, MeasuredSkiesJudgeEachFittedModelByThePrintedRules) {
+  const auto j = nlohmann::json::parse(slurp(*dir_ / "report.json"));
+  const std::string html = slurp(*dir_ / "index.html");
+  const auto& m = j["against_measured_skies"];
+  EXPECT_EQ(m["captures"], 15);
+  const double step = m["clear_neighbour_rms_log10"].get<double>();
+  std::map<std::string, nlohmann::json> by_model;
+  for (const auto& x : m["models"]) by_model[x["model"].get<std::string>()] = x;
+  std::map<std::string, nlohmann::json> trust;
+  for (const auto& x : j["which_model_to_trust_where"]["models"])
+    trust[x["model"].get<std::string>()] = x;
+  for (const ModelInfo& info : model_registry()) {
+    if (info.report.title.empty()) continue;
+    SCOPED_TRACE(info.name);
+    const auto& cell = trust[info.name]["measured_clear_skies"];
+    if (!info.estimation) {
+      EXPECT_EQ(by_model.count(info.name), 0u);
+      EXPECT_EQ(cell["verdict"], "not judged");
+      continue;
+    }
+    ASSERT_EQ(by_model.count(info.name), 1u);
+    const auto& x = by_model[info.name];
+    if (info.costly_setup) {  // the quick report leaves them out, and says so
+      EXPECT_TRUE(x["captures"].empty());
+      EXPECT_EQ(cell["reason"], "quick report");
+      continue;
+    }
+    ASSERT_EQ(x["captures"].size(), 15u);
+    fit::MeasuredSettings settings;
+    settings.model = info.name;
+    const auto direct = fit::compare_to_measured(io::shipped_kider_subset(), settings);
+    std::vector<double> scales;
+    for (const auto& r : direct) scales.push_back(r.scale);
+    std::sort(scales.begin(), scales.end());
+    EXPECT_EQ(x["median_scale"].get<double>(), scales[7]);
+    const auto verdict = [](detail::TrustVerdict v) { return detail::trust_verdict_name(v); };
+    EXPECT_EQ(x["verdict_shape"],
+              verdict(detail::trust_verdict(x["median_rms_log10_shape"].get<double>(), step)));
+    EXPECT_EQ(x["verdict_absolute"], verdict(detail::absolute_verdict(scales[7])));
+    EXPECT_EQ(x["verdict_spectrum"],
+              verdict(x["median_spectral_rms"].is_null()
+                          ? detail::TrustVerdict::not_judged
+                          : detail::spectrum_verdict(x["median_spectral_rms"].get<double>())));
+    EXPECT_EQ(cell["verdict"], x["verdict_shape"]);
+    EXPECT_TRUE(fs::exists(*dir_ / ("measured_error_" + info.name + ".svg")));
+  }
+  EXPECT_TRUE(fs::exists(*dir_ / "measured_solar_vertical.svg"));
+  EXPECT_TRUE(fs::exists(*dir_ / "measured_almucantar.svg"));
+  EXPECT_NE(html.find("id=\"measured-skies\""), std::string::npos);
+  EXPECT_NE(html.find("<b>Against measured clear skies</b>"), std::string::npos);
+}
+
+// The rules of absolute level and spectrum at their bounds and beyond.
+TEST(ReportTrust, MeasuredRulesFailOnPlantedCounterExamples) {
+  using detail::TrustVerdict;
+  EXPECT_EQ(detail::absolute_verdict(1.25), TrustVerdict::use);
+  EXPECT_EQ(detail::absolute_verdict(0.8), TrustVerdict::use);  // 1 / 1.25
+  EXPECT_EQ(detail::absolute_verdict(1.26), TrustVerdict::care);
+  EXPECT_EQ(detail::absolute_verdict(0.5), TrustVerdict::care);
+  EXPECT_EQ(detail::absolute_verdict(0.49), TrustVerdict::avoid);
+  EXPECT_EQ(detail::absolute_verdict(0.0), TrustVerdict::avoid);
+  EXPECT_EQ(detail::spectrum_verdict(0.1), TrustVerdict::use);
+  EXPECT_EQ(detail::spectrum_verdict(0.15), TrustVerdict::care);
+  EXPECT_EQ(detail::spectrum_verdict(0.21), TrustVerdict::avoid);
+  EXPECT_EQ(detail::spectrum_verdict(std::nan("")), TrustVerdict::not_judged);
+}
+
 TEST_F(ReportFiles, ZottiFindingsInJsonMatchTheSummaryAndTheHtml) {
   const auto j = nlohmann::json::parse(slurp(*dir_ / "report.json"));
   const std::string html = slurp(*dir_ / "index.html");
@@ -377,6 +448,11 @@ TEST(ReportOptionsCheck, BadOptionsAndFiles) {
   o.measurement_sun_azimuth.reset();
   o.measurements = dir / "missing.csv";
   EXPECT_THROW(write_report(o), IoError);
+  o.measurements.reset();
+  o.kider = dir / "missing";  // no such folder: before anything is written
+  EXPECT_ANY_THROW(write_report(o));
+  EXPECT_FALSE(fs::exists(dir));
+  o.kider.reset();
   fs::create_directories(dir);
   { std::ofstream(dir / "nosun.csv") << "azimuth_deg,elevation_deg,luminance_cd_m2\n0,6,100\n"; }
   o.measurements = dir / "nosun.csv";

@@ -317,8 +317,11 @@ std::string trust_tables_html(double sun_exclusion_deg, const std::string& bands
       "between neighbouring CIE types of the class in the same band (the model reproduces a "
       "standard sky more closely than the standard skies differ from each other); <i>use with "
       "care</i> up to {:g} ×; otherwise <i>avoid</i>. The neighbour steps of this run: {}. The "
-      "distribution only: colour and twilight are judged in the tables below; absolute luminance "
-      "and spectrum have no verdict (<a href=\"#trust-not-judged\">why</a>).</p>\n{}{}"
+      "distribution only, except the last column: the shape of the measured clear skies by the "
+      "same rule against the clear class's step at their sun (<a href=\"#measured-skies\">Against "
+      "measured skies</a>, where absolute level and spectrum are judged too); colour and twilight "
+      "are judged in the tables below; absolute luminance and spectrum have no verdict elsewhere "
+      "(<a href=\"#trust-not-judged\">why</a>).</p>\n{}{}"
       "<h3 id=\"trust-source\">Approximations against their source</h3>\n<p>A model that "
       "approximates another with its default data (its report policy's <code>source</code>: a "
       "trained network, a fitted table) against that model at the same sun and parameter "
@@ -423,34 +426,44 @@ std::string physical_table_html(const Config& cfg, const std::string& reference,
 }
 
 // What the tables cannot judge, and why (the physical atmosphere is `reference`): printed, and in
-// report.json, so that a missing verdict is a statement and not a gap.
+// report.json, so that a missing verdict is a statement and not a gap. Absolute level and
+// spectrum are judged against the measured clear skies for the models with a fit (section
+// "Against measured skies"); the rest has no verdict.
 Cell quantities_without_verdict(const std::string& reference) {
+  std::string unfitted;
+  for (const ModelInfo& info : model_registry())
+    if (!info.report.title.empty() && !info.estimation)
+      unfitted += fmt::format("{}<code>{}</code>", unfitted.empty() ? "" : ", ", info.name);
+  const std::string measured = fmt::format(
+      "judged against the measured clear skies for the models fitted to them (<a "
+      "href=\"#measured-skies\">Against measured skies</a>); no verdict for the models without a "
+      "fit ({}) nor for overcast and intermediate skies, which were not measured",
+      unfitted);
   const std::vector<std::pair<std::string, std::string>> without_verdict = {
       {"absolute illuminance",
        fmt::format(
-           "no reference the report trusts for the analytic skies' levels: the CIE absolute level "
-           "is the Kittler-Darula typical zenith luminance, whose own band spans a factor 3-4 "
-           "(section 3), and the physical atmosphere ({}) is one clean atmosphere (Earth "
-           "defaults, no turbidity), whose level the analytic models' more turbid skies are not "
-           "meant to match (its diffuse horizontal illuminance is about half the CIE clear "
+           "{}: there the report has no reference it trusts for the levels: the CIE absolute "
+           "level is the Kittler-Darula typical zenith luminance, whose own band spans a factor "
+           "3-4 (section 3), and the physical atmosphere ({}) with its default aerosols is one "
+           "clean atmosphere (its diffuse horizontal illuminance is about half the CIE clear "
            "sky's); section 6 compares the levels without a verdict",
-           reference)},
+           measured, reference)},
       {"spectrum",
-       fmt::format("no spectral reference for the analytic skies: the CIE standard skies give "
-                   "luminance only, and the physical atmosphere ({}) is spectral but one clean "
-                   "atmosphere; spectral irradiance is compared in section 6 without a verdict, "
-                   "and colour (above) is the spectrum's judged projection",
-                   reference)}};
+       fmt::format("{}: there the CIE standard skies give luminance only, and the physical "
+                   "atmosphere ({}) is spectral but one clean atmosphere; spectral irradiance is "
+                   "compared in section 6 without a verdict, and colour (above) is the "
+                   "spectrum's judged projection",
+                   measured, reference)}};
   std::string items;
   Json json_items = Json::array();
   for (const auto& [quantity, reason] : without_verdict) {
     items += fmt::format("<li><b>{}</b>: {}.</li>\n", quantity, reason);
     json_items.push_back({{"quantity", quantity}, {"reason", reason}});
   }
-  return {
-      fmt::format("<h3 id=\"trust-not-judged\">Quantities without a verdict</h3>\n<ul>\n{}</ul>\n",
-                  items),
-      std::move(json_items)};
+  return {fmt::format("<h3 id=\"trust-not-judged\">Absolute level and spectrum: where they have "
+                      "no verdict</h3>\n<ul>\n{}</ul>\n",
+                      items),
+          std::move(json_items)};
 }
 
 // Cell edges halfway between samples, from lo to hi.
@@ -504,6 +517,50 @@ int measured_class(const ModelSpec& spec, const ComparisonSettings& s, const Hem
   return cls;
 }
 
+// The index of the clear class in kSkyClasses.
+constexpr std::size_t kClearClass = 2;
+
+// The trust band whose sun elevations hold `elevation` [deg] (the nearest when none does).
+std::size_t measured_band_index(const std::vector<TrustBand>& bands, double elevation) {
+  std::size_t best = 0;
+  double distance = kInf;
+  for (std::size_t b = 0; b < bands.size(); ++b) {
+    const double d = std::max(
+        {0.0, bands[b].elevation_lo_deg - elevation, elevation - bands[b].elevation_hi_deg});
+    if (d < distance) {
+      distance = d;
+      best = b;
+    }
+  }
+  return best;
+}
+
+// The shape verdict of a model against the measured skies.
+TrustVerdict measured_verdict(const MeasuredModel* m, double step) {
+  return trust_verdict(m->shape_log10, step);
+}
+
+// The measured column's cell (the clear row): the shape verdict against the measured skies, or
+// why there is none.
+Cell measured_cell(const MeasuredModel* m, double step) {
+  if (!m)
+    return {"n/a<br/><small>not fitted to measured skies (no estimation policy)</small>",
+            Json{{"verdict", "not judged"}, {"reason", "no estimation policy"}}};
+  if (m->captures.empty())
+    return {"n/a<br/><small>not compared in the quick report</small>",
+            Json{{"verdict", "not judged"}, {"reason", "quick report"}}};
+  const TrustVerdict v = measured_verdict(m, step);
+  return {verdict_html(v, fmt::format("shape {:.1f} %, RMS log<sub>10</sub> {} [{}] · {} "
+                                      "captures",
+                                      100.0 * m->shape, rms_text(m->shape_log10), rms_text(step),
+                                      m->captures.size())),
+          Json{{"verdict", trust_verdict_name(v)},
+               {"median_luminance_rms_shape", num(m->shape)},
+               {"median_rms_log10", num(m->shape_log10)},
+               {"clear_neighbour_rms_log10", num(step)},
+               {"captures", m->captures.size()}}};
+}
+
 }  // namespace
 
 std::string trust_verdict_name(TrustVerdict v) {
@@ -546,13 +603,19 @@ void ReportWriter::section_trust() {
   trust_min_neighbour_step_ = kInf;
   for (const auto& n : neighbour)
     for (double v : n) trust_min_neighbour_step_ = std::min(trust_min_neighbour_step_, v);
+  // The measured skies' yardstick: the clear-class step of the band of their median sun.
+  const std::size_t measured_band =
+      measured_band_index(cfg_.trust_bands, measured_sun_elevation_deg_);
+  measured_neighbour_step_ = neighbour[measured_band][kClearClass];
   Json models = Json::array();
   std::vector<std::string> headers = {"model", "sky class"};
   for (const TrustBand& band : cfg_.trust_bands) headers.push_back(band_header(band));
-  HtmlTable table(headers, {true, true});
   std::vector<std::string> source_headers = {"model", "against"};
   source_headers.insert(source_headers.end(), headers.begin() + 2, headers.end());
   HtmlTable source_table(source_headers, {true, true});
+  headers.push_back(fmt::format("measured clear skies<br/>Kider 2014, sun ≈ {:.0f}°",
+                                measured_sun_elevation_deg_));
+  HtmlTable table_with_measured(headers, {true, true});
   std::string truncation_html;
   std::string not_judged;
   std::vector<std::string> summary;  // the plain-language summary: one line per judged model
@@ -593,9 +656,17 @@ void ReportWriter::section_trust() {
         model_json["against_source"].push_back(cell.json);
       }
     }
+    const Cell measured = measured_cell(measured_model(info.name), measured_neighbour_step_);
+    for (std::size_t k = 0; k < kSkyClasses.size(); ++k)
+      rows[k].push_back(k == kClearClass ? measured.html : "—");
+    model_json["measured_clear_skies"] = measured.json;
+    if (const auto v = measured.json.find("verdict");
+        v != measured.json.end() && v->is_string() && measured.json.contains("median_rms_log10"))
+      by_verdict[measured_verdict(measured_model(info.name), measured_neighbour_step_)].push_back(
+          "measured clear skies");
     if (!source_row.empty()) source_table.row(source_row);
     if (!info.report.truncation.empty()) truncation_html += truncation_table(info);
-    for (auto& r : rows) table.row(r);
+    for (auto& r : rows) table_with_measured.row(r);
     models.push_back(model_json);
     if (by_verdict.count(TrustVerdict::reference) == 0)
       summary.push_back(summary_line(info.name, by_verdict));
@@ -603,8 +674,9 @@ void ReportWriter::section_trust() {
   step("which model to trust where");
 
   html_trust_ = trust_tables_html(cfg_.comparison.sun_exclusion / kDegree, trust_band_text(),
-                                  neighbour_steps_text(cfg_.trust_bands, neighbour), table.html(),
-                                  not_judged, source_table.html() + truncation_html);
+                                  neighbour_steps_text(cfg_.trust_bands, neighbour),
+                                  table_with_measured.html(), not_judged,
+                                  source_table.html() + truncation_html);
   trust_summary_ = summary;
   json_["which_model_to_trust_where"] = {
       {"rule",

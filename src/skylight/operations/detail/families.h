@@ -33,6 +33,10 @@ std::vector<Relation> solar_position_relations(const std::vector<std::string>& a
 // The relations of the sun and the solar disc (model_specs()): render's, eval's, the sky's.
 std::vector<Relation> model_relations();
 
+// The folder parameter `name` of the request, when given, is an existing folder (a one-line usage
+// error otherwise: "--kider 'x': no such folder").
+void check_input_folder(const Request& r, const std::string& name);
+
 // `specs` followed by `more`.
 std::vector<ParameterSpec> concat(std::initializer_list<std::vector<ParameterSpec>> parts);
 

@@ -19,6 +19,7 @@
 #include "skylight/analysis/illumination.h"
 #include "skylight/analysis/scan.h"
 #include "skylight/daylight/sky_matrix.h"
+#include "skylight/fit/measured_fit.h"
 #include "skylight/io/epw.h"
 #include "skylight/io/file.h"
 #include "skylight/io/image.h"
@@ -78,6 +79,18 @@ TrustVerdict trust_verdict(double best_rms, double neighbour_rms);
 inline constexpr double kColourUseDuv = 0.005, kColourCareDuv = 0.02;
 TrustVerdict colour_verdict(double mean_duv);
 std::string trust_verdict_name(TrustVerdict v);
+// Against the measured skies (section_measured.cpp): the absolute level by the median scale
+// (measured / model) within a factor kAbsoluteUseFactor either way "use", kAbsoluteCareFactor "use
+// with care" (chosen: the multiple-scattering atmospheres from the solar spectrum meet the scans
+// within 11-13 %, docs/MEASURED.md); the spectrum by the median relative spectral RMS, 380-780 nm
+// (chosen: twice the best luminance shape error, 5 %, and twice that); a model without spectra is
+// not judged on it.
+inline constexpr double kAbsoluteUseFactor = 1.25, kAbsoluteCareFactor = 2.0;
+inline constexpr double kSpectrumUseRms = 0.10, kSpectrumCareRms = 0.20;
+TrustVerdict absolute_verdict(double scale);
+TrustVerdict spectrum_verdict(double spectral_rms);
+// A verdict's cell: the word in its colour, the detail below.
+std::string verdict_html(TrustVerdict v, std::string_view detail);
 
 // Everything that the quick (test) report reduces.
 struct Config {
@@ -117,6 +130,11 @@ struct Config {
   // Daylight from weather data (section_daylight.cpp): every weather_stride-th hour with the sun
   // up, each sky integrated on a weather_n_theta x weather_n_phi hemisphere grid.
   int weather_stride, weather_n_theta, weather_n_phi;
+  // Against measured skies (section_measured.cpp): models whose ModelInfo::costly_setup is set
+  // (a table per parameter set) are compared on measured_costly_captures captures (the middle,
+  // then the first and the last), or not at all (0, the quick report). The full report takes 1:
+  // each capture costs bruneton a table (12 s of CPU); `skylight measured` compares them all.
+  int measured_costly_captures;
 };
 Config make_config(bool quick);
 
@@ -169,6 +187,14 @@ class HtmlTable {
  private:
   std::string text_;
   std::vector<bool> left_;
+};
+
+// A model against the measured skies (section_measured.cpp): its comparisons and their medians.
+struct MeasuredModel {
+  std::string model;
+  std::vector<fit::MeasuredCaptureResult> captures;  // those compared (all, or cfg_'s subset)
+  double shape = kNaN, shape_log10 = kNaN, abs = kNaN, scale = kNaN;  // medians
+  double spectral = kNaN, duv = kNaN;  // medians (spectral NaN: no spectra)
 };
 
 class ReportWriter {
@@ -229,6 +255,17 @@ class ReportWriter {
   void load_weather();
   void weather_hours();
   void section_daylight();
+  // Against measured skies (section_measured.cpp): load_kider reads the captures (kider_) before
+  // anything is written; measured_skies fits every model with an estimation policy and a report
+  // policy to them (measured_) and writes the section; measured_cell gives the trust table's
+  // measured column and verdicts (section_trust.cpp).
+  void load_kider();
+  void measured_skies();
+  const MeasuredModel* measured_model(std::string_view name) const;
+  void measured_figures();                    // the chosen capture's plots and the error maps
+  void measured_table();                      // the section's table and text (after section_trust)
+  std::string kider_opt_text() const;         // report.json's source of the captures
+  std::string measured_summary_line() const;  // the summary's line on the measured skies
   void section_validity();
   // A validity map of one model over the sun zenith (columns) and, with rows, the values of its
   // report axis (ReportPolicy::axis): its rows' y axis and the range the cells span.
@@ -270,7 +307,7 @@ class ReportWriter {
                       const std::string& row_header, const std::string& key,
                       const std::vector<std::string>& row_labels);
 
-  static constexpr int kSteps = 20;  // the step() calls of run()
+  static constexpr int kSteps = 21;  // the step() calls of run()
   const ReportOptions& opt_;
   Config cfg_;
   int done_ = 0;
@@ -280,6 +317,15 @@ class ReportWriter {
   std::string html_trust_, html_zenith_, html_rel_, html_abs_, html_match_, html_vertical_,
       html_illum_, html_scan_, html_validity_, html_validity_measured_, html_findings_,
       html_weather_;
+  std::string html_measured_;
+  std::vector<io::KiderCapture> kider_;       // the captures (load_kider)
+  std::string kider_source_;                  // where they came from, as the page says
+  std::vector<MeasuredModel> measured_;       // per fitted model (measured_skies)
+  double measured_sun_elevation_deg_ = kNaN;  // the captures' median sun elevation
+  // The median step between neighbouring clear CIE types in the trust band of that elevation
+  // (section_trust.cpp): the measured shape's yardstick.
+  double measured_neighbour_step_ = kNaN;
+  std::string html_measured_figures_;
   // Numbers for the closing note.
   double low_branch_max_sun_zenith_ = kNaN, low_branch_t_at_zenith_ = kNaN;
   double high_branch_t_at_horizon_ = kNaN, high_branch_t_at_zenith_ = kNaN;
