@@ -65,7 +65,7 @@ TEST_F(Cli, EveryHelpPageReadsLikeAManual) {
   EXPECT_NE(est.out.find("--seed INT "), std::string::npos) << est.out;
   EXPECT_NE(est.out.find("0 .. 2147483647; default 1"), std::string::npos) << est.out;
   EXPECT_NE(est.out.find("2 .. 1000000;"), std::string::npos) << est.out;  // --samples
-  EXPECT_NE(est.out.find("--model {preetham|cie|hosek|nishita|hillaire|bruneton}"),
+  EXPECT_NE(est.out.find("--model {preetham|cie|hosek|nishita|hillaire|bruneton|nn|sh}"),
             std::string::npos)
       << est.out;
   EXPECT_NE(run("render --help").out.find("--false-colour-range N,N "), std::string::npos);

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <fstream>
 #include <numeric>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -362,6 +363,28 @@ TEST(AerosolFit, RecoversTheOpticalDepthOfANishitaSkyOverSeedsAndNoise) {
                 fit.parameter("aerosol-optical-depth").value);
       EXPECT_EQ(again.log_scale, fit.log_scale);
     }
+  }
+}
+
+// The embedded network and table fitted by their own luminance (registry_estimation): the
+// turbidity of a sky each made comes back, at any luminance scale, to kRegistryFitTol (LM's
+// derivatives are central differences of step 1e-4 of models evaluated partly in float).
+constexpr double kRegistryFitTol = 1e-4;
+TEST(RegistryEstimation, RecoversTheTurbidityOfTheNetworkAndTheTable) {
+  for (const auto& [model, t] :
+       {std::pair<std::string, double>{"nn", 3.3}, {"nn", 5.1}, {"sh", 2.9}, {"sh", 4.4}}) {
+    SkyParameters sp;
+    sp.sun = kTable1Sun;
+    sp.values.set("turbidity", t);
+    const auto sky = make_sky_model(model, sp);
+    auto samples = model_samples(*sky, 60, 17);
+    std::erase_if(samples, [](const LuminanceSample& x) { return !(x.luminance > 0.0); });
+    for (auto& x : samples) x.luminance *= 3.7;
+    EstimateSettings es;
+    es.ransac = false;
+    const LuminanceFit fit = fit_luminance(model, samples, sky->sun(), es);
+    EXPECT_NEAR(fit.parameter("turbidity").value, t, kRegistryFitTol) << model << " T " << t;
+    EXPECT_LT(fit.residual, kRegistryFitTol) << model;
   }
 }
 

@@ -136,6 +136,9 @@ Domain NeuralSkyModel::domain() const {
   return d;
 }
 
+// The turbidities the embedded 6-12-3 network was trained on (data/nn/PROVENANCE.md).
+constexpr std::array<double, 2> kEmbeddedNetworkTurbidity{2.0, 6.0};
+
 ModelInfo NeuralSkyModel::registry_entry() {
   return ModelInfo{
       .name = std::string(kName),
@@ -153,6 +156,16 @@ ModelInfo NeuralSkyModel::registry_entry() {
       .make = model_factory<NeuralSkyModel, NeuralSkyParameters>(),
       // T = 1..10 of the turbidity input
       .neural = NeuralPolicy::over_turbidity(1.0, 10.0),
+      // The embedded network's turbidity input over the range it was trained on.
+      .estimation = registry_estimation(
+          std::string(kName),
+          {{.parameter = "turbidity",
+            .label = "turbidity",
+            .min = kEmbeddedNetworkTurbidity[0],
+            .max = kEmbeddedNetworkTurbidity[1],
+            .grid_points = 9}},
+          "the turbidity input of the network (the embedded one: trained on preetham at T "
+          "2-6), free luminance scale"),
       .sh_fit = ShFitPolicy{.parameter = "turbidity"},
       // Satilmis et al. 2016 compare the network with the Hosek-Wilkie model it replaces.
       .bench = BenchPolicy{.by_default = true,
@@ -164,7 +177,7 @@ ModelInfo NeuralSkyModel::registry_entry() {
                              .axis = "turbidity",
                              .axis_label = "T = ",
                              .colour = "#e377c2",
-                             .axis_range = std::array<double, 2>{2.0, 6.0},
+                             .axis_range = kEmbeddedNetworkTurbidity,
                              .source = std::string(PreethamModel::kName)},
   };
 }

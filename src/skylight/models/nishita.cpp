@@ -362,43 +362,25 @@ Rgb NishitaSampler::rgb(double altitude_m, Vec3 view, Vec3 sun) const {
 }
 
 EstimationPolicy aerosol_estimation(std::string name) {
-  EstimationPolicy e;
-  e.method = EstimationPolicy::Method::grid_ransac;
   // The grid: clean to very hazy air, grey to fine aerosols, the usual range of g.
-  e.axes = {{.parameter = "aerosol-optical-depth",
-             .label = "aerosol optical depth (550 nm)",
-             .min = 0.0,
-             .max = 1.0,
-             .grid_points = 6},
-            {.parameter = "angstrom-exponent",
-             .label = "Angstrom exponent",
-             .min = 0.0,
-             .max = 2.5,
-             .grid_points = 3},
-            {.parameter = "mie-g",
-             .label = "Mie asymmetry g",
-             .min = 0.5,
-             .max = 0.95,
-             .grid_points = 3}};
-  e.prepare = [name](const SunPosition& sun, std::span<const Vec3> views) {
-    auto v = std::make_shared<std::vector<Vec3>>(views.begin(), views.end());
-    return EstimationPolicy::LogLuminance([name, v, sun](std::span<const double> p,
-                                                         std::span<const std::size_t> idx,
-                                                         std::span<double> out) {
-      SkyParameters sp;
-      sp.sun = sun;
-      sp.values.set("aerosol-optical-depth", p[0]);
-      sp.values.set("angstrom-exponent", p[1]);
-      sp.values.set("mie-g", p[2]);
-      const auto model = make_sky_model(name, sp);
-      for (std::size_t k = 0; k < idx.size(); ++k)
-        out[k] = std::log(
-            std::max(model->tristimulus((*v)[idx[k]]).Y, std::numeric_limits<double>::min()));
-    });
-  };
-  e.description =
-      "aerosol optical depth at 550 nm, Angstrom exponent and Mie g, free luminance scale";
-  return e;
+  return registry_estimation(
+      std::move(name),
+      {{.parameter = "aerosol-optical-depth",
+        .label = "aerosol optical depth (550 nm)",
+        .min = 0.0,
+        .max = 1.0,
+        .grid_points = 6},
+       {.parameter = "angstrom-exponent",
+        .label = "Angstrom exponent",
+        .min = 0.0,
+        .max = 2.5,
+        .grid_points = 3},
+       {.parameter = "mie-g",
+        .label = "Mie asymmetry g",
+        .min = 0.5,
+        .max = 0.95,
+        .grid_points = 3}},
+      "aerosol optical depth at 550 nm, Angstrom exponent and Mie g, free luminance scale");
 }
 
 ModelInfo NishitaModel::registry_entry() {

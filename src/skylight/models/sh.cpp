@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <array>
 #include <string>
 #include <vector>
 
@@ -151,6 +152,9 @@ const ParameterSchema<ShRenderOptions>& ShRenderOptions::schema() {
   return s;
 }
 
+// The turbidities the embedded table was fitted over (its tau_min, tau_max).
+constexpr std::array<double, 2> kEmbeddedTableTurbidity{2.5, 6.0};
+
 ModelInfo ShSkyModel::registry_entry() {
   return ModelInfo{
       .name = std::string(kName),
@@ -170,6 +174,16 @@ ModelInfo ShSkyModel::registry_entry() {
       .unclamped = true,
       // T = 1..10 (a table of turbidity must cover them)
       .neural = NeuralPolicy::over_turbidity(1.0, 10.0),
+      // The embedded table's turbidity over the range it was fitted on.
+      .estimation = registry_estimation(
+          std::string(kName),
+          {{.parameter = "turbidity",
+            .label = "turbidity",
+            .min = kEmbeddedTableTurbidity[0],
+            .max = kEmbeddedTableTurbidity[1],
+            .grid_points = 8}},
+          "the turbidity of the table (the embedded one: preetham's, fitted over T 2.5-6), free "
+          "luminance scale"),
       // Habel 2008 §4: evaluating the table against projecting its model.
       .bench = BenchPolicy{.extra = BenchPolicy::Extra::sh_table},
       // The embedded table: preetham's XYZ, 7 bands, fitted over T 2.5-6 (its tau_min, tau_max;
@@ -178,7 +192,7 @@ ModelInfo ShSkyModel::registry_entry() {
                              .axis = "turbidity",
                              .axis_label = "T = ",
                              .colour = "#7f7f7f",
-                             .axis_range = std::array<double, 2>{2.5, 6.0},
+                             .axis_range = kEmbeddedTableTurbidity,
                              .source = std::string(PreethamModel::kName),
                              // the embedded table's 7 bands (its `bands`)
                              .truncation = "bands",

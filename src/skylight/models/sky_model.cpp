@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
+#include <memory>
 
 #include "skylight/core/error.h"
 #include "skylight/core/numbers.h"
@@ -195,6 +197,31 @@ std::unique_ptr<SkyModel> make_sky_model(std::string_view name, const SkyParamet
   const ModelInfo& info = require_model(name);
   validate_sun(params.sun);
   return info.make(params);
+}
+
+EstimationPolicy registry_estimation(std::string name, std::vector<EstimationPolicy::Axis> axes,
+                                     std::string description) {
+  EstimationPolicy e;
+  e.method = EstimationPolicy::Method::grid_ransac;
+  e.axes = std::move(axes);
+  e.description = std::move(description);
+  std::vector<std::string> names;
+  for (const auto& a : e.axes) names.push_back(a.parameter);
+  e.prepare = [name, names](const SunPosition& sun, std::span<const Vec3> views) {
+    auto v = std::make_shared<std::vector<Vec3>>(views.begin(), views.end());
+    return EstimationPolicy::LogLuminance([name, names, v, sun](std::span<const double> p,
+                                                                std::span<const std::size_t> idx,
+                                                                std::span<double> out) {
+      SkyParameters sp;
+      sp.sun = sun;
+      for (std::size_t a = 0; a < names.size(); ++a) sp.values.set(names[a], p[a]);
+      const auto model = make_sky_model(name, sp);
+      for (std::size_t k = 0; k < idx.size(); ++k)
+        out[k] = std::log(
+            std::max(model->tristimulus((*v)[idx[k]]).Y, std::numeric_limits<double>::min()));
+    });
+  };
+  return e;
 }
 
 }  // namespace skylight

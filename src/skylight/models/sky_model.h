@@ -236,6 +236,12 @@ struct EstimationPolicy {
   std::string ranking_field{}, ranking_key{};
 };
 
+// A grid_ransac policy over `axes` whose luminance is the registered model `name` itself, built
+// with the axes' values and its other parameters at their defaults: for a model without a closed
+// form of its luminance's dependence (the networks, the tables, the physical atmospheres).
+EstimationPolicy registry_estimation(std::string name, std::vector<EstimationPolicy::Axis> axes,
+                                     std::string description);
+
 // How `skylight sh fit` fits the model's SH polynomial table (Habel et al. 2008 eq. 1;
 // fit/sh_fit.h): the second varying parameter tau and, when the fit varies it, its default range
 // and the table's structure.
