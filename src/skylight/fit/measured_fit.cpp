@@ -35,17 +35,6 @@ std::array<double, 2> uv_prime(const Xyz& c) {
   return {4.0 * c.X / d, 9.0 * c.Y / d};
 }
 
-// XYZ of the measured spectrum over 380-780 nm.
-Xyz measured_xyz(const io::KiderCapture& c, const io::KiderSample& s) {
-  std::vector<double> nm, v;
-  for (std::size_t i = 0; i < c.wavelengths_nm.size(); ++i)
-    if (c.wavelengths_nm[i] >= kSpectralFirstNm && c.wavelengths_nm[i] <= kSpectralLastNm) {
-      nm.push_back(c.wavelengths_nm[i]);
-      v.push_back(s.radiance[i]);
-    }
-  return spectral_radiance_to_xyz(nm, v);
-}
-
 // Spectral and colour errors of the fitted model over the used samples.
 void colour_errors(const io::KiderCapture& c, const SkyModel& model, MeasuredCaptureResult& r) {
   double diff2 = 0.0, ref2 = 0.0, duv = 0.0;
@@ -54,7 +43,7 @@ void colour_errors(const io::KiderCapture& c, const SkyModel& model, MeasuredCap
     if (!r.samples[k].used) continue;
     const io::KiderSample& s = c.samples[k];
     const Vec3 v = direction_from_angles(s.zenith, s.azimuth);
-    const auto m = uv_prime(measured_xyz(c, s)), p = uv_prime(model.tristimulus(v));
+    const auto m = uv_prime(measured_sample_xyz(c, s)), p = uv_prime(model.tristimulus(v));
     duv += std::hypot(m[0] - p[0], m[1] - p[1]);
     for (double nm = kSpectralFirstNm; nm <= kSpectralLastNm + 1e-9; nm += kSpectralStepNm) {
       const auto mv = measured_at(c.wavelengths_nm, s.radiance, nm);
@@ -124,6 +113,16 @@ const ParameterSchema<MeasuredSettings>& MeasuredSettings::schema() {
     return s;
   }();
   return s;
+}
+
+Xyz measured_sample_xyz(const io::KiderCapture& c, const io::KiderSample& s) {
+  std::vector<double> nm, v;
+  for (std::size_t i = 0; i < c.wavelengths_nm.size(); ++i)
+    if (c.wavelengths_nm[i] >= kSpectralFirstNm && c.wavelengths_nm[i] <= kSpectralLastNm) {
+      nm.push_back(c.wavelengths_nm[i]);
+      v.push_back(s.radiance[i]);
+    }
+  return spectral_radiance_to_xyz(nm, v);
 }
 
 std::unique_ptr<SkyModel> fitted_model(const LuminanceFit& fit, const SunPosition& sun) {

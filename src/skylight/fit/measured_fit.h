@@ -71,6 +71,9 @@ struct MeasuredCaptureResult {
   std::vector<MeasuredSampleResult> samples;
 };
 
+// The measured colour of a sample: XYZ of its spectrum over 380-780 nm (Y = luminance [cd/m^2]).
+Xyz measured_sample_xyz(const io::KiderCapture& capture, const io::KiderSample& sample);
+
 // The fitted model of a fit at the capture's sun (its parameters set, the others at their
 // defaults): its own absolute luminance (without the fit's scale).
 std::unique_ptr<SkyModel> fitted_model(const LuminanceFit& fit, const SunPosition& sun);

@@ -270,7 +270,7 @@ std::vector<std::string> Request::unread(const ParameterValues& given, Kind kind
     if (!read && given.has(name)) out.emplace_back(name);
   };
   for (const char* name : {"starts", "start-iterations"}) check(name, kind != Kind::pietras);
-  check("samples", kind != Kind::sky);
+  check("samples", kind == Kind::images || kind == Kind::pietras);
   check("region", kind == Kind::pietras);
   return out;
 }

@@ -57,7 +57,7 @@ struct NetworkTrainingRequest {
 
   static const ParameterSchema<NetworkTrainingRequest>& schema();
   // What is trained: a sky network on a model, on images, or a Pietras network.
-  enum class Kind { sky, images, pietras };
+  enum class Kind { sky, images, measured, pietras };
   // The parameters among `given` that this kind of training does not read (front ends warn):
   // the starts and the held-out bound are the sky network's on a model, --samples the others'.
   static std::vector<std::string> unread(const ParameterValues& given, Kind kind);

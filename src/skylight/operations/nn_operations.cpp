@@ -13,8 +13,10 @@
 #include "skylight/core/math.h"
 #include "skylight/core/numbers.h"
 #include "skylight/estimate/sky_sequence.h"
+#include "skylight/fit/measured_training.h"
 #include "skylight/fit/network_training.h"
 #include "skylight/io/file.h"
+#include "skylight/io/kider.h"
 #include "skylight/models/neural_sky.h"
 #include "skylight/models/pietras.h"
 #include "skylight/nn/glsl.h"
@@ -60,6 +62,11 @@ struct FoldRow {
   double training_rmse = 0, rmse = 0, relative_median = 0, relative_p95 = 0;
 };
 
+struct MeasuredRow {
+  std::string capture{};
+  double turbidity = 0, luminance_rms_shape = 0, luminance_rms_abs = 0, preetham_rms_shape = 0;
+};
+
 // What every kind of training reports; a kind's own fields are null for the others.
 struct TrainResult {
   std::string kind{}, network{}, source{}, trainer{};
@@ -74,6 +81,8 @@ struct TrainResult {
       final_relative_p95{};
   std::vector<ImageRow> images{};
   std::vector<FoldRow> folds{};
+  std::vector<MeasuredRow> captures{};
+  std::optional<double> measured_median_shape{}, preetham_median_shape{};
 };
 
 const ResultSchema<TrainResult>& train_result() {
@@ -97,8 +106,20 @@ const ResultSchema<TrainResult>& train_result() {
         .number("relative_median", "1", "their relative error, median", &FoldRow::relative_median,
                 4)
         .number("relative_p95", "1", "p95", &FoldRow::relative_p95, 4);
+    ResultSchema<MeasuredRow> capture;
+    capture.text("capture", "the capture left out", &MeasuredRow::capture)
+        .number("turbidity", "1", "its turbidity input (the fitted Preetham turbidity)",
+                &MeasuredRow::turbidity, 4)
+        .number("luminance_rms_shape", "1",
+                "the network trained without it: relative luminance RMS after the best scale",
+                &MeasuredRow::luminance_rms_shape, 4)
+        .number("luminance_rms_abs", "1", "the same without the scale",
+                &MeasuredRow::luminance_rms_abs, 4)
+        .number("preetham_rms_shape", "1",
+                "the fitted Preetham sky's shape RMS on the same samples",
+                &MeasuredRow::preetham_rms_shape, 4);
     ResultSchema<R> s;
-    s.text("kind", "sky (on a model), images, or pietras (a Pietras network)", &R::kind)
+    s.text("kind", "sky (on a model), images, measured, or pietras (a Pietras network)", &R::kind)
         .text("network", "the architecture, or the Pietras kind", &R::network)
         .text("encoding", "the output encoding (sky networks)", &R::encoding)
         .text("source", "what it learned", &R::source)
@@ -125,7 +146,18 @@ const ResultSchema<TrainResult>& train_result() {
         .number("validation_relative_p95", "1", "p95", &R::validation_relative_p95, 4)
         .records("images", "each image of the sequence (images)", image, &R::images)
         .records("folds", "the K-fold cross-validation (images, --kfold)", fold, &R::folds)
-        .number("final_rmse", "1", "the final network's RMSE on all images", &R::final_rmse, 5)
+        .records("captures",
+                 "each measured capture left out in turn (measured): the network trained on the "
+                 "others against it",
+                 capture, &R::captures)
+        .number("measured_median_shape", "1",
+                "the median over the captures left out of luminance_rms_shape (measured)",
+                &R::measured_median_shape, 4)
+        .number("preetham_median_shape", "1",
+                "the fitted Preetham skies' median shape RMS on the same samples (measured)",
+                &R::preetham_median_shape, 4)
+        .number("final_rmse", "1", "the final network's RMSE on all images (or captures)",
+                &R::final_rmse, 5)
         .number("final_relative_median", "1", "its relative error, median",
                 &R::final_relative_median, 4)
         .number("final_relative_p95", "1", "p95", &R::final_relative_p95, 4)
@@ -226,6 +258,47 @@ TrainResult train_images(const Request& r, const fit::NetworkTrainingRequest& re
   return tr;
 }
 
+TrainResult train_measured(const Request& r, const fit::NetworkTrainingRequest& req, Result& out) {
+  const std::string dir = *r.text("measured");
+  fit::MeasuredSettings settings;  // the defaults of `skylight measured`
+  const fit::MeasuredTrainingResult res = fit::train_on_measured(
+      io::read_kider(dir), req.sky_training(), settings,
+      [&](int done, int total, const std::string& step) { r.progress(done, total, step); });
+  nn::SkyNetwork network = res.trained.network;
+  network.provenance.source = "measured: " + io::shown_path(dir);
+  network.provenance.date = utc_now_iso8601();
+  network.provenance.software = software();
+  r.write_text(out, "output", nn::to_json(network));
+  if (r.output_wanted("log")) r.write_text(out, "log", train_log(res.trained.train.log));
+  const nn::SkyNetworkProvenance& pv = network.provenance;
+  TrainResult tr{.kind = "measured",
+                 .network = network.net.layout().describe(),
+                 .source = pv.source,
+                 .trainer = pv.trainer,
+                 .iterations = pv.iterations,
+                 .encoding = std::string(nn::to_string(network.encoding)),
+                 .stop = pv.stop,
+                 .seed = static_cast<long long>(pv.seed),
+                 .weights = static_cast<long long>(network.net.layout().parameter_count()),
+                 .seconds = pv.training_seconds,
+                 .examples = static_cast<long long>(res.examples),
+                 .target_scale = res.target_scale,
+                 .final_rmse = res.errors.rmse,
+                 .final_relative_median = res.errors.relative_median,
+                 .final_relative_p95 = res.errors.relative_p95,
+                 .measured_median_shape = res.median_shape,
+                 .preetham_median_shape = res.median_turbidity_model_shape};
+  for (std::size_t k = 0; k < res.folds.size(); ++k)
+    tr.captures.push_back({res.folds[k].capture, res.turbidities[k],
+                           res.folds[k].luminance_rms_shape, res.folds[k].luminance_rms_abs,
+                           res.folds[k].turbidity_model_rms_shape});
+  tr.held_out_check = fmt::format(
+      "each capture left out in turn: luminance shape RMS median {:.1f} % (bound {:.3g} %; the "
+      "fitted Preetham skies {:.1f} %)",
+      100.0 * res.median_shape, 100.0 * res.max_shape, 100.0 * res.median_turbidity_model_shape);
+  return tr;
+}
+
 TrainResult train_sky(const Request& r, const fit::NetworkTrainingRequest& req, Result& out) {
   fit::NeuralTraining t = req.sky_training();
   // Every iteration (a front end shows what it wants; Python checks Ctrl-C there), counted over
@@ -272,7 +345,10 @@ TrainResult train_sky(const Request& r, const fit::NetworkTrainingRequest& req, 
 }
 
 Kind training_kind(const Request& r) {
-  return r.given("network") ? Kind::pietras : r.given("images") ? Kind::images : Kind::sky;
+  return r.given("network")    ? Kind::pietras
+         : r.given("images")   ? Kind::images
+         : r.given("measured") ? Kind::measured
+                               : Kind::sky;
 }
 
 OperationInfo train_operation() {
@@ -286,6 +362,7 @@ OperationInfo train_operation() {
       .parameters = concat(
           {fit::NetworkTrainingRequest::schema().specs(),
            fit::ImageTrainingOptions::schema().specs(),
+           fit::MeasuredTrainingOptions::schema().specs(),
            {output_file("output", "the weights file (JSON)", {}),
             output_file("log",
                         "the training log (CSV: restart,iteration,seconds,mse,validation_mse,step)",
@@ -298,15 +375,20 @@ OperationInfo train_operation() {
   // The flags of model-source training have no meaning for images: giving them is an error.
   for (const char* name : {"source", "suns", "view-zeniths", "view-azimuths", "network"})
     op.relations.push_back(excludes("images", name));
+  // Measured skies are their own source: the same flags, the images and their options too.
+  for (const char* name :
+       {"source", "suns", "view-zeniths", "view-azimuths", "network", "images", "kfold", "mask"})
+    op.relations.push_back(excludes("measured", name));
   op.relations.push_back(unread_with("log", "network", "a Pietras network keeps no log"));
   op.check = [](Request& r) {
     const auto req = r.bind(fit::NetworkTrainingRequest::schema());
     const Kind kind = training_kind(r);
     for (const std::string& name : fit::NetworkTrainingRequest::unread(r.values(), kind)) {
       r.warn(fmt::format("{} is not read by this training ({}); ignored", spelled(name),
-                         kind == Kind::sky      ? "a sky network on a model"
-                         : kind == Kind::images ? spelled("images")
-                                                : spelled("network")));
+                         kind == Kind::sky        ? "a sky network on a model"
+                         : kind == Kind::images   ? spelled("images")
+                         : kind == Kind::measured ? spelled("measured")
+                                                  : spelled("network")));
       r.drop(name);
     }
     if (kind == Kind::pietras) {
@@ -315,6 +397,7 @@ OperationInfo train_operation() {
       return;
     }
     (void)req.sky_training();
+    if (kind == Kind::measured) check_input_folder(r, "measured");
     if (kind != Kind::images) return;
     // Every image of the list exists and every row has its sun, before any image is read.
     fit::check_image_list(r.bind(fit::ImageTrainingOptions::schema()));
@@ -323,9 +406,10 @@ OperationInfo train_operation() {
     const auto req = r.bind(fit::NetworkTrainingRequest::schema());
     Result out;
     const Kind kind = training_kind(r);
-    const TrainResult tr = kind == Kind::pietras  ? train_pietras(r, req, out)
-                           : kind == Kind::images ? train_images(r, req, out)
-                                                  : train_sky(r, req, out);
+    const TrainResult tr = kind == Kind::pietras    ? train_pietras(r, req, out)
+                           : kind == Kind::images   ? train_images(r, req, out)
+                           : kind == Kind::measured ? train_measured(r, req, out)
+                                                    : train_sky(r, req, out);
     out.record = train_result().record(tr);
     return out;
   };
