@@ -10,6 +10,8 @@
 
 #include "skylight/core/colorimetry.h"
 #include "skylight/core/error.h"
+#include "skylight/core/statistics.h"
+#include "skylight/fit/network_training.h"
 #include "skylight/nn/metrics.h"
 
 namespace skylight::fit {
@@ -18,12 +20,6 @@ namespace {
 // The luminance of linear sRGB (ITU-R BT.709 primaries, D65: the Y row of the sRGB matrix).
 double rgb_luminance(const Rgb& c) {
   return 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b;
-}
-
-double median_of(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  const std::size_t h = v.size() / 2;
-  return v.size() % 2 ? v[h] : 0.5 * (v[h - 1] + v[h]);
 }
 
 // A capture's training samples: the used directions and their measured linear sRGB (negative
@@ -120,11 +116,7 @@ MeasuredTrainingResult train_on_measured(
   nn::Dataset ds = nn::image_dataset(samples, t.inputs, out.target_scale);
   ds.spec.source = "measured";
   out.examples = ds.size();
-  nn::NetworkSetup setup;
-  setup.hidden = t.hidden;
-  setup.encoding = t.encoding;
-  setup.options = t.options;
-  setup.options.progress = nullptr;
+  nn::NetworkSetup setup = data_network_setup(t);
   setup.options.restarts = t.starts;
   setup.options.restart_iterations = t.start_iterations;
   std::vector<double> shapes, turbidity_shapes;
@@ -144,8 +136,8 @@ MeasuredTrainingResult train_on_measured(
     turbidity_shapes.push_back(f.turbidity_model_rms_shape);
     out.folds.push_back(f);
   }
-  out.median_shape = median_of(shapes);
-  out.median_turbidity_model_shape = median_of(turbidity_shapes);
+  out.median_shape = median(shapes);
+  out.median_turbidity_model_shape = median(turbidity_shapes);
   if (t.max_relative_p95) out.max_shape = *t.max_relative_p95;
   if (!(out.median_shape <= out.max_shape))
     throw FitFailed(fmt::format(

@@ -501,6 +501,15 @@ void check_image_list(const ImageTrainingOptions& o) {
   }
 }
 
+nn::NetworkSetup data_network_setup(const NeuralTraining& t) {
+  nn::NetworkSetup setup;
+  setup.hidden = t.hidden;
+  setup.encoding = t.encoding;
+  setup.options = t.options;
+  setup.options.progress = nullptr;
+  return setup;
+}
+
 ImageTrainingResult train_on_images(
     const ImageTrainingOptions& o, const NeuralTraining& t, int samples_per_image,
     const std::function<void(int, int, const std::string&)>& progress) {
@@ -540,11 +549,7 @@ ImageTrainingResult train_on_images(
   r.target_scale = t.target_scale ? *t.target_scale : nn::image_target_scale(samples);
   const nn::Dataset ds = nn::image_dataset(samples, t.inputs, r.target_scale);
   r.examples = ds.size();
-  nn::NetworkSetup setup;
-  setup.hidden = t.hidden;
-  setup.encoding = t.encoding;
-  setup.options = t.options;
-  setup.options.progress = nullptr;
+  nn::NetworkSetup setup = data_network_setup(t);
   const int steps = o.kfold + 2;
   if (o.kfold > 0) {
     r.cross_validation = nn::cross_validate(ds, o.kfold, setup, [&](int k, int n) {

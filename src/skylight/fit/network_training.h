@@ -124,6 +124,10 @@ struct ImageTrainingResult {
 // and that every image and mask it names is a file. InvalidArgument "<list>:<line>: ...".
 void check_image_list(const ImageTrainingOptions& options);
 
+// The network of a training on data (images, measured skies): t's layers, encoding and trainer
+// options, without its progress callback (the caller reports per step).
+nn::NetworkSetup data_network_setup(const NeuralTraining& t);
+
 ImageTrainingResult train_on_images(
     const ImageTrainingOptions& options, const NeuralTraining& training, int samples_per_image,
     const std::function<void(int, int, const std::string&)>& progress = {});

@@ -137,7 +137,7 @@ class SkyModel {
  protected:
   // Checks the sun (validate_sun).
   explicit SkyModel(const SunPosition& sun);
-  // A domain that holds, when the sun is below the horizon (zenith > 90 deg), the issue
+  // A domain that holds, when the sun is below the horizon (zenith > 90 deg), the entry
   // "sun below the horizon: <consequence>" at `validity`, and nothing otherwise: the start of
   // domain() for the models whose validity ends at the horizon.
   Domain sun_below_horizon(Validity validity, std::string_view consequence) const;

@@ -209,32 +209,43 @@ TrainResult train_pietras(const Request& r, const fit::NetworkTrainingRequest& r
   return tr;
 }
 
+// A sky network trained on data (images, measured skies): written (weights, and the log when
+// asked), and the result fields those trainings share. `source`: the provenance's, when given.
+TrainResult written_network(const Request& r, Result& out, std::string kind,
+                            const nn::TrainedSkyNetwork& trained, std::size_t examples,
+                            double target_scale, const nn::ErrorStats& errors,
+                            const std::string& source = {}) {
+  nn::SkyNetwork network = trained.network;
+  if (!source.empty()) network.provenance.source = source;
+  network.provenance.date = utc_now_iso8601();
+  network.provenance.software = software();
+  r.write_text(out, "output", nn::to_json(network));
+  if (r.output_wanted("log")) r.write_text(out, "log", train_log(trained.train.log));
+  const nn::SkyNetworkProvenance& pv = network.provenance;
+  return TrainResult{.kind = std::move(kind),
+                     .network = network.net.layout().describe(),
+                     .source = pv.source,
+                     .trainer = pv.trainer,
+                     .iterations = pv.iterations,
+                     .encoding = std::string(nn::to_string(network.encoding)),
+                     .stop = pv.stop,
+                     .seed = static_cast<long long>(pv.seed),
+                     .weights = static_cast<long long>(network.net.layout().parameter_count()),
+                     .seconds = pv.training_seconds,
+                     .examples = static_cast<long long>(examples),
+                     .target_scale = target_scale,
+                     .final_rmse = errors.rmse,
+                     .final_relative_median = errors.relative_median,
+                     .final_relative_p95 = errors.relative_p95};
+}
+
 TrainResult train_images(const Request& r, const fit::NetworkTrainingRequest& req, Result& out) {
   const auto options = r.bind(fit::ImageTrainingOptions::schema());
   const fit::ImageTrainingResult res = fit::train_on_images(
       options, req.sky_training(), req.samples.value_or(fit::kImageSamples),
       [&](int done, int total, const std::string& step) { r.progress(done, total, step); });
-  nn::SkyNetwork network = res.trained.network;
-  network.provenance.date = utc_now_iso8601();
-  network.provenance.software = software();
-  r.write_text(out, "output", nn::to_json(network));
-  if (r.output_wanted("log")) r.write_text(out, "log", train_log(res.trained.train.log));
-  const nn::SkyNetworkProvenance& pv = network.provenance;
-  TrainResult tr{.kind = "images",
-                 .network = network.net.layout().describe(),
-                 .source = pv.source,
-                 .trainer = pv.trainer,
-                 .iterations = pv.iterations,
-                 .encoding = std::string(nn::to_string(network.encoding)),
-                 .stop = pv.stop,
-                 .seed = static_cast<long long>(pv.seed),
-                 .weights = static_cast<long long>(network.net.layout().parameter_count()),
-                 .seconds = pv.training_seconds,
-                 .examples = static_cast<long long>(res.examples),
-                 .target_scale = res.target_scale,
-                 .final_rmse = res.errors.rmse,
-                 .final_relative_median = res.errors.relative_median,
-                 .final_relative_p95 = res.errors.relative_p95};
+  TrainResult tr =
+      written_network(r, out, "images", res.trained, res.examples, res.target_scale, res.errors);
   for (const fit::LoadedImage& li : res.images) {
     const nn::SkyState& s = li.sampled.samples.state;
     tr.images.push_back({li.entry.line, rad_to_deg(s.sun_zenith), rad_to_deg(s.sun_azimuth),
@@ -264,30 +275,10 @@ TrainResult train_measured(const Request& r, const fit::NetworkTrainingRequest& 
   const fit::MeasuredTrainingResult res = fit::train_on_measured(
       io::read_kider(dir), req.sky_training(), settings,
       [&](int done, int total, const std::string& step) { r.progress(done, total, step); });
-  nn::SkyNetwork network = res.trained.network;
-  network.provenance.source = "measured: " + io::shown_path(dir);
-  network.provenance.date = utc_now_iso8601();
-  network.provenance.software = software();
-  r.write_text(out, "output", nn::to_json(network));
-  if (r.output_wanted("log")) r.write_text(out, "log", train_log(res.trained.train.log));
-  const nn::SkyNetworkProvenance& pv = network.provenance;
-  TrainResult tr{.kind = "measured",
-                 .network = network.net.layout().describe(),
-                 .source = pv.source,
-                 .trainer = pv.trainer,
-                 .iterations = pv.iterations,
-                 .encoding = std::string(nn::to_string(network.encoding)),
-                 .stop = pv.stop,
-                 .seed = static_cast<long long>(pv.seed),
-                 .weights = static_cast<long long>(network.net.layout().parameter_count()),
-                 .seconds = pv.training_seconds,
-                 .examples = static_cast<long long>(res.examples),
-                 .target_scale = res.target_scale,
-                 .final_rmse = res.errors.rmse,
-                 .final_relative_median = res.errors.relative_median,
-                 .final_relative_p95 = res.errors.relative_p95,
-                 .measured_median_shape = res.median_shape,
-                 .preetham_median_shape = res.median_turbidity_model_shape};
+  TrainResult tr = written_network(r, out, "measured", res.trained, res.examples, res.target_scale,
+                                   res.errors, "measured: " + io::shown_path(dir));
+  tr.measured_median_shape = res.median_shape;
+  tr.preetham_median_shape = res.median_turbidity_model_shape;
   for (std::size_t k = 0; k < res.folds.size(); ++k)
     tr.captures.push_back({res.folds[k].capture, res.turbidities[k],
                            res.folds[k].luminance_rms_shape, res.folds[k].luminance_rms_abs,

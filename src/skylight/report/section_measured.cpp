@@ -5,6 +5,7 @@
 #include <algorithm>
 
 #include "skylight/core/error.h"
+#include "skylight/core/statistics.h"
 #include "skylight/report/detail/writer.h"
 
 namespace skylight::report::detail {
@@ -18,12 +19,10 @@ constexpr std::array<std::string_view, 7> kErrorColours = {
 // Model curves along the solar vertical and the almucantar: one value per degree.
 constexpr double kCurveStepDeg = 1.0;
 
+// The median of the finite values (NaN: none).
 double median_of(std::vector<double> v) {
   std::erase_if(v, [](double x) { return !std::isfinite(x); });
-  if (v.empty()) return kNaN;
-  std::sort(v.begin(), v.end());
-  const std::size_t h = v.size() / 2;
-  return v.size() % 2 ? v[h] : 0.5 * (v[h - 1] + v[h]);
+  return v.empty() ? kNaN : median(std::move(v));
 }
 
 // RMS of log10(scale M / m) over the samples used: the shape error in the trust table's measure.
@@ -92,6 +91,130 @@ std::vector<io::KiderCapture> captures_for(const ModelInfo& info,
 std::array<double, 2> fisheye(double zenith_deg, double azimuth_deg) {
   const double r = zenith_deg / 90.0, a = azimuth_deg * kDegree;
   return {r * std::sin(a), r * std::cos(a)};
+}
+
+// The scan's samples along the solar vertical (per ring, the one nearest the vertical on each
+// side) and the almucantar (every sample of the ring nearest the sun's zenith angle), with the
+// samples near the sun (not fitted) apart: v the vertical, a the almucantar, n near the sun.
+struct ScanProfiles {
+  double almucantar_zenith = 0.0;
+  std::vector<double> vx, vy, ax, ay, vnx, vny, anx, any;
+};
+ScanProfiles scan_profiles(const fit::MeasuredCaptureResult& r, double sun_zenith,
+                           double sun_azimuth) {
+  ScanProfiles p;
+  auto& [almucantar_zenith, vx, vy, ax, ay, vnx, vny, anx, any] = p;
+  std::map<double, std::vector<const fit::MeasuredSampleResult*>> rings;
+  for (const auto& s : r.samples) rings[std::round(s.zenith_deg * 100.0) / 100.0].push_back(&s);
+  const auto relative_azimuth = [&](double az) {
+    return std::remainder(az - sun_azimuth, 360.0);  // -180..180, 0 at the sun
+  };
+  double nearest = kInf;
+  for (const auto& [zenith, samples] : rings)
+    if (zenith > 0.0 && std::abs(zenith - sun_zenith) < nearest) {
+      nearest = std::abs(zenith - sun_zenith);
+      almucantar_zenith = zenith;
+    }
+  for (const auto& [zenith, samples] : rings) {
+    const fit::MeasuredSampleResult *toward = nullptr, *away = nullptr;
+    for (const auto* s : samples) {
+      const double d = std::abs(relative_azimuth(s->azimuth_deg));
+      if (!toward || d < std::abs(relative_azimuth(toward->azimuth_deg))) toward = s;
+      if (!away || d > std::abs(relative_azimuth(away->azimuth_deg))) away = s;
+      if (zenith == almucantar_zenith) {
+        (s->used ? ax : anx).push_back(relative_azimuth(s->azimuth_deg));
+        (s->used ? ay : any).push_back(s->measured_luminance);
+      }
+    }
+    (toward->used ? vx : vnx).push_back(zenith);
+    (toward->used ? vy : vny).push_back(toward->measured_luminance);
+    if (zenith > 0.0) {
+      vx.push_back(-zenith);
+      vy.push_back(away->measured_luminance);
+    }
+  }
+  return p;
+}
+
+// A fitted model times its scale along the exact solar vertical and the almucantar at
+// `almucantar_zenith` [deg], into the two plots; lo, hi: the range of its positive values.
+void add_model_curves(const std::string& model, const fit::MeasuredCaptureResult& r,
+                      double sun_azimuth, double almucantar_zenith, svg::Plot& vertical,
+                      svg::Plot& almucantar, double& lo, double& hi) {
+  const auto sky = fit::fitted_model(r.fit, r.sun.sun);
+  std::vector<double> xs, ys, as, bs;
+  for (double x = -90.0; x <= 90.0 + 1e-9; x += kCurveStepDeg) {
+    const double az = x >= 0.0 ? sun_azimuth : sun_azimuth + 180.0;
+    xs.push_back(x);
+    ys.push_back(r.scale *
+                 sky->tristimulus(direction_from_angles(std::abs(x) * kDegree, az * kDegree)).Y);
+  }
+  for (double a = -180.0; a <= 180.0 + 1e-9; a += kCurveStepDeg) {
+    as.push_back(a);
+    bs.push_back(r.scale * sky->tristimulus(direction_from_angles(almucantar_zenith * kDegree,
+                                                                  (sun_azimuth + a) * kDegree))
+                               .Y);
+  }
+  for (double y : ys)
+    if (y > 0.0) lo = std::min(lo, y), hi = std::max(hi, y);
+  const std::string label = fmt::format("{} × {:.2f}", model, r.scale);
+  vertical.series.push_back(svg::line_series(label, xs, ys, comparison_colour(model), 1.4));
+  almucantar.series.push_back(svg::line_series(label, as, bs, comparison_colour(model), 1.4));
+}
+
+// A model's error over the scan (scale x model / measured - 1 in kErrorColours' classes) on an
+// upward fisheye, the samples near the sun hollow, the sun marked.
+svg::Plot error_map(const std::string& model, const fit::MeasuredCaptureResult& r,
+                    double sun_zenith, double sun_azimuth) {
+  svg::Plot p;
+  p.id = "measured-map-" + model;
+  p.title = fmt::format("{}: scale × model / measured − 1", model);
+  p.x = {-1.08, 1.08, false, "", {-5}};
+  p.y = {-1.08, 1.08, false, "", {-5}};
+  for (double ring : {30.0, 60.0, 90.0}) {
+    std::vector<double> cx, cy;
+    for (int k = 0; k <= 72; ++k) {
+      const auto q = fisheye(ring, 5.0 * k);
+      cx.push_back(q[0]);
+      cy.push_back(q[1]);
+    }
+    p.series.push_back(svg::line_series("", cx, cy, "#bbbbbb", 0.8));
+  }
+  std::array<std::vector<double>, kErrorColours.size()> bx, by;
+  std::vector<double> ux, uy;
+  for (const auto& s : r.samples) {
+    const auto q = fisheye(s.zenith_deg, s.azimuth_deg);
+    if (!s.used) {
+      ux.push_back(q[0]);
+      uy.push_back(q[1]);
+      continue;
+    }
+    const double e = 100.0 * (r.scale * s.model_luminance / s.measured_luminance - 1.0);
+    const std::size_t bin = static_cast<std::size_t>(
+        std::upper_bound(kErrorEdgesPercent.begin(), kErrorEdgesPercent.end(), e) -
+        kErrorEdgesPercent.begin());
+    bx[bin].push_back(q[0]);
+    by[bin].push_back(q[1]);
+  }
+  for (std::size_t b = 0; b < kErrorColours.size(); ++b) {
+    const std::string name =
+        b == 0 ? fmt::format("< {:g} %", kErrorEdgesPercent[0])
+        : b == kErrorEdgesPercent.size()
+            ? fmt::format("> {:g} %", kErrorEdgesPercent.back())
+            : fmt::format("{:g} to {:g} %", kErrorEdgesPercent[b - 1], kErrorEdgesPercent[b]);
+    svg::Series s = svg::marker_series(name, bx[b], by[b], std::string(kErrorColours[b]), 5.0);
+    s.marker_stroke = "#555555";
+    p.series.push_back(std::move(s));
+  }
+  svg::Series unused = svg::marker_series("not used (near the sun)", ux, uy, "#ffffff", 4.0);
+  unused.marker_stroke = "#999999";
+  p.series.push_back(std::move(unused));
+  const auto sun = fisheye(sun_zenith, sun_azimuth);
+  p.series.push_back(svg::marker_series("sun", {sun[0]}, {sun[1]}, "#ff9800", 6.0));
+  p.width = 615;  // a square plot area beside the legend
+  p.height = 420;
+  p.legend_outside = true;
+  return p;
 }
 
 }  // namespace
@@ -188,38 +311,8 @@ void ReportWriter::measured_figures() {
   const fit::MeasuredCaptureResult& first = *on_chosen.front().second;
   const double sun_zenith = rad_to_deg(first.sun.sun.zenith);
   const double sun_azimuth = rad_to_deg(first.sun.sun.azimuth);
-  // The rings of the scan (by elevation) and, per ring, the samples nearest the solar vertical.
-  // v: the solar vertical, a: the almucantar; the near-sun samples (not fitted) apart.
-  std::vector<double> vx, vy, ax, ay, vnx, vny, anx, any;
-  std::map<double, std::vector<const fit::MeasuredSampleResult*>> rings;
-  for (const auto& s : first.samples) rings[std::round(s.zenith_deg * 100.0) / 100.0].push_back(&s);
-  const auto relative_azimuth = [&](double az) {
-    return std::remainder(az - sun_azimuth, 360.0);  // -180..180, 0 at the sun
-  };
-  double almucantar_zenith = 0.0, nearest = kInf;
-  for (const auto& [zenith, samples] : rings)
-    if (zenith > 0.0 && std::abs(zenith - sun_zenith) < nearest) {
-      nearest = std::abs(zenith - sun_zenith);
-      almucantar_zenith = zenith;
-    }
-  for (const auto& [zenith, samples] : rings) {
-    const fit::MeasuredSampleResult *toward = nullptr, *away = nullptr;
-    for (const auto* s : samples) {
-      const double d = std::abs(relative_azimuth(s->azimuth_deg));
-      if (!toward || d < std::abs(relative_azimuth(toward->azimuth_deg))) toward = s;
-      if (!away || d > std::abs(relative_azimuth(away->azimuth_deg))) away = s;
-      if (zenith == almucantar_zenith) {
-        (s->used ? ax : anx).push_back(relative_azimuth(s->azimuth_deg));
-        (s->used ? ay : any).push_back(s->measured_luminance);
-      }
-    }
-    (toward->used ? vx : vnx).push_back(zenith);
-    (toward->used ? vy : vny).push_back(toward->measured_luminance);
-    if (zenith > 0.0) {
-      vx.push_back(-zenith);
-      vy.push_back(away->measured_luminance);
-    }
-  }
+  const ScanProfiles pr = scan_profiles(first, sun_zenith, sun_azimuth);
+  const double almucantar_zenith = pr.almucantar_zenith;
   svg::Plot vertical, almucantar;
   vertical.id = "measured-vertical";
   vertical.title = fmt::format("Solar vertical, {} (sun zenith {:.1f}°)", chosen.name, sun_zenith);
@@ -227,41 +320,22 @@ void ReportWriter::measured_figures() {
   almucantar.title =
       fmt::format("Almucantar at view zenith {:.1f}°, {}", almucantar_zenith, chosen.name);
   double lo = kInf, hi = 0.0;
-  for (double y : vy) lo = std::min(lo, y), hi = std::max(hi, y);
-  for (const auto& [m, r] : on_chosen) {
-    const auto sky = fit::fitted_model(r->fit, r->sun.sun);
-    std::vector<double> xs, ys, as, bs;
-    for (double x = -90.0; x <= 90.0 + 1e-9; x += kCurveStepDeg) {
-      const double az = x >= 0.0 ? sun_azimuth : sun_azimuth + 180.0;
-      xs.push_back(x);
-      ys.push_back(r->scale *
-                   sky->tristimulus(direction_from_angles(std::abs(x) * kDegree, az * kDegree)).Y);
-    }
-    for (double a = -180.0; a <= 180.0 + 1e-9; a += kCurveStepDeg) {
-      as.push_back(a);
-      bs.push_back(r->scale * sky->tristimulus(direction_from_angles(almucantar_zenith * kDegree,
-                                                                     (sun_azimuth + a) * kDegree))
-                                  .Y);
-    }
-    for (double y : ys)
-      if (y > 0.0) lo = std::min(lo, y), hi = std::max(hi, y);
-    const std::string label = fmt::format("{} × {:.2f}", m->model, r->scale);
-    vertical.series.push_back(svg::line_series(label, xs, ys, comparison_colour(m->model), 1.4));
-    almucantar.series.push_back(svg::line_series(label, as, bs, comparison_colour(m->model), 1.4));
-  }
-  vertical.series.push_back(svg::marker_series("measured", vx, vy, "#000000", 3.0));
-  almucantar.series.push_back(svg::marker_series("measured", ax, ay, "#000000", 3.0));
+  for (double y : pr.vy) lo = std::min(lo, y), hi = std::max(hi, y);
+  for (const auto& [m, r] : on_chosen)
+    add_model_curves(m->model, *r, sun_azimuth, almucantar_zenith, vertical, almucantar, lo, hi);
+  vertical.series.push_back(svg::marker_series("measured", pr.vx, pr.vy, "#000000", 3.0));
+  almucantar.series.push_back(svg::marker_series("measured", pr.ax, pr.ay, "#000000", 3.0));
   const auto near_sun = [](std::vector<double> x, std::vector<double> y) {
     svg::Series s = svg::marker_series("measured, near the sun (not fitted)", std::move(x),
                                        std::move(y), "#ffffff", 3.5);
     s.marker_stroke = "#000000";
     return s;
   };
-  almucantar.series.push_back(near_sun(anx, any));
-  vertical.series.push_back(near_sun(vnx, vny));
-  for (double v : vny) lo = std::min(lo, v), hi = std::max(hi, v);
-  for (double v : any) lo = std::min(lo, v), hi = std::max(hi, v);
-  for (double v : ay) lo = std::min(lo, v), hi = std::max(hi, v);
+  almucantar.series.push_back(near_sun(pr.anx, pr.any));
+  vertical.series.push_back(near_sun(pr.vnx, pr.vny));
+  for (double v : pr.vny) lo = std::min(lo, v), hi = std::max(hi, v);
+  for (double v : pr.any) lo = std::min(lo, v), hi = std::max(hi, v);
+  for (double v : pr.ay) lo = std::min(lo, v), hi = std::max(hi, v);
   const svg::Axis y{std::pow(10.0, std::floor(std::log10(lo))),
                     std::pow(10.0, std::ceil(std::log10(hi))),
                     true,
@@ -298,54 +372,7 @@ void ReportWriter::measured_figures() {
                          almucantar_zenith, sun_zenith));
   // Each model's error over the scan.
   for (const auto& [m, r] : on_chosen) {
-    svg::Plot p;
-    p.id = "measured-map-" + m->model;
-    p.title = fmt::format("{}: scale × model / measured − 1", m->model);
-    p.x = {-1.08, 1.08, false, "", {-5}};
-    p.y = {-1.08, 1.08, false, "", {-5}};
-    for (double ring : {30.0, 60.0, 90.0}) {
-      std::vector<double> cx, cy;
-      for (int k = 0; k <= 72; ++k) {
-        const auto q = fisheye(ring, 5.0 * k);
-        cx.push_back(q[0]);
-        cy.push_back(q[1]);
-      }
-      p.series.push_back(svg::line_series("", cx, cy, "#bbbbbb", 0.8));
-    }
-    std::array<std::vector<double>, kErrorColours.size()> bx, by;
-    std::vector<double> ux, uy;
-    for (const auto& s : r->samples) {
-      const auto q = fisheye(s.zenith_deg, s.azimuth_deg);
-      if (!s.used) {
-        ux.push_back(q[0]);
-        uy.push_back(q[1]);
-        continue;
-      }
-      const double e = 100.0 * (r->scale * s.model_luminance / s.measured_luminance - 1.0);
-      const std::size_t bin = static_cast<std::size_t>(
-          std::upper_bound(kErrorEdgesPercent.begin(), kErrorEdgesPercent.end(), e) -
-          kErrorEdgesPercent.begin());
-      bx[bin].push_back(q[0]);
-      by[bin].push_back(q[1]);
-    }
-    for (std::size_t b = 0; b < kErrorColours.size(); ++b) {
-      const std::string name =
-          b == 0 ? fmt::format("< {:g} %", kErrorEdgesPercent[0])
-          : b == kErrorEdgesPercent.size()
-              ? fmt::format("> {:g} %", kErrorEdgesPercent.back())
-              : fmt::format("{:g} to {:g} %", kErrorEdgesPercent[b - 1], kErrorEdgesPercent[b]);
-      svg::Series s = svg::marker_series(name, bx[b], by[b], std::string(kErrorColours[b]), 5.0);
-      s.marker_stroke = "#555555";
-      p.series.push_back(std::move(s));
-    }
-    svg::Series unused = svg::marker_series("not used (near the sun)", ux, uy, "#ffffff", 4.0);
-    unused.marker_stroke = "#999999";
-    p.series.push_back(std::move(unused));
-    const auto sun = fisheye(sun_zenith, sun_azimuth);
-    p.series.push_back(svg::marker_series("sun", {sun[0]}, {sun[1]}, "#ff9800", 6.0));
-    p.width = 615;  // a square plot area beside the legend
-    p.height = 420;
-    p.legend_outside = true;
+    const svg::Plot p = error_map(m->model, *r, sun_zenith, sun_azimuth);
     html += figure(fmt::format("measured_error_{}.svg", m->model), svg::draw(p),
                    fmt::format("<code>{}</code> fitted to {} ({}): each sample's error after the "
                                "scale, on an upward fisheye (north up, east right; circles at "
@@ -377,6 +404,51 @@ std::string verdict_html(TrustVerdict v, std::string_view detail) {
                      trust_verdict_name(v), detail);
 }
 
+// A model's row of the section's table and its record in report.json (step: the clear CIE
+// types' neighbour step of the shape rule).
+std::pair<std::vector<std::string>, Json> measured_row(const MeasuredModel& m, double step) {
+  if (m.captures.empty())
+    return {{fmt::format("<code>{}</code>", m.model), "0",
+             "not compared in the quick report (a table per parameter set)", "", "", "", "", "", "",
+             "not judged", "not judged", "not judged"},
+            Json{{"model", m.model}, {"captures", Json::array()}, {"verdict", "not judged"}}};
+  const TrustVerdict shape = trust_verdict(m.shape_log10, step);
+  const TrustVerdict absolute = absolute_verdict(m.scale);
+  const TrustVerdict spectrum = spectrum_verdict(m.spectral);
+  const auto& c = m.captures;
+  std::vector<std::string> cells = {
+      fmt::format("<code>{}</code>", m.model),
+      fmt::format("{}", c.size()),
+      parameters_text(c),
+      spread_text(
+          c, [](const auto& r) { return r.luminance_rms_shape; }, true),
+      g3(m.shape_log10),
+      spread_text(
+          c, [](const auto& r) { return r.luminance_rms_abs; }, true),
+      spread_text(
+          c, [](const auto& r) { return r.scale; }, false),
+      spread_text(
+          c, [](const auto& r) { return r.spectral_rms.value_or(kNaN); }, true),
+      std::isfinite(m.duv) ? fmt::format("{:.4f}", m.duv) : "—",
+      verdict_html(shape, fmt::format("{} vs step {}", g3(m.shape_log10), g3(step))),
+      verdict_html(absolute, fmt::format("×{:.2f}", m.scale)),
+      verdict_html(spectrum, std::isfinite(m.spectral) ? fmt::format("{:.1f} %", 100.0 * m.spectral)
+                                                       : std::string("luminance only"))};
+  Json names = Json::array();
+  for (const auto& r : c) names.push_back(r.name);
+  return {std::move(cells), Json{{"model", m.model},
+                                 {"captures", names},
+                                 {"median_luminance_rms_shape", num(m.shape)},
+                                 {"median_rms_log10_shape", num(m.shape_log10)},
+                                 {"median_luminance_rms_abs", num(m.abs)},
+                                 {"median_scale", num(m.scale)},
+                                 {"median_spectral_rms", num(m.spectral)},
+                                 {"median_mean_delta_uv", num(m.duv)},
+                                 {"verdict_shape", trust_verdict_name(shape)},
+                                 {"verdict_absolute", trust_verdict_name(absolute)},
+                                 {"verdict_spectrum", trust_verdict_name(spectrum)}}};
+}
+
 void ReportWriter::measured_table() {
   const fit::MeasuredSettings defaults;
   HtmlTable table({"model", "captures", "fitted", "shape RMS", "RMS log<sub>10</sub> (shape)",
@@ -385,49 +457,9 @@ void ReportWriter::measured_table() {
                   {true, false, true});
   Json models = Json::array();
   for (const MeasuredModel& m : measured_) {
-    if (m.captures.empty()) {
-      table.row({fmt::format("<code>{}</code>", m.model), "0",
-                 "not compared in the quick report (a table per parameter set)", "", "", "", "", "",
-                 "", "not judged", "not judged", "not judged"});
-      models.push_back(
-          {{"model", m.model}, {"captures", Json::array()}, {"verdict", "not judged"}});
-      continue;
-    }
-    const TrustVerdict shape = trust_verdict(m.shape_log10, measured_neighbour_step_);
-    const TrustVerdict absolute = absolute_verdict(m.scale);
-    const TrustVerdict spectrum = spectrum_verdict(m.spectral);
-    const auto& c = m.captures;
-    table.row(
-        {fmt::format("<code>{}</code>", m.model), fmt::format("{}", c.size()), parameters_text(c),
-         spread_text(
-             c, [](const auto& r) { return r.luminance_rms_shape; }, true),
-         g3(m.shape_log10),
-         spread_text(
-             c, [](const auto& r) { return r.luminance_rms_abs; }, true),
-         spread_text(
-             c, [](const auto& r) { return r.scale; }, false),
-         spread_text(
-             c, [](const auto& r) { return r.spectral_rms.value_or(kNaN); }, true),
-         std::isfinite(m.duv) ? fmt::format("{:.4f}", m.duv) : "—",
-         verdict_html(
-             shape, fmt::format("{} vs step {}", g3(m.shape_log10), g3(measured_neighbour_step_))),
-         verdict_html(absolute, fmt::format("×{:.2f}", m.scale)),
-         verdict_html(spectrum, std::isfinite(m.spectral)
-                                    ? fmt::format("{:.1f} %", 100.0 * m.spectral)
-                                    : std::string("luminance only"))});
-    Json names = Json::array();
-    for (const auto& r : c) names.push_back(r.name);
-    models.push_back({{"model", m.model},
-                      {"captures", names},
-                      {"median_luminance_rms_shape", num(m.shape)},
-                      {"median_rms_log10_shape", num(m.shape_log10)},
-                      {"median_luminance_rms_abs", num(m.abs)},
-                      {"median_scale", num(m.scale)},
-                      {"median_spectral_rms", num(m.spectral)},
-                      {"median_mean_delta_uv", num(m.duv)},
-                      {"verdict_shape", trust_verdict_name(shape)},
-                      {"verdict_absolute", trust_verdict_name(absolute)},
-                      {"verdict_spectrum", trust_verdict_name(spectrum)}});
+    auto [cells, record] = measured_row(m, measured_neighbour_step_);
+    table.row(cells);
+    models.push_back(std::move(record));
   }
   html_measured_ = fmt::format(
       "<p>Every model with a fit (an estimation policy) fitted to each measured clear sky of "
