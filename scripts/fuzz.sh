@@ -21,7 +21,7 @@ build="${SKYLIGHT_FUZZ_BUILD:-$root/build-fuzz}"
 
 command -v clang++ >/dev/null || { echo "fuzz: clang++ not found (scripts/setup.sh installs it)" >&2; exit 1; }
 cmake -S "$root" -B "$build" -G Ninja -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-  -DSKYLIGHT_FUZZ=ON -DSKYLIGHT_BUILD_TESTS=OFF -DSKYLIGHT_BUILD_BENCH=OFF >/dev/null
+  -DSKYLIGHT_FUZZ=ON -DSKYLIGHT_BUILD_TESTS=OFF -DSKYLIGHT_BUILD_BENCH=OFF -DSKYLIGHT_WEB=OFF >/dev/null
 cmake --build "$build" --target skylight_fuzz -j "$(nproc)"
 
 budget="${seconds} s"

@@ -6,13 +6,14 @@ set -euo pipefail
 # clang + libclang-rt-14-dev: the libFuzzer targets (scripts/fuzz.sh, docs/TESTING.md).
 # EGL/GL + Mesa (llvmpipe) + glslang-tools: the headless GL module gpu/ and its tests (docs/GPU.md).
 # ccache: the compiler launcher when present (CMakeLists.txt, SKYLIGHT_CCACHE).
+# emscripten: the library compiled to WebAssembly for `skylight view`'s page (web/, docs/VIEWER.md).
 # python3-dev, python3-numpy, python3-pytest, pybind11-dev, python3-ephem, python3-matplotlib: the
 # Python package, its tests (ephem: the independent solar-position check) and the examples of
 # docs/PYTHON.md.
 PACKAGES=(build-essential cmake ninja-build pkg-config git ccache
   libeigen3-dev libopenexr-dev libimath-dev libstb-dev libcli11-dev libfmt-dev libexif-dev
   nlohmann-json3-dev libhwy-dev libgtest-dev libgmock-dev libbenchmark-dev
-  chromium clang libclang-rt-14-dev
+  chromium clang libclang-rt-14-dev emscripten
   libegl-dev libgles-dev libgl-dev libopengl-dev libegl-mesa0 libgl1-mesa-dri glslang-tools
   python3-dev python3-numpy python3-pytest pybind11-dev python3-ephem python3-matplotlib)
 missing=()

@@ -87,9 +87,12 @@ SKYLIGHT_FUZZ_RUNS="${SKYLIGHT_FUZZ_RUNS:-40000}" SKYLIGHT_FUZZ_FLAGS="-seed=1 $
   bash scripts/fuzz.sh
 if [ "${SKYLIGHT_SKIP_SANITIZERS:-0}" != "1" ]; then
   begin "ASan + UBSan build"
-  bash scripts/build.sh build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSKYLIGHT_SANITIZE=ON -DSKYLIGHT_BUILD_TESTS=ON -DSKYLIGHT_BUILD_BENCH=OFF
+  # The page's WebAssembly is Emscripten's build of the same sources: the Release one's is reused.
+  bash scripts/build.sh build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSKYLIGHT_SANITIZE=ON -DSKYLIGHT_BUILD_TESTS=ON -DSKYLIGHT_BUILD_BENCH=OFF \
+    -DSKYLIGHT_WEB_PREBUILT="$root/build/web/skylight_web.js"
   begin "ASan + UBSan tests (ctest)"
-  # Every test but the docs' shell blocks and the report in Chromium, which the Release pass runs:
+  # Every test but the docs' shell blocks and the report and the viewer in Chromium, which the
+  # Release pass runs:
   # they rerun CLI commands the Cli.* tests cover, and took 528 of the pass's 1 789 test-seconds
   # under the sanitizers (docs/TESTING.md, "Build and test time"); nor the edge sweeps of the
   # models with a costly set-up (ModelInfo::costly_setup: 350 test-seconds under ASan; their own
@@ -101,6 +104,6 @@ if [ "${SKYLIGHT_SKIP_SANITIZERS:-0}" != "1" ]; then
   SKYLIGHT_TABLE_CACHE="$root/build-asan/test-table-cache" \
   ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
     ctest --test-dir build-asan --output-on-failure -j "$(nproc)" \
-      -E '^(Docs|ReportBrowser)\.|^Registry/CostlyEdgeSweeps\.|^BrunetonCostly\.'
+      -E '^(Docs|ReportBrowser|ViewerBrowser)\.|^Registry/CostlyEdgeSweeps\.|^BrunetonCostly\.'
   rm -rf build-asan/test-table-cache
 fi

@@ -160,6 +160,12 @@ CASES = [
     ("nn validate", dict(weights="@log3", samples=0), "error", "samples = 0 is outside", []),
     ("nn export", dict(glsl="@g.glsl", weights="@missing.json"), "error", "no such file", []),
     ("nn export", dict(glsl="@g.glsl"), "success", None, []),
+    # view
+    ("view", dict(output="@page", no_measured=True), "success", None, []),
+    ("view", dict(output="@page", kider="@missing"), "error", "missing': no such folder", []),
+    ("view", dict(output="@page", kider="@missing", no_measured=True), "error",
+     "kider and no_measured exclude each other", []),
+    ("view", dict(), "error", "output", []),
     ("nn animate", dict(weights="@log3", turbidity=3, observer_altitude=100,
                         output="@f_#.exr"), "error",
      "turbidity and observer_altitude exclude each other", []),

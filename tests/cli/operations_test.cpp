@@ -139,6 +139,7 @@ TEST_F(Cli, EveryCommandRefusesAUsageErrorBeforeAnyWork) {
       {"nn study", "--iterations 100000000 --repeats 1000 --source nope", "nope"},
       {"nn planet", "--weights D/w.json --subdivisions 9 --width 32768 --height 32768 -o D/p.txt",
        "write"},
+      {"view", "-o D/page --kider D/missing", "no such folder"},
   };
   std::set<std::string> covered;
   for (const Case& c : cases) {

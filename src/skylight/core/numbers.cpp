@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <cerrno>
 #include <charconv>
 #include <cmath>
 #include <cstdlib>
@@ -47,9 +48,21 @@ std::optional<double> parse_number(std::string_view text) {
   std::string_view s = text;
   if (s.front() == '+') s.remove_prefix(1);  // from_chars takes no '+'
   double v = 0.0;
+#if defined(__EMSCRIPTEN__)
+  // The viewer's WebAssembly build (web/): Emscripten's libc++ has no floating-point from_chars;
+  // strtod on the literal checked above, ERANGE for overflow and underflow as result_out_of_range.
+  const std::string literal(s);
+  char* end = nullptr;
+  errno = 0;
+  v = std::strtod(literal.c_str(), &end);
+  if (errno == ERANGE || end != literal.c_str() + literal.size() || !std::isfinite(v)) {
+    return std::nullopt;
+  }
+#else
   const auto [ptr, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
   // result_out_of_range: overflow, or a non-zero literal that underflows to 0.
   if (ec != std::errc() || ptr != s.data() + s.size() || !std::isfinite(v)) return std::nullopt;
+#endif
   return v;
 }
 

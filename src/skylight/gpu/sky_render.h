@@ -1,8 +1,9 @@
-// The network sky models (`nn`, models/neural_sky.h; `pietras`, models/pietras.h) rendered by a
-// fragment shader (docs/GPU.md): per pixel, the direction of render/sky_render.h's layout (ported
-// to GLSL, every projection) and the network exported by nn/glsl.h. The result is the same
-// SkyImage as render::render_sky; the colour conversion to XYZ, the mask and the solar disc (none
-// for either) are done on the CPU after the readback.
+// Every sky model with a GPU form (SkyModel::gpu_sky, models/gpu_sky.h) rendered by a fragment
+// shader (docs/GPU.md): per pixel, the direction of render/sky_render.h's layout (ported to GLSL,
+// every projection) and the model's function (the networks exported by nn/glsl.h, the Perez and
+// Hosek-Wilkie forms with their set-up's uniforms). The result is the same SkyImage as
+// render::render_sky; the colour conversion, the mask and the solar disc are done on the CPU after
+// the readback.
 #pragma once
 
 #include <memory>
@@ -10,15 +11,16 @@
 
 #include "skylight/gpu/context.h"
 #include "skylight/models/sky_model.h"
+#include "skylight/render/glsl_camera.h"
 #include "skylight/render/sky_render.h"
 
 namespace skylight::gpu {
 
-// GLSL of Camera::direction for s.projection (no #version line):
-//   bool skylight_pixel_direction(vec2 pixel, out vec3 dir)
-// pixel = (col, row) continuous with centres at +0.5, row 0 at the top; false (dir = zenith)
-// where the layout has no direction. Reads the uniforms it declares (see SkyRenderer).
-std::string glsl_pixel_direction(const render::RenderSettings& s);
+// The pixel -> direction GLSL of render/glsl_camera.h (its old home).
+using render::glsl_pixel_direction;
+
+// Sets the uniforms of a model's GPU form or a camera (those the compiler kept).
+void set_sky_uniforms(Program& p, const std::vector<GpuSky::Uniform>& uniforms);
 
 // The directions the shader computes (glsl_pixel_direction) for every pixel: x, y, z and 1 (a
 // direction) or 0 (none) as RGBA, row 0 at the top. Needs a current Context.
@@ -35,15 +37,17 @@ enum class DirectionSource {
 class SkyRenderer {
  public:
   // Needs a current Context. Throws InvalidArgument for bad settings (validate, core/camera.h) or a
-  // model that is not nn or pietras, and GpuError from GL.
+  // model without a GPU form, and GpuError from GL.
   SkyRenderer(const SkyModel& model, const render::RenderSettings& settings,
               DirectionSource directions = DirectionSource::shader);
   // The full fragment shader (for docs and tests).
   const std::string& fragment_source() const { return source_; }
   // Draws one frame into the target (no readback; Context::finish to wait for it).
   void draw();
-  // The target read back: linear sRGB in r, g, b and 1 (a direction) or 0 (none) in alpha.
+  // The target read back: the model's native colour (output(): linear sRGB or XYZ) in r, g, b and
+  // 1 (a direction) or 0 (none) in alpha.
   io::ImageF read() const;
+  GpuSky::Output output() const { return output_; }
   // The frame as render::render_sky returns it (read() + XYZ, mask and solar disc on the CPU).
   render::SkyImage image() const;
 
@@ -51,6 +55,7 @@ class SkyRenderer {
   const SkyModel& model_;
   render::RenderSettings settings_;
   std::string source_;
+  GpuSky::Output output_ = GpuSky::Output::rgb;
   std::unique_ptr<Texture> directions_;
   std::unique_ptr<Program> program_;
   std::unique_ptr<Target> target_;

@@ -303,4 +303,28 @@ ModelInfo CieSkyModel::registry_entry() {
   };
 }
 
+std::optional<GpuSky> CieSkyModel::gpu_sky() const {
+  if (type_ <= 15) {
+    GpuSky g = distribution_.gpu_sky();
+    g.comment = fmt::format("cie, type {}: {}", type_, g.comment);
+    return g;
+  }
+  // Type 16, the traditional overcast sky: L_z (1 + 2 cos Z) / 3 (as tristimulus()).
+  GpuSky g;
+  g.glsl =
+      "uniform float skylight_cie_zenith;  // L_z, 0 with the sun below the horizon\n"
+      "uniform vec2 skylight_cie_white;   // X / Y and Z / Y\n"
+      "vec3 skylight_cie_overcast(vec3 dir) {\n"
+      "  if (dir.z < 0.0) return vec3(0.0);\n"
+      "  float Y = skylight_cie_zenith * (1.0 + 2.0 * dir.z) / 3.0;\n"
+      "  return vec3(skylight_cie_white.x * Y, Y, skylight_cie_white.y * Y);\n"
+      "}\n";
+  g.expression = "skylight_cie_overcast(dir)";
+  const Xyz w = xyY_to_xyz(kD65WhiteSrgb, 1.0);
+  g.uniforms = {gpu_uniform("skylight_cie_zenith", {sun_up_ ? zenith_luminance_ : 0.0}),
+                gpu_uniform("skylight_cie_white", {w.X, w.Z})};
+  g.comment = "cie, type 16: the traditional overcast sky";
+  return g;
+}
+
 }  // namespace skylight

@@ -92,6 +92,7 @@ class CieSkyModel final : public SkyModel {
   Xyz tristimulus(Vec3 view) const override;
   void tristimulus_batch(const DirectionsSoA& dirs, const XyzSoA& out) const override;
   Domain domain() const override;
+  std::optional<GpuSky> gpu_sky() const override;
   double zenith_luminance() const { return zenith_luminance_; }
 
  private:

@@ -749,4 +749,46 @@ ModelInfo HosekWilkieModel::registry_entry() {
   };
 }
 
+std::optional<GpuSky> HosekWilkieModel::gpu_sky() const {
+  // tristimulus(): the extended Perez function of each XYZ channel (hw_extended_perez, eq. 3 of
+  // Hosek & Wilkie 2012) times 683 L_M, clamped at 0; the nine coefficients side by side.
+  GpuSky g;
+  g.glsl = fmt::format(
+      "uniform vec3 skylight_hosek_A, skylight_hosek_B, skylight_hosek_C, skylight_hosek_D,\n"
+      "    skylight_hosek_E, skylight_hosek_F, skylight_hosek_G, skylight_hosek_H,\n"
+      "    skylight_hosek_I, skylight_hosek_radiance;  // 683 L_M\n"
+      "uniform vec3 skylight_hosek_sun;  // unit vector, z up\n"
+      "uniform int skylight_hosek_sun_up;\n"
+      "vec3 skylight_hosek(vec3 dir) {{  // models/hosek_wilkie.h, hw_extended_perez\n"
+      "  if (skylight_hosek_sun_up == 0 || dir.z < 0.0) return vec3(0.0);\n"
+      "  float ct = clamp(dir.z, 0.0, 1.0);\n"
+      "  float gamma = skylight_angle(dir, skylight_hosek_sun);\n"
+      "  float cg = cos(gamma);\n"
+      "  vec3 H = skylight_hosek_H;\n"
+      "  vec3 mie = (1.0 + cg * cg) / pow(1.0 + H * H - 2.0 * H * cg, vec3(1.5));\n"
+      "  vec3 f = (1.0 + skylight_hosek_A * exp(skylight_hosek_B / (ct + {})))\n"
+      "      * (skylight_hosek_C + skylight_hosek_D * exp(skylight_hosek_E * gamma)\n"
+      "         + skylight_hosek_F * (cg * cg) + skylight_hosek_G * mie\n"
+      "         + skylight_hosek_I * sqrt(ct));\n"
+      "  return max(vec3(0.0), skylight_hosek_radiance * f);\n"
+      "}}\n",
+      fmt::format("{:.9e}", kHwCosThetaOffset));
+  g.expression = "skylight_hosek(dir)";
+  const char* names = "ABCDEFGIH";  // hw_index order
+  for (int k = 0; k < 9; ++k) {
+    g.uniforms.push_back(gpu_uniform(
+        fmt::format("skylight_hosek_{}", names[k]),
+        {xyz_.channels[0].config[k], xyz_.channels[1].config[k], xyz_.channels[2].config[k]}));
+  }
+  g.uniforms.push_back(
+      gpu_uniform("skylight_hosek_radiance", {kMaxLuminousEfficacy * xyz_.channels[0].radiance,
+                                              kMaxLuminousEfficacy * xyz_.channels[1].radiance,
+                                              kMaxLuminousEfficacy * xyz_.channels[2].radiance}));
+  g.uniforms.push_back(gpu_uniform("skylight_hosek_sun", {sun_.x, sun_.y, sun_.z}));
+  g.uniforms.push_back(gpu_int_uniform("skylight_hosek_sun_up", sun_up_ ? 1 : 0));
+  g.comment =
+      fmt::format("hosek, T = {}, albedo {}: the XYZ dataset", params_.turbidity, params_.albedo);
+  return g;
+}
+
 }  // namespace skylight

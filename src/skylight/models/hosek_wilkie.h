@@ -197,6 +197,7 @@ class HosekWilkieModel final : public SkyModel {
   Xyz sun_tristimulus(Vec3 view) const override;
   std::optional<double> sun_spectral_radiance(Vec3 view, double nm) const override;
   Domain domain() const override;
+  std::optional<GpuSky> gpu_sky() const override;
 
   Xyz tristimulus_from_spectral(Vec3 view) const;
   Rgb rgb_from_spectral(Vec3 view) const {

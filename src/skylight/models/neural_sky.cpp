@@ -10,6 +10,7 @@
 #include "skylight/io/file.h"
 #include "skylight/models/hosek_wilkie.h"
 #include "skylight/models/preetham.h"
+#include "skylight/nn/glsl.h"
 #include "skylight/nn/pietras.h"
 
 namespace skylight {
@@ -180,6 +181,24 @@ ModelInfo NeuralSkyModel::registry_entry() {
                              .axis_range = kEmbeddedNetworkTurbidity,
                              .source = std::string(PreethamModel::kName)},
   };
+}
+
+std::optional<GpuSky> NeuralSkyModel::gpu_sky() const {
+  // rgb(): the network (nn/glsl.h) with this model's sky state; 0 for a sun below the horizon.
+  GpuSky g;
+  g.glsl = nn::glsl_sky_network(network_) +
+           "uniform float skylight_sun_zenith, skylight_sun_azimuth, skylight_turbidity;\n"
+           "uniform int skylight_sun_up;\n";
+  g.expression =
+      "(skylight_sun_up != 0 ? skylight_sky_state(dir, skylight_sun_zenith, skylight_sun_azimuth, "
+      "skylight_turbidity) : vec3(0.0))";
+  g.output = GpuSky::Output::rgb;
+  g.uniforms = {gpu_uniform("skylight_sun_zenith", {state_.sun_zenith}),
+                gpu_uniform("skylight_sun_azimuth", {state_.sun_azimuth}),
+                gpu_uniform("skylight_turbidity", {state_.turbidity}),
+                gpu_int_uniform("skylight_sun_up", state_.sun_zenith <= kPi / 2 ? 1 : 0)};
+  g.comment = "nn: a network learned from " + network_.provenance.source;
+  return g;
 }
 
 }  // namespace skylight

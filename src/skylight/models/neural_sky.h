@@ -58,6 +58,7 @@ class NeuralSkyModel final : public SkyModel {
   Rgb rgb(Vec3 view) const override;
   void tristimulus_batch(const DirectionsSoA& dirs, const XyzSoA& out) const override;
   Domain domain() const override;
+  std::optional<GpuSky> gpu_sky() const override;
 
   const nn::SkyNetwork& network() const { return network_; }
   const nn::SkyState& state() const { return state_; }

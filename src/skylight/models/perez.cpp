@@ -287,4 +287,59 @@ ModelInfo PerezModel::registry_entry() {
   };
 }
 
+GpuSky PerezDistribution::gpu_sky() const {
+  // The three channels' coefficients side by side (x: Y, y: x, z: y of xyY; luminance mode: x).
+  GpuSky g;
+  g.glsl =
+      "uniform vec3 skylight_perez_A, skylight_perez_B, skylight_perez_C, skylight_perez_D,\n"
+      "    skylight_perez_E, skylight_perez_K, skylight_perez_scale;\n"
+      "uniform vec3 skylight_perez_sun;  // unit vector, z up\n"
+      "uniform vec2 skylight_perez_white;  // X / Y and Z / Y of the luminance mode's white\n"
+      "uniform int skylight_perez_xyY;     // 1: channels (Y, x, y); 0: Y alone\n"
+      "vec3 skylight_perez(vec3 dir) {  // models/perez_kernel.h, PerezDistribution::evaluate\n"
+      "  if (dir.z < 0.0) return vec3(0.0);\n"
+      "  float gamma = skylight_angle(dir, skylight_perez_sun);\n"
+      "  float inv_cos = 1.0 / max(dir.z, " +
+      fmt::format("{:.9e}", kPerezMinCosTheta) +
+      ");\n"
+      "  vec3 m = vec3(" +
+      fmt::format("{:.9e}", kPerezMaxExponent) +
+      ");\n"
+      "  vec3 grad = 1.0 + skylight_perez_A * exp(clamp(skylight_perez_B * inv_cos, -m, m));\n"
+      "  float cg = cos(gamma);\n"
+      "  vec3 ind = skylight_perez_K + skylight_perez_C * exp(clamp(skylight_perez_D * gamma, -m, "
+      "m))\n"
+      "      + skylight_perez_E * (cg * cg);\n"
+      "  vec3 f = skylight_perez_scale * grad * ind;\n"
+      "  float Y = max(0.0, f.x);\n"
+      "  if (skylight_perez_xyY == 0) return vec3(skylight_perez_white.x * Y, Y,\n"
+      "                                            skylight_perez_white.y * Y);\n"
+      "  if (!(f.z > 0.0)) return vec3(0.0);\n"
+      "  return vec3(f.y * Y / f.z, Y, (1.0 - f.y - f.z) * Y / f.z);\n"
+      "}\n";
+  g.expression = "skylight_perez(dir)";
+  const auto channel = [&](auto member) {
+    return std::vector<double>{coefficients[0].*member, coefficients[1].*member,
+                               coefficients[2].*member};
+  };
+  g.uniforms = {gpu_uniform("skylight_perez_A", channel(&PerezCoefficients::A)),
+                gpu_uniform("skylight_perez_B", channel(&PerezCoefficients::B)),
+                gpu_uniform("skylight_perez_C", channel(&PerezCoefficients::C)),
+                gpu_uniform("skylight_perez_D", channel(&PerezCoefficients::D)),
+                gpu_uniform("skylight_perez_E", channel(&PerezCoefficients::E)),
+                gpu_uniform("skylight_perez_K", channel(&PerezCoefficients::K)),
+                gpu_uniform("skylight_perez_scale", {scale[0], scale[1], scale[2]}),
+                gpu_uniform("skylight_perez_sun", {sun.x, sun.y, sun.z})};
+  const Xyz w = xyY_to_xyz(white, 1.0);
+  g.uniforms.push_back(gpu_uniform("skylight_perez_white", {w.X, w.Z}));
+  g.uniforms.push_back(gpu_int_uniform("skylight_perez_xyY", mode == Mode::xyY ? 1 : 0));
+  g.comment = mode == Mode::xyY ? "the Perez function in Y, x and y (Preetham et al. 1999 eq. 3)"
+                                : "the Perez function in luminance";
+  return g;
+}
+
+std::optional<GpuSky> PerezModel::gpu_sky() const {
+  return distribution_.gpu_sky();
+}
+
 }  // namespace skylight

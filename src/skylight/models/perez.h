@@ -72,6 +72,7 @@ class PerezModel final : public SkyModel {
   Xyz tristimulus(Vec3 view) const override;
   void tristimulus_batch(const DirectionsSoA& dirs, const XyzSoA& out) const override;
   Domain domain() const override;
+  std::optional<GpuSky> gpu_sky() const override;
 
  private:
   PerezParameters params_;

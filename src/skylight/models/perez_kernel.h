@@ -12,6 +12,7 @@
 
 #include "skylight/core/colorimetry.h"
 #include "skylight/core/frame.h"
+#include "skylight/models/gpu_sky.h"
 #include "skylight/models/sky_model.h"
 
 namespace skylight {
@@ -51,6 +52,9 @@ struct PerezDistribution {
   // Batch path (single precision SIMD). Error vs evaluate(): see kPerezBatchRelativeTolerance in
   // the tests; gamma uses the chord formula 2 asin(|v - s| / 2) so the aureole stays accurate.
   void evaluate_batch(const DirectionsSoA& dirs, const XyzSoA& out) const;
+  // The same distribution as a shader's function (models/gpu_sky.h; perez.cpp): evaluate() in
+  // float, its clamps included, with the angle to the sun by the chord as the batch path.
+  GpuSky gpu_sky() const;
 };
 
 }  // namespace skylight

@@ -14,6 +14,7 @@
 #include "skylight/core/parameters.h"
 #include "skylight/io/file.h"
 #include "skylight/models/neural_sky.h"
+#include "skylight/nn/glsl.h"
 #include "skylight/nn/sky_network.h"
 
 namespace skylight {
@@ -319,6 +320,20 @@ ModelInfo PietrasSkyModel::registry_entry() {
                              .colour = "#bcbd22",
                              .source = std::string(NishitaModel::kName)},
   };
+}
+
+std::optional<GpuSky> PietrasSkyModel::gpu_sky() const {
+  // rgb_at(): the network (nn/glsl.h) with its shadow test of the view ray, every view.
+  GpuSky g;
+  g.glsl = nn::glsl_pietras_sky(network()) +
+           "uniform vec3 skylight_sun;  // unit vector, z up\nuniform float skylight_altitude;\n";
+  g.expression = "skylight_pietras_at(skylight_altitude, dir, skylight_sun)";
+  g.output = GpuSky::Output::rgb;
+  const Vec3 s = sun().direction();
+  g.uniforms = {gpu_uniform("skylight_sun", {s.x, s.y, s.z}),
+                gpu_uniform("skylight_altitude", {observer_altitude_m()})};
+  g.comment = "pietras";
+  return g;
 }
 
 }  // namespace skylight

@@ -110,6 +110,7 @@ class PietrasSkyModel final : public SkyModel {
   Rgb rgb(Vec3 view) const override;
   void tristimulus_batch(const DirectionsSoA& dirs, const XyzSoA& out) const override;
   Domain domain() const override;
+  std::optional<GpuSky> gpu_sky() const override;
 
   const nn::PietrasNetwork& network() const { return network_; }
   double observer_altitude_m() const { return params_.observer_altitude_m; }

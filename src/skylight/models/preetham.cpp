@@ -393,4 +393,10 @@ ModelInfo PreethamModel::registry_entry() {
   };
 }
 
+std::optional<GpuSky> PreethamModel::gpu_sky() const {
+  GpuSky g = distribution_.gpu_sky();
+  g.comment = fmt::format("preetham, T = {}: {}", params_.turbidity, g.comment);
+  return g;
+}
+
 }  // namespace skylight

@@ -120,6 +120,7 @@ class PreethamModel final : public SkyModel {
   Xyz sun_tristimulus(Vec3 view) const override;
   std::optional<double> sun_spectral_radiance(Vec3 view, double nm) const override;
   Domain domain() const override;
+  std::optional<GpuSky> gpu_sky() const override;
 
   double zenith_luminance() const { return zenith_luminance_; }  // raw Yz [cd/m^2]
   Chromaticity zenith_chromaticity() const { return zenith_xy_; }

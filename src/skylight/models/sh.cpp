@@ -197,6 +197,10 @@ ModelInfo ShSkyModel::registry_entry() {
                              // the embedded table's 7 bands (its `bands`)
                              .truncation = "bands",
                              .truncation_range = {1, 7}},
+      .no_gpu =
+          "its reconstruction sums up to 49 SH basis functions whose coefficients are "
+          "polynomials of the sun zenith and turbidity; that sum is not written as a shader "
+          "yet",
   };
 }
 

@@ -21,6 +21,7 @@
 #include "skylight/core/error.h"
 #include "skylight/core/frame.h"
 #include "skylight/core/parameters.h"
+#include "skylight/models/gpu_sky.h"
 #include "skylight/sh/polynomial.h"
 
 namespace skylight {
@@ -133,6 +134,11 @@ class SkyModel {
 
   // Where this model, with these parameters, is valid.
   virtual Domain domain() const = 0;
+
+  // The sky (tristimulus() or rgb(), without the solar disc) as a shader's function with this
+  // model's set-up (models/gpu_sky.h: `render --gpu`, `skylight view`), or nullopt for a model
+  // that has none (its ModelInfo::no_gpu says why).
+  virtual std::optional<GpuSky> gpu_sky() const { return std::nullopt; }
 
  protected:
   // Checks the sun (validate_sun).
@@ -355,6 +361,8 @@ struct ModelInfo {
   std::optional<ShFitPolicy> sh_fit{};
   BenchPolicy bench{};
   ReportPolicy report{};
+  // Why gpu_sky() gives no shader for this model (one sentence); empty: it gives one.
+  std::string no_gpu{};
   // The reference integrator of `eval --reference` and what it is; empty: none.
   ReferencePath reference{};
   std::string reference_description{};

@@ -139,7 +139,7 @@ const std::vector<OperationInfo>& registry() {
     for (auto family :
          {detail::sky_operations, detail::estimate_operations, detail::measured_operations,
           detail::sun_operations, detail::report_operations, detail::sh_operations,
-          detail::haze_operations, detail::nn_operations})
+          detail::haze_operations, detail::nn_operations, detail::view_operations})
       for (OperationInfo& op : family()) ops.push_back(std::move(op));
     return ops;
   }();

@@ -48,5 +48,6 @@ std::vector<OperationInfo> report_operations();    // bench, report
 std::vector<OperationInfo> sh_operations();        // sh fit|eval|export|render|error
 std::vector<OperationInfo> haze_operations();      // haze coefficients|attenuation|cameras|...
 std::vector<OperationInfo> nn_operations();        // nn train|validate|export|animate|study|planet
+std::vector<OperationInfo> view_operations();      // view
 
 }  // namespace skylight::operations::detail
