@@ -43,6 +43,8 @@ CASES = [
     ("nn", {"turbidity": "3"}, 50.0, 120.0),
     ("perez", {"perez": "-1,-0.32,10,-3,0.45", "zenith-luminance": "5000"}, 30.0, 180.0),
     ("pietras", {"observer-altitude": "2000"}, 60.0, 100.0),
+    ("hillaire", {}, 50.0, 120.0),
+    ("bruneton", {}, 45.0, 200.0),
 ]
 
 
@@ -103,7 +105,7 @@ class Browser:
     def page(self, method, params=None):
         return self.call(method, params, self.session)
 
-    def open(self, url, until, timeout=60.0):
+    def open(self, url, until, timeout=120.0):
         """Loads url and waits (real time) until the JavaScript expression `until` is truthy."""
         self.page("Page.navigate", {"url": url})
         deadline = time.monotonic() + timeout

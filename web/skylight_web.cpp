@@ -68,6 +68,17 @@ std::unique_ptr<SkyModel> build(const std::string& name, const std::string& text
   return make_sky_model(name, params);
 }
 
+ordered_json tables_json(const std::vector<GpuSky::Table>& tables) {
+  ordered_json out = ordered_json::array();
+  for (const GpuSky::Table& t : tables)
+    out.push_back({{"name", t.name},
+                   {"width", t.width},
+                   {"height", t.height},
+                   {"channels", t.channels},
+                   {"data", t.data}});
+  return out;
+}
+
 ordered_json uniforms_json(const std::vector<GpuSky::Uniform>& uniforms) {
   ordered_json out = ordered_json::array();
   for (const GpuSky::Uniform& u : uniforms)
@@ -86,7 +97,8 @@ std::string models() {
   return out.dump();
 }
 
-// The model's GPU form: {"glsl", "output", "uniforms", "comment", "domain", "parameters"}.
+// The model's GPU form: {"glsl", "output", "uniforms", "tables", "comment", "validity", "issues",
+// "parameters"}.
 std::string sky(const std::string& name, const std::string& text) {
   try {
     const auto model = build(name, text);
@@ -109,6 +121,7 @@ std::string sky(const std::string& name, const std::string& text) {
     return ordered_json{{"glsl", glsl_sky_function(*g)},
                         {"output", g->output == GpuSky::Output::xyz ? "xyz" : "rgb"},
                         {"uniforms", uniforms_json(g->uniforms)},
+                        {"tables", tables_json(g->tables)},
                         {"comment", g->comment},
                         {"validity", std::string(to_string(d.worst()))},
                         {"issues", issues},

@@ -239,12 +239,32 @@ void main() {
     return programs.get(key);
   }
   // Renders model `side` into a float target of the camera: {target, sky, pixels} or {error}.
+  // A model's tables (GpuSky::Table: row 0 first, as GL's row 0) as float textures read by
+  // texelFetch, on the units after 0.
+  const tableTextures = [];
+  function bindTables(p, tables) {
+    tables.forEach((t, k) => {
+      if (!tableTextures[k]) tableTextures[k] = gl.createTexture();
+      gl.activeTexture(gl.TEXTURE1 + k);
+      gl.bindTexture(gl.TEXTURE_2D, tableTextures[k]);
+      const [internal, format] = t.channels === 4 ? [gl.RGBA32F, gl.RGBA] : [gl.RGB32F, gl.RGB];
+      gl.pixelStorei(gl.UNPACK_ALIGNMENT, 1);
+      gl.texImage2D(gl.TEXTURE_2D, 0, internal, t.width, t.height, 0, format, gl.FLOAT,
+                    new Float32Array(t.data));
+      gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MIN_FILTER, gl.NEAREST);
+      gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MAG_FILTER, gl.NEAREST);
+      gl.useProgram(p);
+      gl.uniform1i(gl.getUniformLocation(p, t.name), 1 + k);
+    });
+    gl.activeTexture(gl.TEXTURE0);
+  }
   function renderSide(side, camera, w, h, t) {
     const sky = JSON.parse(lib.sky(state[side].model, paramText(side)));
     if (sky.error) return { error: sky.error };
     const p = cachedSkyProgram(sky, camera);
     setUniforms(p, camera.uniforms);
     setUniforms(p, sky.uniforms);
+    bindTables(p, sky.tables);
     draw(p, t);
     return { target: t, sky, pixels: readback(t) };
   }
@@ -272,8 +292,25 @@ void main() {
   }
 
   let frame = null;  // the last frame: {w, h, camera, a, b, dirs}
+  // A model whose set-up takes seconds (ModelInfo::costly_setup: tables per atmosphere and sun,
+  // computed by the WebAssembly on one thread) is drawn after the page has said so.
+  let pending = false;
   function update() {
-    if (!lib) return;
+    if (!lib || pending) return;
+    const costly = [state.a.model, state.compare !== 'none' ? state.b.model : null]
+      .filter((m) => m && modelInfo(m).costly_setup);
+    if (!costly.length) { render(); return; }
+    pending = true;
+    $('status').textContent = `computing ${costly.join(' and ')}'s tables in the page ` +
+      '(bruneton: 20–40 s the first time, a few seconds per new sun)…';
+    setTimeout(() => {
+      pending = false;
+      const t = performance.now();
+      render();
+      $('status').textContent = `drawn in ${fmt((performance.now() - t) / 1000, 2)} s`;
+    }, 30);
+  }
+  function render() {
     const [w, h] = FRAME[state.projection];
     let camera;
     try { camera = cameraOf(state.projection, w, h); } catch (e) { $('status').textContent = e.message; return; }

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <functional>
@@ -102,6 +103,17 @@ SkyRenderer::SkyRenderer(const SkyModel& model, const render::RenderSettings& s,
   Program& p = *program_;
   set_sky_uniforms(p, render::glsl_camera_uniforms(s));
   set_sky_uniforms(p, sky.uniforms);
+  // The model's tables on the units after the directions' (GpuSky::Table: row 0 uploaded first;
+  // Texture flips an image's rows, so the image holds them bottom-up).
+  for (const GpuSky::Table& t : sky.tables) {
+    io::ImageF img(t.width, t.height, t.channels);
+    const std::size_t row = static_cast<std::size_t>(t.width) * t.channels;
+    for (int r = 0; r < t.height; ++r)
+      std::copy_n(t.data.begin() + static_cast<std::ptrdiff_t>(r * row), row,
+                  img.data.begin() + static_cast<std::ptrdiff_t>((t.height - 1 - r) * row));
+    tables_.push_back(std::make_unique<Texture>(img));
+    p.bind(t.name, *tables_.back(), static_cast<int>(tables_.size()));
+  }
   if (directions == DirectionSource::texture) {
     const render::PixelDirections d = render::pixel_directions(s);
     io::ImageF img(s.width, s.height, 4);

@@ -8,6 +8,7 @@
 
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "skylight/gpu/context.h"
 #include "skylight/models/sky_model.h"
@@ -57,6 +58,7 @@ class SkyRenderer {
   std::string source_;
   GpuSky::Output output_ = GpuSky::Output::rgb;
   std::unique_ptr<Texture> directions_;
+  std::vector<std::unique_ptr<Texture>> tables_;
   std::unique_ptr<Program> program_;
   std::unique_ptr<Target> target_;
 };

@@ -28,6 +28,15 @@ struct GpuSky {
   std::string expression;
   Output output = Output::xyz;
   std::vector<Uniform> uniforms;
+  // Float tables the function reads with texelFetch (a `uniform sampler2D` of the same name, no
+  // filtering): texel (col, row) = data[(row * width + col) * channels + c], row 0 uploaded first
+  // (GL's row 0), 3 or 4 channels.
+  struct Table {
+    std::string name;
+    int width = 0, height = 0, channels = 3;
+    std::vector<float> data;
+  };
+  std::vector<Table> tables;
   // The model's set-up in one line, for a page's or a shader's comment.
   std::string comment;
 };

@@ -409,11 +409,9 @@ ModelInfo NishitaModel::registry_entry() {
       .report = ReportPolicy{.title = "Nishita (Earth defaults)",
                              .colour = "#2ca02c",
                              .physical_atmosphere = true},
-      // Copied by hillaire and bruneton (PhysicalSkyModel::registry_entry_of).
-      .no_gpu =
-          "the physical atmospheres integrate 41 wavelengths along every view ray with "
-          "tables built per atmosphere and sun; their shader form (the whole-sky LUT of "
-          "physical_sky.h per sun, as a texture) is not written yet",
+      .no_gpu = "its fast path integrates every view ray with Pietras' optical-length tables; "
+                "that integral is not written as a shader (hillaire and bruneton draw their "
+                "whole-sky LUT)",
       // The brute-force single scattering (no tables), deterministic.
       .reference =
           [](const SkyModel& m, Vec3 view, const EvaluationOptions& o, const ReferenceRequest&) {

@@ -129,11 +129,53 @@ std::vector<float> PhysicalSkyModel::build_batch_lut() const {
   return batch;
 }
 
-void PhysicalSkyModel::tristimulus_batch(const DirectionsSoA& dirs, const XyzSoA& out) const {
-  SKYLIGHT_CHECK(out.size() == dirs.size(), "tristimulus_batch: size mismatch");
+const std::vector<float>& PhysicalSkyModel::batch_lut() const {
   std::call_once(batch_once_, [this] {
     batch_ = batch_cache().get(lut_key_, [this] { return build_batch_lut(); });
   });
+  return *batch_;
+}
+
+std::optional<GpuSky> PhysicalSkyModel::gpu_sky() const {
+  GpuSky g;
+  const std::string pi = fmt::format("{:.9e}", static_cast<float>(kPi));
+  g.glsl = fmt::format(
+      "uniform sampler2D skylight_sky_lut;  // {0} azimuths x {1} zeniths, XYZ\n"
+      "uniform float skylight_sky_horizon;   // the observer's horizon zenith angle [rad]\n"
+      "uniform float skylight_sky_sun_azimuth;  // [rad]\n"
+      "float skylight_sky_row(float zenith) {{  // PhysicalSkyModel::sky_row\n"
+      "  float mid = 0.5 * float({1} - 1), h = skylight_sky_horizon;\n"
+      "  if (zenith <= h) return mid * (1.0 - sqrt(max(0.0, 1.0 - zenith / h)));\n"
+      "  return mid + mid * sqrt(min(1.0, (zenith - h) / ({2} - h)));\n"
+      "}}\n"
+      "vec3 skylight_sky_lut_at(int j, int i) {{ return texelFetch(skylight_sky_lut, ivec2(j, i), "
+      "0).xyz; }}\n"
+      "vec3 skylight_physical(vec3 dir) {{  // PhysicalSkyModel::tristimulus_batch\n"
+      "  float zenith = atan(length(dir.xy), dir.z);\n"
+      "  float phi = abs(mod(atan(dir.x, dir.y) - skylight_sky_sun_azimuth + {2}, 2.0 * {2}) - "
+      "{2});\n"
+      "  float y = clamp(skylight_sky_row(zenith), 0.0, float({1} - 1));\n"
+      "  float x = clamp(phi / {2}, 0.0, 1.0) * float({0} - 1);\n"
+      "  int i = min(int(y), {1} - 2), j = min(int(x), {0} - 2);\n"
+      "  float fy = y - float(i), fx = x - float(j);\n"
+      "  return (1.0 - fy) * ((1.0 - fx) * skylight_sky_lut_at(j, i) + fx * skylight_sky_lut_at(j "
+      "+ 1, i))\n"
+      "       + fy * ((1.0 - fx) * skylight_sky_lut_at(j, i + 1) + fx * skylight_sky_lut_at(j + 1, "
+      "i + 1));\n"
+      "}}\n",
+      kSkyBatchAzimuths, kSkyBatchZeniths, pi);
+  g.expression = "skylight_physical(dir)";
+  g.uniforms = {gpu_uniform("skylight_sky_horizon", {horizon_zenith_}),
+                gpu_uniform("skylight_sky_sun_azimuth", {sun().azimuth})};
+  g.tables.push_back({"skylight_sky_lut", kSkyBatchAzimuths, kSkyBatchZeniths, 3, batch_lut()});
+  g.comment = fmt::format("{}: the whole-sky LUT of its batch path ({} x {}, bilinear)", name(),
+                          kSkyBatchAzimuths, kSkyBatchZeniths);
+  return g;
+}
+
+void PhysicalSkyModel::tristimulus_batch(const DirectionsSoA& dirs, const XyzSoA& out) const {
+  SKYLIGHT_CHECK(out.size() == dirs.size(), "tristimulus_batch: size mismatch");
+  const std::vector<float>& lut = batch_lut();
   const int rows = kSkyBatchZeniths, cols = kSkyBatchAzimuths;
   const double sun_az = sun().azimuth;
   for (std::size_t k = 0; k < dirs.size(); ++k) {
@@ -145,7 +187,7 @@ void PhysicalSkyModel::tristimulus_batch(const DirectionsSoA& dirs, const XyzSoA
     const int i = std::min(static_cast<int>(y), rows - 2),
               j = std::min(static_cast<int>(x), cols - 2);
     const float fy = static_cast<float>(y - i), fx = static_cast<float>(x - j);
-    const float* a = &(*batch_)[(static_cast<std::size_t>(i) * cols + j) * 3];
+    const float* a = &lut[(static_cast<std::size_t>(i) * cols + j) * 3];
     const float* c = a + static_cast<std::size_t>(cols) * 3;
     float v[3];
     for (int ch = 0; ch < 3; ++ch)
@@ -252,6 +294,7 @@ ModelInfo PhysicalSkyModel::registry_entry_of(std::string_view name, std::string
                                               std::string_view error) {
   ModelInfo info = NishitaModel::registry_entry();
   info.name = std::string(name);
+  info.no_gpu.clear();  // gpu_sky(): the whole-sky LUT
   info.output = fmt::format(
       "XYZ with Y [cd/m^2] for the ASTM G-173 extraterrestrial sun (41 wavelengths, 10 nm apart, "
       "380-780 nm, spline weights: docs/ATMOSPHERE.md); spectral radiance [W m^-2 sr^-1 nm^-1] "

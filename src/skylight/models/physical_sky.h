@@ -77,6 +77,9 @@ class PhysicalSkyModel : public SkyModel {
   // The fast path: the whole-sky LUT (kSkyBatchZeniths x kSkyBatchAzimuths), bilinear, in float;
   // its error against tristimulus() is bounded in the models' tests.
   void tristimulus_batch(const DirectionsSoA& dirs, const XyzSoA& out) const override;
+  // The batch path as a shader's function: the whole-sky LUT as a table, looked up and
+  // interpolated as tristimulus_batch does (in float on the GPU).
+  std::optional<GpuSky> gpu_sky() const override;
   std::optional<double> spectral_radiance(Vec3 view, double nm) const override;
   // The solar disc (models/solar_disc.h: kSolarAngularRadius, Hosek & Wilkie 2013's limb
   // darkening) seen through the atmosphere's transmittance from the observer (0 when the sun is
@@ -127,6 +130,8 @@ class PhysicalSkyModel : public SkyModel {
   double sky_row(double zenith, int rows) const;
   double sky_zenith(double row, int rows) const;
   // The batch LUT: [row][column] X, Y, Z in float, built once (thread-safe) on first use.
+  // The whole-sky LUT, built on first use (kSkyBatchZeniths x kSkyBatchAzimuths XYZ, row-major).
+  const std::vector<float>& batch_lut() const;
   mutable std::once_flag batch_once_;
   mutable std::shared_ptr<const std::vector<float>> batch_;
   std::vector<float> build_batch_lut() const;

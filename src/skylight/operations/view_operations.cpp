@@ -82,6 +82,7 @@ std::string view_data(const Request& r) {
     }
     m["example"] = example;
     m["report_colour"] = info.report.colour;
+    m["costly_setup"] = info.costly_setup;
   }
   ordered_json data{{"software", std::string("skylight ") + SKYLIGHT_VERSION},
                     {"models", models},
