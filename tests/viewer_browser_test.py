@@ -18,11 +18,14 @@ import json
 import os
 import re
 import shutil
+import signal
 import statistics
 import subprocess
 import sys
 import tempfile
 import time
+import urllib.error
+import urllib.request
 
 # The page's samples against `skylight eval` (issue 47): relative luminance difference.
 MAX_MEDIAN_RELATIVE = 1e-3
@@ -163,6 +166,46 @@ def quantile(values, q):
     return s[min(len(s) - 1, int(q * (len(s) - 1) + 0.5))]
 
 
+def check_serve(cli, work):
+    """`view --serve 0`: the record names the URL; the server answers the page's files and
+    nothing outside the folder; SIGINT stops it."""
+    page = os.path.join(work, "served")
+    proc = subprocess.Popen([cli, "view", "-o", page, "--no-measured", "--serve", "0", "--json"],
+                            stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, text=True)
+    try:
+        text = ""
+        while not text.rstrip().endswith("}") or text.count("{") != text.count("}"):
+            line = proc.stdout.readline()
+            if not line:
+                sys.exit("FAIL: view --serve ended before its record")
+            text += line
+        url = json.loads(text)["url"]
+        deadline = time.monotonic() + 10
+        while True:
+            try:
+                with urllib.request.urlopen(url, timeout=5) as r:
+                    body = r.read()
+                break
+            except OSError:
+                if time.monotonic() > deadline:
+                    raise
+                time.sleep(0.1)
+        with open(os.path.join(page, "index.html"), "rb") as f:
+            if body != f.read():
+                sys.exit("FAIL: view --serve: / is not index.html")
+        for bad in ("../etc/passwd", "nothere.js", "a/b.js"):
+            try:
+                urllib.request.urlopen(url + bad, timeout=5)
+                sys.exit("FAIL: view --serve served " + bad)
+            except urllib.error.HTTPError as e:
+                if e.code != 404:
+                    sys.exit("FAIL: view --serve answered %d for %s" % (e.code, bad))
+        print("view --serve: %s serves the page, 404 outside it" % url)
+    finally:
+        proc.send_signal(signal.SIGINT)
+        proc.wait(timeout=10)
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("cli")
@@ -188,6 +231,7 @@ def main():
         if run.returncode == 0 or os.path.exists(bad) or len(run.stderr.strip().splitlines()) != 1:
             sys.exit("FAIL: view with a bad flag: exit %d, wrote %s, said %r" %
                      (run.returncode, os.path.exists(bad), run.stderr))
+        check_serve(args.cli, work)
         measured = {"view_seconds": view_seconds, "page_bytes": size, "models": []}
         failed = False
         for model, values, zen, az in CASES:

@@ -249,6 +249,10 @@ sl::operations::Frontend python_frontend(const py::dict& inputs, const py::objec
   sl::operations::Frontend fe;
   fe.warn = warn_in_python;
   fe.keep_outputs = true;
+  fe.interrupted = [] {
+    py::gil_scoped_acquire gil;
+    return PyErr_CheckSignals() != 0;
+  };
   fe.progress = [progress](int done, int total, std::string_view step) {
     py::gil_scoped_acquire gil;
     if (PyErr_CheckSignals() != 0) throw Interrupted{};
@@ -844,9 +848,12 @@ py::tuple run_operation(const std::string& name, const py::dict& kwargs, const p
         sl::operations::prepare(op, operation_values(op, kwargs), std::move(fe));
     py::gil_scoped_release release;
     result = sl::operations::execute(request);
+    // `view --serve`: the server until Ctrl-C (Frontend::interrupted, python_frontend).
+    if (result.then) result.then();
   } catch (const Interrupted&) {
     throw py::error_already_set();
   }
+  if (PyErr_Occurred()) throw py::error_already_set();
   py::dict outputs;
   for (const auto& [key, img] : result.images)
     outputs[py::str(python_spelling(key))] = image_array(img);

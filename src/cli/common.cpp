@@ -191,6 +191,13 @@ void SchemaFlags::add(CLI::App& app, const std::vector<ParameterSpec>& specs) {
       opt = app.add_option_function<std::vector<std::string>>(
           names, [&raw](const std::vector<std::string>& v) { raw = join_repeated(v); },
           spec.help());
+    } else if (spec.implicit) {
+      // `--serve` alone: the implicit value (CLI11 passes "" for a missing optional value).
+      const std::string implicit = spec.format(*spec.implicit);
+      opt = app.add_option_function<std::string>(
+          names, [&raw, implicit](const std::string& s) { raw = s.empty() ? implicit : s; },
+          spec.help());
+      opt->expected(0, 1);
     } else {
       opt = app.add_option_function<std::string>(
           names, [&raw](const std::string& s) { raw = s; }, spec.help());

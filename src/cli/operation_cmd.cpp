@@ -90,6 +90,10 @@ int run_operation(const OperationCommand& c, const std::vector<std::string>& ext
                  : operations::text_of(op.result, r.record));
   });
   for (const std::string& notice : result.notices) std::cerr << "skylight: " << notice << "\n";
+  if (result.then) {
+    std::cerr.flush();
+    result.then();
+  }
   return kExitOk;
 }
 

@@ -71,6 +71,9 @@ struct ParameterSpec {
   FileRole file = FileRole::none;
   std::vector<std::string> formats{};
   bool standard_stream = false;
+  // A number whose flag may be given without a value: the value it then takes (`view --serve`
+  // alone: port 8000). Absent: a value is required.
+  std::optional<ParameterValue> implicit{};
 
   // The command line's flag, "--" + name (the CLI's flags and the docs' tables of them).
   std::string flag() const { return "--" + name; }

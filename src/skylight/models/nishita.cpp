@@ -409,9 +409,10 @@ ModelInfo NishitaModel::registry_entry() {
       .report = ReportPolicy{.title = "Nishita (Earth defaults)",
                              .colour = "#2ca02c",
                              .physical_atmosphere = true},
-      .no_gpu = "its fast path integrates every view ray with Pietras' optical-length tables; "
-                "that integral is not written as a shader (hillaire and bruneton draw their "
-                "whole-sky LUT)",
+      .no_gpu =
+          "its fast path integrates every view ray with Pietras' optical-length tables; "
+          "that integral is not written as a shader (hillaire and bruneton draw their "
+          "whole-sky LUT)",
       // The brute-force single scattering (no tables), deterministic.
       .reference =
           [](const SkyModel& m, Vec3 view, const EvaluationOptions& o, const ReferenceRequest&) {

@@ -240,6 +240,9 @@ struct Frontend {
   std::map<std::string, io::ImageF, std::less<>> images{};  // image inputs by parameter name
   std::map<std::string, std::string, std::less<>> texts{};  // text inputs by parameter name
   bool keep_outputs = false;
+  // Whether the user asked to stop (the Python package: a pending KeyboardInterrupt); asked by
+  // work that runs until stopped (Result::then). Empty: never (the command line stops by signal).
+  std::function<bool()> interrupted{};
 };
 
 // The outputs an operation made and its record.
@@ -253,6 +256,9 @@ struct Result {
   bool wrote_standard_output = false;
   // Lines a front end shows once the outputs are committed ("wrote x.exr").
   std::vector<std::string> notices;
+  // Work a front end runs after the outputs are committed and the notices shown (`view --serve`:
+  // the server, until Frontend::interrupted or the process is stopped). Empty: none.
+  std::function<void()> then;
 };
 
 // A request bound and checked by prepare(): the operation, its values (the given ones, each

@@ -8,11 +8,14 @@
 #include <nlohmann/json.hpp>
 
 #include <filesystem>
+#include <memory>
+#include <optional>
 #include <string>
 
 #include "skylight/analysis/measured_sky.h"
 #include "skylight/core/math.h"
 #include "skylight/io/file.h"
+#include "skylight/io/http_server.h"
 #include "skylight/io/kider.h"
 #include "skylight/operations/detail/families.h"
 #include "skylight/operations/detail/web_bundle.h"
@@ -103,6 +106,7 @@ struct ViewResult {
   std::string directory;
   long long bytes = 0;
   int models_on_gpu = 0;
+  std::optional<std::string> url;  // --serve
 };
 
 const ResultSchema<ViewResult>& view_result() {
@@ -111,7 +115,9 @@ const ResultSchema<ViewResult>& view_result() {
     s.text("directory", "the page's folder (open its index.html)", &ViewResult::directory)
         .integer("bytes", "B", "the page's size, every file together", &ViewResult::bytes)
         .integer("models_on_gpu", "1", "the models the page draws on the GPU",
-                 [](const ViewResult& v) { return static_cast<long long>(v.models_on_gpu); });
+                 [](const ViewResult& v) { return static_cast<long long>(v.models_on_gpu); })
+        .text("url", "where --serve serves the page (null without it)",
+              [](const ViewResult& v) { return v.url; });
     return s;
   }();
   return s;
@@ -124,8 +130,12 @@ Result run_view(const Request& r, const ProgressSink&) {
         "(scripts/setup.sh installs it; docs/VIEWER.md)");
   }
   const fs::path dir = r.output_path("output");
+  // The port first: one that cannot be had stops the command before anything is written.
+  std::shared_ptr<io::StaticServer> server;
+  if (const auto port = r.number("serve"))
+    server = std::make_shared<io::StaticServer>(dir, static_cast<int>(*port));
   fs::create_directories(dir);
-  ViewResult v{dir.string(), 0, 0};
+  ViewResult v{dir.string(), 0, 0, std::nullopt};
   const std::string data = view_data(r);
   for (const WebFile& f : web_bundle()) {
     io::write_text_file(dir / f.name, f.content);
@@ -134,10 +144,16 @@ Result run_view(const Request& r, const ProgressSink&) {
   io::write_text_file(dir / "view_data.js", data);
   v.bytes += static_cast<long long>(data.size());
   for (const ModelInfo& m : model_registry()) v.models_on_gpu += m.no_gpu.empty() ? 1 : 0;
+  if (server) v.url = fmt::format("http://127.0.0.1:{}/", server->port());
   Result out;
   out.record = view_result().record(v);
   out.notices.push_back(fmt::format("wrote {} (open it in a browser with WebGL2)",
                                     io::shown_path(dir / "index.html")));
+  if (server) {
+    out.notices.push_back(
+        fmt::format("serving {} at {} until interrupted (Ctrl-C)", io::shown_path(dir), *v.url));
+    out.then = [server, stop = r.frontend().interrupted] { server->serve(stop); };
+  }
   return out;
 }
 
@@ -148,6 +164,19 @@ ParameterSpec kider_spec() {
           .description =
               "the measured captures the page draws over the sky: a folder of Kider "
               "et al. 2014's captures or of the shipped subset"};
+}
+
+ParameterSpec serve_spec() {
+  return {.name = "serve",
+          .unit = "1",
+          .kind = ParameterKind::integer,
+          .min = 0,
+          .max = 65535,
+          .default_value = Absent{"no server: open DIR/index.html from file://"},
+          .description =
+              "then serve the page on http://127.0.0.1:PORT until interrupted, for "
+              "browsers that restrict file:// (--serve alone: 8000; 0: a free port)",
+          .implicit = ParameterValue(8000.0)};
 }
 
 ParameterSpec no_measured_spec() {
@@ -176,6 +205,7 @@ OperationInfo view_operation() {
   op.parameters.push_back(dir);
   op.parameters.push_back(kider_spec());
   op.parameters.push_back(no_measured_spec());
+  op.parameters.push_back(serve_spec());
   op.check = [](Request& r) { check_input_folder(r, "kider"); };
   op.run = run_view;
   return op;
