@@ -750,8 +750,8 @@ ModelInfo HosekWilkieModel::registry_entry() {
 }
 
 std::optional<GpuSky> HosekWilkieModel::gpu_sky() const {
-  // tristimulus(): the extended Perez function of each XYZ channel (hw_extended_perez, eq. 3 of
-  // Hosek & Wilkie 2012) times 683 L_M, clamped at 0; the nine coefficients side by side.
+  // tristimulus(): the extended Perez function of each XYZ channel (hw_extended_perez, the 2012
+  // paper's eq. 8-9) times 683 L_M, clamped at 0; the nine coefficients side by side.
   GpuSky g;
   g.glsl = fmt::format(
       "uniform vec3 skylight_hosek_A, skylight_hosek_B, skylight_hosek_C, skylight_hosek_D,\n"

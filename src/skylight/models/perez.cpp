@@ -333,7 +333,7 @@ GpuSky PerezDistribution::gpu_sky() const {
   const Xyz w = xyY_to_xyz(white, 1.0);
   g.uniforms.push_back(gpu_uniform("skylight_perez_white", {w.X, w.Z}));
   g.uniforms.push_back(gpu_int_uniform("skylight_perez_xyY", mode == Mode::xyY ? 1 : 0));
-  g.comment = mode == Mode::xyY ? "the Perez function in Y, x and y (Preetham et al. 1999 eq. 3)"
+  g.comment = mode == Mode::xyY ? "the Perez function in Y, x and y (Zotti et al. 2007 eqs. 3-4)"
                                 : "the Perez function in luminance";
   return g;
 }
