@@ -294,20 +294,22 @@ void main() {
   let frame = null;  // the last frame: {w, h, camera, a, b, dirs}
   // A model whose set-up takes seconds (ModelInfo::costly_setup: tables per atmosphere and sun,
   // computed by the WebAssembly on one thread) is drawn after the page has said so.
-  let pending = false;
+  let pending = false, again = false;
   function update() {
-    if (!lib || pending) return;
+    if (!lib) return;
+    if (pending) { again = true; return; }  // drawn with the latest state once this one is done
     const costly = [state.a.model, state.compare !== 'none' ? state.b.model : null]
       .filter((m) => m && modelInfo(m).costly_setup);
     if (!costly.length) { render(); return; }
     pending = true;
     $('status').textContent = `computing ${costly.join(' and ')}'s tables in the page ` +
-      '(bruneton: 20–40 s the first time, a few seconds per new sun)…';
+      '(bruneton: 20–40 s the first time, under a second per new sun)…';
     setTimeout(() => {
       pending = false;
       const t = performance.now();
       render();
       $('status').textContent = `drawn in ${fmt((performance.now() - t) / 1000, 2)} s`;
+      if (again) { again = false; update(); }
     }, 30);
   }
   function render() {
