@@ -9,6 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <exception>
 #include <memory>
@@ -53,16 +54,20 @@ std::unique_ptr<SkyModel> build(const std::string& name, const std::string& text
   const ModelInfo& info = require_model(name);
   double zenith = kDefaultSunZenithDeg, azimuth = kDefaultSunAzimuthDeg;
   SkyParameters params;
-  for (const auto& [key, value] : lines_of(text)) {
+  const std::vector<ParameterSpec> specs = all_parameters(info);  // the sun's, then the model's
+  for (const auto& line : lines_of(text)) {
+    const std::string& key = line.first;
+    const std::string& value = line.second;
+    const auto spec = std::find_if(specs.begin(), specs.end(),
+                                   [&key](const ParameterSpec& s) { return s.name == key; });
+    if (spec == specs.end())
+      throw InvalidArgument("--" + key + " is not a parameter of model '" + name + "'");
+    const ParameterValue v = spec->parse(value);
     if (key == "sun-zenith" || key == "sun-azimuth") {
-      const std::optional<double> v = parse_number(value);
-      if (!v) throw InvalidArgument("--" + key + ": '" + value + "' " + number_problem(value));
-      (key == "sun-zenith" ? zenith : azimuth) = *v;
+      (key == "sun-zenith" ? zenith : azimuth) = std::get<double>(v);
       continue;
     }
-    const ParameterSpec* spec = info.find_parameter(key);
-    if (!spec) throw InvalidArgument("--" + key + " is not a parameter of model '" + name + "'");
-    params.values.set(key, spec->parse(value));
+    params.values.set(key, v);
   }
   params.sun = sun_from_degrees(zenith, azimuth);
   return make_sky_model(name, params);

@@ -176,7 +176,13 @@
   }
   // The directions pass: the camera's direction of every pixel (for the samples, the CPU check
   // and the sun drag).
+  const directionPrograms = new Map();  // camera GLSL -> program
   function directionProgram(camera) {
+    if (directionPrograms.has(camera.glsl)) return directionPrograms.get(camera.glsl);
+    directionPrograms.set(camera.glsl, compileDirections(camera));
+    return directionPrograms.get(camera.glsl);
+  }
+  function compileDirections(camera) {
     return compile(HEADER + lib.helpers() + camera.glsl + 'out vec4 o;\nvoid main() {\n' + PIXEL +
       '  o = vec4(dir, valid ? 1.0 : 0.0);\n}\n');
   }
@@ -326,7 +332,8 @@ void main() {
     const dp = directionProgram(camera);
     setUniforms(dp, camera.uniforms);
     draw(dp, t.d);
-    frame = { w, h, camera, a, b, dirs: readback(t.d) };
+    // The tone mapping's white: the frame's 99th percentile of luminance (exposure 0 EV).
+    frame = { w, h, camera, a, b, dirs: readback(t.d), white: percentile(luminances(a), 0.99) || 1 };
     present();
     describe();
     permalink();
@@ -341,8 +348,7 @@ void main() {
     }
     const p = displayProgram;
     gl.useProgram(p);
-    const white = percentile(luminances(a), 0.99) || 1;
-    gl.uniform1f(gl.getUniformLocation(p, 'u_scale'), Math.pow(2, state.exposure) / white);
+    gl.uniform1f(gl.getUniformLocation(p, 'u_scale'), Math.pow(2, state.exposure) / frame.white);
     gl.uniform1f(gl.getUniformLocation(p, 'u_fc_min'), state.fcMin);
     gl.uniform1f(gl.getUniformLocation(p, 'u_fc_max'), state.fcMax);
     gl.uniform1f(gl.getUniformLocation(p, 'u_diff_max'), state.diffMax);

@@ -85,6 +85,22 @@ struct TrainResult {
   std::optional<double> measured_median_shape{}, preetham_median_shape{};
 };
 
+// A measured capture left out of `nn train --measured` (train_result's `captures`).
+ResultSchema<MeasuredRow> measured_row_record() {
+  ResultSchema<MeasuredRow> capture;
+  capture.text("capture", "the capture left out", &MeasuredRow::capture)
+      .number("turbidity", "1", "its turbidity input (the fitted Preetham turbidity)",
+              &MeasuredRow::turbidity, 4)
+      .number("luminance_rms_shape", "1",
+              "the network trained without it: relative luminance RMS after the best scale",
+              &MeasuredRow::luminance_rms_shape, 4)
+      .number("luminance_rms_abs", "1", "the same without the scale",
+              &MeasuredRow::luminance_rms_abs, 4)
+      .number("preetham_rms_shape", "1", "the fitted Preetham sky's shape RMS on the same samples",
+              &MeasuredRow::preetham_rms_shape, 4);
+  return capture;
+}
+
 const ResultSchema<TrainResult>& train_result() {
   using R = TrainResult;
   static const ResultSchema<R> s = [] {
@@ -106,18 +122,6 @@ const ResultSchema<TrainResult>& train_result() {
         .number("relative_median", "1", "their relative error, median", &FoldRow::relative_median,
                 4)
         .number("relative_p95", "1", "p95", &FoldRow::relative_p95, 4);
-    ResultSchema<MeasuredRow> capture;
-    capture.text("capture", "the capture left out", &MeasuredRow::capture)
-        .number("turbidity", "1", "its turbidity input (the fitted Preetham turbidity)",
-                &MeasuredRow::turbidity, 4)
-        .number("luminance_rms_shape", "1",
-                "the network trained without it: relative luminance RMS after the best scale",
-                &MeasuredRow::luminance_rms_shape, 4)
-        .number("luminance_rms_abs", "1", "the same without the scale",
-                &MeasuredRow::luminance_rms_abs, 4)
-        .number("preetham_rms_shape", "1",
-                "the fitted Preetham sky's shape RMS on the same samples",
-                &MeasuredRow::preetham_rms_shape, 4);
     ResultSchema<R> s;
     s.text("kind", "sky (on a model), images, measured, or pietras (a Pietras network)", &R::kind)
         .text("network", "the architecture, or the Pietras kind", &R::network)
@@ -149,7 +153,7 @@ const ResultSchema<TrainResult>& train_result() {
         .records("captures",
                  "each measured capture left out in turn (measured): the network trained on the "
                  "others against it",
-                 capture, &R::captures)
+                 measured_row_record(), &R::captures)
         .number("measured_median_shape", "1",
                 "the median over the captures left out of luminance_rms_shape (measured)",
                 &R::measured_median_shape, 4)

@@ -217,6 +217,36 @@ svg::Plot error_map(const std::string& model, const fit::MeasuredCaptureResult& 
   return p;
 }
 
+// The profiles' axes: one log luminance axis over [lo, hi] and the near-sun points, the view
+// zenith and the azimuth from the sun, the sun's line on the vertical, and the figures' size.
+void set_profile_axes(const ScanProfiles& pr, double sun_zenith, double lo, double hi,
+                      svg::Plot& vertical, svg::Plot& almucantar) {
+  for (double v : pr.vny) lo = std::min(lo, v), hi = std::max(hi, v);
+  for (double v : pr.any) lo = std::min(lo, v), hi = std::max(hi, v);
+  for (double v : pr.ay) lo = std::min(lo, v), hi = std::max(hi, v);
+  const svg::Axis y{std::pow(10.0, std::floor(std::log10(lo))),
+                    std::pow(10.0, std::ceil(std::log10(hi))),
+                    true,
+                    "luminance [cd/m2]",
+                    {}};
+  vertical.x = {-90,
+                90,
+                false,
+                "view zenith angle [deg] (negative: away from the sun)",
+                {-90, -60, -30, 0, 30, 60, 90}};
+  vertical.y = y;
+  vertical.series.push_back(
+      svg::line_series("sun", {sun_zenith, sun_zenith}, {y.min, y.max}, "#ff9800", 1.5, "5 3"));
+  almucantar.x = {
+      -180, 180, false, "azimuth from the sun [deg]", {-180, -135, -90, -45, 0, 45, 90, 135, 180}};
+  almucantar.y = y;
+  for (svg::Plot* p : {&vertical, &almucantar}) {
+    p->width = 900;
+    p->height = 380;
+    p->legend_outside = true;
+  }
+}
+
 }  // namespace
 
 void ReportWriter::load_kider() {
@@ -333,30 +363,7 @@ void ReportWriter::measured_figures() {
   };
   almucantar.series.push_back(near_sun(pr.anx, pr.any));
   vertical.series.push_back(near_sun(pr.vnx, pr.vny));
-  for (double v : pr.vny) lo = std::min(lo, v), hi = std::max(hi, v);
-  for (double v : pr.any) lo = std::min(lo, v), hi = std::max(hi, v);
-  for (double v : pr.ay) lo = std::min(lo, v), hi = std::max(hi, v);
-  const svg::Axis y{std::pow(10.0, std::floor(std::log10(lo))),
-                    std::pow(10.0, std::ceil(std::log10(hi))),
-                    true,
-                    "luminance [cd/m2]",
-                    {}};
-  vertical.x = {-90,
-                90,
-                false,
-                "view zenith angle [deg] (negative: away from the sun)",
-                {-90, -60, -30, 0, 30, 60, 90}};
-  vertical.y = y;
-  vertical.series.push_back(
-      svg::line_series("sun", {sun_zenith, sun_zenith}, {y.min, y.max}, "#ff9800", 1.5, "5 3"));
-  almucantar.x = {
-      -180, 180, false, "azimuth from the sun [deg]", {-180, -135, -90, -45, 0, 45, 90, 135, 180}};
-  almucantar.y = y;
-  for (svg::Plot* p : {&vertical, &almucantar}) {
-    p->width = 900;
-    p->height = 380;
-    p->legend_outside = true;
-  }
+  set_profile_axes(pr, sun_zenith, lo, hi, vertical, almucantar);
   std::string html = figure(
       "measured_solar_vertical.svg", svg::draw(vertical),
       fmt::format("Capture {} ({} EDT): the measured luminance of the scan's samples nearest the "
