@@ -342,6 +342,33 @@ std::vector<KiderCapture> read_kider(const std::filesystem::path& path) {
   return out;
 }
 
+namespace {
+
+// The shipped subset's pyranometer.csv (capture,global_horizontal_w_m2,time), each reading added
+// to its capture of the radiance file.
+void add_subset_pyranometer(std::map<std::string, KiderCapture>& captures,
+                            std::string_view pyranometer_csv, const std::string& pyr_source) {
+  const std::vector<Line> plines = data_lines(pyranometer_csv);
+  if (!plines.empty() && trim(plines.front().text) != "capture,global_horizontal_w_m2,time")
+    bad_line(pyr_source, plines.front().number,
+             "the header must be capture,global_horizontal_w_m2,time");
+  for (std::size_t r = 1; r < plines.size(); ++r) {
+    const auto f = comma_fields(plines[r].text);
+    if (f.size() != 3)
+      bad_line(pyr_source, plines[r].number, fmt::format("expected 3 fields, found {}", f.size()));
+    const auto it = captures.find(std::string(f[0]));
+    if (it == captures.end())
+      bad_line(pyr_source, plines[r].number,
+               fmt::format("capture '{}' has no radiance samples", excerpt(f[0])));
+    const double v = number_at(pyr_source, plines[r].number, f[1], "global_horizontal_w_m2");
+    if (v < 0.0) bad_line(pyr_source, plines[r].number, "global_horizontal_w_m2 is negative");
+    it->second.pyranometer.push_back({v, std::string(f[2])});
+    it->second.pyranometer_source = pyr_source;
+  }
+}
+
+}  // namespace
+
 std::vector<KiderCapture> parse_kider_subset(std::string_view radiance_csv,
                                              std::string_view pyranometer_csv,
                                              std::string_view source) {
@@ -405,24 +432,8 @@ std::vector<KiderCapture> parse_kider_subset(std::string_view radiance_csv,
     c.samples.push_back(std::move(s));
   }
   if (captures.empty()) throw InvalidArgument(fmt::format("{}: no samples", rad_source));
-  const std::string pyr_source = fmt::format("{}/{}", source, kKiderSubsetPyranometerFile);
-  const std::vector<Line> plines = data_lines(pyranometer_csv);
-  if (!plines.empty() && trim(plines.front().text) != "capture,global_horizontal_w_m2,time")
-    bad_line(pyr_source, plines.front().number,
-             "the header must be capture,global_horizontal_w_m2,time");
-  for (std::size_t r = 1; r < plines.size(); ++r) {
-    const auto f = comma_fields(plines[r].text);
-    if (f.size() != 3)
-      bad_line(pyr_source, plines[r].number, fmt::format("expected 3 fields, found {}", f.size()));
-    const auto it = captures.find(std::string(f[0]));
-    if (it == captures.end())
-      bad_line(pyr_source, plines[r].number,
-               fmt::format("capture '{}' has no radiance samples", excerpt(f[0])));
-    const double v = number_at(pyr_source, plines[r].number, f[1], "global_horizontal_w_m2");
-    if (v < 0.0) bad_line(pyr_source, plines[r].number, "global_horizontal_w_m2 is negative");
-    it->second.pyranometer.push_back({v, std::string(f[2])});
-    it->second.pyranometer_source = pyr_source;
-  }
+  add_subset_pyranometer(captures, pyranometer_csv,
+                         fmt::format("{}/{}", source, kKiderSubsetPyranometerFile));
   std::vector<KiderCapture> out;
   for (auto& [name, c] : captures) {
     complete_capture(c, fmt::format("{} capture {}", rad_source, name));
