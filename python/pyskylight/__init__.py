@@ -15,6 +15,7 @@ import datetime as _dt
 import json as _json
 import keyword as _keyword
 import os as _os
+import tempfile as _tempfile
 
 import numpy as _np
 
@@ -35,7 +36,8 @@ from . import nn
 from . import sh
 
 __all__ = ["InvalidArgument", "SkylightWarning", "Sky", "estimate", "haze", "io", "measured", "nn", "sh",
-           "models", "operations", "run", "report", "sun_position", "sun_events", "__version__"]
+           "models", "operations", "run", "report", "irradiance", "sun_position", "sun_events",
+           "__version__"]
 
 QUANTITIES = ("rgb", "xyz", "luminance", "spectral")
 
@@ -99,6 +101,47 @@ def report(output_dir, progress=None, **options):
     its record (``index``, ``files``). ``options``: the operation's (measurements, epw,
     sun_azimuth, sun_elevation, quick; ``pyskylight.operations()``)."""
     return run("report", progress=progress, output=output_dir, **options)
+
+
+def irradiance(model, tilt=0.0, surface_azimuth=180.0, epw=None, progress=None, **parameters):
+    """The light of a sky on planes: the ``irradiance`` operation (docs/IRRADIANCE.md) over arrays
+    of planes. ``tilt`` and ``surface_azimuth`` [deg] may be arrays of any shape (broadcast
+    together); ``parameters``: the model's and the operation's (transposition, albedo, horizon, the
+    sun, ...), as ``run`` takes them.
+
+    Without ``epw``, one sky: a dict with each number the record gives (``poa_global_w_m2``,
+    ``poa_global_lx``, ``melanopic_edi_lx``, ...; the keys the sky cannot give are left out, and
+    ``notes`` says why) as a float64 array of the planes' shape. With ``epw`` (a weather file), every
+    hour with the sun up: the hour columns (``record``, ``month``, ``day``, ``hour``,
+    ``sun_zenith_deg``, ``sun_azimuth_deg``, ``dni_w_m2``, ``dhi_w_m2``, ``albedo``) as arrays of
+    shape (hours,), each plane key as an array of shape planes + (hours,), the year's sums
+    (``poa_global_kwh_m2``, ...) of the planes' shape, and ``hours``. Each plane is one call into
+    the library (the sky is evaluated again for each)."""
+    t, a = _np.broadcast_arrays(_np.asarray(tilt, dtype=_np.float64),
+                                _np.asarray(surface_azimuth, dtype=_np.float64))
+    records, tables = [], []
+    with _tempfile.TemporaryDirectory(prefix="pyskylight-irradiance-") as folder:
+        for k, (tk, ak) in enumerate(zip(t.ravel(), a.ravel())):
+            args = dict(parameters, model=model, tilt=float(tk), surface_azimuth=float(ak))
+            if epw is not None:
+                args.update(epw=epw, output=_os.path.join(folder, f"{k}.npy"))
+            records.append(run("irradiance", progress=progress, **args))
+            if epw is not None:
+                tables.append(_np.load(args["output"]))
+    first = records[0]
+    out = {"notes": first["notes"]} if first.get("notes") is not None else {}
+    for key, value in first.items():
+        if isinstance(value, (int, float)) and not isinstance(value, bool) and key not in (
+                "tilt_deg", "surface_azimuth_deg"):
+            out[key] = _np.array([r[key] for r in records], dtype=_np.float64).reshape(t.shape)
+    out["tilt_deg"], out["surface_azimuth_deg"] = t.copy(), a.copy()
+    if epw is not None:
+        columns = first["columns"]
+        hour_columns = columns[:columns.index("angle_of_incidence_deg")]
+        for j, name in enumerate(columns):
+            stacked = _np.stack([table[:, j] for table in tables]).reshape(t.shape + (-1,))
+            out[name] = stacked[(0,) * t.ndim] if name in hour_columns else stacked
+    return out
 
 
 def _iso8601(t):

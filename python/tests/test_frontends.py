@@ -87,6 +87,16 @@ CASES = [
      ["dni is not read with epw (each record gives it); ignored"]),
     ("daylight", dict(dni=700, dhi=120, sun_zenith=30, day_of_year=172, output="@m.csv"),
      "error", "output needs epw", []),
+    # irradiance
+    ("irradiance", dict(model="hosek", transposition="perez1990"), "error",
+     "perez1990 needs measured irradiance", []),
+    ("irradiance", dict(model="perez", dni=600, dhi=150, sun_zenith=40, day_of_year=172, tilt=90),
+     "success", None, []),
+    ("irradiance", dict(model="perez", epw="@epw", output="@s.csv", sun_zenith=30), "success",
+     None, ["sun_zenith is not read with epw (the sun of each record); ignored"]),
+    ("irradiance", dict(model="perez", epw="@epw", output="@s.txt"), "error", "write .csv or .npy",
+     []),
+    ("irradiance", dict(model="hosek", tilt=200), "error", "tilt = 200 is outside [0, 180]", []),
     # bench, report
     ("bench", dict(models=""), "error", "models = '' names no model", []),
     ("bench", dict(turbidity=3), "error", "turbidity is not a parameter of bench", []),

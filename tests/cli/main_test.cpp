@@ -100,12 +100,14 @@ TEST_F(Cli, TyposAreNamedWithTheNearestName) {
        "skylight: error: --frobnicate is not a parameter of render or of model 'preetham'"},
       {"--threads 2 rendr",
        "skylight: error: unknown subcommand 'rendr'; did you mean 'render'? (subcommands: models, "
-       "operations, render, eval, estimate, measured, sun, daylight, bench, report, sh, haze, nn, "
-       "view)"},
+       "operations, render, eval, estimate, measured, sun, daylight, irradiance, bench, report, "
+       "sh, "
+       "haze, nn, view)"},
       {"frobnicate",
        "skylight: error: unknown subcommand 'frobnicate' (subcommands: models, "
-       "operations, render, eval, estimate, measured, sun, daylight, bench, report, sh, haze, nn, "
-       "view)"},
+       "operations, render, eval, estimate, measured, sun, daylight, irradiance, bench, report, "
+       "sh, "
+       "haze, nn, view)"},
       {"nn trian --samples 10",
        "skylight: error: unknown subcommand 'trian' for 'nn'; did you mean 'train'? (subcommands: "
        "train, validate, export, animate, study, planet)"},

@@ -52,6 +52,23 @@ const UniformTriple& daylight_table() {
   return t;
 }
 
+// s_mel: column 6 of the a-opic table (the cone columns hold NaN where CIE gives no value; only
+// the wavelength and s_mel are read).
+const Spectrum& melanopic_table() {
+  static const Spectrum s = [] {
+    const char* path = "cie_colorimetry/CIE_a-opic_action_spectra.csv";
+    const auto table = data::load_table(path, /*has_header=*/false, 6);
+    std::vector<double> values;
+    for (std::size_t r = 0; r < table.rows(); ++r) {
+      if (std::abs(table.number(r, 0) - (380.0 + static_cast<double>(r))) > 1e-9)
+        throw IoError(fmt::format("{} line {}: wavelengths are not 380, 381, ... nm", path, r + 1));
+      values.push_back(table.number(r, 5));
+    }
+    return Spectrum::uniform(380.0, 1.0, std::move(values), fmt::format("{} column 6", path));
+  }();
+  return s;
+}
+
 Matrix3 invert(const Matrix3& m) {
   const double det = m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) -
                      m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0]) +
@@ -96,6 +113,10 @@ Matrix3 make_srgb_to_xyz() {
 Cmf cie1931_cmf(double nm) {
   const auto v = cmf_table().at(nm);
   return {v[0], v[1], v[2]};
+}
+
+double melanopic_sensitivity(double nm) {
+  return melanopic_table()(nm);
 }
 
 Xyz spectrum_to_xyz(std::span<const double> wavelengths_nm, std::span<const double> values) {

@@ -1,7 +1,8 @@
 // Colorimetry from the CIE's published tables (data/cie_colorimetry/, CC BY-SA 4.0, CIE):
 // CIE 1931 2-degree colour-matching functions (360-830 nm, 1 nm), spectrum -> XYZ, xyY <-> XYZ,
 // XYZ <-> linear sRGB (IEC 61966-2-1 primaries, D65 white), the CIE daylight basis S0/S1/S2
-// (CIE 015:2018 Table 6, 300-830 nm, 5 nm) and correlated colour temperature helpers.
+// (CIE 015:2018 Table 6, 300-830 nm, 5 nm), the melanopic action spectrum of CIE S 026:2018
+// (Table 2, 380-780 nm, 1 nm) and correlated colour temperature helpers.
 #pragma once
 
 #include <array>
@@ -11,6 +12,11 @@ namespace skylight {
 
 // Maximum luminous efficacy K_m = 683 lm/W (CIE; the definition of the candela at 540 THz).
 inline constexpr double kMaxLuminousEfficacy = 683.0;
+
+// CIE S 026:2018 melanopic efficacy of luminous radiation for D65, K_mel,v^D65 = 1.3262 mW/lm
+// [W/lm]: melanopic equivalent daylight (D65) illuminance [lx] = melanopic irradiance [W/m^2] /
+// kMelanopicEfficacyD65 (checked against the tables here in colorimetry_test.cpp).
+inline constexpr double kMelanopicEfficacyD65 = 1.3262e-3;
 
 // CIE 1931 XYZ. For a radiance-like quantity, Y is luminance in cd/m^2 unless stated otherwise.
 struct Xyz {
@@ -33,6 +39,10 @@ struct Cmf {
   double x = 0.0, y = 0.0, z = 0.0;
 };
 Cmf cie1931_cmf(double nm);
+// The melanopic action spectrum s_mel(lambda) of CIE S 026:2018 (its a-opic table's last column,
+// peak 1 at 490 nm), linear between the 1 nm rows and 0 outside 380-780 nm (the table's own
+// interpolation and extrapolation rules).
+double melanopic_sensitivity(double nm);
 
 // Integral of a sampled spectrum against the CMFs, trapezoidal rule over the given wavelengths
 // (ascending, nm): returns (integral S x-bar, S y-bar, S z-bar) d lambda, no K_m factor.

@@ -94,6 +94,28 @@ TEST(Colorimetry, DaylightAt6504KIsD65) {
   EXPECT_NEAR(d65(560.0), 100.0, 1e-12);
 }
 
+// CIE S 026:2018: s_mel peaks at 1 at 490 nm (its table), and D65's melanopic efficacy of
+// luminous radiation, (integral E s_mel) / (683 integral E V), is 1.3262 mW/lm. D65 here is the
+// daylight basis with CIE 015's rounded M1 = -0.295, M2 = -0.689 at 5 nm, linearly interpolated
+// to 1 nm (the official D65 table is the same SPD); V = y-bar of 1931.
+TEST(Colorimetry, MelanopicActionSpectrumAndD65Efficacy) {
+  EXPECT_EQ(melanopic_sensitivity(490.0), 1.0);
+  EXPECT_EQ(melanopic_sensitivity(480.0), 9.65605E-01);
+  EXPECT_EQ(melanopic_sensitivity(555.0), 1.62056E-01);
+  EXPECT_EQ(melanopic_sensitivity(379.0), 0.0);
+  EXPECT_EQ(melanopic_sensitivity(781.0), 0.0);
+  double mel = 0.0, lum = 0.0;
+  for (int nm = 380; nm <= 780; ++nm) {
+    const auto b = daylight_basis(nm);
+    const double e = b.s0 - 0.295 * b.s1 - 0.689 * b.s2;
+    mel += e * melanopic_sensitivity(nm);
+    lum += kMaxLuminousEfficacy * e * cie1931_cmf(nm).y;
+  }
+  // The standard gives 4 digits; the basis' 5 nm rows interpolated to 1 nm differ from the
+  // 1 nm D65 table by up to ~0.1 %, which moves the ratio by ~1e-4 of itself.
+  EXPECT_NEAR(mel / lum / kMelanopicEfficacyD65, 1.0, 5e-4);
+}
+
 TEST(Colorimetry, McCamyCct) {
   // McCamy 1992 on D65 xy gives 6504 K within a few kelvin; illuminant A (0.44757, 0.40745) 2856 K.
   EXPECT_NEAR(cct_mccamy({0.31272, 0.32903}), 6504.0, 5.0);

@@ -3,21 +3,18 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <bit>
 #include <cmath>
-#include <cstring>
 #include <numeric>
 
 #include "skylight/core/error.h"
 #include "skylight/core/math.h"
 #include "skylight/core/numbers.h"
+#include "skylight/io/table.h"
 #include "skylight/sun/spa.h"
 #include "skylight/sun/time.h"
 
 namespace skylight::daylight {
 namespace {
-
-static_assert(std::endian::native == std::endian::little, "the .npy writer writes '<f8'");
 
 // The record range of --hours ("FIRST-LAST", 1-based, inclusive) within `count` records.
 std::pair<std::size_t, std::size_t> hour_range(const std::string& text, std::size_t count) {
@@ -110,11 +107,11 @@ void add_sky(const std::vector<SkyPatch>& ps, const PerezSky& sky, std::vector<d
 
 // The sun in the patch that holds it and the next nearest (weights 1 / (1.002 - cos)), added to
 // the row starting at `row`.
-void add_sun(const sun::SpaResult& sp, const PerezSky& sky, int sun_patches, SkyMatrix& m,
+void add_sun(const SunPosition& sun, const PerezSky& sky, int sun_patches, SkyMatrix& m,
              std::size_t row) {
   const std::vector<SkyPatch>& ps = m.patches.patches();
   const std::size_t n = ps.size();
-  const Vec3 s = SunPosition{sp.zenith, sp.azimuth}.direction();
+  const Vec3 s = sun.direction();
   const std::size_t holder = m.patches.find(s);
   std::vector<std::size_t> order(n - 1);
   std::iota(order.begin(), order.end(), std::size_t{1});
@@ -173,22 +170,12 @@ const ParameterSchema<MatrixSettings>& MatrixSettings::schema() {
   return s;
 }
 
-SkyMatrix sky_matrix(const io::EpwFile& epw, const MatrixSettings& settings,
-                     const std::string& source,
-                     const std::function<void(std::size_t, std::size_t)>& progress) {
-  MatrixSettings::schema().validate(settings, "daylight");
-  auto patches = PatchSet::named(settings.patches);
-  if (!patches)
-    throw InvalidArgument(fmt::format("{} '{}' is not tregenza, reinhart2 or reinhart4",
-                                      spelled("patches"), excerpt(settings.patches)));
-  SkyMatrix m;
-  m.patches = std::move(*patches);
-  m.settings = settings;
-  const std::vector<SkyPatch>& ps = m.patches.patches();
-  const std::size_t n = ps.size();
-  const auto [first, last] = hour_range(settings.hours, epw.records.size());
+WeatherYear weather_hours(const io::EpwFile& epw, const std::string& hours, PerezCompat compat,
+                          const std::string& source,
+                          const std::function<void(std::size_t, std::size_t)>& progress) {
+  WeatherYear year;
+  const auto [first, last] = hour_range(hours, epw.records.size());
   const io::EpwLocation& loc = epw.location;
-  std::vector<double> lv(n, 0.0);
   for (std::size_t k = first; k <= last; ++k) {
     const io::EpwRecord& r = epw.records[k - 1];
     auto fail = [&](const std::string& what) -> InvalidArgument {
@@ -204,7 +191,7 @@ SkyMatrix sky_matrix(const io::EpwFile& epw, const MatrixSettings& settings,
     }
     if (progress) progress(k - first + 1, last - first + 1);
     if (sp.zenith >= 0.5 * kPi) {
-      ++m.skipped_sun_down;
+      ++year.sun_down;
       continue;
     }
     if (!r.direct_normal_wh_m2 || !r.diffuse_horizontal_wh_m2)
@@ -217,15 +204,41 @@ SkyMatrix sky_matrix(const io::EpwFile& epw, const MatrixSettings& settings,
     in.dhi_w_m2 = *r.diffuse_horizontal_wh_m2;
     in.day_of_year = sun::day_of_year(spa.time);
     in.dew_point_c = r.dew_point_c;
-    in.compat = settings.compat;
+    in.compat = compat;
     in.normalise = false;
-    PerezSky sky;
+    WeatherHour h;
     try {
-      sky = perez_sky_from_irradiance(in);
+      h.sky = perez_sky_from_irradiance(in);
     } catch (const InvalidArgument& e) {
       throw fail(e.what());
     }
-    m.hours.push_back(matrix_hour(k, r, in.day_of_year, sp, sky));
+    h.header = matrix_hour(k, r, in.day_of_year, sp, h.sky);
+    h.sun = {sp.zenith, sp.azimuth};
+    h.albedo = r.albedo;
+    year.hours.push_back(std::move(h));
+  }
+  return year;
+}
+
+SkyMatrix sky_matrix(const io::EpwFile& epw, const MatrixSettings& settings,
+                     const std::string& source,
+                     const std::function<void(std::size_t, std::size_t)>& progress) {
+  MatrixSettings::schema().validate(settings, "daylight");
+  auto patches = PatchSet::named(settings.patches);
+  if (!patches)
+    throw InvalidArgument(fmt::format("{} '{}' is not tregenza, reinhart2 or reinhart4",
+                                      spelled("patches"), excerpt(settings.patches)));
+  SkyMatrix m;
+  m.patches = std::move(*patches);
+  m.settings = settings;
+  const std::vector<SkyPatch>& ps = m.patches.patches();
+  const std::size_t n = ps.size();
+  const WeatherYear year = weather_hours(epw, settings.hours, settings.compat, source, progress);
+  m.skipped_sun_down = year.sun_down;
+  std::vector<double> lv(n, 0.0);
+  for (const WeatherHour& h : year.hours) {
+    const PerezSky& sky = h.sky;
+    m.hours.push_back(h.header);
     const std::size_t row = m.radiance.size();
     m.radiance.resize(row + n, 0.0);
     m.luminance.resize(row + n, 0.0);
@@ -236,13 +249,13 @@ SkyMatrix sky_matrix(const io::EpwFile& epw, const MatrixSettings& settings,
     // The sky at the patch centres, normalised on the patches (gendaymtx's normalisation).
     add_sky(ps, sky, lv, m, row);
     // The ground: a Lambertian reflector of the global horizontal light.
-    const double albedo = settings.ground_albedo.value_or(r.albedo.value_or(kDefaultGroundAlbedo));
-    const double cos_z = std::cos(sp.zenith);
+    const double albedo = settings.ground_albedo.value_or(h.albedo.value_or(kDefaultGroundAlbedo));
+    const double cos_z = std::cos(h.sun.zenith);
     m.radiance[row] = albedo * (sky.dhi_w_m2 + sky.dni_w_m2 * cos_z) / kPi;
     m.luminance[row] = albedo * (sky.diffuse_horizontal_lux + sky.direct_normal_lux * cos_z) / kPi;
     // The sun in the patch that holds it and the next nearest (weights 1 / (1.002 - cos)).
     if (settings.sun_patches > 0 && sky.dni_w_m2 > 0.0)
-      add_sun(sp, sky, settings.sun_patches, m, row);
+      add_sun(h.sun, sky, settings.sun_patches, m, row);
   }
   return m;
 }
@@ -301,24 +314,11 @@ std::string matrix_csv(const SkyMatrix& m) {
 std::string matrix_npy(const SkyMatrix& m) {
   const bool lum = m.settings.quantity == "luminance";
   const std::size_t cols = matrix_hour_columns().size() + m.patches.size();
-  std::string header = fmt::format(
-      "{{'descr': '<f8', 'fortran_order': False, 'shape': ({}, {}), }}", m.hours.size(), cols);
-  // Magic (6) + version (2) + length (2) + header + '\n', padded with spaces to 64 bytes.
-  const std::size_t unpadded = 10 + header.size() + 1;
-  header.append((64 - unpadded % 64) % 64, ' ');
-  header += '\n';
-  std::string out("\x93NUMPY\x01\x00", 8);
-  out += static_cast<char>(header.size() & 0xff);
-  out += static_cast<char>((header.size() >> 8) & 0xff);
-  out += header;
-  auto put = [&](double v) {
-    unsigned char b[8];
-    std::memcpy(b, &v, 8);  // little-endian hosts (the static_assert above)
-    out.append(reinterpret_cast<const char*>(b), 8);
-  };
+  std::string out = io::npy_header(m.hours.size(), cols);
   for (std::size_t h = 0; h < m.hours.size(); ++h) {
-    for (double v : hour_values(m.hours[h])) put(v);
-    for (std::size_t i = 0; i < m.patches.size(); ++i) put(m.value(h, i, lum));
+    for (double v : hour_values(m.hours[h])) io::append_npy_value(out, v);
+    for (std::size_t i = 0; i < m.patches.size(); ++i)
+      io::append_npy_value(out, m.value(h, i, lum));
   }
   return out;
 }

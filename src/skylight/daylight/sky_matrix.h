@@ -69,6 +69,24 @@ struct SkyMatrix {
   }
 };
 
+// The records of an EPW file that have a sky: those of `hours` ("FIRST-LAST", 1-based; empty:
+// every record) with the sun up at their midpoint, in file order, each with its row header, its
+// sun (SPA, the hour's midpoint), its albedo and its Perez sky (coefficients, efficacies and
+// illuminances; not normalised: callers normalise on their own samples). Errors as sky_matrix's.
+struct WeatherHour {
+  MatrixHour header;
+  SunPosition sun;
+  std::optional<double> albedo;  // the record's
+  PerezSky sky;
+};
+struct WeatherYear {
+  std::vector<WeatherHour> hours;
+  std::size_t sun_down = 0;  // records of the range with the sun below the horizon
+};
+WeatherYear weather_hours(const io::EpwFile& epw, const std::string& hours, PerezCompat compat,
+                          const std::string& source,
+                          const std::function<void(std::size_t, std::size_t)>& progress = {});
+
 // The matrix of an EPW file; `source` names it in messages (InvalidArgument "<source> line L:
 // ..." for a record the sky cannot use: missing radiation with the sun up, a date the calendar
 // does not have, radiation beyond the extraterrestrial). `progress(done, total)` after each record.

@@ -209,6 +209,20 @@ void PerezModel::tristimulus_batch(const DirectionsSoA& dirs, const XyzSoA& out)
   distribution_.evaluate_batch(dirs, out);
 }
 
+std::optional<MeasuredLight> PerezModel::measured_light() const {
+  if (!sky_) return std::nullopt;
+  MeasuredLight m;
+  if (!sky_->dark) {
+    m.dni_w_m2 = sky_->dni_w_m2;
+    m.dhi_w_m2 = sky_->dhi_w_m2;
+    m.dni_lux = sky_->direct_normal_lux;
+    m.dhi_lux = sky_->diffuse_horizontal_lux;
+  }
+  m.air_mass = sky_->air_mass;
+  m.extraterrestrial_w_m2 = sky_->extraterrestrial_w_m2;
+  return m;
+}
+
 Domain PerezModel::domain() const {
   Domain d;
   if (sky_) {
@@ -280,6 +294,8 @@ ModelInfo PerezModel::registry_entry() {
       .example = ParameterValues()
                      .set("perez", std::vector<double>{-1.0, -0.32, 10.0, -3.0, 0.45})
                      .set("zenith-luminance", 5000.0),
+      // With a weather file, each hour's sky is the all-weather sky of the record's light.
+      .weather_sky = true,
       .neural = NeuralPolicy{},
       .sh_fit = ShFitPolicy{},
       // The report's Perez sky: the example's clear-sky coefficients.

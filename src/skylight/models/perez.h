@@ -73,6 +73,8 @@ class PerezModel final : public SkyModel {
   void tristimulus_batch(const DirectionsSoA& dirs, const XyzSoA& out) const override;
   Domain domain() const override;
   std::optional<GpuSky> gpu_sky() const override;
+  // From irradiance: the light of irradiance_sky() (0 for a dark sky).
+  std::optional<MeasuredLight> measured_light() const override;
 
  private:
   PerezParameters params_;

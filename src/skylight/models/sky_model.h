@@ -89,6 +89,15 @@ struct DirectionsSoA {
   std::span<const float> x, y, z;
   std::size_t size() const { return x.size(); }
 };
+// The horizontal light a sky was built from when it was measured (the Perez sky of --dni/--dhi):
+// what fixes the sky's radiometric level and its direct sun (`skylight irradiance`).
+struct MeasuredLight {
+  double dni_w_m2 = 0.0, dhi_w_m2 = 0.0;  // direct normal, diffuse horizontal irradiance
+  double dni_lux = 0.0, dhi_lux = 0.0;    // the same as illuminance (the efficacy models)
+  double air_mass = 0.0;                  // relative optical air mass of the sun
+  double extraterrestrial_w_m2 = 0.0;     // normal irradiance outside the atmosphere, that day
+};
+
 // XYZ output as structure of arrays.
 struct XyzSoA {
   std::span<float> X, Y, Z;
@@ -131,6 +140,10 @@ class SkyModel {
   virtual double sun_angular_radius() const { return 0.0; }
   virtual Xyz sun_tristimulus(Vec3 view) const;
   virtual std::optional<double> sun_spectral_radiance(Vec3 view, double nm) const;
+
+  // The measured light the sky was normalised to; nullopt for a model that computes its own
+  // light (every model but the Perez sky from irradiance).
+  virtual std::optional<MeasuredLight> measured_light() const { return std::nullopt; }
 
   // Where this model, with these parameters, is valid.
   virtual Domain domain() const = 0;
@@ -351,6 +364,10 @@ struct ModelInfo {
   // scripts/test.sh leaves to the Release pass (each takes minutes under ASan; the model's own
   // tests run there).
   bool costly_setup = false;
+  // With a weather file (`irradiance --epw`, daylight/plane_series.h) the model's sky is each
+  // hour's Perez all-weather sky of the record's light (`perez`); otherwise the model's own sky at
+  // its parameters, scaled to the hour's diffuse light.
+  bool weather_sky = false;
   // The output may be negative (and is non-zero below the horizon): `sh`, whose reconstruction is
   // returned unclamped; every other model is non-negative.
   bool unclamped = false;

@@ -138,8 +138,9 @@ const std::vector<OperationInfo>& registry() {
     std::vector<OperationInfo> ops;
     for (auto family :
          {detail::sky_operations, detail::estimate_operations, detail::measured_operations,
-          detail::sun_operations, detail::report_operations, detail::sh_operations,
-          detail::haze_operations, detail::nn_operations, detail::view_operations})
+          detail::sun_operations, detail::irradiance_operations, detail::report_operations,
+          detail::sh_operations, detail::haze_operations, detail::nn_operations,
+          detail::view_operations})
       for (OperationInfo& op : family()) ops.push_back(std::move(op));
     return ops;
   }();

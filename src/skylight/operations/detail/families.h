@@ -40,14 +40,15 @@ void check_input_folder(const Request& r, const std::string& name);
 // `specs` followed by `more`.
 std::vector<ParameterSpec> concat(std::initializer_list<std::vector<ParameterSpec>> parts);
 
-std::vector<OperationInfo> sky_operations();       // render, eval
-std::vector<OperationInfo> estimate_operations();  // estimate
-std::vector<OperationInfo> measured_operations();  // measured
-std::vector<OperationInfo> sun_operations();       // sun, daylight
-std::vector<OperationInfo> report_operations();    // bench, report
-std::vector<OperationInfo> sh_operations();        // sh fit|eval|export|render|error
-std::vector<OperationInfo> haze_operations();      // haze coefficients|attenuation|cameras|...
-std::vector<OperationInfo> nn_operations();        // nn train|validate|export|animate|study|planet
-std::vector<OperationInfo> view_operations();      // view
+std::vector<OperationInfo> sky_operations();         // render, eval
+std::vector<OperationInfo> estimate_operations();    // estimate
+std::vector<OperationInfo> measured_operations();    // measured
+std::vector<OperationInfo> sun_operations();         // sun, daylight
+std::vector<OperationInfo> irradiance_operations();  // irradiance
+std::vector<OperationInfo> report_operations();      // bench, report
+std::vector<OperationInfo> sh_operations();          // sh fit|eval|export|render|error
+std::vector<OperationInfo> haze_operations();        // haze coefficients|attenuation|cameras|...
+std::vector<OperationInfo> nn_operations();    // nn train|validate|export|animate|study|planet
+std::vector<OperationInfo> view_operations();  // view
 
 }  // namespace skylight::operations::detail
