@@ -15,6 +15,8 @@
 // `skylight bench --haze` prints frames/s and the ratio.
 // RowsBaseline/*, Rows/*: 2^20 directions as float SoA and as float64 rows (the Python layout).
 // SkyMatrixYear/*: `skylight daylight --epw`'s matrix of the sample year (Tregenza, Reinhart 2305).
+// PlaneYear/*: `skylight irradiance --epw`'s hourly light on a south façade for the sample year:
+// the Perez sky of each hour by the `sky` method, and Perez 1990's transposition (the baseline).
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
@@ -23,6 +25,7 @@
 #include <vector>
 
 #include "skylight/core/parallel.h"
+#include "skylight/daylight/plane_series.h"
 #include "skylight/daylight/sky_matrix.h"
 #include "skylight/haze/image_haze.h"
 #include "skylight/models/evaluation.h"
@@ -320,6 +323,23 @@ void SkyMatrixYear(benchmark::State& state, const char* patches) {
       static_cast<double>(daylight::sky_matrix(epw, s, "sample").hours.size());
 }
 
+// The year's hourly light on a south façade (4440 hours; all threads, as the command runs it).
+void PlaneYear(benchmark::State& state, daylight::Transposition method) {
+  static const io::EpwFile epw =
+      io::read_epw(std::string(SKYLIGHT_SOURCE_DATA_DIR) + "/weather/synthetic_munich.epw");
+  static const io::HorizonProfile flat;
+  const daylight::PlaneContext plane = daylight::plane_context({0.5 * kPi, kPi}, method, flat);
+  daylight::SeriesSettings s;
+  s.weather_sky = true;
+  for (auto _ : state) benchmark::DoNotOptimize(daylight::plane_series(epw, plane, s, "sample"));
+}
+
+BENCHMARK_CAPTURE(PlaneYear, Sky, daylight::Transposition::sky)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+BENCHMARK_CAPTURE(PlaneYear, Perez1990, daylight::Transposition::perez1990)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 BENCHMARK_CAPTURE(SkyMatrixYear, Tregenza, "tregenza")->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(SkyMatrixYear, Reinhart2305, "reinhart4")->Unit(benchmark::kMillisecond);
 BENCHMARK(HazeRetarget1080p)->Unit(benchmark::kMillisecond)->UseRealTime();

@@ -85,6 +85,8 @@ CASES = [
     ("daylight", dict(epw="@epw", output="@m.txt"), "error", "write .csv or .npy", []),
     ("daylight", dict(epw="@epw", dni=700, output="@m.csv"), "success", None,
      ["dni is not read with epw (each record gives it); ignored"]),
+    ("daylight", dict(epw="@epw", channels="radiance,melanopic", output="@m.csv"), "error",
+     "has no spectrum", []),
     ("daylight", dict(dni=700, dhi=120, sun_zenith=30, day_of_year=172, output="@m.csv"),
      "error", "output needs epw", []),
     # irradiance

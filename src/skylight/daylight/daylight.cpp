@@ -25,8 +25,8 @@ const std::vector<std::string>& DaylightRequest::one_sky_only() {
 }
 
 const std::vector<std::string>& DaylightRequest::matrix_only() {
-  static const std::vector<std::string> names = {"patches", "sun-patches", "hours", "ground-albedo",
-                                                 "quantity"};
+  static const std::vector<std::string> names = {"patches",       "sun-patches", "hours",
+                                                 "ground-albedo", "quantity",    "channels"};
   return names;
 }
 

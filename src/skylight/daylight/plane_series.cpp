@@ -104,46 +104,64 @@ class ShapeTable {
 
 }  // namespace
 
-PlaneSeries plane_series(
-    const io::EpwFile& epw, const PlaneContext& plane, const SeriesSettings& settings,
-    const std::string& source,
+std::vector<PlaneSeries> plane_series(
+    const io::EpwFile& epw, const std::vector<const PlaneContext*>& planes,
+    const SeriesSettings& settings, const std::string& source,
     const std::function<void(std::size_t, std::size_t, std::string_view)>& progress) {
-  PlaneSeries out;
-  out.year = weather_hours(epw, settings.hours, settings.compat, source,
-                           [&](std::size_t done, std::size_t total) {
-                             const std::size_t step = std::max<std::size_t>(1, total / 20);
-                             if (progress && (done % step == 0 || done == total))
-                               progress(done, total, "records");
-                           });
-  const auto& hours = out.year.hours;
-  const bool sky = plane.method == Transposition::sky;
+  SKYLIGHT_CHECK(!planes.empty(), "a series needs a plane");
+  const WeatherYear year = weather_hours(
+      epw, settings.hours, settings.compat, source, [&](std::size_t done, std::size_t total) {
+        const std::size_t step = std::max<std::size_t>(1, total / 20);
+        if (progress && (done % step == 0 || done == total)) progress(done, total, "records");
+      });
+  const auto& hours = year.hours;
+  const PlaneContext& first = *planes.front();
+  const bool sky = first.method == Transposition::sky;
+  for (const PlaneContext* p : planes)
+    SKYLIGHT_CHECK(p->method == first.method && p->weights.grid == first.weights.grid,
+                   "the planes of one series share a method and a grid");
   SKYLIGHT_CHECK(!sky || settings.weather_sky || settings.model,
                  "the sky method's series needs a weather sky or a model");
-  const SkyGrid& grid = *plane.weights.grid;
+  const SkyGrid& grid = *first.weights.grid;
   ShapeTable table(settings.model, grid);
   if (sky && !settings.weather_sky) table.build(hours, progress);
-  out.sky_models_built = table.size();
-  out.light.resize(hours.size());
-  out.albedo.resize(hours.size());
+  std::vector<PlaneSeries> out(planes.size());
+  for (PlaneSeries& s : out) {
+    s.year.sun_down = year.sun_down;
+    s.sky_models_built = table.size();
+    s.light.resize(hours.size());
+    s.albedo.resize(hours.size());
+  }
   parallel_for(hours.size(), 64, [&](std::size_t b, std::size_t e) {
     std::vector<float> L, scratch;
     for (std::size_t i = b; i < e; ++i) {
       const WeatherHour& h = hours[i];
       const double albedo = settings.albedo.value_or(h.albedo.value_or(kDefaultGroundAlbedo));
-      out.albedo[i] = albedo;
       const MeasuredLight m = measured_of(h.sky);
-      if (!sky) {
-        out.light[i] = transposed_measured_light(m, h.sun, plane, albedo);
-        continue;
+      if (sky) {
+        if (settings.weather_sky)
+          weather_sky(h.sky, grid, L, scratch);
+        else
+          table.sky(h.sun, L);
       }
-      if (settings.weather_sky)
-        weather_sky(h.sky, grid, L, scratch);
-      else
-        table.sky(h.sun, L);
-      out.light[i] = measured_sky_light(L, m, h.sun, plane, albedo);
+      for (std::size_t p = 0; p < planes.size(); ++p) {
+        out[p].albedo[i] = albedo;
+        out[p].light[i] = sky ? measured_sky_light(L, m, h.sun, *planes[p], albedo)
+                              : transposed_measured_light(m, h.sun, *planes[p], albedo);
+      }
     }
   });
+  for (PlaneSeries& s : out) s.year.hours = hours;
   return out;
+}
+
+PlaneSeries plane_series(
+    const io::EpwFile& epw, const PlaneContext& plane, const SeriesSettings& settings,
+    const std::string& source,
+    const std::function<void(std::size_t, std::size_t, std::string_view)>& progress) {
+  return std::move(
+      plane_series(epw, std::vector<const PlaneContext*>{&plane}, settings, source, progress)
+          .front());
 }
 
 std::vector<std::string> plane_keys(const std::string& suffix) {

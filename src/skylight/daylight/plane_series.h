@@ -50,7 +50,12 @@ struct PlaneSeries {
   std::size_t sky_models_built = 0;  // the table's skies (`sky` without weather_sky)
 };
 
-// `progress(done, total, step)` after each record read and each table row.
+// `progress(done, total, step)` after each record read and each table row. Several planes share
+// the hours' skies (one series per plane, in order).
+std::vector<PlaneSeries> plane_series(
+    const io::EpwFile& epw, const std::vector<const PlaneContext*>& planes,
+    const SeriesSettings& settings, const std::string& source,
+    const std::function<void(std::size_t, std::size_t, std::string_view)>& progress = {});
 PlaneSeries plane_series(
     const io::EpwFile& epw, const PlaneContext& plane, const SeriesSettings& settings,
     const std::string& source,

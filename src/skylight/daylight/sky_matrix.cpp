@@ -160,6 +160,11 @@ const ParameterSchema<MatrixSettings>& MatrixSettings::schema() {
                        .max = 1.0,
                        .default_value = Absent{"the record's albedo, else 0.2"},
                        .description = "reflectance of the ground patch"});
+    s.text(&MatrixSettings::channels,
+           {.name = "channels",
+            .default_value = Absent{"--quantity's one"},
+            .description = "radiance,luminance: both, side by side (<channel>_p<i> columns); "
+                           "melanopic needs spectra the weather sky has not"});
     s.text(&MatrixSettings::quantity,
            {.name = "quantity",
             .default_value = ParameterValue(std::string("radiance")),
@@ -297,28 +302,73 @@ std::vector<double> hour_values(const MatrixHour& h) {
 
 }  // namespace
 
+std::vector<bool> matrix_channels(const MatrixSettings& settings) {
+  if (settings.channels.empty()) return {settings.quantity == "luminance"};
+  std::vector<bool> out;
+  std::string_view rest = settings.channels;
+  while (true) {
+    const std::size_t comma = rest.find(',');
+    const std::string_view c = trim(rest.substr(0, comma));
+    if (c == "radiance" || c == "luminance") {
+      out.push_back(c == "luminance");
+    } else if (c == "melanopic") {
+      throw InvalidArgument(fmt::format(
+          "{} melanopic: the weather file's Perez all-weather sky has no spectrum (melanopic light "
+          "needs a spectral model's sky: `skylight irradiance` gives melanopic_edi_lx for hosek, "
+          "preetham, hillaire and bruneton)",
+          spelled("channels")));
+    } else {
+      throw InvalidArgument(fmt::format("{} '{}': '{}' is not radiance, luminance or melanopic",
+                                        spelled("channels"), excerpt(settings.channels),
+                                        excerpt(c)));
+    }
+    if (comma == std::string_view::npos) break;
+    rest.remove_prefix(comma + 1);
+  }
+  return out;
+}
+
+namespace {
+
+// The patch columns of every channel: p<i>, or <channel>_p<i> with several channels.
+std::vector<std::string> patch_columns(const SkyMatrix& m) {
+  const std::vector<bool> channels = matrix_channels(m.settings);
+  std::vector<std::string> out;
+  for (const bool lum : channels)
+    for (std::size_t i = 0; i < m.patches.size(); ++i)
+      out.push_back(channels.size() > 1 ? fmt::format("{}_p{}", lum ? "luminance" : "radiance", i)
+                                        : fmt::format("p{}", i));
+  return out;
+}
+
+}  // namespace
+
 std::string matrix_csv(const SkyMatrix& m) {
-  const bool lum = m.settings.quantity == "luminance";
+  const std::vector<bool> channels = matrix_channels(m.settings);
   std::string out;
   for (const auto& c : matrix_hour_columns()) out += c + ",";
-  for (std::size_t i = 0; i < m.patches.size(); ++i)
-    out += fmt::format("p{}{}", i, i + 1 < m.patches.size() ? "," : "\n");
+  const auto columns = patch_columns(m);
+  for (std::size_t i = 0; i < columns.size(); ++i)
+    out += columns[i] + (i + 1 < columns.size() ? "," : "\n");
   for (std::size_t h = 0; h < m.hours.size(); ++h) {
     for (double v : hour_values(m.hours[h])) out += fmt::format("{},", v);
-    for (std::size_t i = 0; i < m.patches.size(); ++i)
-      out += fmt::format("{:.7g}{}", m.value(h, i, lum), i + 1 < m.patches.size() ? ',' : '\n');
+    for (std::size_t c = 0; c < channels.size(); ++c)
+      for (std::size_t i = 0; i < m.patches.size(); ++i)
+        out += fmt::format("{:.7g}{}", m.value(h, i, channels[c]),
+                           c + 1 == channels.size() && i + 1 == m.patches.size() ? '\n' : ',');
   }
   return out;
 }
 
 std::string matrix_npy(const SkyMatrix& m) {
-  const bool lum = m.settings.quantity == "luminance";
-  const std::size_t cols = matrix_hour_columns().size() + m.patches.size();
+  const std::vector<bool> channels = matrix_channels(m.settings);
+  const std::size_t cols = matrix_hour_columns().size() + channels.size() * m.patches.size();
   std::string out = io::npy_header(m.hours.size(), cols);
   for (std::size_t h = 0; h < m.hours.size(); ++h) {
     for (double v : hour_values(m.hours[h])) io::append_npy_value(out, v);
-    for (std::size_t i = 0; i < m.patches.size(); ++i)
-      io::append_npy_value(out, m.value(h, i, lum));
+    for (const bool lum : channels)
+      for (std::size_t i = 0; i < m.patches.size(); ++i)
+        io::append_npy_value(out, m.value(h, i, lum));
   }
   return out;
 }

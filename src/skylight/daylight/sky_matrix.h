@@ -34,6 +34,9 @@ struct MatrixSettings {
   std::string hours;
   std::optional<double> ground_albedo;  // absent: the record's albedo, else 0.2
   std::string quantity = "radiance";    // radiance [W m^-2 sr^-1] | luminance [cd/m^2]
+  // --channels radiance,luminance[,melanopic]: several quantities side by side (each channel's
+  // patches, named <channel>_p<i>); empty: `quantity` alone (columns p<i>).
+  std::string channels;
   PerezCompat compat = PerezCompat::papers;
 
   static const ParameterSchema<MatrixSettings>& schema();
@@ -96,7 +99,11 @@ SkyMatrix sky_matrix(const io::EpwFile& epw, const MatrixSettings& settings,
 
 // The leading columns of every row, then the patches p0 (ground) .. pN.
 const std::vector<std::string>& matrix_hour_columns();
-// CSV: a header and one row per hour (the settings' quantity).
+// The matrix's channels in order: each true for luminance, false for radiance (the settings'
+// --channels, else its quantity). InvalidArgument for an unknown channel, and for melanopic: the
+// weather file's Perez sky has no spectrum.
+std::vector<bool> matrix_channels(const MatrixSettings& settings);
+// CSV: a header and one row per hour (the settings' channels).
 std::string matrix_csv(const SkyMatrix& m);
 // NumPy .npy (format 1.0): float64, C order, shape (hours, columns) with the CSV's columns.
 std::string matrix_npy(const SkyMatrix& m);

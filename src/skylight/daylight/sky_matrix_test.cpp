@@ -154,3 +154,44 @@ TEST(SkyMatrix, BadRecordsAndRangesNameTheLine) {
 
 }  // namespace
 }  // namespace skylight::daylight
+
+namespace skylight::daylight {
+namespace {
+
+// --channels radiance,luminance: each channel's patches side by side, the same numbers as the
+// matrices of one quantity each; melanopic is refused (the Perez sky has no spectrum).
+TEST(SkyMatrix, ChannelsPutEachQuantitysPatchesSideBySide) {
+  MatrixSettings s;
+  s.hours = "4000-4024";
+  s.channels = "radiance,luminance";
+  const std::string both = matrix_csv(sky_matrix(sample_year(), s, "y.epw"));
+  s.channels.clear();
+  const std::string rad = matrix_csv(sky_matrix(sample_year(), s, "y.epw"));
+  s.quantity = "luminance";
+  const std::string lum = matrix_csv(sky_matrix(sample_year(), s, "y.epw"));
+  // Row by row: the hour's columns and radiance's patches, then luminance's patches.
+  const auto lines = [](const std::string& t) {
+    std::vector<std::string> out;
+    std::size_t a = 0;
+    while (a < t.size()) {
+      const std::size_t b = t.find('\n', a);
+      out.push_back(t.substr(a, b - a));
+      a = b + 1;
+    }
+    return out;
+  };
+  const auto lb = lines(both), lr = lines(rad), ll = lines(lum);
+  ASSERT_EQ(lb.size(), lr.size());
+  const std::size_t hour_fields = matrix_hour_columns().size();
+  for (std::size_t k = 1; k < lb.size(); ++k) {
+    std::size_t cut = 0;
+    for (std::size_t f = 0; f < hour_fields; ++f) cut = ll[k].find(',', cut) + 1;
+    EXPECT_EQ(lb[k], lr[k] + "," + ll[k].substr(cut)) << k;
+  }
+  EXPECT_EQ(lb[0].find("radiance_p0"), lr[0].find("p0"));
+  s.channels = "radiance,melanopic";
+  EXPECT_THROW(matrix_channels(s), InvalidArgument);
+}
+
+}  // namespace
+}  // namespace skylight::daylight

@@ -87,7 +87,8 @@ ModelInfo BrunetonModel::registry_entry() {
   info.report = ReportPolicy{.title = "Bruneton 2017 (Earth defaults)",
                              .colour = "#9467bd",
                              .physical_reference = true,
-                             .physical_atmosphere = true};
+                             .physical_atmosphere = true,
+                             .planes = ParameterValues()};
   return info;
 }
 

@@ -745,7 +745,9 @@ ModelInfo HosekWilkieModel::registry_entry() {
                              .axis = "turbidity",
                              .axis_label = "T = ",
                              .fixed = ParameterValues().set("albedo", 0.3),
-                             .colour = "#1f77b4"},
+                             .colour = "#1f77b4",
+                             // A clear sky's distribution on planes: turbidity 3.
+                             .planes = ParameterValues().set("turbidity", 3.0)},
   };
 }
 

@@ -299,7 +299,10 @@ ModelInfo PerezModel::registry_entry() {
       .neural = NeuralPolicy{},
       .sh_fit = ShFitPolicy{},
       // The report's Perez sky: the example's clear-sky coefficients.
-      .report = ReportPolicy{.title = "Perez (example coefficients)", .colour = "#8c564b"},
+      // On planes with a weather year: each hour's all-weather sky (weather_sky).
+      .report = ReportPolicy{.title = "Perez (example coefficients)",
+                             .colour = "#8c564b",
+                             .planes = ParameterValues()},
   };
 }
 

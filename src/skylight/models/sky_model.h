@@ -319,6 +319,10 @@ struct ReportPolicy {
   // A physically based atmosphere: a row of the report's maps of the physical atmospheres (its
   // Earth defaults), in registry order (single scattering first).
   bool physical_atmosphere = false;
+  // The report's "light on planes" section: the annual light of this model's sky on a façade and
+  // a roof of the weather year (`irradiance --epw`, daylight/plane_series.h) at these values;
+  // absent: the model is not in that section.
+  std::optional<ParameterValues> planes{};
 };
 
 // Binds the generic values into the model's typed parameters (its schema applies defaults and

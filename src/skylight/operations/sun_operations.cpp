@@ -292,8 +292,10 @@ OperationInfo daylight_operation() {
   for (const std::string& name : daylight::DaylightRequest::matrix_only())
     op.relations.push_back(unread_without(name, "epw"));
   op.relations.push_back(needs("output", "epw", "one sky prints its values"));
+  op.relations.push_back(excludes("channels", "quantity"));
   op.check = [](Request& r) {
     if (r.given("epw")) {
+      daylight::matrix_channels(r.bind(daylight::MatrixSettings::schema()));
       if (!r.output_wanted("output"))
         throw InvalidArgument(
             fmt::format("{} needs {} FILE.csv or FILE.npy", spelled("epw"), spelled("output")));

@@ -131,6 +131,8 @@ void set_full(Config& c) {
   c.colour_n_theta = 12;
   c.colour_n_phi = 48;
   c.weather_stride = 16;
+  c.planes_hours = "";
+  c.planes_costly = true;
   c.weather_n_theta = 90;
   c.weather_n_phi = 180;
   c.measured_costly_captures = 1;
@@ -147,6 +149,8 @@ void set_quick(Config& c) {
   c.colour_n_theta = 6;
   c.colour_n_phi = 24;
   c.weather_stride = 60;
+  c.planes_hours = "4000-4240";
+  c.planes_costly = false;
   c.weather_n_theta = 45;
   c.weather_n_phi = 90;
   c.measured_costly_captures = 0;
@@ -366,6 +370,7 @@ void ReportWriter::write_html_and_json() {
            "parameter, as the model declares it; sun azimuth 180°.</p>\n" +
            html_validity_},
       {"weather", "9. Daylight from weather data", html_weather_},
+      {"planes", "10. Light on planes", html_planes_},
       {"closing", "Closing note: Zotti et al.'s findings, paper against ours",
        "<p>One row per finding (report.json <code>zotti_findings</code>; the summary above is "
        "generated from the same records).</p>\n" +
@@ -453,6 +458,7 @@ ReportSummary ReportWriter::run() {
   // The measurements first: a bad file fails fast, before any work.
   section_measurements();
   section_daylight();
+  section_planes();
   step("measurements and weather file");
   measured_skies();
   step("against measured skies");

@@ -96,6 +96,35 @@ TEST_F(ReportFiles, WeatherSectionComparesEachHoursSkyWithItsIlluminance) {
   EXPECT_NE(html.find("<b>synthetic</b>"), std::string::npos);
 }
 
+// Section 10: the weather year on a façade and a roof, perez1990 and the sky method of the models
+// with a ReportPolicy::planes (the quick report leaves out those with a costly set-up). Every
+// method shares the direct and ground light (the record's DNI cos AOI and the ground of its global
+// light): global - sky diffuse is the same for all, to the sums' round-off.
+TEST_F(ReportFiles, PlanesSectionComparesTheSkyMethodWithPerez1990) {
+  const auto j = nlohmann::json::parse(slurp(*dir_ / "report.json"));
+  const auto& planes = j["light_on_planes"]["planes"];
+  ASSERT_EQ(planes.size(), 2u);
+  std::size_t with_planes = 0;
+  for (const ModelInfo& info : model_registry())
+    if (info.report.planes && !info.costly_setup) ++with_planes;
+  for (const auto& p : planes) {
+    const auto& m = p["methods"];
+    ASSERT_EQ(m.size(), 1 + with_planes) << p["plane"];
+    const double direct_and_ground =
+        m[0]["global_kwh_m2"].get<double>() - m[0]["sky_diffuse_kwh_m2"].get<double>();
+    EXPECT_GT(direct_and_ground, 0.0);
+    for (const auto& r : m) {
+      const double g = r["global_kwh_m2"].get<double>(), d = r["sky_diffuse_kwh_m2"].get<double>();
+      EXPECT_NEAR(g - d, direct_and_ground, 1e-9 * g) << r["method"];
+      EXPECT_NEAR(r["circumsolar_kwh_m2"].get<double>() + r["horizon_kwh_m2"].get<double>() +
+                      r["rest_kwh_m2"].get<double>(),
+                  d, 1e-9 * d)
+          << r["method"];
+    }
+  }
+  EXPECT_NE(slurp(*dir_ / "index.html").find("id=\"planes\""), std::string::npos);
+}
+
 TEST_F(ReportFiles, JsonHasTheHeadlineNumbers) {
   const auto j = nlohmann::json::parse(slurp(*dir_ / "report.json"));
   ASSERT_TRUE(j.contains("preetham_negative_zenith"));

@@ -135,6 +135,10 @@ struct Config {
   // then the first and the last), or not at all (0, the quick report). The full report takes 1:
   // each capture costs bruneton a table (12 s of CPU); `skylight measured` compares them all.
   int measured_costly_captures;
+  // Light on planes (section_planes.cpp): the weather records of the series (FIRST-LAST, when the
+  // file has that many; empty: the year), and whether models with costly_setup take part.
+  std::string planes_hours;
+  bool planes_costly;
 };
 Config make_config(bool quick);
 
@@ -255,6 +259,8 @@ class ReportWriter {
   void load_weather();
   void weather_hours();
   void section_daylight();
+  // Section 10: the weather year's light on a façade and a roof (section_planes.cpp).
+  void section_planes();
   // Against measured skies (section_measured.cpp): load_kider reads the captures (kider_) before
   // anything is written; measured_skies fits every model with an estimation policy and a report
   // policy to them (measured_) and writes the section; measured_cell gives the trust table's
@@ -316,7 +322,7 @@ class ReportWriter {
   // HTML fragments by section.
   std::string html_trust_, html_zenith_, html_rel_, html_abs_, html_match_, html_vertical_,
       html_illum_, html_scan_, html_validity_, html_validity_measured_, html_findings_,
-      html_weather_;
+      html_weather_, html_planes_;
   std::string html_measured_;
   std::vector<io::KiderCapture> kider_;       // the captures (load_kider)
   std::string kider_source_;                  // where they came from, as the page says
