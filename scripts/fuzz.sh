@@ -15,7 +15,7 @@ root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 seconds="${1:-10}"
 [ $# -gt 0 ] && shift
 all=(directions_csv sky_scan image_pfm image_exr image_hdr image_png sh_table_json nn_weights_json
-  exif camera_calibration camera_csv sequence_list depth_image iso8601 epw kider)
+  exif camera_calibration camera_csv sequence_list depth_image iso8601 epw kider horizon)
 targets=("${@:-${all[@]}}")
 build="${SKYLIGHT_FUZZ_BUILD:-$root/build-fuzz}"
 

@@ -9,24 +9,11 @@
 #include "skylight/core/error.h"
 #include "skylight/core/math.h"
 #include "skylight/core/parallel.h"
+#include "skylight/models/perez.h"
 #include "skylight/models/perez_kernel.h"
 
 namespace skylight::daylight {
 namespace {
-
-// The hour's measured light: the record's irradiance and the efficacy models' illuminances.
-MeasuredLight measured_of(const PerezSky& sky) {
-  MeasuredLight m;
-  if (!sky.dark) {
-    m.dni_w_m2 = sky.dni_w_m2;
-    m.dhi_w_m2 = sky.dhi_w_m2;
-    m.dni_lux = sky.direct_normal_lux;
-    m.dhi_lux = sky.diffuse_horizontal_lux;
-  }
-  m.air_mass = sky.air_mass;
-  m.extraterrestrial_w_m2 = sky.extraterrestrial_w_m2;
-  return m;
-}
 
 // The hour's Perez all-weather sky, lv at the grid's cells (the batch path of the `perez` model:
 // the same distribution, unscaled).
@@ -137,7 +124,7 @@ std::vector<PlaneSeries> plane_series(
     for (std::size_t i = b; i < e; ++i) {
       const WeatherHour& h = hours[i];
       const double albedo = settings.albedo.value_or(h.albedo.value_or(kDefaultGroundAlbedo));
-      const MeasuredLight m = measured_of(h.sky);
+      const MeasuredLight m = measured_light_of(h.sky);
       if (sky) {
         if (settings.weather_sky)
           weather_sky(h.sky, grid, L, scratch);

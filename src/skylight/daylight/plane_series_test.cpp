@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "skylight/core/math.h"
+#include "skylight/models/perez.h"
 
 namespace skylight::daylight {
 namespace {
@@ -83,12 +84,8 @@ TEST(PlaneSeries, ModelTableMatchesTheModelAtEachHoursSun) {
     if (h.sky.dark) continue;
     const auto model = s.model(h.sun);
     const auto L = sky_luminance_on_grid(*model, *wall.weights.grid);
-    MeasuredLight m;
-    m.dni_w_m2 = h.sky.dni_w_m2;
-    m.dhi_w_m2 = h.sky.dhi_w_m2;
-    m.dni_lux = h.sky.direct_normal_lux;
-    m.dhi_lux = h.sky.diffuse_horizontal_lux;
-    const PlaneChannels direct = measured_sky_light(L, m, h.sun, wall, series.albedo[i]);
+    const PlaneChannels direct =
+        measured_sky_light(L, measured_light_of(h.sky), h.sun, wall, series.albedo[i]);
     const double a = series.light[i].irradiance->sky_diffuse, b = direct.irradiance->sky_diffuse;
     worst = std::max(worst, std::abs(a / b - 1.0));
   }

@@ -104,7 +104,7 @@ TEST(Transposition, HorizonAtZeroChangesNothingAndAtNinetyLeavesNoLight) {
   const io::HorizonProfile flat, zero = io::HorizonProfile::constant(0.0);
   const io::HorizonProfile wall = io::HorizonProfile::constant(90.0);
   SplitMix64 rng(7);
-  for (int k = 0; k < 50; ++k) {
+  for (int k = 0; k < 20; ++k) {
     const TranspositionCase c = random_case(rng);
     const Perez1990 s = perez1990_state(c.light, kasten_air_mass(c.light.sun.zenith), 1367.0);
     const auto light = [&](const io::HorizonProfile& h) {

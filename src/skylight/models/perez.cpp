@@ -209,18 +209,22 @@ void PerezModel::tristimulus_batch(const DirectionsSoA& dirs, const XyzSoA& out)
   distribution_.evaluate_batch(dirs, out);
 }
 
+MeasuredLight measured_light_of(const PerezSky& sky) {
+  MeasuredLight m;
+  if (!sky.dark) {
+    m.dni_w_m2 = sky.dni_w_m2;
+    m.dhi_w_m2 = sky.dhi_w_m2;
+    m.dni_lux = sky.direct_normal_lux;
+    m.dhi_lux = sky.diffuse_horizontal_lux;
+  }
+  m.air_mass = sky.air_mass;
+  m.extraterrestrial_w_m2 = sky.extraterrestrial_w_m2;
+  return m;
+}
+
 std::optional<MeasuredLight> PerezModel::measured_light() const {
   if (!sky_) return std::nullopt;
-  MeasuredLight m;
-  if (!sky_->dark) {
-    m.dni_w_m2 = sky_->dni_w_m2;
-    m.dhi_w_m2 = sky_->dhi_w_m2;
-    m.dni_lux = sky_->direct_normal_lux;
-    m.dhi_lux = sky_->diffuse_horizontal_lux;
-  }
-  m.air_mass = sky_->air_mass;
-  m.extraterrestrial_w_m2 = sky_->extraterrestrial_w_m2;
-  return m;
+  return measured_light_of(*sky_);
 }
 
 Domain PerezModel::domain() const {

@@ -83,4 +83,8 @@ class PerezModel final : public SkyModel {
   PerezDistribution distribution_;
 };
 
+// The measured light of an all-weather sky: its direct and diffuse irradiance and illuminance (0
+// for a dark sky), air mass and extraterrestrial irradiance.
+MeasuredLight measured_light_of(const PerezSky& sky);
+
 }  // namespace skylight
