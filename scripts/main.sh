@@ -4,7 +4,8 @@
 # model into out/ — float EXR (with metadata), a tone-mapped PNG preview, and a log-luminance
 # false-colour map with legend — as a full-sphere equirect map and an upward fisheye (the Perez
 # sky also from measured irradiance); the annual Tregenza sky matrix of the sample weather year
-# (docs/DAYLIGHT.md); then the validation and comparison report to out/report/ (docs/REPORT.md).
+# (docs/DAYLIGHT.md) and its hourly light on a south façade (docs/IRRADIANCE.md); then the
+# validation and comparison report to out/report/ (docs/REPORT.md).
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "$root"
@@ -42,6 +43,9 @@ for entry in "${skies[@]}"; do
 done
 echo "[daylight] $out/sky_matrix_tregenza.csv"
 "$sk" daylight --epw data/weather/synthetic_munich.epw --patches tregenza -o "$out/sky_matrix_tregenza.csv"
+echo "[irradiance] $out/facade_south.csv"
+"$sk" irradiance --model perez --epw data/weather/synthetic_munich.epw --tilt 90 --surface-azimuth 180 \
+  -o "$out/facade_south.csv"
 echo "[report] $out/report"
 "$sk" report -o "$out/report"
 echo "wrote $(ls "$out" | wc -l) entries to $out; the report: $out/report/index.html"
