@@ -9,13 +9,15 @@ set -euo pipefail
 # emscripten: the library compiled to WebAssembly for `skylight view`'s page (web/, docs/VIEWER.md).
 # python3-dev, python3-numpy, python3-pytest, pybind11-dev, python3-ephem, python3-matplotlib: the
 # Python package, its tests (ephem: the independent solar-position check) and the examples of
-# docs/PYTHON.md.
+# docs/PYTHON.md. python3-dask, python3-distributed, python3-zarr: pyskylight.distributed
+# (docs/SCALE.md) and its tests.
 PACKAGES=(build-essential cmake ninja-build pkg-config git ccache
   libeigen3-dev libopenexr-dev libimath-dev libstb-dev libcli11-dev libfmt-dev libexif-dev
   nlohmann-json3-dev libhwy-dev libgtest-dev libgmock-dev libbenchmark-dev
   chromium clang libclang-rt-14-dev emscripten
   libegl-dev libgles-dev libgl-dev libopengl-dev libegl-mesa0 libgl1-mesa-dri glslang-tools
-  python3-dev python3-numpy python3-pytest pybind11-dev python3-ephem python3-matplotlib)
+  python3-dev python3-numpy python3-pytest pybind11-dev python3-ephem python3-matplotlib
+  python3-dask python3-distributed python3-zarr)
 missing=()
 for p in "${PACKAGES[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
