@@ -24,7 +24,8 @@ import pyskylight as _sk
 
 _log = logging.getLogger("pyskylight.distributed")
 
-__all__ = ["sky_matrices", "estimate_turbidity", "tune_allocator"]
+__all__ = ["sky_matrices", "estimate_turbidity", "measured_compare", "train_networks",
+           "tune_allocator"]
 
 
 # glibc's mallopt parameters and the values the workers take (docs/SCALE.md, "Memory"): Dask's
@@ -34,6 +35,9 @@ __all__ = ["sky_matrices", "estimate_turbidity", "tune_allocator"]
 _M_TRIM_THRESHOLD, _M_MMAP_THRESHOLD = -1, -3
 _TRIM_BYTES, _MMAP_BYTES = 128 << 20, 64 << 20
 _tuned = False
+# What the library raises for an input it cannot use: bad values or files (InvalidArgument, a
+# ValueError), I/O (OSError), a fit outside its bound (RuntimeError, nothing written).
+_LIBRARY_ERRORS = (_sk.InvalidArgument, OSError, RuntimeError)
 
 
 def tune_allocator():
@@ -89,7 +93,7 @@ def _sky_matrix_task(item, options, overwrite, before_task=None):
     start = time.perf_counter()
     try:
         record = _sk.run("daylight", epw=epw, output=output, **options)
-    except (_sk.InvalidArgument, OSError) as e:
+    except _LIBRARY_ERRORS as e:
         result.update(status="failed", error=str(e), output=None)
         return result
     result["hours"] = record["hours"]
@@ -129,7 +133,7 @@ def _estimate_task(image, options):
     start = time.perf_counter()
     try:
         record = _sk.run("estimate", image=image, **options)
-    except (_sk.InvalidArgument, OSError) as e:
+    except _LIBRARY_ERRORS as e:
         result.update(status="failed", error=str(e))
         return result
     for key in ("model", "turbidity", "turbidity_sigma", "sun_zenith_deg", "sun_azimuth_deg",
@@ -147,3 +151,69 @@ def estimate_turbidity(image_paths, client=None, progress=False, **options):
     ``seconds``, ``status``, ``error``. Nothing is written."""
     images = [os.fspath(p) for p in image_paths]
     return _gather(_client(client), _estimate_task, images, progress, options=options)
+
+
+def _measured_task(item, options):
+    tune_allocator()
+    folder, model = item
+    result = {"input": folder if folder is not None else "(the shipped subset)", "kider": folder,
+              "model": model, "captures": None, "median_luminance_rms_shape": None,
+              "median_luminance_rms_abs": None, "median_scale": None, "seconds": 0.0,
+              "status": "ok", "error": None, "record": None}
+    start = time.perf_counter()
+    args = dict(options, model=model)
+    if folder is not None:
+        args["kider"] = folder
+    try:
+        record = _sk.run("measured", **args)
+    except _LIBRARY_ERRORS as e:
+        result.update(status="failed", error=str(e))
+        return result
+    result.update(captures=len(record["captures"]), record=record,
+                  median_luminance_rms_shape=record["median_luminance_rms_shape"],
+                  median_luminance_rms_abs=record["median_luminance_rms_abs"],
+                  median_scale=record["median_scale"], seconds=time.perf_counter() - start)
+    return result
+
+
+def measured_compare(capture_dirs, models=("preetham", "hosek", "cie"), client=None,
+                     progress=False, **options):
+    """Every model fitted to every capture of each folder of Kider et al. 2014's captures
+    (``skylight measured``, docs/MEASURED.md): one task per (folder, model); a folder None is the
+    shipped subset. ``options``: measured's (``exclude_sun_deg``, ``sun_azimuth_from``, the site).
+    Returns one dict per (folder, model), folders outer: ``kider``, ``model``, ``captures``, the
+    medians ``median_luminance_rms_shape``, ``median_luminance_rms_abs``, ``median_scale``, the
+    whole ``record`` (every capture's fit), ``seconds``, ``status``, ``error``."""
+    items = [(None if d is None else os.fspath(d), m) for d in capture_dirs for m in models]
+    return _gather(_client(client), _measured_task, items, progress, options=options)
+
+
+def _train_task(item, overwrite):
+    tune_allocator()
+    name, output, config = item
+    result = {"input": name, "name": name, "output": output, "seconds": 0.0, "status": "ok",
+              "error": None, "record": None}
+    if not overwrite and os.path.exists(output):
+        result["status"] = "skipped"
+        return result
+    start = time.perf_counter()
+    try:
+        result["record"] = _sk.run("nn train", output=output, **config)
+    except _LIBRARY_ERRORS as e:
+        result.update(status="failed", error=str(e), output=None)
+        return result
+    result["seconds"] = time.perf_counter() - start
+    return result
+
+
+def train_networks(configs, out_dir, client=None, overwrite=False, progress=False):
+    """One trained network per configuration (``skylight nn train``, docs/NN.md): ``configs`` maps
+    a name to nn train's parameters (``source``, ``seed``, ``iterations``, ``starts``, ...); each
+    network is written to ``out_dir/<name>.json``. A network that fails its held-out check is a
+    failed task (the library writes nothing). Returns one dict per configuration, in order:
+    ``name``, ``output``, ``record`` (nn train's: the held-out errors), ``seconds``, ``status``,
+    ``error``."""
+    os.makedirs(out_dir, exist_ok=True)
+    items = [(name, os.path.join(os.fspath(out_dir), name + ".json"), dict(config))
+             for name, config in configs.items()]
+    return _gather(_client(client), _train_task, items, progress, overwrite=overwrite)

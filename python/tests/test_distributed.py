@@ -3,6 +3,7 @@ several weather files equal `daylight --epw` run one by one, bit for bit; a corr
 reported with its name while the others finish; a worker killed mid-task is replaced and the run
 ends with the same outputs; a rerun skips complete outputs; photos' turbidity equals `estimate`."""
 import filecmp
+import json
 import os
 import shutil
 
@@ -115,3 +116,31 @@ def test_turbidity_of_photos_equals_estimate(client):
     assert rows[0]["status"] == "ok" and rows[0]["turbidity"] == one["turbidity"]
     assert rows[0]["sun_zenith_deg"] == one["sun_zenith_deg"]
     assert rows[1]["status"] == "failed" and "missing" in rows[1]["error"]
+
+
+def test_measured_compare_equals_measured(client, tmp_path):
+    rows = skd.measured_compare([None, str(tmp_path / "missing")], models=["preetham", "cie"],
+                                client=client)
+    assert [(r["model"], r["status"]) for r in rows] == [
+        ("preetham", "ok"), ("cie", "ok"), ("preetham", "failed"), ("cie", "failed")]
+    one = sk.run("measured", model="cie")
+    assert rows[1]["median_luminance_rms_shape"] == one["median_luminance_rms_shape"]
+    assert rows[1]["captures"] == len(one["captures"]) > 0
+    assert "missing" in rows[2]["error"]
+
+
+def test_train_networks_writes_each_network_or_reports_its_failure(client, tmp_path):
+    configs = {"good": dict(source="preetham", iterations=100, starts=2, seed=1),
+               "short": dict(source="preetham", iterations=20, starts=1, seed=1)}
+    rows = skd.train_networks(configs, tmp_path / "nets", client=client)
+    assert [r["status"] for r in rows] == ["ok", "failed"]
+    assert "held-out check" in rows[1]["error"]
+    assert sorted(os.listdir(tmp_path / "nets")) == ["good.json"]
+    sk.run("nn train", output=str(tmp_path / "serial.json"), **configs["good"])
+
+    def network(path):  # the file without its run's clock (provenance date, training time)
+        j = json.loads(open(path).read())
+        for key in ("date", "training_seconds"):
+            j["provenance"].pop(key)
+        return j
+    assert network(tmp_path / "nets" / "good.json") == network(tmp_path / "serial.json")
