@@ -1,4 +1,4 @@
-"""pyskylight.distributed on a LocalCluster of 2 worker processes (issue 49): the sky matrices of
+"""pyskylight.distributed on a LocalCluster of 2 worker processes (docs/SCALE.md): the sky matrices of
 several weather files equal `daylight --epw` run one by one, bit for bit; a corrupt file is
 reported with its name while the others finish; a worker killed mid-task is replaced and the run
 ends with the same outputs; a rerun skips complete outputs; photos' turbidity equals `estimate`."""

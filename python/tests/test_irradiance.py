@@ -1,5 +1,5 @@
 """`irradiance` from Python: perez1990 against an independent implementation of the published
-formula (issue 48's target: 1e-9 relative in every clearness bin), and pyskylight.irradiance over
+formula (1e-9 relative in every clearness bin, docs/IRRADIANCE.md), and pyskylight.irradiance over
 arrays of planes and the hours of a weather file."""
 import math
 import os
@@ -20,7 +20,7 @@ F = [(-0.008, 0.588, -0.062, -0.060, 0.072, -0.022),
      (1.060, -1.600, -0.359, 0.264, -1.127, 0.131),
      (0.678, -0.327, -0.250, 0.156, -1.377, 0.251)]
 EPSILON_EDGES = (1.065, 1.230, 1.500, 1.950, 2.800, 4.500, 6.200)
-# The formula's own arithmetic in another order: round-off only (the issue's bound).
+# The formula's own arithmetic in another order: round-off only (docs/IRRADIANCE.md's bound).
 TOLERANCE = 1e-9
 EPW = os.path.join(os.path.dirname(__file__), "..", "..", "data", "weather", "synthetic_munich.epw")
 

@@ -21,7 +21,7 @@ std::unique_ptr<SkyModel> measured_sky(double dni, double dhi, double zenith_deg
 }
 
 // `sky` on the horizontal plane from perez --dni --dhi: the model's own sky, integrated on the
-// grid, is the diffuse horizontal irradiance within 0.5 % (the bound); the grid's scale
+// grid, is the diffuse horizontal irradiance within 0.5 % (docs/IRRADIANCE.md's bound); the grid's scale
 // then makes it exact. Over 3 seeds of random measured skies.
 TEST(PlaneIrradiance, HorizontalSkyFromMeasuredLightIsItsDiffuseIrradiance) {
   const io::HorizonProfile flat;

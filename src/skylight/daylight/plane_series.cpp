@@ -91,6 +91,15 @@ class ShapeTable {
 
 }  // namespace
 
+SkyForSun sky_for_sun(std::string name, ParameterValues values) {
+  return [name = std::move(name), values = std::move(values)](const SunPosition& sun) {
+    SkyParameters sp;
+    sp.sun = sun;
+    sp.values = values;
+    return make_sky_model(name, sp);
+  };
+}
+
 std::vector<PlaneSeries> plane_series(
     const io::EpwFile& epw, const std::vector<const PlaneContext*>& planes,
     const SeriesSettings& settings, const std::string& source,

@@ -35,6 +35,9 @@ inline constexpr double kSeriesZenithStep = 1.0 * kDegree;
 // or of a weather sky.
 using SkyForSun = std::function<std::unique_ptr<SkyModel>(const SunPosition&)>;
 
+// Model `name`'s sky for each sun at its own parameter values `values` (make_sky_model).
+SkyForSun sky_for_sun(std::string name, ParameterValues values);
+
 struct SeriesSettings {
   std::string hours;  // FIRST-LAST records (1-based); empty: every record
   PerezCompat compat = PerezCompat::papers;

@@ -218,18 +218,6 @@ io::HorizonProfile request_horizon(const Request& r, std::string& described) {
   return h;
 }
 
-// The model's sky for a sun, at the request's own values of the model's parameters.
-daylight::SkyForSun model_for_sun(const Request& r) {
-  const ModelInfo& info = require_model(*r.text("model"), "model");
-  const ParameterValues own = r.values().only(info.parameters);
-  return [&info, own](const SunPosition& sun) {
-    SkyParameters p;
-    p.sun = sun;
-    p.values = own;
-    return make_sky_model(info.name, p);
-  };
-}
-
 IrradianceResult one_sky(const Request& r, IrradianceResult out,
                          const io::HorizonProfile& horizon) {
   const auto model = make_sky(r);
@@ -255,7 +243,8 @@ IrradianceResult series(const Request& r, IrradianceResult out, const io::Horizo
   settings.hours = r.text("hours").value_or("");
   settings.albedo = out.settings.albedo;
   settings.weather_sky = info.weather_sky;
-  if (plane.method == Transposition::sky && !info.weather_sky) settings.model = model_for_sun(r);
+  if (plane.method == Transposition::sky && !info.weather_sky)
+    settings.model = daylight::sky_for_sun(info.name, r.values().only(info.parameters));
   if (plane.method != Transposition::sky)
     r.warn(fmt::format("with {}, {} {} transposes each record's light: model '{}' is not read",
                        spelled("epw"), spelled("transposition"), out.transposition, info.name));

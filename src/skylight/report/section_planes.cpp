@@ -42,11 +42,18 @@ PlaneYear year_of(std::string method, const daylight::PlaneSeries& s) {
   return y;
 }
 
-// The series of one method on both planes.
-std::vector<daylight::PlaneSeries> series_of(const io::EpwFile& epw, const std::string& name,
-                                             const std::vector<const daylight::PlaneContext*>& ps,
-                                             const daylight::SeriesSettings& s) {
-  return daylight::plane_series(epw, ps, s, name);
+// The label and the series settings of a model's sky method (its ReportPolicy::planes values).
+std::pair<std::string, daylight::SeriesSettings> model_settings(
+    const ModelInfo& info, const daylight::SeriesSettings& base) {
+  daylight::SeriesSettings s = base;
+  s.weather_sky = info.weather_sky;
+  std::string label = "sky: " + info.name;
+  if (!info.weather_sky) {
+    s.model = daylight::sky_for_sun(info.name, *info.report.planes);
+    for (const auto& [name, value] : info.report.planes->all())
+      label += fmt::format(" {} {}", name, std::get<double>(value));
+  }
+  return {label, s};
 }
 
 std::string plane_table(const std::vector<PlaneYear>& rows) {
@@ -77,6 +84,31 @@ std::string difference_reason(const PlaneYear& m, const PlaneYear& ref) {
       m.method, m.sky - ref.sky, part, d);
 }
 
+// Each plane's table, the reasons of its differences, and its report.json record.
+std::string planes_tables(const std::vector<std::vector<PlaneYear>>& years, Json& planes) {
+  std::string html;
+  for (std::size_t k = 0; k < years.size(); ++k) {
+    html += fmt::format("<h3>{}</h3>\n", kReportPlanes[k].name) + plane_table(years[k]) + "<ul>\n";
+    Json rows = Json::array();
+    for (const PlaneYear& y : years[k]) {
+      if (&y != &years[k].front())
+        html += "<li>" + esc_html(difference_reason(y, years[k].front())) + "</li>\n";
+      rows.push_back({{"method", y.method},
+                      {"global_kwh_m2", num(y.global)},
+                      {"sky_diffuse_kwh_m2", num(y.sky)},
+                      {"circumsolar_kwh_m2", num(y.circumsolar)},
+                      {"horizon_kwh_m2", num(y.horizon)},
+                      {"rest_kwh_m2", num(y.rest)}});
+    }
+    html += "</ul>\n";
+    planes.push_back({{"plane", kReportPlanes[k].name},
+                      {"tilt_deg", kReportPlanes[k].tilt_deg},
+                      {"surface_azimuth_deg", kReportPlanes[k].azimuth_deg},
+                      {"methods", rows}});
+  }
+  return html;
+}
+
 }  // namespace
 
 void ReportWriter::section_planes() {
@@ -102,7 +134,7 @@ void ReportWriter::section_planes() {
     for (std::size_t k = 0; k < s.size(); ++k) years[k].push_back(year_of(method, s[k]));
   };
   add("perez1990 (the record's light)",
-      series_of(weather_, weather_name_, pointers(perez), settings));
+      daylight::plane_series(weather_, pointers(perez), settings, weather_name_));
   std::vector<std::string> left_out;
   for (const ModelInfo& info : model_registry()) {
     if (!info.report.planes) continue;
@@ -110,21 +142,8 @@ void ReportWriter::section_planes() {
       left_out.push_back(info.name);
       continue;
     }
-    daylight::SeriesSettings s = settings;
-    s.weather_sky = info.weather_sky;
-    std::string label = "sky: " + info.name;
-    if (!info.weather_sky) {
-      const ParameterValues values = *info.report.planes;
-      s.model = [&info, values](const SunPosition& sun) {
-        SkyParameters sp;
-        sp.sun = sun;
-        sp.values = values;
-        return make_sky_model(info.name, sp);
-      };
-      for (const auto& [name, value] : values.all())
-        label += fmt::format(" {} {}", name, std::get<double>(value));
-    }
-    add(label, series_of(weather_, weather_name_, pointers(sky), s));
+    const auto [label, s] = model_settings(info, settings);
+    add(label, daylight::plane_series(weather_, pointers(sky), s, weather_name_));
   }
   std::string html = fmt::format(
       "<p>The weather year of section 9 ({}{}) on two planes: the annual irradiation [kWh/m²] "
@@ -137,25 +156,7 @@ void ReportWriter::section_planes() {
       "and rest.</p>\n",
       esc_html(weather_name_), settings.hours.empty() ? "" : ", records " + settings.hours);
   Json planes = Json::array();
-  for (std::size_t k = 0; k < years.size(); ++k) {
-    html += fmt::format("<h3>{}</h3>\n", kReportPlanes[k].name) + plane_table(years[k]) + "<ul>\n";
-    Json rows = Json::array();
-    for (const PlaneYear& y : years[k]) {
-      if (&y != &years[k].front())
-        html += "<li>" + esc_html(difference_reason(y, years[k].front())) + "</li>\n";
-      rows.push_back({{"method", y.method},
-                      {"global_kwh_m2", num(y.global)},
-                      {"sky_diffuse_kwh_m2", num(y.sky)},
-                      {"circumsolar_kwh_m2", num(y.circumsolar)},
-                      {"horizon_kwh_m2", num(y.horizon)},
-                      {"rest_kwh_m2", num(y.rest)}});
-    }
-    html += "</ul>\n";
-    planes.push_back({{"plane", kReportPlanes[k].name},
-                      {"tilt_deg", kReportPlanes[k].tilt_deg},
-                      {"surface_azimuth_deg", kReportPlanes[k].azimuth_deg},
-                      {"methods", rows}});
-  }
+  html += planes_tables(years, planes);
   html +=
       "<p>Where the methods differ, the parts say why (each list names the largest). The "
       "mechanisms: perez1990's F1 (a point source at the sun) and F2 (an infinitely thin band "
